@@ -1,0 +1,336 @@
+//! Run files (SPEC §9): TOML parsed strictly (unknown keys are errors naming the key) and turned
+//! into a validated [`RunConfig`] before any work starts.
+
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+
+use crate::contact::SolverOptions;
+use crate::error::{Error, Result};
+use crate::material::{Material, ModulusConvention};
+use crate::surface::{pair_seeds, Generation, SpectrumParams, Surface};
+
+/// Unit system of a run file: reduced (E = 1, L = 1 by convention) or SI (Pa, m, J/m², N).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Units {
+    #[default]
+    Reduced,
+    Si,
+}
+
+impl Units {
+    /// Name of the length unit.
+    pub fn length_unit(self) -> &'static str {
+        match self {
+            Units::Reduced => "L",
+            Units::Si => "m",
+        }
+    }
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawRun {
+    #[serde(default)]
+    units: Units,
+    surface: RawSurface,
+    material: RawMaterial,
+    #[serde(default)]
+    contact: RawContact,
+    sliding: Option<RawSliding>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSurface {
+    grid: Option<usize>,
+    length: Option<f64>,
+    hurst: Option<f64>,
+    lambda_lower: Option<f64>,
+    lambda_upper: Option<f64>,
+    rms_height: Option<f64>,
+    seed: Option<u64>,
+    generation: Option<Generation>,
+    top: Option<PathBuf>,
+    bottom: Option<PathBuf>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawMaterial {
+    youngs_modulus: f64,
+    poisson_ratio: f64,
+    shear_strength: f64,
+    #[serde(default)]
+    fracture_energies: Vec<f64>,
+    geometry_factor: Option<f64>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawContact {
+    modulus: Option<ModulusConvention>,
+    tolerance: Option<f64>,
+    max_iterations: Option<usize>,
+    connectivity: Option<u8>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSliding {
+    loads: Vec<f64>,
+    distance: Option<f64>,
+    running_in: Option<f64>,
+    step_running_in: Option<usize>,
+    step: Option<usize>,
+}
+
+/// Where the two surfaces come from.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[serde(tag = "source", rename_all = "lowercase")]
+pub enum SurfaceSource {
+    /// Generated from spectral parameters and one seed (top and bottom seeds derived from it).
+    Generated { grid: usize, length: f64, spectrum: SpectrumParams, seed: u64 },
+    /// Read from `.npy` files (paths resolved against the run file's folder).
+    Files { top: PathBuf, bottom: PathBuf, length: f64 },
+}
+
+/// The sliding schedule (SPEC §6); distances as fractions of L, steps in pixels.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct SlidingConfig {
+    /// Normal loads F_N (E·L² reduced, N in SI).
+    pub loads: Vec<f64>,
+    /// Total sliding distance as a fraction of L (default ½).
+    pub distance: f64,
+    /// Running-in distance as a fraction of L (default ¼).
+    pub running_in: f64,
+    /// Step during running-in, in pixels (default 4).
+    pub step_running_in: usize,
+    /// Step after running-in, in pixels (default 1).
+    pub step: usize,
+}
+
+/// A validated run file.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct RunConfig {
+    pub units: Units,
+    pub surfaces: SurfaceSource,
+    pub material: Material,
+    pub modulus: ModulusConvention,
+    pub solver: SolverOptions,
+    /// Junction connectivity, 4 or 8.
+    pub connectivity: u8,
+    pub sliding: Option<SlidingConfig>,
+}
+
+fn missing(field: &str, hint: &str) -> Error {
+    Error::Config(format!("[surface] `{field}` is missing; {hint}"))
+}
+
+impl RunConfig {
+    /// Reads and validates a run file.
+    pub fn from_path(path: &Path) -> Result<Self> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        let base = path.parent().unwrap_or(Path::new("."));
+        Self::from_toml(&text, base).map_err(|e| match e {
+            Error::Config(m) => Error::Config(format!("{}: {m}", path.display())),
+            other => other,
+        })
+    }
+
+    /// Parses run-file text; relative surface paths are resolved against `base`.
+    pub fn from_toml(text: &str, base: &Path) -> Result<Self> {
+        let raw: RawRun = toml::from_str(text).map_err(|e| Error::Config(e.to_string().trim_end().replace('\n', " ")))?;
+        let s = raw.surface;
+        let surfaces = match (&s.top, &s.bottom) {
+            (Some(top), Some(bottom)) => {
+                for (field, value) in [
+                    ("grid", s.grid.is_some()),
+                    ("hurst", s.hurst.is_some()),
+                    ("lambda_lower", s.lambda_lower.is_some()),
+                    ("lambda_upper", s.lambda_upper.is_some()),
+                    ("rms_height", s.rms_height.is_some()),
+                    ("seed", s.seed.is_some()),
+                ] {
+                    if value {
+                        return Err(Error::Config(format!(
+                            "[surface] `{field}` has no meaning when `top` and `bottom` are read from files; remove it"
+                        )));
+                    }
+                }
+                let length = s.length.ok_or_else(|| missing("length", "give the physical side length of the files"))?;
+                crate::material::positive("length", length)?;
+                let (top, bottom) = (base.join(top), base.join(bottom));
+                for p in [&top, &bottom] {
+                    if !p.is_file() {
+                        return Err(Error::io(p, "surface file not found (paths are relative to the run file)"));
+                    }
+                }
+                SurfaceSource::Files { top, bottom, length }
+            }
+            (None, None) => {
+                let grid = s.grid.ok_or_else(|| missing("grid", "give the number of pixels per side, e.g. 512"))?;
+                let length = s.length.unwrap_or(1.0);
+                let spectrum = SpectrumParams {
+                    hurst: s.hurst.unwrap_or(0.7),
+                    lambda_lower: s.lambda_lower.ok_or_else(|| missing("lambda_lower", "e.g. 16 pixels, 16·length/grid"))?,
+                    lambda_upper: s.lambda_upper.ok_or_else(|| missing("lambda_upper", "e.g. length/16"))?,
+                    rms_height: s.rms_height.ok_or_else(|| missing("rms_height", "e.g. 0.005·length"))?,
+                    generation: s.generation.unwrap_or_default(),
+                };
+                spectrum.validate(grid, length)?;
+                SurfaceSource::Generated { grid, length, spectrum, seed: s.seed.unwrap_or(0) }
+            }
+            _ => {
+                return Err(Error::Config(
+                    "[surface] give both `top` and `bottom` files, or neither (to generate the surfaces)".into(),
+                ))
+            }
+        };
+        let m = raw.material;
+        let material = Material::new(
+            m.youngs_modulus,
+            m.poisson_ratio,
+            m.shear_strength,
+            m.fracture_energies,
+            m.geometry_factor.unwrap_or(3.0),
+        )?;
+        let c = raw.contact;
+        let mut solver = SolverOptions::default();
+        if let Some(t) = c.tolerance {
+            if !(t > 0.0 && t < 1.0) {
+                return Err(Error::param("tolerance", format!("{t} must lie in (0, 1)")));
+            }
+            solver.tolerance = t;
+        }
+        if let Some(m) = c.max_iterations {
+            if m == 0 {
+                return Err(Error::param("max_iterations", "must be at least 1"));
+            }
+            solver.max_iterations = m;
+        }
+        let connectivity = c.connectivity.unwrap_or(4);
+        if connectivity != 4 && connectivity != 8 {
+            return Err(Error::param("connectivity", format!("{connectivity} must be 4 or 8")));
+        }
+        let sliding = match raw.sliding {
+            None => None,
+            Some(sl) => {
+                if sl.loads.is_empty() {
+                    return Err(Error::param("loads", "the list is empty; give at least one normal load"));
+                }
+                for &f in &sl.loads {
+                    crate::material::positive("loads", f)?;
+                }
+                let distance = sl.distance.unwrap_or(0.5);
+                let running_in = sl.running_in.unwrap_or(0.25);
+                if !(distance > 0.0 && distance <= 1.0) {
+                    return Err(Error::param("distance", format!("{distance} must lie in (0, 1] (a fraction of L)")));
+                }
+                if !(running_in >= 0.0 && running_in < distance) {
+                    return Err(Error::param(
+                        "running_in",
+                        format!("{running_in} must lie in [0, distance = {distance}) (a fraction of L)"),
+                    ));
+                }
+                let step_running_in = sl.step_running_in.unwrap_or(4);
+                let step = sl.step.unwrap_or(1);
+                let grid = match &surfaces {
+                    SurfaceSource::Generated { grid, .. } => Some(*grid),
+                    SurfaceSource::Files { .. } => None,
+                };
+                for (field, v) in [("step_running_in", step_running_in), ("step", step)] {
+                    if v == 0 || grid.is_some_and(|g| v >= g) {
+                        return Err(Error::param(field, format!("{v} pixels must be at least 1 and below the grid size")));
+                    }
+                }
+                Some(SlidingConfig { loads: sl.loads, distance, running_in, step_running_in, step })
+            }
+        };
+        Ok(Self {
+            units: raw.units,
+            surfaces,
+            material,
+            modulus: c.modulus.unwrap_or_default(),
+            solver,
+            connectivity,
+            sliding,
+        })
+    }
+
+    /// The top and bottom surfaces: generated (seeds derived from the run's seed) or read.
+    pub fn surfaces(&self) -> Result<(Surface, Surface)> {
+        match &self.surfaces {
+            SurfaceSource::Generated { grid, length, spectrum, seed } => {
+                let (top_seed, bottom_seed) = pair_seeds(*seed);
+                let (top, bottom) = rayon::join(
+                    || Surface::generate(*grid, *length, spectrum, top_seed),
+                    || Surface::generate(*grid, *length, spectrum, bottom_seed),
+                );
+                Ok((top?, bottom?))
+            }
+            SurfaceSource::Files { top, bottom, length } => {
+                let t = Surface::read_npy(top, *length)?;
+                let b = Surface::read_npy(bottom, *length)?;
+                if t.n() != b.n() {
+                    return Err(Error::InvalidSurface {
+                        name: bottom.display().to_string(),
+                        message: format!("grid {}² differs from the top surface's {}²", b.n(), t.n()),
+                    });
+                }
+                Ok((t, b))
+            }
+        }
+    }
+
+    /// Effective modulus E* under the run's convention.
+    pub fn effective_modulus(&self) -> f64 {
+        self.material.effective_modulus(self.modulus)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const RUN: &str = r#"
+units = "reduced"
+[surface]
+grid = 64
+length = 1.0
+hurst = 0.7
+lambda_lower = 0.0625
+lambda_upper = 0.25
+rms_height = 0.005
+seed = 3
+[material]
+youngs_modulus = 1.0
+poisson_ratio = 0.3
+shear_strength = 0.01
+fracture_energies = [0.5e-6]
+[contact]
+modulus = "composite"
+[sliding]
+loads = [1e-3]
+"#;
+
+    #[test]
+    fn parses_a_run_file() {
+        let c = RunConfig::from_toml(RUN, Path::new(".")).unwrap();
+        assert_eq!(c.modulus, ModulusConvention::Composite);
+        assert_eq!(c.sliding.as_ref().unwrap().step_running_in, 4);
+        let (t, b) = c.surfaces().unwrap();
+        assert_ne!(t, b);
+    }
+
+    #[test]
+    fn unknown_keys_are_named() {
+        let e = RunConfig::from_toml(&RUN.replace("hurst", "hurts"), Path::new(".")).unwrap_err().to_string();
+        assert!(e.contains("hurts"), "{e}");
+        let e = RunConfig::from_toml(&RUN.replace("loads = [1e-3]", "loads = []"), Path::new(".")).unwrap_err().to_string();
+        assert!(e.contains("loads"), "{e}");
+        let e = RunConfig::from_toml(&RUN.replace("0.3", "0.7"), Path::new(".")).unwrap_err().to_string();
+        assert!(e.contains("poisson_ratio"), "{e}");
+    }
+}

@@ -1,0 +1,686 @@
+//! Saturated-pressure (elastic–perfectly-plastic) contact of a rigid rough surface on a periodic
+//! elastic half-space, solved by FFT boundary elements (SPEC §3, paper §2 and appendix A).
+//!
+//! Problem: find p minimising ½⟨p, 𝒦p⟩ − ⟨p, h⟩ subject to 0 ≤ p ≤ p_m and mean(p) = F_N/L², where
+//! û(q) = 2 p̂(q)/(E*|k|) is the periodic half-space displacement. Its optimality conditions, with
+//! g = 𝒦p − h and c the Lagrange multiplier of the load (the rigid body's position), are
+//! g + c ≥ 0 where p = 0, g + c = 0 where 0 < p < p_m, g + c ≤ 0 where p = p_m.
+//!
+//! Algorithm: the constrained conjugate gradient of Polonsky & Keer (1999), extended to the upper
+//! bound as in the bound-constrained CG of Vollebregt (2014): conjugate directions live on the free
+//! pixels 0 < p < p_m (made zero-mean there so that a step keeps the load); pixels that cross a bound
+//! are clipped to it (exact zeros outside the contact); bound pixels whose gap says they should move
+//! (penetrating non-contact pixels, plastic pixels whose gap opens) are released with a gradient step
+//! and restart the conjugation; the load is then restored exactly by scaling.
+//!
+//! Cost: one convolution 𝒦t per iteration. The displacement u = 𝒦p is carried along as
+//! u ← u − τ𝒦t, and recomputed only after a clip, release or rescale changed p off the line, and
+//! once more before convergence is declared, so that the final residual is that of a freshly
+//! computed 𝒦p.
+//!
+//! Residual (the convergence criterion, reported with every result): the largest pixel-wise
+//! violation of the three optimality conditions above, divided by the RMS of h about its mean:
+//! `max_i v_i / std(h)` with v_i = |g_i + c| on free pixels, max(0, −(g_i + c)) on non-contact pixels
+//! and max(0, g_i + c) on plastic pixels, c = −mean over free pixels of g.
+
+use std::f64::consts::PI;
+
+use rayon::prelude::*;
+
+use crate::error::{Error, Result};
+use crate::fft::{radial_kernel, FftPlan};
+
+/// Default convergence tolerance on the residual (see the module documentation). A hundredfold
+/// tighter tolerance changes no contact pixel on the paper-roughness problems (validated in
+/// `tests/contact_validation.rs`).
+pub const DEFAULT_TOLERANCE: f64 = 1e-8;
+
+/// Default iteration limit of one solve.
+pub const DEFAULT_MAX_ITERATIONS: usize = 20_000;
+
+/// Convergence settings of the contact solver.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct SolverOptions {
+    /// Tolerance on the residual (module documentation).
+    pub tolerance: f64,
+    /// Iteration limit; reaching it is an [`Error::NotConverged`].
+    pub max_iterations: usize,
+}
+
+impl Default for SolverOptions {
+    fn default() -> Self {
+        Self { tolerance: DEFAULT_TOLERANCE, max_iterations: DEFAULT_MAX_ITERATIONS }
+    }
+}
+
+/// What one solve reports beside the pressure field.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct SolveInfo {
+    /// Conjugate-gradient iterations (one convolution 𝒦t each).
+    pub iterations: usize,
+    /// Convolutions performed in all (iterations plus recomputations of 𝒦p).
+    pub convolutions: usize,
+    /// Final residual (module documentation).
+    pub residual: f64,
+    /// Tolerance the residual was required to reach.
+    pub tolerance: f64,
+    /// Rigid-body approach since first contact, max(h) − c, in length units: how far the rigid
+    /// surface has moved towards the zero-mean deformed half-space from the position where it first
+    /// touched it (h's highest point).
+    pub approach: f64,
+    /// Pixels in contact (p > 0).
+    pub contact_pixels: usize,
+    /// Pixels at the flow pressure (p = p_m).
+    pub plastic_pixels: usize,
+}
+
+/// Per-row partial sums of one pass, combined sequentially so that results do not depend on the
+/// thread count.
+#[derive(Debug, Clone, Copy)]
+struct Stats {
+    n_free: f64,
+    /// Σ over free pixels of (g − reference).
+    sum: f64,
+    /// Σ over free pixels of (g − reference)².
+    sum_sq: f64,
+    max_free: f64,
+    min_free: f64,
+    /// Smallest g over non-contact pixels.
+    min_zero: f64,
+    /// Largest g over plastic pixels.
+    max_plastic: f64,
+    n_contact: f64,
+    n_plastic: f64,
+    /// Objective ½⟨p, 𝒦p⟩ − ⟨p, h⟩ (its merit for the step safeguard).
+    energy: f64,
+}
+
+impl Default for Stats {
+    fn default() -> Self {
+        Self {
+            n_free: 0.0,
+            sum: 0.0,
+            sum_sq: 0.0,
+            max_free: f64::NEG_INFINITY,
+            min_free: f64::INFINITY,
+            min_zero: f64::INFINITY,
+            max_plastic: f64::NEG_INFINITY,
+            n_contact: 0.0,
+            n_plastic: 0.0,
+            energy: 0.0,
+        }
+    }
+}
+
+impl Stats {
+    #[inline]
+    fn add(&mut self, p: f64, u: f64, h: f64, reference: f64, flow_pressure: f64) {
+        let g = u - h;
+        if p <= 0.0 {
+            self.min_zero = self.min_zero.min(g);
+        } else {
+            self.n_contact += 1.0;
+            self.energy += p * (0.5 * u - h);
+            if p >= flow_pressure {
+                self.n_plastic += 1.0;
+                self.max_plastic = self.max_plastic.max(g);
+            } else {
+                let d = g - reference;
+                self.n_free += 1.0;
+                self.sum += d;
+                self.sum_sq += d * d;
+                self.max_free = self.max_free.max(g);
+                self.min_free = self.min_free.min(g);
+            }
+        }
+    }
+
+    fn combine(parts: &[Stats]) -> Stats {
+        let mut s = Stats::default();
+        for p in parts {
+            s.n_free += p.n_free;
+            s.sum += p.sum;
+            s.sum_sq += p.sum_sq;
+            s.max_free = s.max_free.max(p.max_free);
+            s.min_free = s.min_free.min(p.min_free);
+            s.min_zero = s.min_zero.min(p.min_zero);
+            s.max_plastic = s.max_plastic.max(p.max_plastic);
+            s.n_contact += p.n_contact;
+            s.n_plastic += p.n_plastic;
+            s.energy += p.energy;
+        }
+        s
+    }
+
+    /// Mean of g over free pixels (−c), or, without free pixels, a value between the bounds.
+    fn mean_gap(&self, reference: f64) -> f64 {
+        if self.n_free > 0.0 {
+            reference + self.sum / self.n_free
+        } else {
+            match (self.min_zero.is_finite(), self.max_plastic.is_finite()) {
+                (true, true) => 0.5 * (self.min_zero + self.max_plastic),
+                (true, false) => self.min_zero,
+                (false, true) => self.max_plastic,
+                (false, false) => reference,
+            }
+        }
+    }
+
+    /// Σ over free pixels of (g − ḡ)².
+    fn gradient_norm_sq(&self, reference: f64, mean: f64) -> f64 {
+        let shift = mean - reference;
+        (self.sum_sq - self.n_free * shift * shift).max(0.0)
+    }
+
+    /// Largest violation of the optimality conditions, in length units.
+    fn violation(&self, mean: f64) -> f64 {
+        let mut v: f64 = 0.0;
+        if self.n_free > 0.0 {
+            v = v.max(self.max_free - mean).max(mean - self.min_free);
+        }
+        if self.min_zero.is_finite() {
+            v = v.max(mean - self.min_zero);
+        }
+        if self.max_plastic.is_finite() {
+            v = v.max(self.max_plastic - mean);
+        }
+        v
+    }
+}
+
+/// FFT contact solver for one grid: plans, the influence kernel and all N² work buffers are made
+/// once here and reused by every solve (a sliding run makes one solver).
+pub struct ContactSolver {
+    n: usize,
+    length: f64,
+    effective_modulus: f64,
+    plan: FftPlan,
+    /// Fourier multiplier of 𝒦 (1/N² folded in), transposed half-spectrum layout.
+    kernel: Vec<f64>,
+    /// Displacement of a single unit-pressure pixel at that pixel, 𝒦ᵢᵢ.
+    self_influence: f64,
+    u: Vec<f64>,
+    t: Vec<f64>,
+    r: Vec<f64>,
+    /// p and u before the last step, to undo a step that raised the objective.
+    p_old: Vec<f64>,
+    u_old: Vec<f64>,
+    stats: Vec<Stats>,
+    sums: Vec<[f64; 2]>,
+    row_partials: Vec<f64>,
+    /// Convergence settings used by [`ContactSolver::solve`].
+    pub options: SolverOptions,
+}
+
+impl ContactSolver {
+    /// Solver for an `n × n` periodic grid of side `length` on a half-space of effective modulus E*.
+    pub fn new(n: usize, length: f64, effective_modulus: f64) -> Result<Self> {
+        crate::surface::check_grid(n)?;
+        crate::material::positive("length", length)?;
+        crate::material::positive("effective_modulus", effective_modulus)?;
+        let nn = (n * n) as f64;
+        // û = 2 p̂ / (E* |k|), |k| = 2π|q|/L; the q = 0 mode is the rigid-body position, set by the load.
+        let kernel = radial_kernel(n, |qx, qy| {
+            let q = (qx * qx + qy * qy).sqrt();
+            if q == 0.0 {
+                0.0
+            } else {
+                2.0 / (effective_modulus * 2.0 * PI * q / length) / nn
+            }
+        });
+        let mut self_influence = 0.0;
+        for (qy, row) in kernel.chunks(n).enumerate() {
+            let w = if qy == 0 || qy == n / 2 { 1.0 } else { 2.0 };
+            self_influence += w * row.iter().sum::<f64>();
+        }
+        Ok(Self {
+            n,
+            length,
+            effective_modulus,
+            plan: FftPlan::new(n),
+            kernel,
+            self_influence,
+            u: vec![0.0; n * n],
+            t: vec![0.0; n * n],
+            r: vec![0.0; n * n],
+            p_old: vec![0.0; n * n],
+            u_old: vec![0.0; n * n],
+            stats: vec![Stats::default(); n],
+            sums: vec![[0.0; 2]; n],
+            row_partials: vec![0.0; n],
+            options: SolverOptions::default(),
+        })
+    }
+
+    /// Grid size N.
+    pub fn n(&self) -> usize {
+        self.n
+    }
+
+    /// Side length L.
+    pub fn length(&self) -> f64 {
+        self.length
+    }
+
+    /// Effective modulus E*.
+    pub fn effective_modulus(&self) -> f64 {
+        self.effective_modulus
+    }
+
+    /// Surface displacement 𝒦p of the last solve (zero mean), valid after [`ContactSolver::solve`].
+    pub fn displacement(&self) -> &[f64] {
+        &self.u
+    }
+
+    /// Applies the influence operator: `out = 𝒦 p` (zero-mean displacement of the half-space).
+    pub fn apply_influence(&mut self, pressure: &[f64], out: &mut [f64]) {
+        self.plan.convolve(pressure, &self.kernel, out);
+    }
+
+    /// Solves the contact of the rigid surface of heights `heights` at mean pressure
+    /// `mean_pressure` = F_N/L², with flow pressure `flow_pressure` (`f64::INFINITY` for a purely
+    /// elastic solve). `pressure` is both the initial guess and the result: pass the previous
+    /// step's converged field to warm-start, or zeros for a cold start (uniform pressure).
+    pub fn solve(
+        &mut self,
+        heights: &[f64],
+        mean_pressure: f64,
+        flow_pressure: f64,
+        pressure: &mut [f64],
+    ) -> Result<SolveInfo> {
+        let n = self.n;
+        let nn = n * n;
+        if heights.len() != nn || pressure.len() != nn {
+            return Err(Error::param("heights", format!("arrays must hold {n}×{n} values")));
+        }
+        crate::material::positive("load", mean_pressure)?;
+        if !(flow_pressure > 0.0) {
+            return Err(Error::param("flow_pressure", format!("{flow_pressure} must be positive")));
+        }
+        if mean_pressure >= flow_pressure {
+            return Err(Error::InfeasibleLoad { mean_pressure, flow_pressure });
+        }
+        if let Some(k) = heights.iter().position(|h| !h.is_finite()) {
+            return Err(Error::InvalidSurface {
+                name: "composite".into(),
+                message: format!("height at ({}, {}) is {}", k / n, k % n, heights[k]),
+            });
+        }
+        let tolerance = self.options.tolerance;
+        if !(tolerance > 0.0) {
+            return Err(Error::param("tolerance", format!("{tolerance} must be positive")));
+        }
+        let pm = flow_pressure;
+        let total = mean_pressure * nn as f64;
+        let h_mean = heights.iter().sum::<f64>() / nn as f64;
+        let h_max = heights.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let h_std = (heights.iter().map(|h| (h - h_mean) * (h - h_mean)).sum::<f64>() / nn as f64).sqrt();
+        // Residual scale: the surface's RMS height, or for a flat surface the elastic length P·L/E*.
+        let scale = if h_std > 0.0 { h_std } else { mean_pressure * self.length / self.effective_modulus };
+        let min_len = (8192 / n).max(1);
+
+        // Initial guess: the given field when usable, else uniform pressure.
+        let usable = pressure.iter().all(|p| p.is_finite() && *p >= 0.0) && pressure.iter().any(|&p| p > 0.0);
+        if usable {
+            pressure.par_iter_mut().for_each(|p| *p = p.min(pm));
+        } else {
+            pressure.par_iter_mut().for_each(|p| *p = mean_pressure);
+        }
+        self.balance_load(heights, pressure, total, pm, f64::NAN, min_len);
+        let mut convolutions = 0;
+        self.plan.convolve(pressure, &self.kernel, &mut self.u);
+        convolutions += 1;
+        let mut reference = 0.0;
+        let mut stats = self.pass_stats(heights, pressure, reference, pm, min_len);
+        let mut fresh = true; // u was computed from p by FFT, not carried along
+        let mut restart = true;
+        let mut g_norm_old = 1.0;
+        let mut iterations = 0;
+        loop {
+            let mean = stats.mean_gap(reference);
+            let residual = stats.violation(mean) / scale;
+            if residual <= tolerance {
+                if fresh {
+                    return Ok(SolveInfo {
+                        iterations,
+                        convolutions,
+                        residual,
+                        tolerance,
+                        approach: h_max + mean,
+                        contact_pixels: stats.n_contact as usize,
+                        plastic_pixels: stats.n_plastic as usize,
+                    });
+                }
+                // Confirm with an exactly balanced load and a freshly computed displacement.
+                self.balance_load(heights, pressure, total, pm, mean, min_len);
+                self.plan.convolve(pressure, &self.kernel, &mut self.u);
+                convolutions += 1;
+                reference = mean;
+                stats = self.pass_stats(heights, pressure, reference, pm, min_len);
+                fresh = true;
+                continue;
+            }
+            if iterations >= self.options.max_iterations {
+                return Err(Error::NotConverged { iterations, residual, tolerance });
+            }
+            iterations += 1;
+
+            // Conjugate direction on the free pixels: t = (g − ḡ) + β t.
+            let g_norm = stats.gradient_norm_sq(reference, mean);
+            let beta = if restart || g_norm_old <= 0.0 { 0.0 } else { g_norm / g_norm_old };
+            g_norm_old = g_norm;
+            let (sum_t, sum_dt) = self.pass_direction(heights, pressure, mean, beta, pm, min_len);
+            let shift = if stats.n_free > 0.0 { sum_t / stats.n_free } else { 0.0 };
+
+            // r = 𝒦 t_f with t_f = t − shift on free pixels (zero mean there), and Σ_free r·t_f.
+            let p_ro: &[f64] = pressure;
+            let t = &self.t;
+            self.plan.convolve_with(
+                &self.t,
+                |i, row| {
+                    for (v, &p) in row.iter_mut().zip(&p_ro[i * n..(i + 1) * n]) {
+                        if p > 0.0 && p < pm {
+                            *v -= shift;
+                        }
+                    }
+                },
+                &self.kernel,
+                &mut self.r,
+                |i, row| {
+                    let mut s = 0.0;
+                    for ((&r, &tv), &p) in row.iter().zip(&t[i * n..(i + 1) * n]).zip(&p_ro[i * n..(i + 1) * n]) {
+                        if p > 0.0 && p < pm {
+                            s += r * (tv - shift);
+                        }
+                    }
+                    s
+                },
+                Some(&mut self.row_partials),
+            );
+            convolutions += 1;
+            let curvature: f64 = self.row_partials.iter().sum();
+            let (tau, cg_step) = if stats.n_free > 0.0 && curvature > 0.0 && sum_dt > 0.0 {
+                (sum_dt / curvature, true)
+            } else {
+                (1.0 / self.self_influence, false)
+            };
+
+            // Step, clip to the bounds, release bound pixels whose gap points inwards; the next
+            // iteration's statistics come out of the same pass.
+            // Step, clip to the bounds, release bound pixels whose gap points inwards; the next
+            // iteration's statistics come out of the same pass. A step that changed p off the CG
+            // line is checked on the objective and shortened until it descends (projected search).
+            let energy_before = stats.energy;
+            let slack = 1e-13 * (energy_before.abs() + total * h_std.max(h_max.abs()));
+            let mut tau = tau;
+            let mut backtracks = 0;
+            loop {
+                let (next, changed_total, released, clipped) =
+                    self.pass_update(heights, pressure, mean, tau, if cg_step { shift } else { f64::NAN }, pm, min_len);
+                let drift = (changed_total - total).abs() > 1e-12 * total;
+                if !(clipped || released || drift || !cg_step) {
+                    stats = next;
+                    fresh = false;
+                    restart = false;
+                    break;
+                }
+                self.balance_load(heights, pressure, total, pm, mean, min_len);
+                self.plan.convolve(pressure, &self.kernel, &mut self.u);
+                convolutions += 1;
+                stats = self.pass_stats(heights, pressure, mean, pm, min_len);
+                fresh = true;
+                restart = released || backtracks > 0;
+                if stats.energy <= energy_before + slack || backtracks >= 40 {
+                    break;
+                }
+                pressure.par_iter_mut().zip(self.p_old.par_iter()).for_each(|(p, &o)| *p = o);
+                self.u.par_iter_mut().zip(self.u_old.par_iter()).for_each(|(u, &o)| *u = o);
+                tau *= 0.25;
+                backtracks += 1;
+            }
+            reference = mean;
+        }
+    }
+
+    /// Restores the load exactly ([`scale_to_load`]). Where the contact cannot carry it even at the
+    /// flow pressure, the missing load goes to the non-contact pixels that penetrate most, in
+    /// proportion to their penetration −(g − ḡ) (all non-contact pixels evenly when `mean` is NaN or
+    /// none penetrates), then the load is balanced again.
+    fn balance_load(&mut self, heights: &[f64], pressure: &mut [f64], total: f64, pm: f64, mean: f64, min_len: usize) {
+        for _ in 0..4 {
+            if scale_to_load(pressure, total, pm, min_len) {
+                return;
+            }
+            let carried: f64 = pressure.iter().sum();
+            let missing = total - carried;
+            let u = &self.u;
+            let penetration = |i: usize| if mean.is_nan() { 0.0 } else { (mean - (u[i] - heights[i])).max(0.0) };
+            let (weight_sum, n_zero) = pressure
+                .iter()
+                .enumerate()
+                .filter(|(_, &p)| p <= 0.0)
+                .fold((0.0, 0usize), |(w, c), (i, _)| (w + penetration(i), c + 1));
+            for (i, p) in pressure.iter_mut().enumerate() {
+                if *p <= 0.0 {
+                    let share = if weight_sum > 0.0 {
+                        missing * penetration(i) / weight_sum
+                    } else {
+                        missing / n_zero.max(1) as f64
+                    };
+                    *p = share.min(pm);
+                }
+            }
+        }
+        scale_to_load(pressure, total, pm, min_len);
+    }
+
+    /// Statistics of g = u − h over the regions defined by p.
+    fn pass_stats(&mut self, heights: &[f64], pressure: &[f64], reference: f64, pm: f64, min_len: usize) -> Stats {
+        let n = self.n;
+        self.stats
+            .par_iter_mut()
+            .with_min_len(min_len)
+            .zip(pressure.par_chunks(n))
+            .zip(self.u.par_chunks(n).zip(heights.par_chunks(n)))
+            .for_each(|((acc, p), (u, h))| {
+                let mut s = Stats::default();
+                for ((&p, &u), &h) in p.iter().zip(u).zip(h) {
+                    s.add(p, u, h, reference, pm);
+                }
+                *acc = s;
+            });
+        Stats::combine(&self.stats)
+    }
+
+    /// t ← (g − ḡ) + β t on free pixels, 0 elsewhere; returns (Σ t, Σ (g − ḡ) t) over free pixels.
+    fn pass_direction(
+        &mut self,
+        heights: &[f64],
+        pressure: &[f64],
+        mean: f64,
+        beta: f64,
+        pm: f64,
+        min_len: usize,
+    ) -> (f64, f64) {
+        let n = self.n;
+        self.sums
+            .par_iter_mut()
+            .with_min_len(min_len)
+            .zip(self.t.par_chunks_mut(n))
+            .zip(pressure.par_chunks(n).zip(self.u.par_chunks(n).zip(heights.par_chunks(n))))
+            .for_each(|((acc, t), (p, (u, h)))| {
+                let (mut st, mut sdt) = (0.0, 0.0);
+                for (((t, &p), &u), &h) in t.iter_mut().zip(p).zip(u).zip(h) {
+                    if p > 0.0 && p < pm {
+                        let d = u - h - mean;
+                        *t = d + beta * *t;
+                        st += *t;
+                        sdt += d * *t;
+                    } else {
+                        *t = 0.0;
+                    }
+                }
+                *acc = [st, sdt];
+            });
+        self.sums.iter().fold((0.0, 0.0), |(a, b), s| (a + s[0], b + s[1]))
+    }
+
+    /// The update pass. With `shift` finite, free pixels take the CG step p −= τ(t − shift) and u
+    /// follows (u −= τ r); with `shift` NaN no CG step is taken. Non-contact pixels that penetrate
+    /// and plastic pixels whose gap opens take a gradient step p −= τ(g − ḡ). Returns the
+    /// statistics for the next iteration (valid when nothing was clipped or released), the new
+    /// total load, and whether any pixel was released or clipped.
+    #[allow(clippy::too_many_arguments)]
+    fn pass_update(
+        &mut self,
+        heights: &[f64],
+        pressure: &mut [f64],
+        mean: f64,
+        tau: f64,
+        shift: f64,
+        pm: f64,
+        min_len: usize,
+    ) -> (Stats, f64, bool, bool) {
+        let n = self.n;
+        let cg_step = shift.is_finite();
+        let results = &mut self.stats;
+        let mut totals = std::mem::take(&mut self.row_partials);
+        let mut events = std::mem::take(&mut self.sums);
+        results
+            .par_iter_mut()
+            .with_min_len(min_len)
+            .zip(totals.par_iter_mut().zip(events.par_iter_mut()))
+            .zip(pressure.par_chunks_mut(n).zip(self.u.par_chunks_mut(n)))
+            .zip(self.t.par_chunks(n).zip(self.r.par_chunks(n).zip(heights.par_chunks(n))))
+            .zip(self.p_old.par_chunks_mut(n).zip(self.u_old.par_chunks_mut(n)))
+            .for_each(|((((acc, (total, event)), (p, u)), (t, (r, h))), (p_old, u_old))| {
+                p_old.copy_from_slice(p);
+                u_old.copy_from_slice(u);
+                let mut s = Stats::default();
+                let mut sum_p = 0.0;
+                let (mut released, mut clipped) = (0.0, 0.0);
+                for ((((p, u), &t), &r), &h) in p.iter_mut().zip(u.iter_mut()).zip(t).zip(r).zip(h) {
+                    let d = *u - h - mean;
+                    if *p <= 0.0 {
+                        if d < 0.0 {
+                            *p = (-tau * d).min(pm);
+                            released += 1.0;
+                        }
+                    } else if *p >= pm {
+                        if d > 0.0 {
+                            *p = (pm - tau * d).max(0.0);
+                            released += 1.0;
+                        }
+                    } else if cg_step {
+                        let q = *p - tau * (t - shift);
+                        if q <= 0.0 {
+                            *p = 0.0;
+                            clipped += 1.0;
+                        } else if q >= pm {
+                            *p = pm;
+                            clipped += 1.0;
+                        } else {
+                            *p = q;
+                        }
+                    }
+                    if cg_step {
+                        *u -= tau * r;
+                    }
+                    sum_p += *p;
+                    s.add(*p, *u, h, mean, pm);
+                }
+                *acc = s;
+                *total = sum_p;
+                *event = [released, clipped];
+            });
+        let stats = Stats::combine(results);
+        let total: f64 = totals.iter().sum();
+        let released = events.iter().any(|e| e[0] > 0.0);
+        let clipped = events.iter().any(|e| e[1] > 0.0);
+        self.row_partials = totals;
+        self.sums = events;
+        (stats, total, released, clipped)
+    }
+}
+
+/// Restores Σp = `total` by scaling the free pixels, pᵢ ← min(p_m, s·pᵢ) for 0 < pᵢ < p_m, which keeps
+/// exact zeros and leaves plastic pixels at p_m (scaling them too would free the whole plastic zone
+/// at once). s solves the monotone, concave, piecewise-linear equation by Newton's method from below,
+/// which ends in finitely many steps. Where the plastic pixels alone exceed the load, every contact
+/// pixel is scaled; where even p_m on every contact pixel cannot carry it, the contact pixels are set
+/// to p_m and `false` is returned: the contact must grow.
+fn scale_to_load(pressure: &mut [f64], total: f64, pm: f64, min_len: usize) -> bool {
+    let (free_sum, plastic_sum, n_contact) = pressure
+        .par_chunks(4096)
+        .with_min_len(min_len)
+        .map(|c| {
+            let (mut f, mut pl, mut nc) = (0.0, 0.0, 0usize);
+            for &p in c {
+                if p >= pm {
+                    pl += p;
+                    nc += 1;
+                } else if p > 0.0 {
+                    f += p;
+                    nc += 1;
+                }
+            }
+            (f, pl, nc)
+        })
+        .collect::<Vec<_>>()
+        .into_iter()
+        .fold((0.0, 0.0, 0), |a, b| (a.0 + b.0, a.1 + b.1, a.2 + b.2));
+    if free_sum + plastic_sum == total {
+        return true;
+    }
+    // Which pixels scale: the free ones, or all contact pixels if the plastic zone alone is too much.
+    let scale_plastic = plastic_sum >= total || free_sum == 0.0;
+    let (fixed, movable) = if scale_plastic { (0.0, free_sum + plastic_sum) } else { (plastic_sum, free_sum) };
+    if movable <= 0.0 || pm * n_contact as f64 <= total {
+        pressure.par_iter_mut().for_each(|p| {
+            if *p > 0.0 {
+                *p = pm
+            }
+        });
+        return false;
+    }
+    let movable_pixel = |p: f64| p > 0.0 && (scale_plastic || p < pm);
+    let sum_and_slope = |s: f64| -> (f64, f64) {
+        pressure
+            .par_chunks(4096)
+            .with_min_len(min_len)
+            .map(|c| {
+                let (mut f, mut df) = (0.0, 0.0);
+                for &p in c {
+                    if movable_pixel(p) {
+                        let v = s * p;
+                        if v >= pm {
+                            f += pm;
+                        } else {
+                            f += v;
+                            df += p;
+                        }
+                    }
+                }
+                (f, df)
+            })
+            .collect::<Vec<_>>()
+            .into_iter()
+            .fold((0.0, 0.0), |(a, b), (f, df)| (a + f, b + df))
+    };
+    let target = total - fixed;
+    let mut s = target / movable;
+    for _ in 0..100 {
+        let (f, df) = sum_and_slope(s);
+        let err = target - f;
+        if err.abs() <= 1e-15 * total || df <= 0.0 {
+            break;
+        }
+        s += err / df;
+    }
+    pressure.par_iter_mut().for_each(|p| {
+        if movable_pixel(*p) {
+            *p = (s * *p).min(pm);
+        }
+    });
+    true
+}

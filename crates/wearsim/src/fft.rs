@@ -1,0 +1,357 @@
+//! Periodic 2D real FFTs laid out for fast convolution by a real kernel.
+//!
+//! Every solver iteration applies the half-space influence operator 𝒦 once, that is one real 2D FFT
+//! round trip with a multiplication by a real kernel in between. This module is that round trip,
+//! tuned as described in `shared/PERFORMANCE.md`:
+//! - plans are made once ([`FftPlan::new`]) and every N² buffer is preallocated;
+//! - the half spectrum is kept *transposed*: `N/2 + 1` rows (one per `q_y`) of length `N` (over
+//!   `q_x`), each row padded to `N + 4` so that the stride is not a power of two;
+//! - the transpose is fused into the row passes, in blocks of [`BLOCK`] rows;
+//! - forward column FFT, kernel multiplication and inverse column FFT run in one pass per row;
+//! - work is split with `rayon`, with per-thread scratch; every element is computed by the same
+//!   sequence of operations whatever the thread count, so results are bit-identical across thread
+//!   counts.
+//!
+//! Arrays are row-major `a[i * n + j]`: `i` is x (the first NumPy axis), `j` is y.
+
+use std::sync::Arc;
+
+use rayon::prelude::*;
+use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
+use rustfft::num_complex::Complex;
+use rustfft::{Fft, FftPlanner};
+
+/// Complex number type of the spectra.
+pub type C64 = Complex<f64>;
+
+/// Rows handled together in the transposing row passes (16 rows of a 4096² array fit in L2).
+const BLOCK: usize = 16;
+
+/// Raw pointer that may be shared between rayon workers writing disjoint elements.
+#[derive(Clone, Copy)]
+struct SharedMut<T>(*mut T);
+unsafe impl<T> Send for SharedMut<T> {}
+unsafe impl<T> Sync for SharedMut<T> {}
+
+/// FFT plans and the transposed half-spectrum buffer for one N×N grid.
+pub struct FftPlan {
+    n: usize,
+    stride: usize,
+    r2c: Arc<dyn RealToComplex<f64>>,
+    c2r: Arc<dyn ComplexToReal<f64>>,
+    col_forward: Arc<dyn Fft<f64>>,
+    col_inverse: Arc<dyn Fft<f64>>,
+    /// Transposed half spectrum: `spectrum[qy * stride + qx]`, `qy ∈ 0..=N/2`, `qx ∈ 0..N`.
+    spectrum: Vec<C64>,
+}
+
+impl FftPlan {
+    /// Plans the transforms for an `n × n` grid (`n ≥ 2`, even).
+    pub fn new(n: usize) -> Self {
+        assert!(n >= 2 && n % 2 == 0, "FFT grid size must be even and at least 2");
+        let mut real = RealFftPlanner::<f64>::new();
+        let mut complex = FftPlanner::<f64>::new();
+        let stride = n + 4;
+        let half = n / 2 + 1;
+        Self {
+            n,
+            stride,
+            r2c: real.plan_fft_forward(n),
+            c2r: real.plan_fft_inverse(n),
+            col_forward: complex.plan_fft_forward(n),
+            col_inverse: complex.plan_fft_inverse(n),
+            spectrum: vec![C64::new(0.0, 0.0); half * stride],
+        }
+    }
+
+    /// Grid size N.
+    pub fn n(&self) -> usize {
+        self.n
+    }
+
+    /// Number of stored `q_y` rows, `N/2 + 1`.
+    pub fn half(&self) -> usize {
+        self.n / 2 + 1
+    }
+
+    /// Read access to the transposed half spectrum after [`FftPlan::forward`]: element `(qx, qy)` is
+    /// at `qy * row_stride() + qx`.
+    pub fn spectrum(&self) -> &[C64] {
+        &self.spectrum
+    }
+
+    /// Write access to the transposed half spectrum, to be followed by [`FftPlan::inverse`].
+    pub fn spectrum_mut(&mut self) -> &mut [C64] {
+        &mut self.spectrum
+    }
+
+    /// Distance between consecutive `q_y` rows of the spectrum buffer.
+    pub fn row_stride(&self) -> usize {
+        self.stride
+    }
+
+    /// Unnormalised forward transform of `input` (N² values, row-major) into the spectrum buffer
+    /// (row FFTs with the transpose fused in, then column FFTs).
+    pub fn forward(&mut self, input: &[f64]) {
+        self.row_forward(input, |_, _| {});
+        let n = self.n;
+        let stride = self.stride;
+        let fft = &self.col_forward;
+        self.spectrum.par_chunks_mut(stride).for_each_init(
+            || vec![C64::new(0.0, 0.0); fft.get_inplace_scratch_len()],
+            |scratch, row| fft.process_with_scratch(&mut row[..n], scratch),
+        );
+    }
+
+    /// Unnormalised inverse transform of the spectrum buffer into `output` (N² values). The buffer is
+    /// consumed. Divide by N² for the inverse of [`FftPlan::forward`].
+    pub fn inverse(&mut self, output: &mut [f64]) {
+        let n = self.n;
+        let stride = self.stride;
+        let fft = &self.col_inverse;
+        self.spectrum.par_chunks_mut(stride).for_each_init(
+            || vec![C64::new(0.0, 0.0); fft.get_inplace_scratch_len()],
+            |scratch, row| fft.process_with_scratch(&mut row[..n], scratch),
+        );
+        self.row_inverse(output, |_, _| 0.0, None);
+    }
+
+    /// `output = IFFT(kernel · FFT(input))`, the periodic convolution by a real, even kernel given
+    /// in the transposed half-spectrum layout without padding (`kernel[qy * N + qx]`), with the
+    /// 1/N² normalisation folded in. `input` and `output` may not alias.
+    pub fn convolve(&mut self, input: &[f64], kernel: &[f64], output: &mut [f64]) {
+        self.convolve_with(input, |_, _| {}, kernel, output, |_, _| 0.0, None);
+    }
+
+    /// [`FftPlan::convolve`] with two hooks fused into its row passes, to save whole passes over the
+    /// arrays in the solver: `pre(i, row)` may modify the copy of input row `i` before it is
+    /// transformed; `post(i, row)` sees output row `i` once written and returns a number stored in
+    /// `partials[i]` (when given), for deterministic reductions.
+    pub fn convolve_with(
+        &mut self,
+        input: &[f64],
+        pre: impl Fn(usize, &mut [f64]) + Sync,
+        kernel: &[f64],
+        output: &mut [f64],
+        post: impl Fn(usize, &[f64]) -> f64 + Sync,
+        partials: Option<&mut [f64]>,
+    ) {
+        assert_eq!(kernel.len(), self.half() * self.n, "kernel must hold (N/2+1)·N values");
+        self.row_forward(input, pre);
+        let n = self.n;
+        let stride = self.stride;
+        let fwd = &self.col_forward;
+        let inv = &self.col_inverse;
+        let scratch_len = fwd.get_inplace_scratch_len().max(inv.get_inplace_scratch_len());
+        self.spectrum
+            .par_chunks_mut(stride)
+            .zip(kernel.par_chunks(n))
+            .for_each_init(
+                || vec![C64::new(0.0, 0.0); scratch_len],
+                |scratch, (row, k)| {
+                    let row = &mut row[..n];
+                    fwd.process_with_scratch(row, scratch);
+                    for (c, &w) in row.iter_mut().zip(k) {
+                        *c *= w;
+                    }
+                    inv.process_with_scratch(row, scratch);
+                },
+            );
+        self.row_inverse(output, post, partials);
+    }
+
+    /// Real-to-complex FFT of every row of `input`, written transposed into the spectrum buffer.
+    fn row_forward(&mut self, input: &[f64], pre: impl Fn(usize, &mut [f64]) + Sync) {
+        let n = self.n;
+        assert_eq!(input.len(), n * n, "input must hold N² values");
+        let half = self.half();
+        let stride = self.stride;
+        let r2c = &self.r2c;
+        let spec = SharedMut(self.spectrum.as_mut_ptr());
+        input.par_chunks(BLOCK * n).enumerate().for_each_init(
+            || {
+                (
+                    r2c.make_input_vec(),
+                    vec![C64::new(0.0, 0.0); BLOCK * half],
+                    r2c.make_scratch_vec(),
+                )
+            },
+            |(row_in, block_out, scratch), (b, rows)| {
+                let spec = spec;
+                let rows_here = rows.len() / n;
+                for r in 0..rows_here {
+                    // r2c overwrites its input: work on a copy of the row.
+                    row_in.copy_from_slice(&rows[r * n..(r + 1) * n]);
+                    pre(b * BLOCK + r, row_in);
+                    r2c.process_with_scratch(row_in, &mut block_out[r * half..(r + 1) * half], scratch)
+                        .expect("buffer sizes match the plan");
+                }
+                let i0 = b * BLOCK;
+                for qy in 0..half {
+                    // SAFETY: block `b` writes columns i0..i0+rows_here of every spectrum row, which no
+                    // other block touches; all indices are inside the buffer.
+                    let dst = unsafe { std::slice::from_raw_parts_mut(spec.0.add(qy * stride + i0), rows_here) };
+                    for (r, d) in dst.iter_mut().enumerate() {
+                        *d = block_out[r * half + qy];
+                    }
+                }
+            },
+        );
+    }
+
+    /// Gathers transposed spectrum columns back into rows and applies the complex-to-real FFT.
+    fn row_inverse(
+        &mut self,
+        output: &mut [f64],
+        post: impl Fn(usize, &[f64]) -> f64 + Sync,
+        partials: Option<&mut [f64]>,
+    ) {
+        let n = self.n;
+        assert_eq!(output.len(), n * n, "output must hold N² values");
+        let partials = partials.map(|p| {
+            assert_eq!(p.len(), n, "one partial per row");
+            SharedMut(p.as_mut_ptr())
+        });
+        let half = self.half();
+        let stride = self.stride;
+        let c2r = &self.c2r;
+        let spec = &self.spectrum;
+        output.par_chunks_mut(BLOCK * n).enumerate().for_each_init(
+            || (vec![C64::new(0.0, 0.0); BLOCK * half], c2r.make_scratch_vec()),
+            |(block_in, scratch), (b, rows)| {
+                let rows_here = rows.len() / n;
+                let i0 = b * BLOCK;
+                for qy in 0..half {
+                    let src = &spec[qy * stride + i0..qy * stride + i0 + rows_here];
+                    for (r, s) in src.iter().enumerate() {
+                        block_in[r * half + qy] = *s;
+                    }
+                }
+                for r in 0..rows_here {
+                    let row_in = &mut block_in[r * half..(r + 1) * half];
+                    // c2r requires real DC and Nyquist bins; round-off leaves tiny imaginary parts.
+                    row_in[0].im = 0.0;
+                    row_in[half - 1].im = 0.0;
+                    let out = &mut rows[r * n..(r + 1) * n];
+                    c2r.process_with_scratch(row_in, out, scratch).expect("buffer sizes match the plan");
+                    let value = post(i0 + r, out);
+                    if let Some(p) = partials {
+                        // SAFETY: row i0 + r < n belongs to this block alone.
+                        unsafe { *p.0.add(i0 + r) = value };
+                    }
+                }
+            },
+        );
+    }
+}
+
+/// Signed integer wavenumber of FFT index `k` on an `n`-point grid (`k ≤ n/2` positive).
+#[inline]
+pub fn wavenumber(k: usize, n: usize) -> f64 {
+    if k <= n / 2 {
+        k as f64
+    } else {
+        k as f64 - n as f64
+    }
+}
+
+/// Builds a kernel in the layout [`FftPlan::convolve`] expects from a function of the integer
+/// wavenumbers `(qx, qy)` (in units of 2π/L).
+pub fn radial_kernel(n: usize, f: impl Fn(f64, f64) -> f64 + Sync) -> Vec<f64> {
+    let half = n / 2 + 1;
+    let mut k = vec![0.0; half * n];
+    k.par_chunks_mut(n).enumerate().for_each(|(qy, row)| {
+        for (qx, v) in row.iter_mut().enumerate() {
+            *v = f(wavenumber(qx, n), qy as f64);
+        }
+    });
+    k
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Naive O(N⁴) periodic convolution with a kernel given in Fourier space.
+    fn naive_convolve(a: &[f64], n: usize, kernel: impl Fn(f64, f64) -> f64) -> Vec<f64> {
+        use std::f64::consts::PI;
+        let mut out = vec![0.0; n * n];
+        // Direct DFT, multiply, inverse DFT.
+        let mut spec = vec![C64::new(0.0, 0.0); n * n];
+        for kx in 0..n {
+            for ky in 0..n {
+                let mut s = C64::new(0.0, 0.0);
+                for i in 0..n {
+                    for j in 0..n {
+                        let ph = -2.0 * PI * ((kx * i + ky * j) as f64) / n as f64;
+                        s += a[i * n + j] * C64::new(ph.cos(), ph.sin());
+                    }
+                }
+                spec[kx * n + ky] = s * kernel(wavenumber(kx, n), wavenumber(ky, n).abs());
+            }
+        }
+        for i in 0..n {
+            for j in 0..n {
+                let mut s = C64::new(0.0, 0.0);
+                for kx in 0..n {
+                    for ky in 0..n {
+                        let ph = 2.0 * PI * ((kx * i + ky * j) as f64) / n as f64;
+                        s += spec[kx * n + ky] * C64::new(ph.cos(), ph.sin());
+                    }
+                }
+                out[i * n + j] = s.re / (n * n) as f64;
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn convolution_matches_naive_dft() {
+        for n in [4usize, 8, 12, 34] {
+            let a: Vec<f64> = (0..n * n).map(|k| ((k * 7919) % 101) as f64 / 101.0 - 0.3).collect();
+            let f = |qx: f64, qy: f64| 1.0 / (1.0 + qx * qx + 2.0 * qy * qy);
+            let nn = (n * n) as f64;
+            let kernel = radial_kernel(n, |qx, qy| f(qx, qy) / nn);
+            let mut plan = FftPlan::new(n);
+            let mut out = vec![0.0; n * n];
+            plan.convolve(&a, &kernel, &mut out);
+            let expected = naive_convolve(&a, n, f);
+            for (x, y) in out.iter().zip(&expected) {
+                assert!((x - y).abs() < 1e-12, "n = {n}: {x} vs {y}");
+            }
+        }
+    }
+
+    #[test]
+    fn forward_then_inverse_is_identity_times_n2() {
+        let n = 40;
+        let a: Vec<f64> = (0..n * n).map(|k| (k as f64 * 0.37).sin()).collect();
+        let mut plan = FftPlan::new(n);
+        plan.forward(&a);
+        // DC bin is the plain sum.
+        let sum: f64 = a.iter().sum();
+        assert!((plan.spectrum()[0].re - sum).abs() < 1e-9);
+        let mut back = vec![0.0; n * n];
+        plan.inverse(&mut back);
+        for (x, y) in a.iter().zip(&back) {
+            assert!((x - y / (n * n) as f64).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn results_do_not_depend_on_thread_count() {
+        let n = 64;
+        let a: Vec<f64> = (0..n * n).map(|k| ((k * 31) % 17) as f64).collect();
+        let kernel = radial_kernel(n, |qx, qy| (qx * qx + qy * qy).sqrt());
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| {
+                let mut plan = FftPlan::new(n);
+                let mut out = vec![0.0; n * n];
+                plan.convolve(&a, &kernel, &mut out);
+                out
+            })
+        };
+        assert_eq!(run(1), run(3));
+    }
+}

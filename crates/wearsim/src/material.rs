@@ -1,0 +1,134 @@
+//! Material parameters and the quantities derived from them (SPEC §1, paper §2).
+
+use crate::error::{Error, Result};
+
+/// How the effective modulus E* of the equivalent half-space is formed (SPEC §3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum ModulusConvention {
+    /// The half-space carries the material's E and ν: E* = E/(1−ν²), as in the paper's solver.
+    #[default]
+    HalfSpace,
+    /// Two identical deformable bodies: E* = E/(2(1−ν²)).
+    Composite,
+}
+
+impl ModulusConvention {
+    /// Name as written in run files and outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            ModulusConvention::HalfSpace => "half-space",
+            ModulusConvention::Composite => "composite",
+        }
+    }
+}
+
+/// Elastic and adhesive-wear properties of the (identical) materials of both surfaces.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Material {
+    /// Young's modulus E (reduced units or Pa).
+    pub youngs_modulus: f64,
+    /// Poisson ratio ν, in (−1, 0.5).
+    pub poisson_ratio: f64,
+    /// Junction shear strength τ̃ (same unit as E).
+    pub shear_strength: f64,
+    /// Fracture energies 𝒢 (E·L in reduced units, J/m² in SI); one wear bookkeeping each.
+    pub fracture_energies: Vec<f64>,
+    /// Geometry factor f of the critical length scale (paper eq. 1), 3 by default.
+    pub geometry_factor: f64,
+}
+
+impl Material {
+    /// Validated material; every field is checked with a message naming it.
+    pub fn new(
+        youngs_modulus: f64,
+        poisson_ratio: f64,
+        shear_strength: f64,
+        fracture_energies: Vec<f64>,
+        geometry_factor: f64,
+    ) -> Result<Self> {
+        positive("youngs_modulus", youngs_modulus)?;
+        if !(poisson_ratio > -1.0 && poisson_ratio < 0.5) {
+            return Err(Error::param(
+                "poisson_ratio",
+                format!("{poisson_ratio} is outside (−1, 0.5); use e.g. 0.3"),
+            ));
+        }
+        positive("shear_strength", shear_strength)?;
+        for &g in &fracture_energies {
+            positive("fracture_energies", g)?;
+        }
+        positive("geometry_factor", geometry_factor)?;
+        Ok(Self { youngs_modulus, poisson_ratio, shear_strength, fracture_energies, geometry_factor })
+    }
+
+    /// Shear modulus μ = E/(2(1+ν)).
+    pub fn shear_modulus(&self) -> f64 {
+        self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
+    }
+
+    /// Flow pressure (hardness) p_m = p̃ = 3√3 τ̃ (von Mises, paper §2).
+    pub fn flow_pressure(&self) -> f64 {
+        3.0 * 3f64.sqrt() * self.shear_strength
+    }
+
+    /// Critical junction diameter d* = f 𝒢 / (τ̃²/(2μ)) (paper eq. 1).
+    pub fn critical_diameter(&self, fracture_energy: f64) -> f64 {
+        let tau = self.shear_strength;
+        self.geometry_factor * fracture_energy / (tau * tau / (2.0 * self.shear_modulus()))
+    }
+
+    /// Critical diameters for every fracture energy, in the order given.
+    pub fn critical_diameters(&self) -> Vec<f64> {
+        self.fracture_energies.iter().map(|&g| self.critical_diameter(g)).collect()
+    }
+
+    /// Effective modulus E* of the equivalent contact of a rigid surface on a half-space.
+    pub fn effective_modulus(&self, convention: ModulusConvention) -> f64 {
+        let plane_strain = self.youngs_modulus / (1.0 - self.poisson_ratio * self.poisson_ratio);
+        match convention {
+            ModulusConvention::HalfSpace => plane_strain,
+            ModulusConvention::Composite => plane_strain / 2.0,
+        }
+    }
+}
+
+pub(crate) fn positive(field: &str, value: f64) -> Result<()> {
+    if value.is_finite() && value > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::param(field, format!("{value} must be a finite positive number")))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn critical_diameter_matches_spec_check_values() {
+        let m = Material::new(1.0, 0.3, 0.010, vec![0.5e-6], 3.0).unwrap();
+        assert!((m.critical_diameter(0.5e-6) - 0.011_54).abs() < 1e-5);
+        assert!((m.flow_pressure() - 0.051_96).abs() < 1e-5);
+        // Si3N4 of Kim et al. (SPEC §7): d* = 7.65 µm.
+        let si3n4 = Material::new(294e9, 0.27, 2.89e9, vec![91.97], 3.0).unwrap();
+        assert!((si3n4.critical_diameter(91.97) * 1e6 - 7.65).abs() < 0.01);
+    }
+
+    #[test]
+    fn modulus_conventions() {
+        let m = Material::new(2.0, 0.5f64.next_down(), 0.01, vec![], 3.0).unwrap();
+        let hs = m.effective_modulus(ModulusConvention::HalfSpace);
+        assert!((m.effective_modulus(ModulusConvention::Composite) - hs / 2.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn bad_values_name_their_field() {
+        let e = Material::new(-1.0, 0.3, 0.01, vec![], 3.0).unwrap_err().to_string();
+        assert!(e.contains("youngs_modulus"), "{e}");
+        let e = Material::new(1.0, 0.5, 0.01, vec![], 3.0).unwrap_err().to_string();
+        assert!(e.contains("poisson_ratio"), "{e}");
+        let e = Material::new(1.0, 0.3, f64::NAN, vec![], 3.0).unwrap_err().to_string();
+        assert!(e.contains("shear_strength"), "{e}");
+    }
+}
