@@ -1,0 +1,137 @@
+//! The CLI on good and bad input: one-line errors naming the field, non-zero exit, nothing written.
+
+use std::path::Path;
+use std::process::Command;
+
+fn wearsim() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_wearsim"))
+}
+
+/// Minimal NumPy v1.0 writer for little-endian float64 arrays of any shape.
+fn write_npy(path: &Path, shape: &[usize], values: &[f64]) {
+    let shape_txt = match shape.len() {
+        1 => format!("({},)", shape[0]),
+        _ => format!("({})", shape.iter().map(|s| s.to_string()).collect::<Vec<_>>().join(", ")),
+    };
+    let mut header = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': {shape_txt}, }}");
+    while (10 + header.len() + 1) % 64 != 0 {
+        header.push(' ');
+    }
+    header.push('\n');
+    let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+    bytes.extend_from_slice(&(header.len() as u16).to_le_bytes());
+    bytes.extend_from_slice(header.as_bytes());
+    for v in values {
+        bytes.extend_from_slice(&v.to_le_bytes());
+    }
+    std::fs::write(path, bytes).unwrap();
+}
+
+const GENERATED: &str = r#"
+[surface]
+grid = 64
+length = 1.0
+lambda_lower = 0.0625
+lambda_upper = 0.25
+rms_height = 0.005
+seed = 1
+[material]
+youngs_modulus = 1.0
+poisson_ratio = 0.3
+shear_strength = 0.01
+fracture_energies = [0.5e-6]
+"#;
+
+fn run_file(dir: &Path, text: &str) -> std::path::PathBuf {
+    let p = dir.join("run.toml");
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+/// Runs `wearsim contact` expecting failure; returns stderr and checks that nothing was written.
+fn contact_fails(dir: &Path, text: &str, load: &str) -> String {
+    let run = run_file(dir, text);
+    let out = dir.join("out");
+    let o = wearsim().args(["contact", run.to_str().unwrap(), "--load", load, "--out", out.to_str().unwrap()]).output().unwrap();
+    assert!(!o.status.success());
+    assert!(!out.exists(), "output written despite the error");
+    let err = String::from_utf8(o.stderr).unwrap();
+    assert_eq!(err.trim_end().lines().count(), 1, "error is not one line: {err}");
+    err
+}
+
+#[test]
+fn surface_and_contact_write_their_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = run_file(dir.path(), GENERATED);
+    let out = dir.path().join("o");
+    let ok = wearsim().args(["surface", run.to_str().unwrap(), "--out", out.to_str().unwrap()]).status().unwrap();
+    assert!(ok.success());
+    for f in ["top.npy", "bottom.npy", "statistics.json"] {
+        assert!(out.join(f).is_file(), "{f}");
+    }
+    let ok = wearsim()
+        .args(["contact", run.to_str().unwrap(), "--load", "1e-3", "--offset", "0.03125", "--out", out.to_str().unwrap()])
+        .status()
+        .unwrap();
+    assert!(ok.success());
+    let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    for key in ["contact_area", "mean_pressure", "approach", "iterations", "residual", "tolerance", "effective_modulus", "flow_pressure", "seconds"] {
+        assert!(summary.contains(&format!("\"{key}\"")), "summary lacks {key}");
+    }
+    assert!(out.join("pressure.npy").is_file() && out.join("contact.npy").is_file());
+    // Read the written surfaces back as a run (files relative to the run file).
+    let read = format!(
+        "[surface]\ntop = \"o/top.npy\"\nbottom = \"o/bottom.npy\"\nlength = 1.0\n{}",
+        &GENERATED[GENERATED.find("[material]").unwrap()..]
+    );
+    let run2 = dir.path().join("read.toml");
+    std::fs::write(&run2, read).unwrap();
+    let out2 = dir.path().join("o2");
+    let ok = wearsim()
+        .args(["contact", run2.to_str().unwrap(), "--load", "1e-3", "--offset", "0.03125", "--out", out2.to_str().unwrap()])
+        .status()
+        .unwrap();
+    assert!(ok.success());
+    assert_eq!(std::fs::read(out.join("pressure.npy")).unwrap(), std::fs::read(out2.join("pressure.npy")).unwrap());
+}
+
+#[test]
+fn bad_material_and_load_are_one_line_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let e = contact_fails(dir.path(), &GENERATED.replace("youngs_modulus = 1.0", "youngs_modulus = -1.0"), "1e-3");
+    assert!(e.contains("youngs_modulus"), "{e}");
+    let e = contact_fails(dir.path(), &GENERATED.replace("poisson_ratio = 0.3", "poisson_ratio = 0.5"), "1e-3");
+    assert!(e.contains("poisson_ratio"), "{e}");
+    // p_m = 3√3·0.01 ≈ 0.052: a load of 0.06 E L² cannot be carried.
+    let e = contact_fails(dir.path(), GENERATED, "0.06");
+    assert!(e.contains("load cannot be carried") && e.contains("loads"), "{e}");
+    let e = contact_fails(dir.path(), &GENERATED.replace("seed = 1", "seed = 1\nsede = 2"), "1e-3");
+    assert!(e.contains("sede"), "{e}");
+}
+
+#[test]
+fn bad_surface_files_are_one_line_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let material = &GENERATED[GENERATED.find("[material]").unwrap()..];
+    let read = format!("[surface]\ntop = \"top.npy\"\nbottom = \"bottom.npy\"\nlength = 1.0\n{material}");
+    write_npy(&dir.path().join("bottom.npy"), &[16, 16], &vec![0.0; 256]);
+
+    let mut h = vec![0.0; 256];
+    h[5] = f64::NAN;
+    write_npy(&dir.path().join("top.npy"), &[16, 16], &h);
+    let e = contact_fails(dir.path(), &read, "1e-3");
+    assert!(e.contains("top.npy") && e.contains("NaN"), "{e}");
+
+    write_npy(&dir.path().join("top.npy"), &[16, 32], &vec![0.0; 512]);
+    let e = contact_fails(dir.path(), &read, "1e-3");
+    assert!(e.contains("top.npy") && e.contains("square"), "{e}");
+
+    write_npy(&dir.path().join("top.npy"), &[0, 0], &[]);
+    let e = contact_fails(dir.path(), &read, "1e-3");
+    assert!(e.contains("top.npy") && e.contains("empty"), "{e}");
+
+    std::fs::write(dir.path().join("top.npy"), b"not a numpy file").unwrap();
+    let e = contact_fails(dir.path(), &read, "1e-3");
+    assert!(e.contains("top.npy"), "{e}");
+}
