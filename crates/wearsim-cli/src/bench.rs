@@ -120,3 +120,98 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     }
     Ok(())
 }
+
+/// `wearsim bench-slide`: a full sliding run at N (paper roughness, four loads, four fracture
+/// energies, the paper's schedule) with its time per step split into solve / labelling /
+/// bookkeeping; then warm steps at `--warm-n`, extrapolated to the paper's schedule.
+#[derive(clap::Args)]
+pub struct SlideBenchArgs {
+    /// Grid of the full sliding run.
+    #[arg(long, default_value_t = 512)]
+    n: usize,
+    /// Grid of the warm-step timing (0 to skip).
+    #[arg(long, default_value_t = 4096)]
+    warm_n: usize,
+    /// Warm one-pixel steps timed at `--warm-n`.
+    #[arg(long, default_value_t = 10)]
+    warm_steps: usize,
+}
+
+pub fn run_slide(args: &SlideBenchArgs) -> Result<()> {
+    use wearsim::config::SlidingConfig;
+    use wearsim::sliding::{run_sliding, schedule, SlidingSetup};
+    let threads = rayon::current_num_threads();
+    let material = Material::new(1.0, 0.3, 0.010, vec![0.25e-6, 0.5e-6, 0.75e-6, 1.0e-6], 3.0)?;
+    let e_star = material.effective_modulus(ModulusConvention::HalfSpace);
+    let pair = |n: usize| -> Result<(Surface, Surface)> {
+        let dx = 1.0 / n as f64;
+        let spectrum = SpectrumParams {
+            hurst: 0.7,
+            lambda_lower: 16.0 * dx,
+            lambda_upper: (256.0f64).min(n as f64 / 2.0) * dx,
+            rms_height: 0.005,
+            generation: Generation::RandomPhase,
+        };
+        let (s1, s2) = pair_seeds(1);
+        Ok((Surface::generate(n, 1.0, &spectrum, s1)?, Surface::generate(n, 1.0, &spectrum, s2)?))
+    };
+    let sliding = SlidingConfig { loads: vec![2.5e-4, 5e-4, 1e-3, 2e-3], distance: 0.5, running_in: 0.25, step_running_in: 4, step: 1 };
+    let (top, bottom) = pair(args.n)?;
+    let setup = SlidingSetup { material: &material, effective_modulus: e_star, solver: Default::default(), connectivity: 4, sliding: &sliding };
+    let t = Instant::now();
+    let runs = run_sliding(&top, &bottom, &setup, |_, _| {})?;
+    let total = t.elapsed().as_secs_f64();
+    let steps: usize = runs.iter().map(|r| r.steps.len()).sum();
+    let (solve, label, book) = runs.iter().fold((0.0, 0.0, 0.0), |a, r| (a.0 + r.timing.solve, a.1 + r.timing.labelling, a.2 + r.timing.bookkeeping));
+    let iterations: usize = runs.iter().map(|r| r.total_iterations).sum();
+    println!("wearsim {} bench-slide, {threads} threads", wearsim::VERSION);
+    println!(
+        "sliding run N = {}: {} loads × {} offsets × {} fracture energies, {steps} contact solves in {total:.2} s ({:.2} ms/step; {:.1} iterations/step)",
+        args.n,
+        sliding.loads.len(),
+        schedule(args.n, &sliding).len(),
+        material.fracture_energies.len(),
+        total / steps as f64 * 1e3,
+        iterations as f64 / steps as f64
+    );
+    println!(
+        "  per step: solve {:.3} ms, labelling {:.3} ms, bookkeeping {:.3} ms; labelling + bookkeeping = {:.2} % of a step; peak memory {:.0} MiB",
+        solve / steps as f64 * 1e3,
+        label / steps as f64 * 1e3,
+        book / steps as f64 * 1e3,
+        (label + book) / (solve + label + book) * 100.0,
+        peak_memory_mib().unwrap_or(f64::NAN)
+    );
+    if args.warm_n > 0 && args.warm_steps > 0 {
+        let n = args.warm_n;
+        let (top, bottom) = pair(n)?;
+        let mut solver = ContactSolver::new(n, 1.0, e_star)?;
+        let mut labeller = wearsim::junctions::JunctionLabeller::new(n, 4);
+        let mut heights = vec![0.0; n * n];
+        let mut pressure = vec![0.0; n * n];
+        composite_heights(&top, &bottom, 0, &mut heights);
+        solver.solve(&heights, 1e-3, material.flow_pressure(), &mut pressure)?;
+        let (mut solve_s, mut label_s, mut iters) = (0.0, 0.0, 0);
+        for step in 1..=args.warm_steps {
+            let t = Instant::now();
+            composite_heights(&top, &bottom, step, &mut heights);
+            let info = solver.solve(&heights, 1e-3, material.flow_pressure(), &mut pressure)?;
+            let t1 = Instant::now();
+            labeller.label(|k| pressure[k] > 0.0);
+            solve_s += (t1 - t).as_secs_f64();
+            label_s += t1.elapsed().as_secs_f64();
+            iters += info.iterations;
+        }
+        let per_step = (solve_s + label_s) / args.warm_steps as f64;
+        let offsets = schedule(n, &sliding).len();
+        println!(
+            "warm steps at N = {n} (F_N = 1e-3): {:.3} s/step ({:.1} iterations, labelling {:.1} ms); × {offsets} offsets = {:.1} min per load; peak memory {:.0} MiB",
+            per_step,
+            iters as f64 / args.warm_steps as f64,
+            label_s / args.warm_steps as f64 * 1e3,
+            per_step * offsets as f64 / 60.0,
+            peak_memory_mib().unwrap_or(f64::NAN)
+        );
+    }
+    Ok(())
+}

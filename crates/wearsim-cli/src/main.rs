@@ -13,6 +13,7 @@ use wearsim::surface::{write_npy_bool, write_npy_f64};
 use wearsim::{composite_heights, ContactSolver, Surface};
 
 mod bench;
+mod slide;
 
 #[derive(Parser)]
 #[command(name = "wearsim", version, about = "Adhesive wear of rough surfaces in sliding contact (Brink, Frérot & Molinari 2021)")]
@@ -49,8 +50,29 @@ enum Command {
         #[arg(long)]
         out: PathBuf,
     },
+    /// Run the sliding wear model on every load of the run file; write summary.json and series.csv.
+    Slide {
+        /// Run file (TOML, see README) with a [sliding] table.
+        run: PathBuf,
+        /// Output folder (created if missing).
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Label the junctions of a contact map (.npy, bool or numbers > 0); write labels.npy and junctions.json.
+    Junctions {
+        /// Contact map, e.g. the contact.npy written by `wearsim contact`.
+        map: PathBuf,
+        /// 4 or 8.
+        #[arg(long, default_value_t = 4)]
+        connectivity: u8,
+        /// Output folder (created if missing).
+        #[arg(long)]
+        out: PathBuf,
+    },
     /// Time the FFT round trip, a cold saturated solve and a warm solve after a one-pixel slide.
     Bench(bench::BenchArgs),
+    /// Time a full sliding run (solve / labelling / bookkeeping) and warm steps on a large grid.
+    BenchSlide(bench::SlideBenchArgs),
 }
 
 fn main() {
@@ -64,7 +86,10 @@ fn main() {
     let result = match cli.command {
         Command::Surface { run, out } => surface(&run, &out),
         Command::Contact { run, load, offset, out } => contact(&run, load, offset, &out),
+        Command::Slide { run, out } => slide::slide(&run, &out),
+        Command::Junctions { map, connectivity, out } => slide::junctions(&map, connectivity, &out),
         Command::Bench(args) => bench::run(&args),
+        Command::BenchSlide(args) => bench::run_slide(&args),
     };
     if let Err(e) = result {
         eprintln!("error: {e:#}");

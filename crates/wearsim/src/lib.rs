@@ -6,16 +6,20 @@
 //!
 //! Data flows one way, one module per step:
 //! [`material`] and [`surface`] parameters → [`surface`] height fields → [`contact`] solution
-//! (saturated-pressure FFT boundary elements, on [`fft`]) → results written by [`output`].
+//! (saturated-pressure FFT boundary elements, on [`fft`]) → [`junctions`] → [`wear`] bookkeeping,
+//! driven step by step by [`sliding`] → results written by [`output`].
 //! [`config`] turns run files into validated inputs.
 
 pub mod config;
 pub mod contact;
 pub mod error;
 pub mod fft;
+pub mod junctions;
 pub mod material;
 pub mod output;
+pub mod sliding;
 pub mod surface;
+pub mod wear;
 
 pub use contact::{ContactSolver, SolveInfo, SolverOptions};
 pub use error::{Error, Result};

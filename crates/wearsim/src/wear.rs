@@ -1,0 +1,217 @@
+//! The wear models: the static model of Frérot et al. (2018) (paper §2, SPEC §5) and the bookkeeping
+//! of the sliding model (paper §3, SPEC §6), one [`SlidingBookkeeping`] per critical diameter d*.
+
+use crate::junctions::{Junction, JunctionLabeller, NO_JUNCTION};
+
+/// Static model from one contact solution (SPEC §5).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct StaticWear {
+    /// k_static = Σ_{A_i ≥ A*} A_i / Σ_i A_i.
+    pub wear_coefficient: f64,
+    /// W_static/ω = k_static Σ_i A_i (volume per sliding distance, divided by the shape factor ω).
+    pub wear_rate_over_omega: f64,
+}
+
+/// Evaluates the static model for critical diameter d* on the labelled junctions.
+pub fn static_wear(junctions: &[Junction], critical_diameter: f64) -> StaticWear {
+    let critical_area = std::f64::consts::PI * critical_diameter * critical_diameter / 4.0;
+    let total: f64 = junctions.iter().map(|j| j.area).sum();
+    let large: f64 = junctions.iter().filter(|j| j.area >= critical_area).map(|j| j.area).sum();
+    let k = if total > 0.0 { large / total } else { 0.0 };
+    StaticWear { wear_coefficient: k, wear_rate_over_omega: k * total }
+}
+
+/// What one sliding step adds to the record of one d* (SPEC §6).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct StepWear {
+    /// N*: junctions with d_i ≥ d* at this step.
+    pub n_critical: usize,
+    /// N*₊: particles formed so far, from s = 0 included.
+    pub n_formed: usize,
+    /// V: wear volume so far, from s = 0 included.
+    pub volume: f64,
+}
+
+impl StepWear {
+    /// N*₋ := N*₊ − N* (SPEC §6), as a signed number.
+    pub fn n_shrunk(&self) -> i64 {
+        self.n_formed as i64 - self.n_critical as i64
+    }
+}
+
+/// Formed / disabled / active states carried from step to step by pixel overlap (paper §3,
+/// SPEC §6). A junction that shares a pixel with a junction of the previous step that formed a
+/// particle or was disabled is disabled; every other junction is active, and an active junction
+/// with d_i ≥ d* forms a particle (V += v_i, N*₊ += 1) and counts as formed for the next step.
+#[derive(Debug, Clone)]
+pub struct SlidingBookkeeping {
+    critical_area: f64,
+    /// Pixels of the previous step's formed or disabled junctions.
+    blocked: Vec<u32>,
+    n_formed: usize,
+    volume: f64,
+    /// Per-junction scratch: overlaps a blocked pixel.
+    overlap: Vec<bool>,
+}
+
+impl SlidingBookkeeping {
+    /// Empty bookkeeping for critical diameter d*; the first [`SlidingBookkeeping::step`] is s = 0,
+    /// where every junction is active (so V₀ = Σ v_i over d_i ≥ d*).
+    pub fn new(critical_diameter: f64) -> Self {
+        Self {
+            critical_area: std::f64::consts::PI * critical_diameter * critical_diameter / 4.0,
+            blocked: Vec::new(),
+            n_formed: 0,
+            volume: 0.0,
+            overlap: Vec::new(),
+        }
+    }
+
+    /// Advances by one step on the labelled contact map. `scratch` is an N² flag buffer, all false on
+    /// entry and on exit, shared between the bookkeepings of a run.
+    pub fn step(&mut self, labeller: &JunctionLabeller, junctions: &[Junction], scratch: &mut [bool]) -> StepWear {
+        let labels = labeller.labels();
+        for &k in &self.blocked {
+            scratch[k as usize] = true;
+        }
+        self.overlap.clear();
+        self.overlap.resize(junctions.len(), false);
+        for &k in labeller.contact_pixels() {
+            if scratch[k as usize] {
+                self.overlap[labels[k as usize] as usize] = true;
+            }
+        }
+        for &k in &self.blocked {
+            scratch[k as usize] = false;
+        }
+        let mut n_critical = 0;
+        for (j, overlap) in junctions.iter().zip(self.overlap.iter_mut()) {
+            let critical = j.area >= self.critical_area;
+            if critical {
+                n_critical += 1;
+            }
+            if !*overlap && critical {
+                // Active and large enough: forms a particle, and is "formed" for the next step.
+                self.volume += j.volume;
+                self.n_formed += 1;
+                *overlap = true;
+            }
+            // From here on `overlap` means "formed or disabled", the state the next step sees.
+        }
+        self.blocked.clear();
+        for &k in labeller.contact_pixels() {
+            let l = labels[k as usize];
+            debug_assert_ne!(l, NO_JUNCTION);
+            if self.overlap[l as usize] {
+                self.blocked.push(k);
+            }
+        }
+        StepWear { n_critical, n_formed: self.n_formed, volume: self.volume }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Runs the bookkeeping on a sequence of hand-built maps (strings, '#' = contact) with d* given
+    /// as a pixel area; returns the records.
+    fn run(maps: &[&[&str]], critical_pixels: f64) -> Vec<StepWear> {
+        let n = maps[0].len();
+        let dx = 1.0;
+        let d_star = 2.0 * (critical_pixels / std::f64::consts::PI).sqrt();
+        let mut labeller = JunctionLabeller::new(n, 4);
+        let mut book = SlidingBookkeeping::new(d_star);
+        let mut scratch = vec![false; n * n];
+        maps.iter()
+            .map(|rows| {
+                let flat: Vec<bool> = rows.iter().flat_map(|r| r.chars().map(|c| c == '#')).collect();
+                labeller.label(|k| flat[k]);
+                let j = labeller.junctions(dx);
+                let rec = book.step(&labeller, &j, &mut scratch);
+                assert!(scratch.iter().all(|&b| !b));
+                rec
+            })
+            .collect()
+    }
+
+    fn v(pixels: usize) -> f64 {
+        Junction::new(pixels, 1.0).volume
+    }
+
+    fn assert_record(r: StepWear, n_critical: usize, n_formed: usize, volume: f64) {
+        assert_eq!((r.n_critical, r.n_formed), (n_critical, n_formed), "{r:?}");
+        assert!((r.volume - volume).abs() <= 1e-12 * volume.abs(), "{r:?} vs volume {volume}");
+    }
+
+    #[test]
+    fn initial_step_counts_every_large_junction() {
+        let recs = run(&[&["##..", "##..", "....", "...#"]], 3.0);
+        assert_record(recs[0], 1, 1, v(4));
+    }
+
+    #[test]
+    fn a_growing_junction_forms_exactly_one_particle() {
+        let recs = run(
+            &[
+                &["#...", "....", "....", "...."],
+                &["##..", "....", "....", "...."],
+                &["##..", "##..", "....", "...."], // reaches 4 ≥ 3 pixels: forms
+                &["###.", "##..", "....", "...."], // successor: disabled
+                &["###.", "###.", "....", "...."],
+            ],
+            3.0,
+        );
+        let formed: Vec<usize> = recs.iter().map(|r| r.n_formed).collect();
+        assert_eq!(formed, vec![0, 0, 1, 1, 1]);
+        assert_record(recs[4], 1, 1, v(4));
+        assert_eq!(recs[4].n_critical, 1);
+        assert_eq!(recs[4].n_shrunk(), 0);
+    }
+
+    #[test]
+    fn disabled_until_it_vanishes_then_a_new_junction_can_form() {
+        let recs = run(
+            &[
+                &["##..", "##..", "....", "...."], // forms at s = 0
+                &["##..", "#...", "....", "...."], // shrinks, still disabled
+                &["....", "....", "....", "...."], // vanishes
+                &["##..", "##..", "....", "...."], // new junction at the same place: forms again
+            ],
+            3.0,
+        );
+        let formed: Vec<usize> = recs.iter().map(|r| r.n_formed).collect();
+        assert_eq!(formed, vec![1, 1, 1, 2]);
+        assert_record(recs[3], 1, 2, 2.0 * v(4));
+    }
+
+    #[test]
+    fn a_disabled_junction_merging_with_a_fresh_one_disables_it() {
+        let recs = run(
+            &[
+                &["##....", "##....", "......", "......", "......", "......"], // forms
+                &["##..#.", "##..#.", "......", "......", "......", "......"], // disabled + fresh small one
+                &["######", "##..#.", "......", "......", "......", "......"], // merged: disabled
+            ],
+            3.0,
+        );
+        let formed: Vec<usize> = recs.iter().map(|r| r.n_formed).collect();
+        assert_eq!(formed, vec![1, 1, 1]);
+        assert_eq!(recs[2].n_critical, 1);
+    }
+
+    #[test]
+    fn a_junction_across_the_periodic_edge_is_one_particle() {
+        let recs = run(&[&["#..#", "....", "....", "#..#"]], 3.0);
+        assert_record(recs[0], 1, 1, v(4));
+    }
+
+    #[test]
+    fn static_model() {
+        let js = [Junction::new(1, 1.0), Junction::new(4, 1.0), Junction::new(5, 1.0)];
+        let d_star = 2.0 * (3.0 / std::f64::consts::PI).sqrt();
+        let s = static_wear(&js, d_star);
+        assert!((s.wear_coefficient - 0.9).abs() < 1e-15);
+        assert!((s.wear_rate_over_omega - 9.0).abs() < 1e-12);
+    }
+}
