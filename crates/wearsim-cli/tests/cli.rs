@@ -135,3 +135,50 @@ fn bad_surface_files_are_one_line_errors() {
     let e = contact_fails(dir.path(), &read, "1e-3");
     assert!(e.contains("top.npy"), "{e}");
 }
+
+const SLIDING: &str = "[sliding]\nloads = [5e-4, 1e-3]\n";
+
+#[test]
+fn slide_writes_summary_and_series() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = run_file(dir.path(), &format!("{GENERATED}{SLIDING}"));
+    let out = dir.path().join("o");
+    let o = wearsim().args(["slide", run.to_str().unwrap(), "--out", out.to_str().unwrap()]).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    for key in ["flow_pressure", "critical_diameter", "effective_modulus", "wear_rate", "wear_coefficient", "particle_rate", "initial_volume", "static_wear_coefficient", "static_wear_rate", "tolerance"] {
+        assert!(summary.contains(&format!("\"{key}\"")), "summary lacks {key}");
+    }
+    let series = std::fs::read_to_string(out.join("series.csv")).unwrap();
+    let mut lines = series.lines();
+    assert_eq!(lines.next().unwrap(), "load,fracture_energy,s,junctions,contact_area,n_critical,n_formed,n_shrunk,volume");
+    // 64 px: 4 offsets of 4 px in running-in, then 16 of 1 px; 2 loads × 1 fracture energy.
+    assert_eq!(lines.count(), 2 * 20);
+}
+
+#[test]
+fn bad_sliding_input_is_a_one_line_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [
+        (format!("{GENERATED}[sliding]\nloads = []\n"), "loads"),
+        (format!("{GENERATED}[sliding]\nloads = [1e-3]\ndistance = 0.2\nrunning_in = 0.25\n"), "running_in"),
+        (format!("{GENERATED}[sliding]\nloads = [1e-3]\nstep = 64\n"), "step"),
+        (format!("{GENERATED}[sliding]\nloads = [1e-3]\nspeed = 1\n"), "speed"),
+        (GENERATED.replace("grid = 64\n", "grid = 64\ntop = \"missing.npy\"\n"), "surface"),
+    ];
+    for (text, needle) in cases {
+        let run = run_file(dir.path(), &text);
+        let out = dir.path().join("o");
+        let o = wearsim().args(["slide", run.to_str().unwrap(), "--out", out.to_str().unwrap()]).output().unwrap();
+        assert!(!o.status.success());
+        assert!(!out.exists());
+        let err = String::from_utf8(o.stderr).unwrap();
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(err.contains(needle), "{needle}: {err}");
+    }
+    let missing = format!("[surface]\ntop = \"a.npy\"\nbottom = \"b.npy\"\nlength = 1.0\n{}{SLIDING}", &GENERATED[GENERATED.find("[material]").unwrap()..]);
+    let run = run_file(dir.path(), &missing);
+    let o = wearsim().args(["slide", run.to_str().unwrap(), "--out", dir.path().join("o").to_str().unwrap()]).output().unwrap();
+    let err = String::from_utf8(o.stderr).unwrap();
+    assert!(!o.status.success() && err.contains("a.npy") && err.contains("not found"), "{err}");
+}
