@@ -93,6 +93,57 @@ struct Stats {
     n_plastic: f64,
     /// Objective ½⟨p, 𝒦p⟩ − ⟨p, h⟩ (its merit for the step safeguard).
     energy: f64,
+    /// Load carried by free and by plastic pixels, and the largest free pressure (for
+    /// [`scale_to_load`]).
+    load: LoadSums,
+}
+
+/// Sums of the pressure field that [`scale_to_load`] needs.
+#[derive(Debug, Clone, Copy, Default)]
+struct LoadSums {
+    free: f64,
+    plastic: f64,
+    n_contact: usize,
+    max_free: f64,
+}
+
+impl LoadSums {
+    fn of(pressure: &[f64], pm: f64, min_len: usize) -> Self {
+        pressure
+            .par_chunks(4096)
+            .with_min_len(min_len)
+            .map(|c| {
+                let mut s = LoadSums::default();
+                for &p in c {
+                    s.add(p, pm);
+                }
+                s
+            })
+            .collect::<Vec<_>>()
+            .into_iter()
+            .fold(LoadSums::default(), LoadSums::merge)
+    }
+
+    #[inline]
+    fn add(&mut self, p: f64, pm: f64) {
+        if p >= pm {
+            self.plastic += p;
+            self.n_contact += 1;
+        } else if p > 0.0 {
+            self.free += p;
+            self.n_contact += 1;
+            self.max_free = self.max_free.max(p);
+        }
+    }
+
+    fn merge(a: LoadSums, b: LoadSums) -> LoadSums {
+        LoadSums {
+            free: a.free + b.free,
+            plastic: a.plastic + b.plastic,
+            n_contact: a.n_contact + b.n_contact,
+            max_free: a.max_free.max(b.max_free),
+        }
+    }
 }
 
 impl Default for Stats {
@@ -108,6 +159,7 @@ impl Default for Stats {
             n_contact: 0.0,
             n_plastic: 0.0,
             energy: 0.0,
+            load: LoadSums::default(),
         }
     }
 }
@@ -116,6 +168,7 @@ impl Stats {
     #[inline]
     fn add(&mut self, p: f64, u: f64, h: f64, reference: f64, flow_pressure: f64) {
         let g = u - h;
+        self.load.add(p, flow_pressure);
         if p <= 0.0 {
             self.min_zero = self.min_zero.min(g);
         } else {
@@ -148,6 +201,7 @@ impl Stats {
             s.n_contact += p.n_contact;
             s.n_plastic += p.n_plastic;
             s.energy += p.energy;
+            s.load = LoadSums::merge(s.load, p.load);
         }
         s
     }
@@ -202,9 +256,10 @@ pub struct ContactSolver {
     u: Vec<f64>,
     t: Vec<f64>,
     r: Vec<f64>,
-    /// p and u before the last step, to undo a step that raised the objective.
+    /// p before the last step, to undo a step that raised the objective.
     p_old: Vec<f64>,
-    u_old: Vec<f64>,
+    /// Spare displacement buffer: receives 𝒦p after a step off the CG line.
+    u_alt: Vec<f64>,
     stats: Vec<Stats>,
     sums: Vec<[f64; 2]>,
     row_partials: Vec<f64>,
@@ -244,7 +299,7 @@ impl ContactSolver {
             t: vec![0.0; n * n],
             r: vec![0.0; n * n],
             p_old: vec![0.0; n * n],
-            u_old: vec![0.0; n * n],
+            u_alt: vec![0.0; n * n],
             stats: vec![Stats::default(); n],
             sums: vec![[0.0; 2]; n],
             row_partials: vec![0.0; n],
@@ -300,7 +355,20 @@ impl ContactSolver {
         if mean_pressure >= flow_pressure {
             return Err(Error::InfeasibleLoad { mean_pressure, flow_pressure });
         }
-        if let Some(k) = heights.iter().position(|h| !h.is_finite()) {
+        // Height statistics in one deterministic parallel pass: Σ(h − h₀), Σ(h − h₀)², max, finite.
+        let h0 = heights[0];
+        let (sum, sum_sq, h_max, finite) = heights
+            .par_chunks(n)
+            .map(|row| {
+                row.iter().fold((0.0, 0.0, f64::NEG_INFINITY, true), |(s, q, m, f), &h| {
+                    (s + (h - h0), q + (h - h0) * (h - h0), m.max(h), f && h.is_finite())
+                })
+            })
+            .collect::<Vec<_>>()
+            .into_iter()
+            .fold((0.0, 0.0, f64::NEG_INFINITY, true), |a, b| (a.0 + b.0, a.1 + b.1, a.2.max(b.2), a.3 && b.3));
+        if !finite || !h0.is_finite() {
+            let k = heights.iter().position(|h| !h.is_finite()).unwrap_or(0);
             return Err(Error::InvalidSurface {
                 name: "composite".into(),
                 message: format!("height at ({}, {}) is {}", k / n, k % n, heights[k]),
@@ -312,21 +380,20 @@ impl ContactSolver {
         }
         let pm = flow_pressure;
         let total = mean_pressure * nn as f64;
-        let h_mean = heights.iter().sum::<f64>() / nn as f64;
-        let h_max = heights.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        let h_std = (heights.iter().map(|h| (h - h_mean) * (h - h_mean)).sum::<f64>() / nn as f64).sqrt();
+        let shift_mean = sum / nn as f64;
+        let h_std = (sum_sq / nn as f64 - shift_mean * shift_mean).max(0.0).sqrt();
         // Residual scale: the surface's RMS height, or for a flat surface the elastic length P·L/E*.
         let scale = if h_std > 0.0 { h_std } else { mean_pressure * self.length / self.effective_modulus };
         let min_len = (8192 / n).max(1);
 
         // Initial guess: the given field when usable, else uniform pressure.
-        let usable = pressure.iter().all(|p| p.is_finite() && *p >= 0.0) && pressure.iter().any(|&p| p > 0.0);
+        let usable = pressure.par_iter().all(|p| p.is_finite() && *p >= 0.0) && pressure.par_iter().any(|&p| p > 0.0);
         if usable {
             pressure.par_iter_mut().for_each(|p| *p = p.min(pm));
         } else {
             pressure.par_iter_mut().for_each(|p| *p = mean_pressure);
         }
-        self.balance_load(heights, pressure, total, pm, f64::NAN, min_len);
+        self.balance_load(heights, pressure, total, pm, f64::NAN, min_len, None);
         let mut convolutions = 0;
         self.plan.convolve(pressure, &self.kernel, &mut self.u);
         convolutions += 1;
@@ -352,7 +419,7 @@ impl ContactSolver {
                     });
                 }
                 // Confirm with an exactly balanced load and a freshly computed displacement.
-                self.balance_load(heights, pressure, total, pm, mean, min_len);
+                self.balance_load(heights, pressure, total, pm, mean, min_len, Some(stats.load));
                 self.plan.convolve(pressure, &self.kernel, &mut self.u);
                 convolutions += 1;
                 reference = mean;
@@ -406,8 +473,6 @@ impl ContactSolver {
             };
 
             // Step, clip to the bounds, release bound pixels whose gap points inwards; the next
-            // iteration's statistics come out of the same pass.
-            // Step, clip to the bounds, release bound pixels whose gap points inwards; the next
             // iteration's statistics come out of the same pass. A step that changed p off the CG
             // line is checked on the objective and shortened until it descends (projected search).
             let energy_before = stats.energy;
@@ -424,8 +489,10 @@ impl ContactSolver {
                     restart = false;
                     break;
                 }
-                self.balance_load(heights, pressure, total, pm, mean, min_len);
-                self.plan.convolve(pressure, &self.kernel, &mut self.u);
+                self.balance_load(heights, pressure, total, pm, mean, min_len, Some(next.load));
+                // 𝒦p into the spare buffer, so that the carried-along u stays for an undo.
+                self.plan.convolve(pressure, &self.kernel, &mut self.u_alt);
+                std::mem::swap(&mut self.u, &mut self.u_alt);
                 convolutions += 1;
                 stats = self.pass_stats(heights, pressure, mean, pm, min_len);
                 fresh = true;
@@ -433,8 +500,13 @@ impl ContactSolver {
                 if stats.energy <= energy_before + slack || backtracks >= 40 {
                     break;
                 }
+                // Undo: p from its copy, u = (u − τr) + τr from the carried-along field.
                 pressure.par_iter_mut().zip(self.p_old.par_iter()).for_each(|(p, &o)| *p = o);
-                self.u.par_iter_mut().zip(self.u_old.par_iter()).for_each(|(u, &o)| *u = o);
+                let step = if cg_step { tau } else { 0.0 };
+                self.u
+                    .par_iter_mut()
+                    .zip(self.u_alt.par_iter().zip(self.r.par_iter()))
+                    .for_each(|(u, (&a, &r))| *u = a + step * r);
                 tau *= 0.25;
                 backtracks += 1;
             }
@@ -446,9 +518,18 @@ impl ContactSolver {
     /// flow pressure, the missing load goes to the non-contact pixels that penetrate most, in
     /// proportion to their penetration −(g − ḡ) (all non-contact pixels evenly when `mean` is NaN or
     /// none penetrates), then the load is balanced again.
-    fn balance_load(&mut self, heights: &[f64], pressure: &mut [f64], total: f64, pm: f64, mean: f64, min_len: usize) {
+    fn balance_load(
+        &mut self,
+        heights: &[f64],
+        pressure: &mut [f64],
+        total: f64,
+        pm: f64,
+        mean: f64,
+        min_len: usize,
+        mut sums: Option<LoadSums>,
+    ) {
         for _ in 0..4 {
-            if scale_to_load(pressure, total, pm, min_len) {
+            if scale_to_load(pressure, total, pm, min_len, sums.take()) {
                 return;
             }
             let carried: f64 = pressure.iter().sum();
@@ -471,7 +552,7 @@ impl ContactSolver {
                 }
             }
         }
-        scale_to_load(pressure, total, pm, min_len);
+        scale_to_load(pressure, total, pm, min_len, None);
     }
 
     /// Statistics of g = u − h over the regions defined by p.
@@ -552,10 +633,9 @@ impl ContactSolver {
             .zip(totals.par_iter_mut().zip(events.par_iter_mut()))
             .zip(pressure.par_chunks_mut(n).zip(self.u.par_chunks_mut(n)))
             .zip(self.t.par_chunks(n).zip(self.r.par_chunks(n).zip(heights.par_chunks(n))))
-            .zip(self.p_old.par_chunks_mut(n).zip(self.u_old.par_chunks_mut(n)))
-            .for_each(|((((acc, (total, event)), (p, u)), (t, (r, h))), (p_old, u_old))| {
+            .zip(self.p_old.par_chunks_mut(n))
+            .for_each(|((((acc, (total, event)), (p, u)), (t, (r, h))), p_old)| {
                 p_old.copy_from_slice(p);
-                u_old.copy_from_slice(u);
                 let mut s = Stats::default();
                 let mut sum_p = 0.0;
                 let (mut released, mut clipped) = (0.0, 0.0);
@@ -609,26 +689,9 @@ impl ContactSolver {
 /// which ends in finitely many steps. Where the plastic pixels alone exceed the load, every contact
 /// pixel is scaled; where even p_m on every contact pixel cannot carry it, the contact pixels are set
 /// to p_m and `false` is returned: the contact must grow.
-fn scale_to_load(pressure: &mut [f64], total: f64, pm: f64, min_len: usize) -> bool {
-    let (free_sum, plastic_sum, n_contact) = pressure
-        .par_chunks(4096)
-        .with_min_len(min_len)
-        .map(|c| {
-            let (mut f, mut pl, mut nc) = (0.0, 0.0, 0usize);
-            for &p in c {
-                if p >= pm {
-                    pl += p;
-                    nc += 1;
-                } else if p > 0.0 {
-                    f += p;
-                    nc += 1;
-                }
-            }
-            (f, pl, nc)
-        })
-        .collect::<Vec<_>>()
-        .into_iter()
-        .fold((0.0, 0.0, 0), |a, b| (a.0 + b.0, a.1 + b.1, a.2 + b.2));
+fn scale_to_load(pressure: &mut [f64], total: f64, pm: f64, min_len: usize, sums: Option<LoadSums>) -> bool {
+    let sums = sums.unwrap_or_else(|| LoadSums::of(pressure, pm, min_len));
+    let (free_sum, plastic_sum, n_contact) = (sums.free, sums.plastic, sums.n_contact);
     if free_sum + plastic_sum == total {
         return true;
     }
@@ -669,7 +732,10 @@ fn scale_to_load(pressure: &mut [f64], total: f64, pm: f64, min_len: usize) -> b
     };
     let target = total - fixed;
     let mut s = target / movable;
-    for _ in 0..100 {
+    // Without a pixel pushed to p_m the first guess is exact; otherwise Newton from below.
+    let max_movable = if scale_plastic { pm } else { sums.max_free };
+    let iterations = if s * max_movable < pm { 0 } else { 100 };
+    for _ in 0..iterations {
         let (f, df) = sum_and_slope(s);
         let err = target - f;
         if err.abs() <= 1e-15 * total || df <= 0.0 {

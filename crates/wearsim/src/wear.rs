@@ -15,8 +15,9 @@ pub struct StaticWear {
 /// Evaluates the static model for critical diameter d* on the labelled junctions.
 pub fn static_wear(junctions: &[Junction], critical_diameter: f64) -> StaticWear {
     let critical_area = std::f64::consts::PI * critical_diameter * critical_diameter / 4.0;
-    let total: f64 = junctions.iter().map(|j| j.area).sum();
-    let large: f64 = junctions.iter().filter(|j| j.area >= critical_area).map(|j| j.area).sum();
+    // fold from +0.0: an empty f64 `sum()` is −0.0, which would print as "-0" in the outputs.
+    let total = junctions.iter().fold(0.0, |a, j| a + j.area);
+    let large = junctions.iter().filter(|j| j.area >= critical_area).fold(0.0, |a, j| a + j.area);
     let k = if total > 0.0 { large / total } else { 0.0 };
     StaticWear { wear_coefficient: k, wear_rate_over_omega: k * total }
 }
