@@ -158,7 +158,16 @@ impl JunctionLabeller {
 
     /// Junctions with their areas, diameters and volumes for pixel size `dx`.
     pub fn junctions(&self, dx: f64) -> Vec<Junction> {
-        self.sizes.iter().map(|&s| Junction::new(s, dx)).collect()
+        let mut out = Vec::new();
+        self.junctions_into(dx, &mut out);
+        out
+    }
+
+    /// [`JunctionLabeller::junctions`] into a buffer kept by the caller (no allocation per step once
+    /// it has grown).
+    pub fn junctions_into(&self, dx: f64, out: &mut Vec<Junction>) {
+        out.clear();
+        out.extend(self.sizes.iter().map(|&s| Junction::new(s, dx)));
     }
 }
 

@@ -147,6 +147,7 @@ pub fn run_sliding(
     let mut heights = vec![0.0; n * n];
     let mut pressure = vec![0.0; n * n];
     let mut scratch = vec![false; n * n];
+    let mut junctions = Vec::new();
     let mut runs = Vec::new();
     let mut done = 0;
     for &load in &setup.sliding.loads {
@@ -161,7 +162,7 @@ pub fn run_sliding(
             let info = solver.solve(&heights, load / area, pm, &mut pressure)?;
             let t1 = Instant::now();
             let count = labeller.label(|k| pressure[k] > 0.0);
-            let junctions = labeller.junctions(dx);
+            labeller.junctions_into(dx, &mut junctions);
             let t2 = Instant::now();
             if offset == 0 {
                 statics = diameters.iter().map(|&d| static_wear(&junctions, d)).collect();
