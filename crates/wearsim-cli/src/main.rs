@@ -14,6 +14,7 @@ use wearsim::{composite_heights, ContactSolver, Surface};
 
 mod bench;
 mod slide;
+mod study;
 
 #[derive(Parser)]
 #[command(name = "wearsim", version, about = "Adhesive wear of rough surfaces in sliding contact (Brink, Frérot & Molinari 2021)")]
@@ -69,10 +70,39 @@ enum Command {
         #[arg(long)]
         out: PathBuf,
     },
+    /// Studies: expand a study file into jobs and run them (resumable), or collect the results.
+    #[command(subcommand)]
+    Study(StudyCommand),
     /// Time the FFT round trip, a cold saturated solve and a warm solve after a one-pixel slide.
     Bench(bench::BenchArgs),
     /// Time a full sliding run (solve / labelling / bookkeeping) and warm steps on a large grid.
     BenchSlide(bench::SlideBenchArgs),
+}
+
+#[derive(Subcommand)]
+enum StudyCommand {
+    /// Run the study's jobs (surface pair × material × load); finished jobs are skipped, so a killed
+    /// study resumes. One JSON file per job in DIR/jobs.
+    Run {
+        /// Study file (a run file whose fields may be lists, or with [[materials]]).
+        study: PathBuf,
+        /// Study folder (created if missing).
+        #[arg(long)]
+        out: PathBuf,
+        /// Run only shard K of N (jobs with index ≡ K−1 mod N); default from SLURM_ARRAY_TASK_ID /
+        /// SLURM_ARRAY_TASK_COUNT inside a Slurm job array, else 1/1.
+        #[arg(long)]
+        shard: Option<String>,
+        /// Jobs run at once (each single-threaded); default: --threads or all cores.
+        #[arg(long)]
+        jobs: Option<usize>,
+    },
+    /// Collect the job files into results.csv (tidy) and results_aggregated.csv (mean/min/max over
+    /// surface pairs).
+    Collect {
+        /// Study folder.
+        dir: PathBuf,
+    },
 }
 
 fn main() {
@@ -88,6 +118,8 @@ fn main() {
         Command::Contact { run, load, offset, out } => contact(&run, load, offset, &out),
         Command::Slide { run, out } => slide::slide(&run, &out),
         Command::Junctions { map, connectivity, out } => slide::junctions(&map, connectivity, &out),
+        Command::Study(StudyCommand::Run { study, out, shard, jobs }) => study::run(&study, &out, shard.as_deref(), jobs),
+        Command::Study(StudyCommand::Collect { dir }) => study::collect(&dir),
         Command::Bench(args) => bench::run(&args),
         Command::BenchSlide(args) => bench::run_slide(&args),
     };

@@ -18,6 +18,7 @@ pub mod junctions;
 pub mod material;
 pub mod output;
 pub mod sliding;
+pub mod study;
 pub mod surface;
 pub mod wear;
 

@@ -1,0 +1,130 @@
+//! Studies through the CLI: a study killed part-way (a real SIGKILL to a real process) resumes to
+//! the same results without recomputing finished jobs; shards and worker counts change nothing.
+
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+fn wearsim() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_wearsim"))
+}
+
+const STUDY: &str = r#"
+[surface]
+grid = 128
+lambda_lower = 0.0625
+lambda_upper = 0.25
+rms_height = 0.005
+seed = [1, 2, 3]
+[material]
+youngs_modulus = 1.0
+poisson_ratio = 0.3
+shear_strength = [0.008, 0.012]
+fracture_energies = [0.25e-6, 1e-6]
+[sliding]
+loads = [2.5e-4, 5e-4, 1e-3, 2e-3]
+"#;
+
+fn run_study(study: &Path, out: &Path, extra: &[&str]) -> String {
+    let o = wearsim()
+        .args(["study", "run", study.to_str().unwrap(), "--out", out.to_str().unwrap()])
+        .args(extra)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    String::from_utf8(o.stdout).unwrap()
+}
+
+fn collect(out: &Path) -> (String, String) {
+    let o = wearsim().args(["study", "collect", out.to_str().unwrap()]).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    (
+        std::fs::read_to_string(out.join("results.csv")).unwrap(),
+        std::fs::read_to_string(out.join("results_aggregated.csv")).unwrap(),
+    )
+}
+
+fn job_files(out: &Path) -> Vec<String> {
+    match std::fs::read_dir(out.join("jobs")) {
+        Ok(d) => d.flatten().map(|e| e.file_name().to_string_lossy().to_string()).collect(),
+        Err(_) => Vec::new(),
+    }
+}
+
+#[test]
+fn killed_study_resumes_to_the_same_results() {
+    let dir = tempfile::tempdir().unwrap();
+    // Slower jobs than the shard test, so that the kill lands part-way.
+    let text = STUDY.replace("grid = 128", "grid = 256").replace("lambda_lower = 0.0625", "lambda_lower = 0.0625\nhurst = 0.7");
+    let study = dir.path().join("study.toml");
+    std::fs::write(&study, &text).unwrap();
+    let reference = dir.path().join("reference");
+    run_study(&study, &reference, &[]);
+    let (tidy_ref, agg_ref) = collect(&reference);
+    let total = job_files(&reference).len();
+    assert_eq!(total, 24);
+
+    let out = dir.path().join("killed");
+    let mut child = wearsim()
+        .args(["study", "run", study.to_str().unwrap(), "--out", out.to_str().unwrap(), "--jobs", "2"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    loop {
+        let done = job_files(&out).iter().filter(|f| f.ends_with(".json") && !f.starts_with('.')).count();
+        if done >= 3 || start.elapsed() > Duration::from_secs(120) {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    child.kill().unwrap(); // SIGKILL
+    child.wait().unwrap();
+    let finished: Vec<String> = job_files(&out).into_iter().filter(|f| !f.starts_with('.')).collect();
+    assert!(!finished.is_empty() && finished.len() < total, "kill did not land part-way: {} jobs", finished.len());
+    // Collecting an unfinished study is an error naming what is missing.
+    let o = wearsim().args(["study", "collect", out.to_str().unwrap()]).output().unwrap();
+    assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("no result yet"));
+
+    let stdout = run_study(&study, &out, &[]);
+    assert!(
+        stdout.contains(&format!("computed {} jobs, skipped {}", total - finished.len(), finished.len())),
+        "a finished job was recomputed: {stdout}"
+    );
+    assert!(job_files(&out).iter().all(|f| !f.starts_with('.')), "partial file left: {:?}", job_files(&out));
+    assert_eq!(collect(&out), (tidy_ref, agg_ref));
+}
+
+#[test]
+fn shards_and_worker_counts_give_the_unsharded_results() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = dir.path().join("study.toml");
+    std::fs::write(&study, STUDY).unwrap();
+    let whole = dir.path().join("whole");
+    run_study(&study, &whole, &["--jobs", "1"]);
+    let expected = collect(&whole);
+    let sharded = dir.path().join("sharded");
+    for k in 1..=3 {
+        run_study(&study, &sharded, &["--shard", &format!("{k}/3"), "--jobs", "2"]);
+    }
+    assert_eq!(collect(&sharded), expected);
+    // A Slurm job array picks its shard from the environment.
+    let slurm = dir.path().join("slurm");
+    for id in 1..=2 {
+        let o = wearsim()
+            .args(["study", "run", study.to_str().unwrap(), "--out", slurm.to_str().unwrap()])
+            .env("SLURM_ARRAY_TASK_ID", id.to_string())
+            .env("SLURM_ARRAY_TASK_COUNT", "2")
+            .env("SLURM_ARRAY_TASK_MIN", "1")
+            .output()
+            .unwrap();
+        assert!(o.status.success());
+        assert!(String::from_utf8_lossy(&o.stderr).contains(&format!("shard {id}/2 holds 12")));
+    }
+    assert_eq!(collect(&slurm), expected);
+    // A changed study file is refused in an existing folder.
+    std::fs::write(&study, STUDY.replace("0.012", "0.011")).unwrap();
+    let o = wearsim().args(["study", "run", study.to_str().unwrap(), "--out", whole.to_str().unwrap()]).output().unwrap();
+    assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("different study"));
+}

@@ -1,0 +1,522 @@
+//! Studies (SPEC §7, §9): a study file is a run file whose fields may be lists, or whose materials
+//! are a `[[materials]]` array of named tables. It expands into jobs, one per surface pair ×
+//! material × contact setting × load (every fracture energy inside the job), each run by the sliding
+//! model and stored as one JSON file written atomically, so that a killed study resumes where it
+//! stopped. [`collect`] turns the job files into one tidy table and its aggregate over surface pairs.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+
+use serde::{Deserialize, Serialize};
+use toml::{Table, Value};
+
+use crate::config::RunConfig;
+use crate::error::{Error, Result};
+use crate::output::write_text;
+use crate::sliding::{run_sliding, SlidingSetup, StepRecord, WearResult};
+
+/// One job of a study: a single-load run file and the parameters that vary across the study.
+#[derive(Debug, Clone)]
+pub struct Job {
+    /// Position in the expansion order; the job file is `jobs/job-{index:06}.json`.
+    pub index: usize,
+    /// Name of the material (`[[materials]]` `name`, or "material").
+    pub material: String,
+    /// The run, with a single load.
+    pub run: RunConfig,
+    /// Values of the study's list-valued keys for this job ("section.key" → value).
+    pub varying: BTreeMap<String, Value>,
+}
+
+/// An expanded study.
+#[derive(Debug, Clone)]
+pub struct Study {
+    pub jobs: Vec<Job>,
+    /// FNV-1a hash of the parsed study (comments and layout do not count).
+    pub hash: String,
+    /// The study file's canonical TOML.
+    pub canonical: String,
+}
+
+fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| (h ^ b as u64).wrapping_mul(0x0100_0000_01b3))
+}
+
+/// Cartesian product of the list-valued keys of `table` (except `keep_lists`): every combination as
+/// a table of single values, with the chosen values.
+fn product(table: &Table, section: &str, keep_lists: &[&str]) -> Vec<(Table, BTreeMap<String, Value>)> {
+    let mut out = vec![(Table::new(), BTreeMap::new())];
+    for (key, value) in table {
+        let choices: Vec<Value> = match value {
+            Value::Array(items) if !keep_lists.contains(&key.as_str()) => items.clone(),
+            other => vec![other.clone()],
+        };
+        let varies = matches!(value, Value::Array(_)) && !keep_lists.contains(&key.as_str());
+        let mut next = Vec::with_capacity(out.len() * choices.len());
+        for (t, v) in &out {
+            for c in &choices {
+                let mut t = t.clone();
+                t.insert(key.clone(), c.clone());
+                let mut v = v.clone();
+                if varies {
+                    v.insert(format!("{section}.{key}"), c.clone());
+                }
+                next.push((t, v));
+            }
+        }
+        out = next;
+    }
+    out
+}
+
+/// Expands a study file's text; relative surface paths resolve against `base`.
+pub fn expand(text: &str, base: &Path) -> Result<Study> {
+    let table: Table = text.parse::<Table>().map_err(|e| Error::Config(e.to_string().trim_end().replace('\n', " ")))?;
+    let canonical = toml::to_string(&table).map_err(|e| Error::Config(e.to_string()))?;
+    let hash = format!("{:016x}", fnv1a(canonical.as_bytes()));
+    let section = |name: &str| -> Result<Table> {
+        match table.get(name) {
+            None => Ok(Table::new()),
+            Some(Value::Table(t)) => Ok(t.clone()),
+            Some(_) => Err(Error::Config(format!("`{name}` must be a table"))),
+        }
+    };
+    for key in table.keys() {
+        if !["units", "surface", "material", "materials", "contact", "sliding"].contains(&key.as_str()) {
+            return Err(Error::Config(format!("unknown key `{key}` at the top of the study file")));
+        }
+    }
+    // Materials: one [material] table (lists allowed) or a [[materials]] array of named tables.
+    let mut materials: Vec<(String, Table, BTreeMap<String, Value>)> = Vec::new();
+    match (table.get("material"), table.get("materials")) {
+        (Some(_), Some(_)) => return Err(Error::Config("give either [material] or [[materials]], not both".into())),
+        (_, Some(Value::Array(items))) => {
+            for (i, item) in items.iter().enumerate() {
+                let Value::Table(t) = item else {
+                    return Err(Error::Config("[[materials]] entries must be tables".into()));
+                };
+                let mut t = t.clone();
+                let name = match t.remove("name") {
+                    Some(Value::String(s)) => s,
+                    None => format!("material{}", i + 1),
+                    Some(_) => return Err(Error::Config("[[materials]] `name` must be a string".into())),
+                };
+                for (m, v) in product(&t, "material", &["fracture_energies"]) {
+                    materials.push((name.clone(), m, v));
+                }
+            }
+        }
+        (_, Some(_)) => return Err(Error::Config("`materials` must be an array of tables ([[materials]])".into())),
+        (_, None) => {
+            let mut t = section("material")?;
+            let name = match t.remove("name") {
+                Some(Value::String(s)) => s,
+                _ => "material".to_string(),
+            };
+            for (m, v) in product(&t, "material", &["fracture_energies"]) {
+                materials.push((name.clone(), m, v));
+            }
+        }
+    }
+    let surfaces = product(&section("surface")?, "surface", &[]);
+    let contacts = product(&section("contact")?, "contact", &[]);
+    let sliding = section("sliding")?;
+    let loads = match sliding.get("loads") {
+        Some(Value::Array(l)) if !l.is_empty() => l.clone(),
+        _ => return Err(Error::param("loads", "a study needs a non-empty [sliding] `loads` list")),
+    };
+    let mut jobs = Vec::new();
+    for (surface, sv) in &surfaces {
+        for (name, material, mv) in &materials {
+            for (contact, cv) in &contacts {
+                for load in &loads {
+                    let mut run = Table::new();
+                    if let Some(u) = table.get("units") {
+                        run.insert("units".into(), u.clone());
+                    }
+                    run.insert("surface".into(), Value::Table(surface.clone()));
+                    run.insert("material".into(), Value::Table(material.clone()));
+                    run.insert("contact".into(), Value::Table(contact.clone()));
+                    let mut sl = sliding.clone();
+                    sl.insert("loads".into(), Value::Array(vec![load.clone()]));
+                    run.insert("sliding".into(), Value::Table(sl));
+                    let text = toml::to_string(&run).map_err(|e| Error::Config(e.to_string()))?;
+                    let index = jobs.len();
+                    let config = RunConfig::from_toml(&text, base)
+                        .map_err(|e| Error::Config(format!("study job {index} ({name}): {e}")))?;
+                    let mut varying = sv.clone();
+                    varying.extend(mv.clone());
+                    varying.extend(cv.clone());
+                    jobs.push(Job { index, material: name.clone(), run: config, varying });
+                }
+            }
+        }
+    }
+    Ok(Study { jobs, hash, canonical })
+}
+
+/// What a job file holds.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct JobResult {
+    pub index: usize,
+    pub material: String,
+    pub load: f64,
+    pub flow_pressure: f64,
+    pub effective_modulus: f64,
+    pub results: Vec<WearResultRecord>,
+    /// Per step: s, junctions, contact area; per fracture energy: n_critical, n_formed, volume.
+    pub steps: Vec<StepRow>,
+    pub total_iterations: usize,
+    pub seconds: f64,
+}
+
+/// [`WearResult`] as stored in a job file.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct WearResultRecord {
+    pub fracture_energy: f64,
+    pub critical_diameter: f64,
+    pub wear_rate: f64,
+    pub wear_rate_r2: f64,
+    pub wear_coefficient: f64,
+    pub particle_rate: f64,
+    pub wear_rate_estimate: f64,
+    pub initial_volume: f64,
+    pub static_wear_coefficient: f64,
+    pub static_wear_rate: f64,
+}
+
+impl From<&WearResult> for WearResultRecord {
+    fn from(w: &WearResult) -> Self {
+        Self {
+            fracture_energy: w.fracture_energy,
+            critical_diameter: w.critical_diameter,
+            wear_rate: w.wear_rate,
+            wear_rate_r2: w.wear_rate_r2,
+            wear_coefficient: w.wear_coefficient,
+            particle_rate: w.particle_rate,
+            wear_rate_estimate: w.wear_rate_estimate,
+            initial_volume: w.initial_volume,
+            static_wear_coefficient: w.static_wear_coefficient,
+            static_wear_rate: w.static_wear_rate,
+        }
+    }
+}
+
+/// One step of a job file.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct StepRow {
+    pub s: f64,
+    pub junctions: usize,
+    pub contact_area: f64,
+    pub n_critical: Vec<usize>,
+    pub n_formed: Vec<usize>,
+    pub volume: Vec<f64>,
+}
+
+impl From<&StepRecord> for StepRow {
+    fn from(r: &StepRecord) -> Self {
+        Self {
+            s: r.s,
+            junctions: r.junctions,
+            contact_area: r.contact_area,
+            n_critical: r.wear.iter().map(|w| w.n_critical).collect(),
+            n_formed: r.wear.iter().map(|w| w.n_formed).collect(),
+            volume: r.wear.iter().map(|w| w.volume).collect(),
+        }
+    }
+}
+
+/// Path of job `index`'s result file in a study folder.
+pub fn job_path(dir: &Path, index: usize) -> PathBuf {
+    dir.join("jobs").join(format!("job-{index:06}.json"))
+}
+
+/// Runs one job.
+pub fn run_job(job: &Job) -> Result<JobResult> {
+    let start = std::time::Instant::now();
+    let run = &job.run;
+    let sliding = run.sliding.as_ref().ok_or_else(|| Error::param("loads", "job without [sliding]"))?;
+    let (top, bottom) = run.surfaces()?;
+    let setup = SlidingSetup {
+        material: &run.material,
+        effective_modulus: run.effective_modulus(),
+        solver: run.solver,
+        connectivity: run.connectivity,
+        sliding,
+    };
+    let mut runs = run_sliding(&top, &bottom, &setup, |_, _| {})?;
+    let r = runs.pop().ok_or_else(|| Error::param("loads", "job without a load"))?;
+    Ok(JobResult {
+        index: job.index,
+        material: job.material.clone(),
+        load: r.load,
+        flow_pressure: run.material.flow_pressure(),
+        effective_modulus: run.effective_modulus(),
+        results: r.results.iter().map(WearResultRecord::from).collect(),
+        steps: r.steps.iter().map(StepRow::from).collect(),
+        total_iterations: r.total_iterations,
+        seconds: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// Prepares a study folder: stores the study, its hash and the folder its relative paths resolve
+/// against on first use, refuses a folder made by a different study, and removes temporary files a
+/// killed run left behind.
+pub fn prepare_folder(dir: &Path, study: &Study, base: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir.join("jobs")).map_err(|e| Error::io(dir, e))?;
+    let hash_path = dir.join("study.hash");
+    match std::fs::read_to_string(&hash_path) {
+        Ok(existing) if existing.trim() != study.hash => {
+            return Err(Error::Config(format!(
+                "{} holds results of a different study (hash {} ≠ {}); use a new --out folder or restore the original study file",
+                dir.display(),
+                existing.trim(),
+                study.hash
+            )))
+        }
+        Ok(_) => {}
+        Err(_) => {
+            write_text(&dir.join("study.toml"), &study.canonical)?;
+            let base = base.canonicalize().map_err(|e| Error::io(base, e))?;
+            write_text(&dir.join("study.base"), &base.to_string_lossy())?;
+            write_text(&hash_path, &study.hash)?;
+        }
+    }
+    for entry in std::fs::read_dir(dir.join("jobs")).map_err(|e| Error::io(dir, e))?.flatten() {
+        let name = entry.file_name().to_string_lossy().to_string();
+        if name.starts_with('.') && name.contains(".tmp") {
+            let _ = std::fs::remove_file(entry.path());
+        }
+    }
+    Ok(())
+}
+
+/// Jobs of shard `k` of `count` (1-based k): indices ≡ k − 1 (mod count).
+pub fn shard(jobs: &[Job], k: usize, count: usize) -> Vec<&Job> {
+    jobs.iter().filter(|j| j.index % count == k - 1).collect()
+}
+
+/// Runs the given jobs on `workers` threads (each job single-threaded inside), skipping jobs whose
+/// file exists. `progress(done, total)` is called after each job. Returns (computed, skipped).
+pub fn run_jobs(
+    dir: &Path,
+    jobs: &[&Job],
+    workers: usize,
+    progress: impl Fn(usize, usize) + Sync,
+) -> Result<(usize, usize)> {
+    let pending: Vec<&Job> = jobs.iter().copied().filter(|j| !job_path(dir, j.index).is_file()).collect();
+    let skipped = jobs.len() - pending.len();
+    let next = AtomicUsize::new(0);
+    let done = AtomicUsize::new(0);
+    let first_error: Mutex<Option<Error>> = Mutex::new(None);
+    let workers = workers.clamp(1, pending.len().max(1));
+    std::thread::scope(|scope| {
+        for _ in 0..workers {
+            scope.spawn(|| {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("a one-thread pool");
+                loop {
+                    if first_error.lock().map(|e| e.is_some()).unwrap_or(true) {
+                        return;
+                    }
+                    let i = next.fetch_add(1, Ordering::SeqCst);
+                    let Some(job) = pending.get(i) else { return };
+                    let outcome = pool.install(|| run_job(job)).and_then(|result| {
+                        let text = serde_json::to_string(&result).map_err(|e| Error::io(job_path(dir, job.index), e))?;
+                        write_text(&job_path(dir, job.index), &text)
+                    });
+                    match outcome {
+                        Ok(()) => progress(done.fetch_add(1, Ordering::SeqCst) + 1, pending.len()),
+                        Err(e) => {
+                            if let Ok(mut slot) = first_error.lock() {
+                                slot.get_or_insert(Error::Config(format!("study job {}: {e}", job.index)));
+                            }
+                            return;
+                        }
+                    }
+                }
+            });
+        }
+    });
+    if let Some(e) = first_error.into_inner().ok().flatten() {
+        return Err(e);
+    }
+    Ok((done.into_inner(), skipped))
+}
+
+fn csv_value(v: &Value) -> String {
+    match v {
+        Value::String(s) => s.clone(),
+        Value::Integer(i) => i.to_string(),
+        Value::Float(f) => format!("{f:e}"),
+        Value::Boolean(b) => b.to_string(),
+        other => other.to_string().replace(',', ";"),
+    }
+}
+
+const RESULT_COLUMNS: [&str; 10] = [
+    "wear_rate",
+    "wear_rate_r2",
+    "wear_coefficient",
+    "particle_rate",
+    "wear_rate_estimate",
+    "initial_volume",
+    "static_wear_coefficient",
+    "static_wear_rate",
+    "critical_diameter",
+    "flow_pressure",
+];
+
+/// Collects the job files of a study folder into `results.csv` (one row per job × fracture energy:
+/// inputs, then results) and `results_aggregated.csv` (mean, min and max over surface pairs, i.e.
+/// over `surface.seed`). Returns the number of rows of each. Fails naming the missing jobs when
+/// the study is unfinished.
+pub fn collect(dir: &Path) -> Result<(usize, usize)> {
+    let path = dir.join("study.toml");
+    let text = std::fs::read_to_string(&path).map_err(|e| Error::io(&path, e))?;
+    let base = std::fs::read_to_string(dir.join("study.base")).map(PathBuf::from).unwrap_or_else(|_| dir.to_path_buf());
+    let study = expand(&text, &base)?;
+    let missing: Vec<usize> = study.jobs.iter().map(|j| j.index).filter(|&i| !job_path(dir, i).is_file()).collect();
+    if !missing.is_empty() {
+        return Err(Error::Config(format!(
+            "{} of {} jobs have no result yet (first: {}); run `wearsim study run` again to finish them",
+            missing.len(),
+            study.jobs.len(),
+            missing[0]
+        )));
+    }
+    let input_keys: Vec<String> = {
+        let mut keys: Vec<String> = study.jobs.iter().flat_map(|j| j.varying.keys().cloned()).collect();
+        keys.sort();
+        keys.dedup();
+        keys
+    };
+    let mut header = vec!["job".to_string(), "material".into()];
+    header.extend(input_keys.iter().cloned());
+    header.extend(["load", "fracture_energy"].map(String::from));
+    header.extend(RESULT_COLUMNS.map(String::from));
+    let mut tidy = header.join(",") + "\n";
+    // Aggregation key: everything but the job index and the seed; groups keep the study's order.
+    let mut group_index: BTreeMap<Vec<String>, usize> = BTreeMap::new();
+    let mut groups: Vec<(Vec<String>, Vec<Vec<f64>>)> = Vec::new();
+    let mut rows = 0;
+    for job in &study.jobs {
+        let p = job_path(dir, job.index);
+        let text = std::fs::read_to_string(&p).map_err(|e| Error::io(&p, e))?;
+        let r: JobResult = serde_json::from_str(&text).map_err(|e| Error::io(&p, format!("not a job result ({e})")))?;
+        for w in &r.results {
+            let inputs: Vec<String> = input_keys.iter().map(|k| job.varying.get(k).map(csv_value).unwrap_or_default()).collect();
+            let values = [
+                w.wear_rate,
+                w.wear_rate_r2,
+                w.wear_coefficient,
+                w.particle_rate,
+                w.wear_rate_estimate,
+                w.initial_volume,
+                w.static_wear_coefficient,
+                w.static_wear_rate,
+                w.critical_diameter,
+                r.flow_pressure,
+            ];
+            let mut line = vec![job.index.to_string(), job.material.clone()];
+            line.extend(inputs.iter().cloned());
+            line.push(format!("{:e}", r.load));
+            line.push(format!("{:e}", w.fracture_energy));
+            line.extend(values.iter().map(|v| format!("{v:e}")));
+            tidy += &(line.join(",") + "\n");
+            rows += 1;
+            let mut key = vec![job.material.clone()];
+            key.extend(input_keys.iter().zip(&inputs).filter(|(k, _)| k.as_str() != "surface.seed").map(|(_, v)| v.clone()));
+            key.push(format!("{:e}", r.load));
+            key.push(format!("{:e}", w.fracture_energy));
+            let g = *group_index.entry(key.clone()).or_insert_with(|| {
+                groups.push((key, Vec::new()));
+                groups.len() - 1
+            });
+            groups[g].1.push(values.to_vec());
+        }
+    }
+    let group_keys: Vec<String> = input_keys.iter().filter(|k| k.as_str() != "surface.seed").cloned().collect();
+    let mut agg_header = vec!["material".to_string()];
+    agg_header.extend(group_keys);
+    agg_header.extend(["load", "fracture_energy", "surface_pairs"].map(String::from));
+    for c in RESULT_COLUMNS {
+        agg_header.extend([format!("{c}_mean"), format!("{c}_min"), format!("{c}_max")]);
+    }
+    let mut agg = agg_header.join(",") + "\n";
+    for (key, members) in &groups {
+        let mut line = key.clone();
+        line.push(members.len().to_string());
+        for c in 0..RESULT_COLUMNS.len() {
+            let vals: Vec<f64> = members.iter().map(|m| m[c]).collect();
+            let mean = vals.iter().sum::<f64>() / vals.len() as f64;
+            let min = vals.iter().copied().fold(f64::INFINITY, f64::min);
+            let max = vals.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            line.extend([format!("{mean:e}"), format!("{min:e}"), format!("{max:e}")]);
+        }
+        agg += &(line.join(",") + "\n");
+    }
+    write_text(&dir.join("results.csv"), &tidy)?;
+    write_text(&dir.join("results_aggregated.csv"), &agg)?;
+    Ok((rows, groups.len()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const STUDY: &str = r#"
+[surface]
+grid = 64
+lambda_lower = 0.125
+lambda_upper = 0.25
+rms_height = 0.005
+seed = [1, 2, 3]
+[[materials]]
+name = "soft"
+youngs_modulus = 1.0
+poisson_ratio = 0.3
+shear_strength = [0.008, 0.01]
+fracture_energies = [0.5e-6, 1e-6]
+[[materials]]
+name = "hard"
+youngs_modulus = 1.0
+poisson_ratio = 0.3
+shear_strength = 0.012
+fracture_energies = [0.5e-6]
+[sliding]
+loads = [5e-4, 1e-3]
+"#;
+
+    #[test]
+    fn expansion_is_the_cartesian_product() {
+        let s = expand(STUDY, Path::new(".")).unwrap();
+        // 3 seeds × (2 + 1) materials × 2 loads.
+        assert_eq!(s.jobs.len(), 18);
+        assert_eq!(s.jobs[0].varying.get("surface.seed"), Some(&Value::Integer(1)));
+        assert!(s.jobs.iter().all(|j| j.run.sliding.as_ref().unwrap().loads.len() == 1));
+        assert_eq!(s.jobs.iter().filter(|j| j.material == "hard").count(), 6);
+        // Layout and comments do not change the hash; values do.
+        let again = expand(&format!("# comment\n{STUDY}"), Path::new(".")).unwrap();
+        assert_eq!(s.hash, again.hash);
+        assert_ne!(s.hash, expand(&STUDY.replace("0.012", "0.011"), Path::new(".")).unwrap().hash);
+    }
+
+    #[test]
+    fn shards_partition_the_jobs() {
+        let s = expand(STUDY, Path::new(".")).unwrap();
+        let mut all: Vec<usize> = (1..=4).flat_map(|k| shard(&s.jobs, k, 4)).map(|j| j.index).collect();
+        all.sort();
+        assert_eq!(all, (0..18).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn bad_study_files_are_errors() {
+        assert!(expand(&STUDY.replace("loads = [5e-4, 1e-3]", "loads = []"), Path::new(".")).is_err());
+        let e = expand(&STUDY.replace("hurst", "x").replace("grid = 64", "grid = 64\nhurts = 0.7"), Path::new("."))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("hurts"), "{e}");
+    }
+}
