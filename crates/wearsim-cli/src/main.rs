@@ -93,7 +93,7 @@ enum StudyCommand {
         /// SLURM_ARRAY_TASK_COUNT inside a Slurm job array, else 1/1.
         #[arg(long)]
         shard: Option<String>,
-        /// Jobs run at once (each single-threaded); default: --threads or all cores.
+        /// Jobs run at once, sharing the threads (default: one job per thread); 1 for large grids.
         #[arg(long)]
         jobs: Option<usize>,
     },

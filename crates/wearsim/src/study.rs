@@ -298,8 +298,9 @@ pub fn shard(jobs: &[Job], k: usize, count: usize) -> Vec<&Job> {
     jobs.iter().filter(|j| j.index % count == k - 1).collect()
 }
 
-/// Runs the given jobs on `workers` threads (each job single-threaded inside), skipping jobs whose
-/// file exists. `progress(done, total)` is called after each job. Returns (computed, skipped).
+/// Runs the given jobs with `workers` jobs at once, the threads of the current rayon pool shared
+/// between them (one worker: every thread on each job, for large grids; as many workers as threads:
+/// one thread per job, for many small jobs), skipping jobs whose file exists. `progress(done, total)` is called after each job. Returns (computed, skipped).
 pub fn run_jobs(
     dir: &Path,
     jobs: &[&Job],
@@ -312,10 +313,14 @@ pub fn run_jobs(
     let done = AtomicUsize::new(0);
     let first_error: Mutex<Option<Error>> = Mutex::new(None);
     let workers = workers.clamp(1, pending.len().max(1));
+    let threads_per_worker = (rayon::current_num_threads() / workers).max(1);
     std::thread::scope(|scope| {
         for _ in 0..workers {
             scope.spawn(|| {
-                let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("a one-thread pool");
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads_per_worker)
+                    .build()
+                    .expect("a worker's thread pool");
                 loop {
                     if first_error.lock().map(|e| e.is_some()).unwrap_or(true) {
                         return;
