@@ -13,6 +13,7 @@ use wearsim::surface::{write_npy_bool, write_npy_f64};
 use wearsim::{composite_heights, ContactSolver, Surface};
 
 mod bench;
+mod plot;
 mod slide;
 mod study;
 
@@ -97,6 +98,11 @@ enum StudyCommand {
         #[arg(long)]
         jobs: Option<usize>,
     },
+    /// Draw the paper's figures (PNG and SVG) from a finished study into DIR/figures.
+    Plot {
+        /// Study folder.
+        dir: PathBuf,
+    },
     /// Collect the job files into results.csv (tidy) and results_aggregated.csv (mean/min/max over
     /// surface pairs).
     Collect {
@@ -120,6 +126,7 @@ fn main() {
         Command::Junctions { map, connectivity, out } => slide::junctions(&map, connectivity, &out),
         Command::Study(StudyCommand::Run { study, out, shard, jobs }) => study::run(&study, &out, shard.as_deref(), jobs),
         Command::Study(StudyCommand::Collect { dir }) => study::collect(&dir),
+        Command::Study(StudyCommand::Plot { dir }) => plot::plot(&dir),
         Command::Bench(args) => bench::run(&args),
         Command::BenchSlide(args) => bench::run_slide(&args),
     };

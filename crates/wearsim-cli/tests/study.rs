@@ -109,6 +109,15 @@ fn shards_and_worker_counts_give_the_unsharded_results() {
         run_study(&study, &sharded, &["--shard", &format!("{k}/3"), "--jobs", "2"]);
     }
     assert_eq!(collect(&sharded), expected);
+    // Figures from the collected study: every one as PNG and SVG.
+    let o = wearsim().args(["study", "plot", sharded.to_str().unwrap()]).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for name in ["fig2_static_model", "fig3_wear_volume", "fig4_sliding_wear", "fig5_particle_rate", "appB_particle_counts"] {
+        for ext in ["png", "svg"] {
+            let f = sharded.join("figures").join(format!("{name}.{ext}"));
+            assert!(std::fs::metadata(&f).map(|m| m.len() > 1000).unwrap_or(false), "{} missing or empty", f.display());
+        }
+    }
     // A Slurm job array picks its shard from the environment.
     let slurm = dir.path().join("slurm");
     for id in 1..=2 {

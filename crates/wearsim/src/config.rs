@@ -284,6 +284,13 @@ impl RunConfig {
         }
     }
 
+    /// Side length L of the surfaces, in the run's length unit.
+    pub fn length(&self) -> f64 {
+        match &self.surfaces {
+            SurfaceSource::Generated { length, .. } | SurfaceSource::Files { length, .. } => *length,
+        }
+    }
+
     /// Effective modulus E* under the run's convention.
     pub fn effective_modulus(&self) -> f64 {
         self.material.effective_modulus(self.modulus)

@@ -373,11 +373,9 @@ const RESULT_COLUMNS: [&str; 10] = [
     "flow_pressure",
 ];
 
-/// Collects the job files of a study folder into `results.csv` (one row per job × fracture energy:
-/// inputs, then results) and `results_aggregated.csv` (mean, min and max over surface pairs, i.e.
-/// over `surface.seed`). Returns the number of rows of each. Fails naming the missing jobs when
-/// the study is unfinished.
-pub fn collect(dir: &Path) -> Result<(usize, usize)> {
+/// Reads a study folder: the stored study, expanded, and every job's result in job order. Fails
+/// naming the missing jobs when the study is unfinished.
+pub fn load_results(dir: &Path) -> Result<(Study, Vec<JobResult>)> {
     let path = dir.join("study.toml");
     let text = std::fs::read_to_string(&path).map_err(|e| Error::io(&path, e))?;
     let base = std::fs::read_to_string(dir.join("study.base")).map(PathBuf::from).unwrap_or_else(|_| dir.to_path_buf());
@@ -391,6 +389,24 @@ pub fn collect(dir: &Path) -> Result<(usize, usize)> {
             missing[0]
         )));
     }
+    let results = study
+        .jobs
+        .iter()
+        .map(|job| {
+            let p = job_path(dir, job.index);
+            let text = std::fs::read_to_string(&p).map_err(|e| Error::io(&p, e))?;
+            serde_json::from_str::<JobResult>(&text).map_err(|e| Error::io(&p, format!("not a job result ({e})")))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Ok((study, results))
+}
+
+/// Collects the job files of a study folder into `results.csv` (one row per job × fracture energy:
+/// inputs, then results) and `results_aggregated.csv` (mean, min and max over surface pairs, i.e.
+/// over `surface.seed`). Returns the number of rows of each. Fails naming the missing jobs when
+/// the study is unfinished.
+pub fn collect(dir: &Path) -> Result<(usize, usize)> {
+    let (study, results) = load_results(dir)?;
     let input_keys: Vec<String> = {
         let mut keys: Vec<String> = study.jobs.iter().flat_map(|j| j.varying.keys().cloned()).collect();
         keys.sort();
@@ -406,10 +422,7 @@ pub fn collect(dir: &Path) -> Result<(usize, usize)> {
     let mut group_index: BTreeMap<Vec<String>, usize> = BTreeMap::new();
     let mut groups: Vec<(Vec<String>, Vec<Vec<f64>>)> = Vec::new();
     let mut rows = 0;
-    for job in &study.jobs {
-        let p = job_path(dir, job.index);
-        let text = std::fs::read_to_string(&p).map_err(|e| Error::io(&p, e))?;
-        let r: JobResult = serde_json::from_str(&text).map_err(|e| Error::io(&p, format!("not a job result ({e})")))?;
+    for (job, r) in study.jobs.iter().zip(&results) {
         for w in &r.results {
             let inputs: Vec<String> = input_keys.iter().map(|k| job.varying.get(k).map(csv_value).unwrap_or_default()).collect();
             let values = [
