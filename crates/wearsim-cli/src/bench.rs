@@ -37,6 +37,20 @@ pub fn peak_memory_mib() -> Option<f64> {
     Some(kb / 1024.0)
 }
 
+/// The benchmark's surface pair (seed 1): paper roughness on an N² grid of side 1.
+fn paper_pair(n: usize) -> Result<(Surface, Surface)> {
+    let dx = 1.0 / n as f64;
+    let spectrum = SpectrumParams {
+        hurst: 0.7,
+        lambda_lower: 16.0 * dx,
+        lambda_upper: (256.0f64).min(n as f64 / 2.0) * dx,
+        rms_height: 0.005,
+        generation: Generation::RandomPhase,
+    };
+    let (s1, s2) = pair_seeds(1);
+    Ok((Surface::generate(n, 1.0, &spectrum, s1)?, Surface::generate(n, 1.0, &spectrum, s2)?))
+}
+
 pub fn run(args: &BenchArgs) -> Result<()> {
     let threads = rayon::current_num_threads();
     println!("wearsim {} bench, {threads} threads; paper roughness, τ̃ = 0.010 E, F_N = 1e-3 E L²", wearsim::VERSION);
@@ -48,17 +62,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let material = Material::new(1.0, 0.3, 0.010, vec![], 3.0)?;
     let e_star = material.effective_modulus(ModulusConvention::HalfSpace);
     for &n in &args.sizes {
-        let dx = 1.0 / n as f64;
-        let spectrum = SpectrumParams {
-            hurst: 0.7,
-            lambda_lower: 16.0 * dx,
-            lambda_upper: (256.0f64).min(n as f64 / 2.0) * dx,
-            rms_height: 0.005,
-            generation: Generation::RandomPhase,
-        };
-        let (s1, s2) = pair_seeds(1);
-        let top = Surface::generate(n, 1.0, &spectrum, s1)?;
-        let bottom = Surface::generate(n, 1.0, &spectrum, s2)?;
+        let (top, bottom) = paper_pair(n)?;
 
         // FFT round trip (r2c + c2r with the kernel multiply fused), the floor of one iteration.
         let mut plan = FftPlan::new(n);
@@ -143,20 +147,8 @@ pub fn run_slide(args: &SlideBenchArgs) -> Result<()> {
     let threads = rayon::current_num_threads();
     let material = Material::new(1.0, 0.3, 0.010, vec![0.25e-6, 0.5e-6, 0.75e-6, 1.0e-6], 3.0)?;
     let e_star = material.effective_modulus(ModulusConvention::HalfSpace);
-    let pair = |n: usize| -> Result<(Surface, Surface)> {
-        let dx = 1.0 / n as f64;
-        let spectrum = SpectrumParams {
-            hurst: 0.7,
-            lambda_lower: 16.0 * dx,
-            lambda_upper: (256.0f64).min(n as f64 / 2.0) * dx,
-            rms_height: 0.005,
-            generation: Generation::RandomPhase,
-        };
-        let (s1, s2) = pair_seeds(1);
-        Ok((Surface::generate(n, 1.0, &spectrum, s1)?, Surface::generate(n, 1.0, &spectrum, s2)?))
-    };
     let sliding = SlidingConfig { loads: vec![2.5e-4, 5e-4, 1e-3, 2e-3], distance: 0.5, running_in: 0.25, step_running_in: 4, step: 1 };
-    let (top, bottom) = pair(args.n)?;
+    let (top, bottom) = paper_pair(args.n)?;
     let setup = SlidingSetup { material: &material, effective_modulus: e_star, solver: Default::default(), connectivity: 4, sliding: &sliding };
     let t = Instant::now();
     let runs = run_sliding(&top, &bottom, &setup, |_, _| {})?;
@@ -184,7 +176,7 @@ pub fn run_slide(args: &SlideBenchArgs) -> Result<()> {
     );
     if args.warm_n > 0 && args.warm_steps > 0 {
         let n = args.warm_n;
-        let (top, bottom) = pair(n)?;
+        let (top, bottom) = paper_pair(n)?;
         let mut solver = ContactSolver::new(n, 1.0, e_star)?;
         let mut labeller = wearsim::junctions::JunctionLabeller::new(n, 4);
         let mut heights = vec![0.0; n * n];

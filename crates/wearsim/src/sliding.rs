@@ -60,8 +60,8 @@ pub fn line_fit(x: &[f64], y: &[f64]) -> (f64, f64) {
     (slope, r2)
 }
 
-/// Results per load and fracture energy (SPEC §6, §9).
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+/// Results per load and fracture energy (SPEC §6, §9); also the record stored in study job files.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct WearResult {
     pub fracture_energy: f64,
     pub critical_diameter: f64,

@@ -165,43 +165,11 @@ pub struct JobResult {
     pub load: f64,
     pub flow_pressure: f64,
     pub effective_modulus: f64,
-    pub results: Vec<WearResultRecord>,
+    pub results: Vec<WearResult>,
     /// Per step: s, junctions, contact area; per fracture energy: n_critical, n_formed, volume.
     pub steps: Vec<StepRow>,
     pub total_iterations: usize,
     pub seconds: f64,
-}
-
-/// [`WearResult`] as stored in a job file.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct WearResultRecord {
-    pub fracture_energy: f64,
-    pub critical_diameter: f64,
-    pub wear_rate: f64,
-    pub wear_rate_r2: f64,
-    pub wear_coefficient: f64,
-    pub particle_rate: f64,
-    pub wear_rate_estimate: f64,
-    pub initial_volume: f64,
-    pub static_wear_coefficient: f64,
-    pub static_wear_rate: f64,
-}
-
-impl From<&WearResult> for WearResultRecord {
-    fn from(w: &WearResult) -> Self {
-        Self {
-            fracture_energy: w.fracture_energy,
-            critical_diameter: w.critical_diameter,
-            wear_rate: w.wear_rate,
-            wear_rate_r2: w.wear_rate_r2,
-            wear_coefficient: w.wear_coefficient,
-            particle_rate: w.particle_rate,
-            wear_rate_estimate: w.wear_rate_estimate,
-            initial_volume: w.initial_volume,
-            static_wear_coefficient: w.static_wear_coefficient,
-            static_wear_rate: w.static_wear_rate,
-        }
-    }
 }
 
 /// One step of a job file.
@@ -254,7 +222,7 @@ pub fn run_job(job: &Job) -> Result<JobResult> {
         load: r.load,
         flow_pressure: run.material.flow_pressure(),
         effective_modulus: run.effective_modulus(),
-        results: r.results.iter().map(WearResultRecord::from).collect(),
+        results: r.results,
         steps: r.steps.iter().map(StepRow::from).collect(),
         total_iterations: r.total_iterations,
         seconds: start.elapsed().as_secs_f64(),
