@@ -8,7 +8,8 @@
 //! [`material`] and [`surface`] parameters → [`surface`] height fields → [`contact`] solution
 //! (saturated-pressure FFT boundary elements, on [`fft`]) → [`junctions`] → [`wear`] bookkeeping,
 //! driven step by step by [`sliding`] → results written by [`output`].
-//! [`config`] turns run files into validated inputs.
+//! [`config`] turns run files into validated inputs; [`study`] expands study files into many runs,
+//! runs them resumably and collects their results (figures are drawn by the CLI front end).
 
 pub mod config;
 pub mod contact;
