@@ -151,7 +151,7 @@ pub fn run_slide(args: &SlideBenchArgs) -> Result<()> {
     let (top, bottom) = paper_pair(args.n)?;
     let setup = SlidingSetup { material: &material, effective_modulus: e_star, solver: Default::default(), connectivity: 4, sliding: &sliding };
     let t = Instant::now();
-    let runs = run_sliding(&top, &bottom, &setup, |_, _| {})?;
+    let runs = run_sliding(&top, &bottom, &setup, |_| {})?;
     let total = t.elapsed().as_secs_f64();
     let steps: usize = runs.iter().map(|r| r.steps.len()).sum();
     let (solve, label, book) = runs.iter().fold((0.0, 0.0, 0.0), |a, r| (a.0 + r.timing.solve, a.1 + r.timing.labelling, a.2 + r.timing.bookkeeping));

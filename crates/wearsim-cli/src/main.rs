@@ -60,6 +60,23 @@ enum Command {
         #[arg(long)]
         out: PathBuf,
     },
+    /// Animate the sliding run of one load as a GIF: contact maps coloured by junction state.
+    Animate {
+        /// Run file (TOML, see README) with a [sliding] table.
+        run: PathBuf,
+        /// Output file (.gif).
+        #[arg(long)]
+        out: PathBuf,
+        /// Which of the run's loads (0 = first).
+        #[arg(long, default_value_t = 0)]
+        load_index: usize,
+        /// Which of the run's fracture energies sets d* for the colours (0 = first).
+        #[arg(long, default_value_t = 0)]
+        energy_index: usize,
+        /// Frame delay in milliseconds.
+        #[arg(long, default_value_t = 80)]
+        delay: u32,
+    },
     /// Label the junctions of a contact map (.npy, bool or numbers > 0); write labels.npy and junctions.json.
     Junctions {
         /// Contact map, e.g. the contact.npy written by `wearsim contact`.
@@ -123,6 +140,7 @@ fn main() {
         Command::Surface { run, out } => surface(&run, &out),
         Command::Contact { run, load, offset, out } => contact(&run, load, offset, &out),
         Command::Slide { run, out } => slide::slide(&run, &out),
+        Command::Animate { run, out, load_index, energy_index, delay } => plot::animate(&run, &out, load_index, energy_index, delay),
         Command::Junctions { map, connectivity, out } => slide::junctions(&map, connectivity, &out),
         Command::Study(StudyCommand::Run { study, out, shard, jobs }) => study::run(&study, &out, shard.as_deref(), jobs),
         Command::Study(StudyCommand::Collect { dir }) => study::collect(&dir),

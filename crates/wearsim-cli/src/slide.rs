@@ -59,7 +59,8 @@ pub fn slide(run: &Path, out: &Path) -> Result<()> {
         None
     };
     let start = Instant::now();
-    let runs = run_sliding(&top, &bottom, &setup, |done, total| {
+    let runs = run_sliding(&top, &bottom, &setup, |view| {
+        let (done, total) = (view.done, view.total);
         if let Some(b) = &bar {
             b.set_position(done as u64);
         } else if done % steps_per_load == 0 {

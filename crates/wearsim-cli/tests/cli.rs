@@ -182,3 +182,21 @@ fn bad_sliding_input_is_a_one_line_error() {
     let err = String::from_utf8(o.stderr).unwrap();
     assert!(!o.status.success() && err.contains("a.npy") && err.contains("not found"), "{err}");
 }
+
+#[test]
+fn animate_writes_a_gif_with_one_frame_per_step() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = run_file(dir.path(), &format!("{GENERATED}{SLIDING}"));
+    let gif = dir.path().join("slide.gif");
+    let o = wearsim().args(["animate", run.to_str().unwrap(), "--out", gif.to_str().unwrap(), "--load-index", "1"]).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let bytes = std::fs::read(&gif).unwrap();
+    assert!(bytes.starts_with(b"GIF89a"));
+    // 20 offsets at 64 px: one image descriptor (0x2C after a graphic control block) per frame.
+    let frames = bytes.windows(3).filter(|w| w[0] == 0x00 && w[1] == 0x2C && w[2] == 0x00).count();
+    assert!(frames >= 20, "{frames} frames");
+    let o = wearsim().args(["animate", run.to_str().unwrap(), "--out", dir.path().join("a.png").to_str().unwrap()]).output().unwrap();
+    assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains(".gif"));
+    let o = wearsim().args(["animate", run.to_str().unwrap(), "--out", gif.to_str().unwrap(), "--load-index", "5"]).output().unwrap();
+    assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("load-index"));
+}

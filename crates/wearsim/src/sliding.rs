@@ -113,13 +113,28 @@ pub struct SlidingSetup<'a> {
     pub sliding: &'a SlidingConfig,
 }
 
-/// Runs the sliding model for every load of `setup.sliding`. `progress(done, total)` is called after
-/// every step (steps counted over all loads).
+/// What an observer of a sliding run sees after each step.
+pub struct StepView<'a> {
+    /// Steps done so far, over all loads, and their total.
+    pub done: usize,
+    pub total: usize,
+    /// Index of the load in `setup.sliding.loads`.
+    pub load_index: usize,
+    /// This step's record.
+    pub record: &'a StepRecord,
+    /// The labelled contact map of this step.
+    pub labeller: &'a JunctionLabeller,
+    /// The bookkeeping of every fracture energy, with the junction states of this step.
+    pub bookkeeping: &'a [SlidingBookkeeping],
+}
+
+/// Runs the sliding model for every load of `setup.sliding`. `observe` is called after every step
+/// (progress bars, animations); it sees the step but cannot change the run.
 pub fn run_sliding(
     top: &Surface,
     bottom: &Surface,
     setup: &SlidingSetup,
-    mut progress: impl FnMut(usize, usize),
+    mut observe: impl FnMut(&StepView),
 ) -> Result<Vec<LoadRun>> {
     let n = top.n();
     if bottom.n() != n || (bottom.length() - top.length()).abs() > 1e-12 * top.length() {
@@ -150,7 +165,7 @@ pub fn run_sliding(
     let mut junctions = Vec::new();
     let mut runs = Vec::new();
     let mut done = 0;
-    for &load in &setup.sliding.loads {
+    for (load_index, &load) in setup.sliding.loads.iter().enumerate() {
         let mut books: Vec<SlidingBookkeeping> = diameters.iter().map(|&d| SlidingBookkeeping::new(d)).collect();
         let mut statics: Vec<StaticWear> = Vec::new();
         let mut steps = Vec::with_capacity(offsets.len());
@@ -182,7 +197,14 @@ pub fn run_sliding(
                 wear,
             });
             done += 1;
-            progress(done, total_steps);
+            observe(&StepView {
+                done,
+                total: total_steps,
+                load_index,
+                record: steps.last().expect("a step was just recorded"),
+                labeller: &labeller,
+                bookkeeping: &books,
+            });
         }
         let fitted: Vec<&StepRecord> = steps.iter().filter(|r| r.offset >= running_in).collect();
         let s: Vec<f64> = fitted.iter().map(|r| r.s).collect();

@@ -214,7 +214,7 @@ pub fn run_job(job: &Job) -> Result<JobResult> {
         connectivity: run.connectivity,
         sliding,
     };
-    let mut runs = run_sliding(&top, &bottom, &setup, |_, _| {})?;
+    let mut runs = run_sliding(&top, &bottom, &setup, |_| {})?;
     let r = runs.pop().ok_or_else(|| Error::param("loads", "job without a load"))?;
     Ok(JobResult {
         index: job.index,

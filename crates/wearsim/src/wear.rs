@@ -40,6 +40,19 @@ impl StepWear {
     }
 }
 
+/// State of one junction at the current step, for display (the animation of `wearsim animate`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum JunctionState {
+    /// Active and smaller than d*: deforms plastically, forms no particle.
+    Below,
+    /// Active and at least d*: forms a particle at this step.
+    Forming,
+    /// Disabled (overlaps a junction that formed a particle or was disabled) and at least d*.
+    DisabledCritical,
+    /// Disabled and smaller than d*.
+    Disabled,
+}
+
 /// Formed / disabled / active states carried from step to step by pixel overlap (paper §3,
 /// SPEC §6). A junction that shares a pixel with a junction of the previous step that formed a
 /// particle or was disabled is disabled; every other junction is active, and an active junction
@@ -53,6 +66,8 @@ pub struct SlidingBookkeeping {
     volume: f64,
     /// Per-junction scratch: overlaps a blocked pixel.
     overlap: Vec<bool>,
+    /// State of every junction of the last step.
+    states: Vec<JunctionState>,
 }
 
 impl SlidingBookkeeping {
@@ -65,7 +80,13 @@ impl SlidingBookkeeping {
             n_formed: 0,
             volume: 0.0,
             overlap: Vec::new(),
+            states: Vec::new(),
         }
+    }
+
+    /// State of every junction (indexed like the labeller's junctions) after the last step.
+    pub fn states(&self) -> &[JunctionState] {
+        &self.states
     }
 
     /// Advances by one step on the labelled contact map. `scratch` is an N² flag buffer, all false on
@@ -86,11 +107,18 @@ impl SlidingBookkeeping {
             scratch[k as usize] = false;
         }
         let mut n_critical = 0;
+        self.states.clear();
         for (j, overlap) in junctions.iter().zip(self.overlap.iter_mut()) {
             let critical = j.area >= self.critical_area;
             if critical {
                 n_critical += 1;
             }
+            self.states.push(match (*overlap, critical) {
+                (false, false) => JunctionState::Below,
+                (false, true) => JunctionState::Forming,
+                (true, true) => JunctionState::DisabledCritical,
+                (true, false) => JunctionState::Disabled,
+            });
             if !*overlap && critical {
                 // Active and large enough: forms a particle, and is "formed" for the next step.
                 self.volume += j.volume;

@@ -32,7 +32,7 @@ fn run(threads: usize) -> (Vec<LoadRun>, Material, SlidingConfig, Surface, Surfa
             connectivity: 4,
             sliding: &sliding,
         };
-        run_sliding(&top, &bottom, &setup, |_, _| {}).unwrap()
+        run_sliding(&top, &bottom, &setup, |_| {}).unwrap()
     });
     (runs, material, sliding, top, bottom)
 }
