@@ -89,7 +89,8 @@ pub fn expand(text: &str, base: &Path) -> Result<Study> {
         }
     }
     // Materials: one [material] table (lists allowed) or a [[materials]] array of named tables.
-    let mut materials: Vec<(String, Table, BTreeMap<String, Value>)> = Vec::new();
+    // (name, material table, varying material values, surface overrides of this material)
+    let mut materials: Vec<(String, Table, BTreeMap<String, Value>, Table)> = Vec::new();
     match (table.get("material"), table.get("materials")) {
         (Some(_), Some(_)) => return Err(Error::Config("give either [material] or [[materials]], not both".into())),
         (_, Some(Value::Array(items))) => {
@@ -103,8 +104,15 @@ pub fn expand(text: &str, base: &Path) -> Result<Study> {
                     None => format!("material{}", i + 1),
                     Some(_) => return Err(Error::Config("[[materials]] `name` must be a string".into())),
                 };
+                // A material may carry its own surface parameters (e.g. the steady-state h_rms of
+                // Kim et al.'s ceramics): `[materials.surface]` keys replace those of [surface].
+                let overrides = match t.remove("surface") {
+                    None => Table::new(),
+                    Some(Value::Table(o)) => o,
+                    Some(_) => return Err(Error::Config(format!("[[materials]] `{name}`: `surface` must be a table"))),
+                };
                 for (m, v) in product(&t, "material", &["fracture_energies"]) {
-                    materials.push((name.clone(), m, v));
+                    materials.push((name.clone(), m, v, overrides.clone()));
                 }
             }
         }
@@ -116,11 +124,11 @@ pub fn expand(text: &str, base: &Path) -> Result<Study> {
                 _ => "material".to_string(),
             };
             for (m, v) in product(&t, "material", &["fracture_energies"]) {
-                materials.push((name.clone(), m, v));
+                materials.push((name.clone(), m, v, Table::new()));
             }
         }
     }
-    let surfaces = product(&section("surface")?, "surface", &[]);
+    let base_surface = section("surface")?;
     let contacts = product(&section("contact")?, "contact", &[]);
     let sliding = section("sliding")?;
     let loads = match sliding.get("loads") {
@@ -128,8 +136,10 @@ pub fn expand(text: &str, base: &Path) -> Result<Study> {
         _ => return Err(Error::param("loads", "a study needs a non-empty [sliding] `loads` list")),
     };
     let mut jobs = Vec::new();
-    for (surface, sv) in &surfaces {
-        for (name, material, mv) in &materials {
+    for (name, material, mv, overrides) in &materials {
+        let mut surface_table = base_surface.clone();
+        surface_table.extend(overrides.clone());
+        for (surface, sv) in &product(&surface_table, "surface", &[]) {
             for (contact, cv) in &contacts {
                 for load in &loads {
                     let mut run = Table::new();
@@ -487,6 +497,21 @@ loads = [5e-4, 1e-3]
         let again = expand(&format!("# comment\n{STUDY}"), Path::new(".")).unwrap();
         assert_eq!(s.hash, again.hash);
         assert_ne!(s.hash, expand(&STUDY.replace("0.012", "0.011"), Path::new(".")).unwrap().hash);
+    }
+
+    #[test]
+    fn materials_may_override_surface_parameters() {
+        let text = STUDY.replace(
+            "name = \"hard\"\n",
+            "name = \"hard\"\nsurface = { rms_height = [0.004, 0.006] }\n",
+        );
+        let s = expand(&text, Path::new(".")).unwrap();
+        // 3 seeds × (2 soft + 2 hard surface variants) × 2 loads.
+        assert_eq!(s.jobs.len(), 24);
+        let hard: Vec<&Job> = s.jobs.iter().filter(|j| j.material == "hard").collect();
+        assert_eq!(hard.len(), 12);
+        assert!(hard.iter().all(|j| j.varying.contains_key("surface.rms_height")));
+        assert!(s.jobs.iter().filter(|j| j.material == "soft").all(|j| !j.varying.contains_key("surface.rms_height")));
     }
 
     #[test]

@@ -1,0 +1,25 @@
+//! Every study file shipped in `studies/` expands, with the job count its header states.
+
+use std::path::Path;
+
+use wearsim::study::expand;
+
+#[test]
+fn shipped_study_files_expand() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../studies");
+    let expected = [
+        ("quick.toml", 24),
+        ("paper-reduced.toml", 320),
+        ("kim1986.toml", 20),
+        ("appendix-discretization.toml", 24),
+        ("appendix-area.toml", 36),
+        ("appendix-lambda-h.toml", 36),
+    ];
+    for (file, jobs) in expected {
+        let text = std::fs::read_to_string(dir.join(file)).unwrap();
+        let study = expand(&text, &dir).unwrap_or_else(|e| panic!("{file}: {e}"));
+        assert_eq!(study.jobs.len(), jobs, "{file}");
+    }
+    let shipped = std::fs::read_dir(&dir).unwrap().filter(|e| e.as_ref().unwrap().path().extension().is_some_and(|x| x == "toml")).count();
+    assert_eq!(shipped, expected.len(), "a study file is not checked here");
+}
