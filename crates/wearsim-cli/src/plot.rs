@@ -85,6 +85,7 @@ fn panel(
     y_label: &str,
     load_unit: &str,
     log_y: bool,
+    band: Option<(f64, f64, &str)>,
 ) -> Result<()> {
     let err = |e: String| anyhow!("drawing failed: {e}");
     let stats = |c: &Curve| -> Vec<(f64, f64, f64, f64)> {
@@ -106,15 +107,25 @@ fn panel(
     builder.margin(12).x_label_area_size(45).y_label_area_size(75).caption(y_label, title_style);
     let x_desc = format!("normal load F_N ({load_unit})");
     if log_y {
-        let (y0, y1) = log_range(all.iter().flat_map(|p| [p.1, p.2, p.3])).unwrap_or((1e-6, 1.0));
+        let band_values = band.iter().flat_map(|b| [b.0, b.1]);
+        let (y0, y1) = log_range(all.iter().flat_map(|p| [p.1, p.2, p.3]).chain(band_values)).unwrap_or((1e-6, 1.0));
         let mut chart = builder.build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale()).map_err(|e| err(e.to_string()))?;
         chart
             .configure_mesh()
             .x_desc(x_desc)
             .y_desc(y_label)
+            .y_label_formatter(&|y| format!("{y:.1e}"))
             .label_style((FONT, 13))
             .draw()
             .map_err(|e| err(e.to_string()))?;
+        if let Some((lo, hi, label)) = band {
+            let fill = RGBColor(200, 220, 240).mix(0.6);
+            chart
+                .draw_series(std::iter::once(Rectangle::new([(x0, lo), (x1, hi)], fill.filled())))
+                .map_err(|e| err(e.to_string()))?
+                .label(label.to_string())
+                .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 18, y + 5)], fill.filled()));
+        }
         draw_series(&mut chart, curves, &stats, true)?;
     } else {
         let y1 = all.iter().map(|p| p.3).fold(0.0f64, f64::max).max(1e-12) * 1.1;
@@ -189,6 +200,85 @@ fn save(dir: &Path, name: &str, size: (u32, u32), figure: impl Fn(&DrawingArea<S
     }
     std::fs::rename(&tmp_svg, &svg)?;
     std::fs::rename(&tmp_png, &png)?;
+    Ok(())
+}
+
+/// Contact severity (paper appendix F): S_c = p_N √h_rms / K_Ic with p_N = F_N/L² and
+/// K_Ic = √(𝒢 E/(1 − ν²)); fits W = α S_cⁿ by least squares in log–log over every job and fracture
+/// energy with W > 0, and draws the points with the fitted line. Returns (α, n).
+fn severity_figure(out: &Path, jobs: &[Job], results: &[JobResult]) -> Result<Option<(f64, f64)>> {
+    use wearsim::config::SurfaceSource;
+    let mut points: Vec<(String, f64, f64)> = Vec::new();
+    for (job, r) in jobs.iter().zip(results) {
+        let SurfaceSource::Generated { spectrum, .. } = &job.run.surfaces else { continue };
+        let m = &job.run.material;
+        let p_n = r.load / (job.run.length() * job.run.length());
+        for w in r.results.iter().filter(|w| w.wear_rate > 0.0) {
+            let k_ic = (w.fracture_energy * m.youngs_modulus / (1.0 - m.poisson_ratio * m.poisson_ratio)).sqrt();
+            points.push((job.material.clone(), p_n * spectrum.rms_height.sqrt() / k_ic, w.wear_rate));
+        }
+    }
+    if points.len() < 2 {
+        return Ok(None);
+    }
+    let xs: Vec<f64> = points.iter().map(|p| p.1.ln()).collect();
+    let ys: Vec<f64> = points.iter().map(|p| p.2.ln()).collect();
+    let (n_exp, _) = wearsim::sliding::line_fit(&xs, &ys);
+    let m = xs.len() as f64;
+    let alpha = ((ys.iter().sum::<f64>() - n_exp * xs.iter().sum::<f64>()) / m).exp();
+    let length = units_of(&jobs[0]).2;
+    let svg = |root: &DrawingArea<SVGBackend, Shift>| draw_severity(root, &points, alpha, n_exp, length);
+    let png = |root: &DrawingArea<BitMapBackend, Shift>| draw_severity(root, &points, alpha, n_exp, length);
+    save(out, "appF_contact_severity", (900, 600), svg, png)?;
+    println!("contact severity fit: W = α S_cⁿ with α = {alpha:.4e} {length}², n = {n_exp:.3}");
+    Ok(Some((alpha, n_exp)))
+}
+
+fn draw_severity(area: &DrawingArea<impl DrawingBackend, Shift>, points: &[(String, f64, f64)], alpha: f64, n_exp: f64, length: &str) -> Result<()> {
+    let err = |e: String| anyhow!("drawing failed: {e}");
+    let (x0, x1) = log_range(points.iter().map(|p| p.1)).unwrap_or((1e-3, 1.0));
+    let (y0, y1) = log_range(points.iter().map(|p| p.2)).unwrap_or((1e-6, 1.0));
+    let mut chart = ChartBuilder::on(area)
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(80)
+        .caption(format!("contact severity: W = α S_cⁿ, α = {alpha:.3e} {length}², n = {n_exp:.3}"), (FONT, 15))
+        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+        .map_err(|e| err(e.to_string()))?;
+    chart
+        .configure_mesh()
+        .x_desc("S_c = p_N √h_rms / K_Ic")
+        .x_label_formatter(&|x| format!("{x:.2e}"))
+        .y_label_formatter(&|y| format!("{y:.1e}"))
+        .y_desc(format!("wear rate W ({length}²)"))
+        .label_style((FONT, 13))
+        .draw()
+        .map_err(|e| err(e.to_string()))?;
+    let mut names: Vec<&String> = points.iter().map(|p| &p.0).collect();
+    names.dedup();
+    names.sort();
+    names.dedup();
+    for (i, name) in names.iter().enumerate() {
+        let color = Palette99::pick(i).to_rgba();
+        chart
+            .draw_series(points.iter().filter(|p| &p.0 == *name).map(|p| Circle::new((p.1, p.2), 3, color.filled())))
+            .map_err(|e| err(e.to_string()))?
+            .label(name.to_string())
+            .legend(move |(x, y)| Circle::new((x + 9, y), 3, color.filled()));
+    }
+    chart
+        .draw_series(LineSeries::new([(x0, alpha * x0.powf(n_exp)), (x1, alpha * x1.powf(n_exp))], BLACK.stroke_width(1)))
+        .map_err(|e| err(e.to_string()))?
+        .label("fit")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(1)));
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .label_font((FONT, 11))
+        .position(SeriesLabelPosition::UpperLeft)
+        .draw()
+        .map_err(|e| err(e.to_string()))?;
     Ok(())
 }
 
@@ -288,13 +378,13 @@ pub fn plot(dir: &Path) -> Result<()> {
     let two = |name: &str, a: (usize, String, bool), b: (usize, String, bool)| -> Result<()> {
         let draw_svg = |root: &DrawingArea<SVGBackend, Shift>| -> Result<()> {
             let panels = root.split_evenly((1, 2));
-            panel(&panels[0], &curves, a.0, &a.1, load_unit, a.2)?;
-            panel(&panels[1], &curves, b.0, &b.1, load_unit, b.2)
+            panel(&panels[0], &curves, a.0, &a.1, load_unit, a.2, None)?;
+            panel(&panels[1], &curves, b.0, &b.1, load_unit, b.2, None)
         };
         let draw_png = |root: &DrawingArea<BitMapBackend, Shift>| -> Result<()> {
             let panels = root.split_evenly((1, 2));
-            panel(&panels[0], &curves, a.0, &a.1, load_unit, a.2)?;
-            panel(&panels[1], &curves, b.0, &b.1, load_unit, b.2)
+            panel(&panels[0], &curves, a.0, &a.1, load_unit, a.2, None)?;
+            panel(&panels[1], &curves, b.0, &b.1, load_unit, b.2, None)
         };
         save(&out, name, (1500, 600), draw_svg, draw_png)
     };
@@ -309,9 +399,17 @@ pub fn plot(dir: &Path) -> Result<()> {
         (3, "wear coefficient k = W p̃ / F_N".into(), true),
     )?;
     {
-        let svg = |root: &DrawingArea<SVGBackend, Shift>| panel(root, &curves, 4, &format!("particle rate dN*₊/ds (1/{length})"), load_unit, true);
-        let png = |root: &DrawingArea<BitMapBackend, Shift>| panel(root, &curves, 4, &format!("particle rate dN*₊/ds (1/{length})"), load_unit, true);
+        let svg = |root: &DrawingArea<SVGBackend, Shift>| panel(root, &curves, 4, &format!("particle rate dN*₊/ds (1/{length})"), load_unit, true, None);
+        let png = |root: &DrawingArea<BitMapBackend, Shift>| panel(root, &curves, 4, &format!("particle rate dN*₊/ds (1/{length})"), load_unit, true, None);
         save(&out, "fig5_particle_rate", (800, 600), svg, png)?;
+    }
+    severity_figure(&out, &study.jobs, &results)?;
+    if first.run.units == Units::Si {
+        // Kim et al. (1986): rolling wear coefficients 6e-7 … 1.5e-3 (paper §4.3, Fig. 6).
+        let band = Some((6e-7, 1.5e-3, "Kim et al. 1986, rolling experiments"));
+        let svg = |root: &DrawingArea<SVGBackend, Shift>| panel(root, &curves, 3, "wear coefficient k", load_unit, true, band);
+        let png = |root: &DrawingArea<BitMapBackend, Shift>| panel(root, &curves, 3, "wear coefficient k", load_unit, true, band);
+        save(&out, "fig6_kim_comparison", (900, 600), svg, png)?;
     }
     // Series of one representative job: the first surface pair, the middle load, the first material.
     let loads: Vec<f64> = {

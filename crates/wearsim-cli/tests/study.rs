@@ -112,7 +112,7 @@ fn shards_and_worker_counts_give_the_unsharded_results() {
     // Figures from the collected study: every one as PNG and SVG.
     let o = wearsim().args(["study", "plot", sharded.to_str().unwrap()]).output().unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    for name in ["fig2_static_model", "fig3_wear_volume", "fig4_sliding_wear", "fig5_particle_rate", "appB_particle_counts"] {
+    for name in ["fig2_static_model", "fig3_wear_volume", "fig4_sliding_wear", "fig5_particle_rate", "appB_particle_counts", "appF_contact_severity"] {
         for ext in ["png", "svg"] {
             let f = sharded.join("figures").join(format!("{name}.{ext}"));
             assert!(std::fs::metadata(&f).map(|m| m.len() > 1000).unwrap_or(false), "{} missing or empty", f.display());
