@@ -404,8 +404,9 @@ pub fn plot(dir: &Path) -> Result<()> {
         save(&out, "fig5_particle_rate", (800, 600), svg, png)?;
     }
     severity_figure(&out, &study.jobs, &results)?;
-    if first.run.units == Units::Si {
-        // Kim et al. (1986): rolling wear coefficients 6e-7 … 1.5e-3 (paper §4.3, Fig. 6).
+    {
+        // Kim et al. (1986): rolling wear coefficients 6e-7 … 1.5e-3 (paper §4.3, Fig. 6). k is
+        // dimensionless, so the comparison is drawn for studies in any units.
         let band = Some((6e-7, 1.5e-3, "Kim et al. 1986, rolling experiments"));
         let svg = |root: &DrawingArea<SVGBackend, Shift>| panel(root, &curves, 3, "wear coefficient k", load_unit, true, band);
         let png = |root: &DrawingArea<BitMapBackend, Shift>| panel(root, &curves, 3, "wear coefficient k", load_unit, true, band);

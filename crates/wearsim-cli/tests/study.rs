@@ -112,7 +112,7 @@ fn shards_and_worker_counts_give_the_unsharded_results() {
     // Figures from the collected study: every one as PNG and SVG.
     let o = wearsim().args(["study", "plot", sharded.to_str().unwrap()]).output().unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    for name in ["fig2_static_model", "fig3_wear_volume", "fig4_sliding_wear", "fig5_particle_rate", "appB_particle_counts", "appF_contact_severity"] {
+    for name in ["fig2_static_model", "fig3_wear_volume", "fig4_sliding_wear", "fig5_particle_rate", "appB_particle_counts", "appF_contact_severity", "fig6_kim_comparison"] {
         for ext in ["png", "svg"] {
             let f = sharded.join("figures").join(format!("{name}.{ext}"));
             assert!(std::fs::metadata(&f).map(|m| m.len() > 1000).unwrap_or(false), "{} missing or empty", f.display());
@@ -132,6 +132,12 @@ fn shards_and_worker_counts_give_the_unsharded_results() {
         assert!(String::from_utf8_lossy(&o.stderr).contains(&format!("shard {id}/2 holds 12")));
     }
     assert_eq!(collect(&slurm), expected);
+    // A job file can never be attributed to another job.
+    std::fs::copy(whole.join("jobs/job-000000.json"), whole.join("jobs/job-000001.json")).unwrap();
+    let o = wearsim().args(["study", "collect", whole.to_str().unwrap()]).output().unwrap();
+    assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("written for another job"));
+    let o = wearsim().args(["study", "run", study.to_str().unwrap(), "--out", whole.to_str().unwrap()]).output().unwrap();
+    assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("written for another job"));
     // A changed study file is refused in an existing folder.
     std::fs::write(&study, STUDY.replace("0.012", "0.011")).unwrap();
     let o = wearsim().args(["study", "run", study.to_str().unwrap(), "--out", whole.to_str().unwrap()]).output().unwrap();

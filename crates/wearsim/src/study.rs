@@ -30,6 +30,38 @@ pub struct Job {
     pub varying: BTreeMap<String, Value>,
 }
 
+impl Job {
+    /// The varying inputs as text, as stored in the job file.
+    pub fn parameters(&self) -> BTreeMap<String, String> {
+        self.varying.iter().map(|(k, v)| (k.clone(), csv_value(v))).collect()
+    }
+
+    /// The job's single load.
+    pub fn load(&self) -> f64 {
+        self.run.sliding.as_ref().and_then(|s| s.loads.first().copied()).unwrap_or(f64::NAN)
+    }
+
+    /// Reads this job's result file, checking that it was written for this job.
+    pub fn read_result(&self, dir: &Path) -> Result<JobResult> {
+        let p = job_path(dir, self.index);
+        let text = std::fs::read_to_string(&p).map_err(|e| Error::io(&p, e))?;
+        let r: JobResult = serde_json::from_str(&text).map_err(|e| Error::io(&p, format!("not a job result ({e})")))?;
+        if r.index != self.index || r.material != self.material || r.load != self.load() || r.parameters != self.parameters() {
+            return Err(Error::Config(format!(
+                "{} was written for another job ({} at load {:e}, {:?}), not for {} at load {:e}, {:?};                  the folder comes from another version of this study: use a new --out folder",
+                p.display(),
+                r.material,
+                r.load,
+                r.parameters,
+                self.material,
+                self.load(),
+                self.parameters()
+            )));
+        }
+        Ok(r)
+    }
+}
+
 /// An expanded study.
 #[derive(Debug, Clone)]
 pub struct Study {
@@ -172,6 +204,9 @@ pub fn expand(text: &str, base: &Path) -> Result<Study> {
 pub struct JobResult {
     pub index: usize,
     pub material: String,
+    /// The job's varying inputs ("section.key" → value as text), checked when the file is read back so
+    /// that a file can never be attributed to another job.
+    pub parameters: BTreeMap<String, String>,
     pub load: f64,
     pub flow_pressure: f64,
     pub effective_modulus: f64,
@@ -229,6 +264,7 @@ pub fn run_job(job: &Job) -> Result<JobResult> {
     Ok(JobResult {
         index: job.index,
         material: job.material.clone(),
+        parameters: job.parameters(),
         load: r.load,
         flow_pressure: run.material.flow_pressure(),
         effective_modulus: run.effective_modulus(),
@@ -285,7 +321,15 @@ pub fn run_jobs(
     workers: usize,
     progress: impl Fn(usize, usize) + Sync,
 ) -> Result<(usize, usize)> {
-    let pending: Vec<&Job> = jobs.iter().copied().filter(|j| !job_path(dir, j.index).is_file()).collect();
+    // A finished job is skipped only once its file is confirmed to be this job's.
+    let mut pending: Vec<&Job> = Vec::new();
+    for &job in jobs {
+        if job_path(dir, job.index).is_file() {
+            job.read_result(dir)?;
+        } else {
+            pending.push(job);
+        }
+    }
     let skipped = jobs.len() - pending.len();
     let next = AtomicUsize::new(0);
     let done = AtomicUsize::new(0);
@@ -367,15 +411,7 @@ pub fn load_results(dir: &Path) -> Result<(Study, Vec<JobResult>)> {
             missing[0]
         )));
     }
-    let results = study
-        .jobs
-        .iter()
-        .map(|job| {
-            let p = job_path(dir, job.index);
-            let text = std::fs::read_to_string(&p).map_err(|e| Error::io(&p, e))?;
-            serde_json::from_str::<JobResult>(&text).map_err(|e| Error::io(&p, format!("not a job result ({e})")))
-        })
-        .collect::<Result<Vec<_>>>()?;
+    let results = study.jobs.iter().map(|job| job.read_result(dir)).collect::<Result<Vec<_>>>()?;
     Ok((study, results))
 }
 
