@@ -36,6 +36,49 @@ impl Job {
         self.varying.iter().map(|(k, v)| (k.clone(), csv_value(v))).collect()
     }
 
+    /// Every input of the job as (column, text), the same columns for every job: what a tidy table
+    /// row carries beside the results.
+    pub fn inputs(&self) -> Vec<(&'static str, String)> {
+        use crate::config::SurfaceSource;
+        let r = &self.run;
+        let m = &r.material;
+        let (mut grid, mut hurst, mut lower, mut upper, mut rms, mut seed, mut top, mut bottom) =
+            (String::new(), String::new(), String::new(), String::new(), String::new(), String::new(), String::new(), String::new());
+        match &r.surfaces {
+            SurfaceSource::Generated { grid: g, spectrum, seed: s, .. } => {
+                grid = g.to_string();
+                hurst = format!("{:e}", spectrum.hurst);
+                lower = format!("{:e}", spectrum.lambda_lower);
+                upper = format!("{:e}", spectrum.lambda_upper);
+                rms = format!("{:e}", spectrum.rms_height);
+                seed = s.to_string();
+            }
+            SurfaceSource::Files { top: t, bottom: b, .. } => {
+                top = t.display().to_string().replace(',', ";");
+                bottom = b.display().to_string().replace(',', ";");
+            }
+        }
+        vec![
+            ("units", if r.units == crate::config::Units::Si { "si".into() } else { "reduced".into() }),
+            ("surface.grid", grid),
+            ("surface.length", format!("{:e}", r.length())),
+            ("surface.hurst", hurst),
+            ("surface.lambda_lower", lower),
+            ("surface.lambda_upper", upper),
+            ("surface.rms_height", rms),
+            ("surface.seed", seed),
+            ("surface.top", top),
+            ("surface.bottom", bottom),
+            ("material.youngs_modulus", format!("{:e}", m.youngs_modulus)),
+            ("material.poisson_ratio", format!("{:e}", m.poisson_ratio)),
+            ("material.shear_strength", format!("{:e}", m.shear_strength)),
+            ("material.geometry_factor", format!("{:e}", m.geometry_factor)),
+            ("contact.modulus", r.modulus.name().into()),
+            ("contact.tolerance", format!("{:e}", r.solver.tolerance)),
+            ("contact.connectivity", r.connectivity.to_string()),
+        ]
+    }
+
     /// The job's single load.
     pub fn load(&self) -> f64 {
         self.run.sliding.as_ref().and_then(|s| s.loads.first().copied()).unwrap_or(f64::NAN)
@@ -416,19 +459,14 @@ pub fn load_results(dir: &Path) -> Result<(Study, Vec<JobResult>)> {
 }
 
 /// Collects the job files of a study folder into `results.csv` (one row per job × fracture energy:
-/// inputs, then results) and `results_aggregated.csv` (mean, min and max over surface pairs, i.e.
+/// every input of [`Job::inputs`], then the results) and `results_aggregated.csv` (mean, min and max over surface pairs, i.e.
 /// over `surface.seed`). Returns the number of rows of each. Fails naming the missing jobs when
 /// the study is unfinished.
 pub fn collect(dir: &Path) -> Result<(usize, usize)> {
     let (study, results) = load_results(dir)?;
-    let input_keys: Vec<String> = {
-        let mut keys: Vec<String> = study.jobs.iter().flat_map(|j| j.varying.keys().cloned()).collect();
-        keys.sort();
-        keys.dedup();
-        keys
-    };
+    let input_keys: Vec<&str> = study.jobs.first().map(|j| j.inputs().iter().map(|(k, _)| *k).collect()).unwrap_or_default();
     let mut header = vec!["job".to_string(), "material".into()];
-    header.extend(input_keys.iter().cloned());
+    header.extend(input_keys.iter().map(|k| k.to_string()));
     header.extend(["load", "fracture_energy"].map(String::from));
     header.extend(RESULT_COLUMNS.map(String::from));
     let mut tidy = header.join(",") + "\n";
@@ -438,7 +476,7 @@ pub fn collect(dir: &Path) -> Result<(usize, usize)> {
     let mut rows = 0;
     for (job, r) in study.jobs.iter().zip(&results) {
         for w in &r.results {
-            let inputs: Vec<String> = input_keys.iter().map(|k| job.varying.get(k).map(csv_value).unwrap_or_default()).collect();
+            let inputs: Vec<String> = job.inputs().into_iter().map(|(_, v)| v).collect();
             let values = [
                 w.wear_rate,
                 w.wear_rate_r2,
@@ -459,7 +497,7 @@ pub fn collect(dir: &Path) -> Result<(usize, usize)> {
             tidy += &(line.join(",") + "\n");
             rows += 1;
             let mut key = vec![job.material.clone()];
-            key.extend(input_keys.iter().zip(&inputs).filter(|(k, _)| k.as_str() != "surface.seed").map(|(_, v)| v.clone()));
+            key.extend(input_keys.iter().zip(&inputs).filter(|(k, _)| **k != "surface.seed").map(|(_, v)| v.clone()));
             key.push(format!("{:e}", r.load));
             key.push(format!("{:e}", w.fracture_energy));
             let g = *group_index.entry(key.clone()).or_insert_with(|| {
@@ -469,7 +507,7 @@ pub fn collect(dir: &Path) -> Result<(usize, usize)> {
             groups[g].1.push(values.to_vec());
         }
     }
-    let group_keys: Vec<String> = input_keys.iter().filter(|k| k.as_str() != "surface.seed").cloned().collect();
+    let group_keys: Vec<String> = input_keys.iter().filter(|k| **k != "surface.seed").map(|k| k.to_string()).collect();
     let mut agg_header = vec!["material".to_string()];
     agg_header.extend(group_keys);
     agg_header.extend(["load", "fracture_energy", "surface_pairs"].map(String::from));
