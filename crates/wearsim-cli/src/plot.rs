@@ -169,15 +169,23 @@ where
             .draw_series(pts.iter().filter(|p| !log_y || p.2 > 0.0).map(|p| PathElement::new(vec![(p.0, p.2), (p.0, p.3)], color.stroke_width(1))))
             .map_err(|e| err(e.to_string()))?;
     }
+    legend(chart, SeriesLabelPosition::UpperLeft)?;
+    Ok(())
+}
+
+/// The legend box of every figure.
+fn legend<'a, DB: DrawingBackend + 'a, X: Ranged, Y: Ranged>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    position: SeriesLabelPosition,
+) -> Result<()> {
     chart
         .configure_series_labels()
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
         .label_font((FONT, 11))
-        .position(SeriesLabelPosition::UpperLeft)
+        .position(position)
         .draw()
-        .map_err(|e| err(e.to_string()))?;
-    Ok(())
+        .map_err(|e| anyhow!("drawing failed: {e}"))
 }
 
 /// Draws `figure` into `name.png` and `name.svg`.
@@ -271,14 +279,7 @@ fn draw_severity(area: &DrawingArea<impl DrawingBackend, Shift>, points: &[(Stri
         .map_err(|e| err(e.to_string()))?
         .label("fit")
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(1)));
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font((FONT, 11))
-        .position(SeriesLabelPosition::UpperLeft)
-        .draw()
-        .map_err(|e| err(e.to_string()))?;
+    legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
     Ok(())
 }
 
@@ -355,14 +356,7 @@ fn series_panel(area: &DrawingArea<impl DrawingBackend, Shift>, job: &Job, r: &J
             }
         }
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font((FONT, 11))
-        .position(SeriesLabelPosition::LowerRight)
-        .draw()
-        .map_err(|e| err(e.to_string()))?;
+    legend(&mut chart, SeriesLabelPosition::LowerRight)?;
     Ok(())
 }
 
@@ -458,13 +452,7 @@ pub fn animate(run: &Path, out: &Path, load_index: usize, energy_index: usize, d
     let scale = (512 / n).max(1) as u32; // frames of at least 512 px where the grid is smaller
     let step_px = (n / 512).max(1); // and at most about 1024 px where it is larger
     let side = (n / step_px) as u32 * scale;
-    let setup = SlidingSetup {
-        material: &config.material,
-        effective_modulus: config.effective_modulus(),
-        solver: config.solver,
-        connectivity: config.connectivity,
-        sliding: &sliding,
-    };
+    let setup = SlidingSetup::from_run(&config, &sliding);
     let d_star = config.material.critical_diameter(config.material.fracture_energies[energy_index]);
     let tmp = out.with_extension("tmp.gif");
     let length_unit = config.units.length_unit();

@@ -41,13 +41,7 @@ pub fn slide(run: &Path, out: &Path) -> Result<()> {
         eprintln!("𝒢 = {g:.4e}: critical diameter d* = {} ({:.1} px)", show_length(config.units, *d), d / top.pixel_size());
     }
     let steps_per_load = schedule(n, &sliding).len();
-    let setup = SlidingSetup {
-        material: &config.material,
-        effective_modulus: config.effective_modulus(),
-        solver: config.solver,
-        connectivity: config.connectivity,
-        sliding: &sliding,
-    };
+    let setup = SlidingSetup::from_run(&config, &sliding);
     let bar = if std::io::stderr().is_terminal() {
         let b = indicatif::ProgressBar::new((steps_per_load * sliding.loads.len()) as u64);
         b.set_style(

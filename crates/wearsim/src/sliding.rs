@@ -113,6 +113,19 @@ pub struct SlidingSetup<'a> {
     pub sliding: &'a SlidingConfig,
 }
 
+impl<'a> SlidingSetup<'a> {
+    /// The setup a run file describes, for the given schedule (the run's own, or one load of it).
+    pub fn from_run(run: &'a crate::config::RunConfig, sliding: &'a SlidingConfig) -> Self {
+        Self {
+            material: &run.material,
+            effective_modulus: run.effective_modulus(),
+            solver: run.solver,
+            connectivity: run.connectivity,
+            sliding,
+        }
+    }
+}
+
 /// What an observer of a sliding run sees after each step.
 pub struct StepView<'a> {
     /// Steps done so far, over all loads, and their total.

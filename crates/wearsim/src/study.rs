@@ -295,13 +295,7 @@ pub fn run_job(job: &Job) -> Result<JobResult> {
     let run = &job.run;
     let sliding = run.sliding.as_ref().ok_or_else(|| Error::param("loads", "job without [sliding]"))?;
     let (top, bottom) = run.surfaces()?;
-    let setup = SlidingSetup {
-        material: &run.material,
-        effective_modulus: run.effective_modulus(),
-        solver: run.solver,
-        connectivity: run.connectivity,
-        sliding,
-    };
+    let setup = SlidingSetup::from_run(run, sliding);
     let mut runs = run_sliding(&top, &bottom, &setup, |_| {})?;
     let r = runs.pop().ok_or_else(|| Error::param("loads", "job without a load"))?;
     Ok(JobResult {
