@@ -9,7 +9,7 @@ use anyhow::Result;
 use serde_json::json;
 use wearsim::fft::{radial_kernel, FftPlan};
 use wearsim::surface::pair_seeds;
-use wearsim::{composite_heights, ContactSolver, Generation, Material, ModulusConvention, SpectrumParams, Surface};
+use wearsim::{composite_heights, ContactSolver, Material, ModulusConvention, SpectrumParams, Surface};
 
 #[derive(clap::Args)]
 pub struct BenchArgs {
@@ -39,14 +39,7 @@ pub fn peak_memory_mib() -> Option<f64> {
 
 /// The benchmark's surface pair (seed 1): paper roughness on an N² grid of side 1.
 fn paper_pair(n: usize) -> Result<(Surface, Surface)> {
-    let dx = 1.0 / n as f64;
-    let spectrum = SpectrumParams {
-        hurst: 0.7,
-        lambda_lower: 16.0 * dx,
-        lambda_upper: (256.0f64).min(n as f64 / 2.0) * dx,
-        rms_height: 0.005,
-        generation: Generation::RandomPhase,
-    };
+    let spectrum = SpectrumParams::paper_roughness(n, 1.0);
     let (s1, s2) = pair_seeds(1);
     Ok((Surface::generate(n, 1.0, &spectrum, s1)?, Surface::generate(n, 1.0, &spectrum, s2)?))
 }

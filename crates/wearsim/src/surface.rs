@@ -47,6 +47,19 @@ pub struct SpectrumParams {
 }
 
 impl SpectrumParams {
+    /// The paper's roughness on an `n`-pixel grid of side `length` (SPEC §7, the benchmarks of issue
+    /// 2): H = 0.7, λ_l = 16 Δx, λ_u = min(256 Δx, L/2), h_rms = 0.005 L, random phases.
+    pub fn paper_roughness(n: usize, length: f64) -> Self {
+        let dx = length / n as f64;
+        Self {
+            hurst: 0.7,
+            lambda_lower: 16.0 * dx,
+            lambda_upper: (256.0f64).min(n as f64 / 2.0) * dx,
+            rms_height: 0.005 * length,
+            generation: Generation::RandomPhase,
+        }
+    }
+
     /// Checks the parameters against a grid of `n` pixels over `length`.
     pub fn validate(&self, n: usize, length: f64) -> Result<()> {
         check_grid(n)?;

@@ -10,14 +10,7 @@ use wearsim::{composite_heights, ContactSolver, Error, Generation, SpectrumParam
 const E_STAR: f64 = 1.0 / (1.0 - 0.09); // E = 1, ν = 0.3
 
 fn paper_pair(n: usize, seed: u64) -> Vec<f64> {
-    let dx = 1.0 / n as f64;
-    let spectrum = SpectrumParams {
-        hurst: 0.7,
-        lambda_lower: 16.0 * dx,
-        lambda_upper: (256.0f64).min(n as f64 / 2.0) * dx,
-        rms_height: 0.005,
-        generation: Generation::RandomPhase,
-    };
+    let spectrum = SpectrumParams::paper_roughness(n, 1.0);
     let (a, b) = pair_seeds(seed);
     let top = Surface::generate(n, 1.0, &spectrum, a).unwrap();
     let bottom = Surface::generate(n, 1.0, &spectrum, b).unwrap();
