@@ -89,7 +89,6 @@ struct Stats {
     min_zero: f64,
     /// Largest g over plastic pixels.
     max_plastic: f64,
-    n_contact: f64,
     n_plastic: f64,
     /// Objective ½⟨p, 𝒦p⟩ − ⟨p, h⟩ (its merit for the step safeguard).
     energy: f64,
@@ -156,7 +155,6 @@ impl Default for Stats {
             min_free: f64::INFINITY,
             min_zero: f64::INFINITY,
             max_plastic: f64::NEG_INFINITY,
-            n_contact: 0.0,
             n_plastic: 0.0,
             energy: 0.0,
             load: LoadSums::default(),
@@ -172,7 +170,6 @@ impl Stats {
         if p <= 0.0 {
             self.min_zero = self.min_zero.min(g);
         } else {
-            self.n_contact += 1.0;
             self.energy += p * (0.5 * u - h);
             if p >= flow_pressure {
                 self.n_plastic += 1.0;
@@ -198,7 +195,6 @@ impl Stats {
             s.min_free = s.min_free.min(p.min_free);
             s.min_zero = s.min_zero.min(p.min_zero);
             s.max_plastic = s.max_plastic.max(p.max_plastic);
-            s.n_contact += p.n_contact;
             s.n_plastic += p.n_plastic;
             s.energy += p.energy;
             s.load = LoadSums::merge(s.load, p.load);
@@ -414,7 +410,7 @@ impl ContactSolver {
                         residual,
                         tolerance,
                         approach: h_max + mean,
-                        contact_pixels: stats.n_contact as usize,
+                        contact_pixels: stats.load.n_contact,
                         plastic_pixels: stats.n_plastic as usize,
                     });
                 }
