@@ -142,7 +142,7 @@ pub fn run_slide(args: &SlideBenchArgs) -> Result<()> {
     let e_star = material.effective_modulus(ModulusConvention::HalfSpace);
     let sliding = SlidingConfig { loads: vec![2.5e-4, 5e-4, 1e-3, 2e-3], distance: 0.5, running_in: 0.25, step_running_in: 4, step: 1 };
     let (top, bottom) = paper_pair(args.n)?;
-    let setup = SlidingSetup { material: &material, effective_modulus: e_star, solver: Default::default(), connectivity: 4, sliding: &sliding };
+    let setup = SlidingSetup { material: &material, effective_modulus: e_star, solver: Default::default(), connectivity: 4, sliding: &sliding, interrupt: Default::default() };
     let t = Instant::now();
     let runs = run_sliding(&top, &bottom, &setup, |_| {})?;
     let total = t.elapsed().as_secs_f64();

@@ -1,7 +1,6 @@
 //! `wearsim slide` and `wearsim junctions`: the sliding wear model on a run file, and junction
 //! labelling of a contact map.
 
-use std::fmt::Write as _;
 use std::io::IsTerminal;
 use std::path::Path;
 use std::time::Instant;
@@ -10,8 +9,8 @@ use anyhow::{bail, Context, Result};
 use serde_json::json;
 use wearsim::config::{RunConfig, Units};
 use wearsim::junctions::{JunctionLabeller, NO_JUNCTION};
-use wearsim::output::{atomic_write, write_text};
-use wearsim::sliding::{run_sliding, schedule, LoadRun, SlidingSetup};
+use wearsim::output::{atomic_write, series_csv, sliding_summary, write_text, RunInputs};
+use wearsim::sliding::{run_sliding, schedule, SlidingSetup};
 
 /// Length in the run's unit, and the same for display (µm in SI runs).
 fn show_length(units: Units, value: f64) -> String {
@@ -66,8 +65,8 @@ pub fn slide(run: &Path, out: &Path) -> Result<()> {
     }
     let seconds = start.elapsed().as_secs_f64();
     std::fs::create_dir_all(out).with_context(|| format!("cannot create output folder {}", out.display()))?;
-    write_series(&out.join("series.csv"), &config, &runs)?;
-    let summary = summary_json(&config, &runs, seconds, steps_per_load);
+    write_text(&out.join("series.csv"), &series_csv(&runs))?;
+    let summary = sliding_summary(&RunInputs::of_run(&config, &sliding), &runs, seconds, steps_per_load);
     write_text(&out.join("summary.json"), &serde_json::to_string_pretty(&summary)?)?;
     for r in &runs {
         for w in &r.results {
@@ -86,84 +85,6 @@ pub fn slide(run: &Path, out: &Path) -> Result<()> {
     }
     println!("{} steps in {seconds:.1} s; wrote {}", steps_per_load * runs.len(), out.display());
     Ok(())
-}
-
-/// series.csv: one row per step, load and fracture energy (SPEC §9), plain CSV for pandas and R; units
-/// and provenance are in summary.json.
-fn write_series(path: &Path, config: &RunConfig, runs: &[LoadRun]) -> Result<()> {
-    let mut text = String::new();
-    writeln!(text, "load,fracture_energy,s,junctions,contact_area,n_critical,n_formed,n_shrunk,volume")?;
-    for r in runs {
-        for (e, &g) in config.material.fracture_energies.iter().enumerate() {
-            for st in &r.steps {
-                let w = &st.wear[e];
-                writeln!(
-                    text,
-                    "{:e},{:e},{:e},{},{:e},{},{},{},{:e}",
-                    r.load, g, st.s, st.junctions, st.contact_area, w.n_critical, w.n_formed, w.n_shrunk(), w.volume
-                )?;
-            }
-        }
-    }
-    atomic_write(path, |w| w.write_all(text.as_bytes()))?;
-    Ok(())
-}
-
-fn summary_json(config: &RunConfig, runs: &[LoadRun], seconds: f64, steps_per_load: usize) -> serde_json::Value {
-    let results: Vec<_> = runs
-        .iter()
-        .flat_map(|r| {
-            r.results.iter().map(move |w| {
-                json!({
-                    "load": r.load,
-                    "fracture_energy": w.fracture_energy,
-                    "critical_diameter": w.critical_diameter,
-                    "wear_rate": w.wear_rate,
-                    "wear_rate_r2": w.wear_rate_r2,
-                    "wear_coefficient": w.wear_coefficient,
-                    "particle_rate": w.particle_rate,
-                    "wear_rate_estimate": w.wear_rate_estimate,
-                    "initial_volume": w.initial_volume,
-                    "static_wear_coefficient": w.static_wear_coefficient,
-                    "static_wear_rate": w.static_wear_rate,
-                })
-            })
-        })
-        .collect();
-    let solver: Vec<_> = runs
-        .iter()
-        .map(|r| {
-            json!({
-                "load": r.load,
-                "total_iterations": r.total_iterations,
-                "max_iterations": r.max_iterations,
-                "mean_iterations": r.total_iterations as f64 / r.steps.len() as f64,
-                "max_residual": r.steps.iter().map(|s| s.residual).fold(0.0, f64::max),
-                "seconds": {"solve": r.timing.solve, "labelling": r.timing.labelling, "bookkeeping": r.timing.bookkeeping},
-            })
-        })
-        .collect();
-    json!({
-        "software": format!("wearsim {}", wearsim::VERSION),
-        "units": config.units,
-        "inputs": {
-            "surfaces": config.surfaces,
-            "material": config.material,
-            "contact": {"modulus": config.modulus.name(), "tolerance": config.solver.tolerance, "max_iterations": config.solver.max_iterations, "connectivity": config.connectivity},
-            "sliding": config.sliding,
-        },
-        "flow_pressure": config.material.flow_pressure(),
-        "critical_diameter": config.material.fracture_energies.iter().zip(config.material.critical_diameters()).map(|(g, d)| json!({"fracture_energy": g, "critical_diameter": d})).collect::<Vec<_>>(),
-        "effective_modulus": config.effective_modulus(),
-        "modulus_convention": config.modulus.name(),
-        "solver": {"tolerance": config.solver.tolerance, "residual_definition": "max pixel-wise violation of the optimality conditions / std(h)", "per_load": solver},
-        "steps_per_load": steps_per_load,
-        "fit": "least-squares lines of V and N*₊ against s over the steps with s ≥ running_in·L",
-        "static_wear_rate_convention": "W_static/ω = k_static Σ A_i at s = 0",
-        "wear_rate_estimate_convention": "ω d*³ dN*₊/ds with ω = π/6",
-        "results": results,
-        "seconds": seconds,
-    })
 }
 
 /// Labels the junctions of a contact map (`.npy`, bool or numbers: > 0 is contact) and writes

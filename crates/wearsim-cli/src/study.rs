@@ -41,7 +41,7 @@ pub fn run(study_path: &Path, out: &Path, shard_arg: Option<&str>, workers: Opti
         b.set_style(indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} jobs, {eta} left").expect("valid template"));
         b
     });
-    let (computed, skipped) = run_jobs(out, &jobs, workers, |done, total| match &bar {
+    let (computed, skipped) = run_jobs(out, &jobs, workers, &Default::default(), |done, total| match &bar {
         Some(b) => {
             b.set_length(total as u64);
             b.set_position(done as u64);

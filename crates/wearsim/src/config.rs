@@ -111,6 +111,40 @@ pub struct SlidingConfig {
     pub step: usize,
 }
 
+impl SlidingConfig {
+    /// A validated schedule; `grid`, when known, bounds the steps.
+    pub fn new(
+        loads: Vec<f64>,
+        distance: f64,
+        running_in: f64,
+        step_running_in: usize,
+        step: usize,
+        grid: Option<usize>,
+    ) -> Result<Self> {
+        if loads.is_empty() {
+            return Err(Error::param("loads", "the list is empty; give at least one normal load"));
+        }
+        for &f in &loads {
+            crate::material::positive("loads", f)?;
+        }
+        if !(distance > 0.0 && distance <= 1.0) {
+            return Err(Error::param("distance", format!("{distance} must lie in (0, 1] (a fraction of L)")));
+        }
+        if !(running_in >= 0.0 && running_in < distance) {
+            return Err(Error::param(
+                "running_in",
+                format!("{running_in} must lie in [0, distance = {distance}) (a fraction of L)"),
+            ));
+        }
+        for (field, v) in [("step_running_in", step_running_in), ("step", step)] {
+            if v == 0 || grid.is_some_and(|g| v >= g) {
+                return Err(Error::param(field, format!("{v} pixels must be at least 1 and below the grid size")));
+            }
+        }
+        Ok(Self { loads, distance, running_in, step_running_in, step })
+    }
+}
+
 /// A validated run file.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct RunConfig {
@@ -217,35 +251,18 @@ impl RunConfig {
         let sliding = match raw.sliding {
             None => None,
             Some(sl) => {
-                if sl.loads.is_empty() {
-                    return Err(Error::param("loads", "the list is empty; give at least one normal load"));
-                }
-                for &f in &sl.loads {
-                    crate::material::positive("loads", f)?;
-                }
-                let distance = sl.distance.unwrap_or(0.5);
-                let running_in = sl.running_in.unwrap_or(0.25);
-                if !(distance > 0.0 && distance <= 1.0) {
-                    return Err(Error::param("distance", format!("{distance} must lie in (0, 1] (a fraction of L)")));
-                }
-                if !(running_in >= 0.0 && running_in < distance) {
-                    return Err(Error::param(
-                        "running_in",
-                        format!("{running_in} must lie in [0, distance = {distance}) (a fraction of L)"),
-                    ));
-                }
-                let step_running_in = sl.step_running_in.unwrap_or(4);
-                let step = sl.step.unwrap_or(1);
                 let grid = match &surfaces {
                     SurfaceSource::Generated { grid, .. } => Some(*grid),
                     SurfaceSource::Files { .. } => None,
                 };
-                for (field, v) in [("step_running_in", step_running_in), ("step", step)] {
-                    if v == 0 || grid.is_some_and(|g| v >= g) {
-                        return Err(Error::param(field, format!("{v} pixels must be at least 1 and below the grid size")));
-                    }
-                }
-                Some(SlidingConfig { loads: sl.loads, distance, running_in, step_running_in, step })
+                Some(SlidingConfig::new(
+                    sl.loads,
+                    sl.distance.unwrap_or(0.5),
+                    sl.running_in.unwrap_or(0.25),
+                    sl.step_running_in.unwrap_or(4),
+                    sl.step.unwrap_or(1),
+                    grid,
+                )?)
             }
         };
         Ok(Self {

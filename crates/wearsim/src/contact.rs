@@ -27,7 +27,7 @@ use std::f64::consts::PI;
 
 use rayon::prelude::*;
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Interrupt, Result};
 use crate::fft::{radial_kernel, FftPlan};
 
 /// Default convergence tolerance on the residual (see the module documentation). A hundredfold
@@ -261,6 +261,8 @@ pub struct ContactSolver {
     row_partials: Vec<f64>,
     /// Convergence settings used by [`ContactSolver::solve`].
     pub options: SolverOptions,
+    /// Checked once per iteration: a raised flag ends the solve with [`Error::Interrupted`].
+    pub interrupt: Interrupt,
 }
 
 impl ContactSolver {
@@ -300,6 +302,7 @@ impl ContactSolver {
             sums: vec![[0.0; 2]; n],
             row_partials: vec![0.0; n],
             options: SolverOptions::default(),
+            interrupt: Interrupt::default(),
         })
     }
 
@@ -426,6 +429,7 @@ impl ContactSolver {
             if iterations >= self.options.max_iterations {
                 return Err(Error::NotConverged { iterations, residual, tolerance });
             }
+            self.interrupt.check()?;
             iterations += 1;
 
             // Conjugate direction on the free pixels: t = (g − ḡ) + β t.

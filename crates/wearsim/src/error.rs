@@ -1,6 +1,8 @@
 //! Typed errors of the library. Front ends add context (which file, which command).
 
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 /// Everything that can go wrong in wearsim's library, each with the field at fault and the fix.
 #[derive(Debug, thiserror::Error)]
@@ -35,6 +37,10 @@ pub enum Error {
          tolerance {tolerance:.3e}; raise `max_iterations` or loosen `tolerance` in [contact]"
     )]
     NotConverged { iterations: usize, residual: f64, tolerance: f64 },
+
+    /// The caller asked the computation to stop (Ctrl-C in the Python front end).
+    #[error("interrupted")]
+    Interrupted,
 }
 
 /// Result type of the library.
@@ -49,5 +55,31 @@ impl Error {
     /// Shorthand for [`Error::Io`].
     pub fn io(path: impl Into<PathBuf>, message: impl ToString) -> Self {
         Error::Io { path: path.into(), message: message.to_string() }
+    }
+}
+
+/// A flag another thread may raise to stop a long computation (a contact solve, a sliding run, a
+/// study) at its next iteration, which then returns [`Error::Interrupted`]. Clones share the flag.
+#[derive(Debug, Clone, Default)]
+pub struct Interrupt(Arc<AtomicBool>);
+
+impl Interrupt {
+    /// Asks every computation holding this flag to stop.
+    pub fn request(&self) {
+        self.0.store(true, Ordering::Relaxed);
+    }
+
+    /// Whether a stop was requested.
+    pub fn is_requested(&self) -> bool {
+        self.0.load(Ordering::Relaxed)
+    }
+
+    /// `Err(Error::Interrupted)` once a stop was requested.
+    pub fn check(&self) -> Result<()> {
+        if self.is_requested() {
+            Err(Error::Interrupted)
+        } else {
+            Ok(())
+        }
     }
 }

@@ -24,7 +24,7 @@ pub mod surface;
 pub mod wear;
 
 pub use contact::{ContactSolver, SolveInfo, SolverOptions};
-pub use error::{Error, Result};
+pub use error::{Error, Interrupt, Result};
 pub use material::{Material, ModulusConvention};
 pub use surface::{Generation, SpectrumParams, Surface};
 

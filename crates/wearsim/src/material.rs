@@ -93,7 +93,7 @@ impl Material {
     }
 }
 
-pub(crate) fn positive(field: &str, value: f64) -> Result<()> {
+pub fn positive(field: &str, value: f64) -> Result<()> {
     if value.is_finite() && value > 0.0 {
         Ok(())
     } else {

@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use crate::config::SlidingConfig;
 use crate::contact::{ContactSolver, SolverOptions};
-use crate::error::{Error, Result};
+use crate::error::{Error, Interrupt, Result};
 use crate::junctions::JunctionLabeller;
 use crate::material::Material;
 use crate::surface::Surface;
@@ -103,6 +103,80 @@ pub struct LoadRun {
     pub timing: Timing,
 }
 
+/// One row of a sliding run's series (`series.csv` of `wearsim slide`, the DataFrame of the Python
+/// `slide`): one step of one load for one fracture energy.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct SeriesRow {
+    pub load: f64,
+    pub fracture_energy: f64,
+    /// Sliding distance s in the run's length unit.
+    pub s: f64,
+    pub junctions: usize,
+    pub contact_area: f64,
+    pub iterations: usize,
+    pub residual: f64,
+    pub n_critical: usize,
+    pub n_formed: usize,
+    pub n_shrunk: i64,
+    pub volume: f64,
+}
+
+/// The series of every load and fracture energy, load by load, then fracture energy, then step.
+pub fn series(runs: &[LoadRun]) -> Vec<SeriesRow> {
+    let mut rows = Vec::new();
+    for r in runs {
+        for (e, w) in r.results.iter().enumerate() {
+            for st in &r.steps {
+                let sw = &st.wear[e];
+                rows.push(SeriesRow {
+                    load: r.load,
+                    fracture_energy: w.fracture_energy,
+                    s: st.s,
+                    junctions: st.junctions,
+                    contact_area: st.contact_area,
+                    iterations: st.iterations,
+                    residual: st.residual,
+                    n_critical: sw.n_critical,
+                    n_formed: sw.n_formed,
+                    n_shrunk: sw.n_shrunk(),
+                    volume: sw.volume,
+                });
+            }
+        }
+    }
+    rows
+}
+
+/// The results (one entry per load × fracture energy) and per-load solver statistics of a run, the
+/// part of `summary.json` that does not depend on where the inputs came from.
+pub fn results_json(runs: &[LoadRun]) -> (serde_json::Value, serde_json::Value) {
+    use serde_json::json;
+    let results: Vec<_> = runs
+        .iter()
+        .flat_map(|r| {
+            r.results.iter().map(move |w| {
+                let mut v = serde_json::to_value(w).expect("plain numbers serialise");
+                v.as_object_mut().expect("a struct serialises to an object").insert("load".into(), json!(r.load));
+                v
+            })
+        })
+        .collect();
+    let solver: Vec<_> = runs
+        .iter()
+        .map(|r| {
+            json!({
+                "load": r.load,
+                "total_iterations": r.total_iterations,
+                "max_iterations": r.max_iterations,
+                "mean_iterations": r.total_iterations as f64 / r.steps.len() as f64,
+                "max_residual": r.steps.iter().map(|s| s.residual).fold(0.0, f64::max),
+                "seconds": {"solve": r.timing.solve, "labelling": r.timing.labelling, "bookkeeping": r.timing.bookkeeping},
+            })
+        })
+        .collect();
+    (json!(results), json!(solver))
+}
+
 /// Everything a sliding run needs besides the surfaces.
 #[derive(Debug, Clone)]
 pub struct SlidingSetup<'a> {
@@ -111,6 +185,8 @@ pub struct SlidingSetup<'a> {
     pub solver: SolverOptions,
     pub connectivity: u8,
     pub sliding: &'a SlidingConfig,
+    /// Raised by another thread to stop the run ([`Error::Interrupted`]).
+    pub interrupt: Interrupt,
 }
 
 impl<'a> SlidingSetup<'a> {
@@ -122,6 +198,7 @@ impl<'a> SlidingSetup<'a> {
             solver: run.solver,
             connectivity: run.connectivity,
             sliding,
+            interrupt: Interrupt::default(),
         }
     }
 }
@@ -171,6 +248,7 @@ pub fn run_sliding(
     let total_steps = offsets.len() * setup.sliding.loads.len();
     let mut solver = ContactSolver::new(n, length, setup.effective_modulus)?;
     solver.options = setup.solver;
+    solver.interrupt = setup.interrupt.clone();
     let mut labeller = JunctionLabeller::new(n, setup.connectivity);
     let mut heights = vec![0.0; n * n];
     let mut pressure = vec![0.0; n * n];
@@ -185,6 +263,7 @@ pub fn run_sliding(
         let mut timing = Timing::default();
         pressure.iter_mut().for_each(|p| *p = 0.0); // cold start at s = 0 of every load
         for &offset in &offsets {
+            setup.interrupt.check()?;
             let t0 = Instant::now();
             composite_heights(top, bottom, offset, &mut heights);
             let info = solver.solve(&heights, load / area, pm, &mut pressure)?;

@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 use toml::{Table, Value};
 
 use crate::config::RunConfig;
-use crate::error::{Error, Result};
+use crate::error::{Error, Interrupt, Result};
 use crate::output::write_text;
 use crate::sliding::{run_sliding, SlidingSetup, StepRecord, WearResult};
 
@@ -284,18 +284,26 @@ impl From<&StepRecord> for StepRow {
     }
 }
 
+/// Writes a job's result file atomically (the file whose presence marks the job done).
+pub fn write_result(dir: &Path, result: &JobResult) -> Result<()> {
+    let path = job_path(dir, result.index);
+    let text = serde_json::to_string(result).map_err(|e| Error::io(&path, e))?;
+    write_text(&path, &text)
+}
+
 /// Path of job `index`'s result file in a study folder.
 pub fn job_path(dir: &Path, index: usize) -> PathBuf {
     dir.join("jobs").join(format!("job-{index:06}.json"))
 }
 
-/// Runs one job.
-pub fn run_job(job: &Job) -> Result<JobResult> {
+/// Runs one job; a raised `interrupt` stops it with [`Error::Interrupted`].
+pub fn run_job(job: &Job, interrupt: &Interrupt) -> Result<JobResult> {
     let start = std::time::Instant::now();
     let run = &job.run;
     let sliding = run.sliding.as_ref().ok_or_else(|| Error::param("loads", "job without [sliding]"))?;
     let (top, bottom) = run.surfaces()?;
-    let setup = SlidingSetup::from_run(run, sliding);
+    let mut setup = SlidingSetup::from_run(run, sliding);
+    setup.interrupt = interrupt.clone();
     let mut runs = run_sliding(&top, &bottom, &setup, |_| {})?;
     let r = runs.pop().ok_or_else(|| Error::param("loads", "job without a load"))?;
     Ok(JobResult {
@@ -351,11 +359,14 @@ pub fn shard(jobs: &[Job], k: usize, count: usize) -> Vec<&Job> {
 
 /// Runs the given jobs with `workers` jobs at once, the threads of the current rayon pool shared
 /// between them (one worker: every thread on each job, for large grids; as many workers as threads:
-/// one thread per job, for many small jobs), skipping jobs whose file exists. `progress(done, total)` is called after each job. Returns (computed, skipped).
+/// one thread per job, for many small jobs), skipping jobs whose file exists. `progress(done, total)`
+/// is called after each job. A raised `interrupt` stops the jobs under way (finished job files stay,
+/// so a later run resumes) and returns [`Error::Interrupted`]. Returns (computed, skipped).
 pub fn run_jobs(
     dir: &Path,
     jobs: &[&Job],
     workers: usize,
+    interrupt: &Interrupt,
     progress: impl Fn(usize, usize) + Sync,
 ) -> Result<(usize, usize)> {
     // A finished job is skipped only once its file is confirmed to be this job's.
@@ -386,12 +397,15 @@ pub fn run_jobs(
                     }
                     let i = next.fetch_add(1, Ordering::SeqCst);
                     let Some(job) = pending.get(i) else { return };
-                    let outcome = pool.install(|| run_job(job)).and_then(|result| {
-                        let text = serde_json::to_string(&result).map_err(|e| Error::io(job_path(dir, job.index), e))?;
-                        write_text(&job_path(dir, job.index), &text)
-                    });
+                    let outcome = pool.install(|| run_job(job, interrupt)).and_then(|result| write_result(dir, &result));
                     match outcome {
                         Ok(()) => progress(done.fetch_add(1, Ordering::SeqCst) + 1, pending.len()),
+                        Err(Error::Interrupted) => {
+                            if let Ok(mut slot) = first_error.lock() {
+                                slot.get_or_insert(Error::Interrupted);
+                            }
+                            return;
+                        }
                         Err(e) => {
                             if let Ok(mut slot) = first_error.lock() {
                                 slot.get_or_insert(Error::Config(format!("study job {}: {e}", job.index)));

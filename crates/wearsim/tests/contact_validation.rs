@@ -217,6 +217,21 @@ fn infeasible_load_and_non_convergence_are_errors() {
 }
 
 #[test]
+fn a_raised_interrupt_stops_the_solve_and_a_fresh_one_does_not() {
+    let n = 64;
+    let h = paper_pair(n, 7);
+    let pm = flow_pressure(0.01);
+    let mut solver = ContactSolver::new(n, 1.0, E_STAR).unwrap();
+    let flag = wearsim::Interrupt::default();
+    solver.interrupt = flag.clone();
+    flag.request();
+    let e = solver.solve(&h, 1e-3, pm, &mut vec![0.0; n * n]).unwrap_err();
+    assert!(matches!(e, Error::Interrupted), "{e}");
+    solver.interrupt = wearsim::Interrupt::default();
+    assert!(solver.solve(&h, 1e-3, pm, &mut vec![0.0; n * n]).is_ok());
+}
+
+#[test]
 fn generated_psd_follows_the_self_affine_power_law() {
     let n = 256;
     let hurst = 0.7;

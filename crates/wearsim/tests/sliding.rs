@@ -31,6 +31,7 @@ fn run(threads: usize) -> (Vec<LoadRun>, Material, SlidingConfig, Surface, Surfa
             solver: Default::default(),
             connectivity: 4,
             sliding: &sliding,
+            interrupt: Default::default(),
         };
         run_sliding(&top, &bottom, &setup, |_| {}).unwrap()
     });
