@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# All of wearsim's tests: Rust unit, validation and CLI tests, then the Python cross-checks against
-# tamaas (installed into .venv from PyPI on first use).
+# All of wearsim's tests: Rust unit, validation and CLI tests; then the Python package built from
+# this checkout (`pip install .` into .venv, with numpy, pandas, dask, matplotlib, pytest and tamaas
+# from PyPI), its pytest suite (API, studies on a Dask LocalCluster, tamaas cross-checks of the CLI
+# and of the Python API) and the example script.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -11,8 +13,13 @@ if [ ! -x .venv/bin/python ]; then
     python3 -m venv .venv
 fi
 .venv/bin/python -m pip install -q --upgrade pip >/dev/null 2>&1 || true
-.venv/bin/python -m pip install -q numpy pytest
+.venv/bin/python -m pip install -q numpy pandas "dask[distributed]" matplotlib pytest
 if ! .venv/bin/python -m pip install -q tamaas; then
     echo "WARNING: tamaas could not be installed from PyPI; the tamaas cross-checks will be skipped" >&2
 fi
+# The Python package, built by maturin from this checkout, as a user installs it.
+.venv/bin/python -m pip install -q .
+(cd /tmp && "$OLDPWD/.venv/bin/python" -c "import wearsim; print('wearsim', wearsim.__version__, 'imported from', wearsim.__file__)")
+
 WEARSIM_BIN="$PWD/target/release/wearsim" .venv/bin/python -m pytest -rs tests/python
+MPLBACKEND=Agg .venv/bin/python examples/python/quickstart.py --out "$(mktemp -d)/python-example"

@@ -1,0 +1,59 @@
+"""wearsim: adhesive wear of rough surfaces in dry sliding, after Brink, Frérot & Molinari,
+J. Mech. Phys. Solids 147 (2021) 104238, for NumPy users.
+
+The data flow follows the paper, one module per step:
+
+- :mod:`wearsim.surface`: periodic self-affine surfaces (NumPy arrays) and their statistics;
+- :class:`Material`: elastic and adhesive-wear properties, flow pressure p_m = 3√3 τ̃ and
+  critical diameter d*;
+- :mod:`wearsim.contact`: the saturated-pressure FFT contact solver;
+- :mod:`wearsim.junctions`: junctions (periodic connected components of the contact map);
+- :mod:`wearsim.wear`: the static model and the sliding model (pandas series, summary dict);
+- :mod:`wearsim.study`: study files, run locally or as Dask tasks, collected into tidy tables.
+
+Units: every quantity is in the unit system of its inputs. In reduced units E = 1 and L = 1
+(pressures in E, lengths in L, loads in E·L², fracture energies in E·L); in SI, Pa, m, N and J/m².
+
+Long calls release the GIL and stop on Ctrl-C (KeyboardInterrupt).
+"""
+from ._wearsim import (
+    DEFAULT_MAX_ITERATIONS,
+    DEFAULT_TOLERANCE,
+    Material,
+    NotConvergedError,
+    WearsimError,
+    __version__,
+)
+from . import contact, junctions, study, surface, wear
+from .contact import ContactResult, ContactSolver, solve_contact
+from .junctions import Junctions, label_junctions
+from .surface import composite_heights, generate_pair, generate_surface, radial_psd, surface_statistics
+from .wear import RunFile, load_run, slide, static_wear
+
+__all__ = [
+    "DEFAULT_MAX_ITERATIONS",
+    "DEFAULT_TOLERANCE",
+    "ContactResult",
+    "ContactSolver",
+    "Junctions",
+    "Material",
+    "NotConvergedError",
+    "RunFile",
+    "WearsimError",
+    "__version__",
+    "composite_heights",
+    "contact",
+    "generate_pair",
+    "generate_surface",
+    "junctions",
+    "label_junctions",
+    "load_run",
+    "radial_psd",
+    "slide",
+    "solve_contact",
+    "static_wear",
+    "study",
+    "surface",
+    "surface_statistics",
+    "wear",
+]

@@ -1,0 +1,119 @@
+"""The saturated-pressure contact solver (SPEC §3, paper §2 and appendix A).
+
+Contact of a rigid surface of heights h with a periodic elastic half-space of effective modulus
+E*, pressure bounded by the flow pressure p_m (0 ≤ p ≤ p_m), mean pressure F_N/L². Solved by a
+bound-constrained conjugate gradient on FFT boundary elements; exact zeros outside the contact.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Optional
+
+import numpy as np
+
+from . import _wearsim
+from .surface import _heights
+
+
+@dataclass(frozen=True)
+class ContactResult:
+    """One contact solution.
+
+    ``pressure`` is in the unit of E (reduced: E; SI: Pa); ``approach`` and lengths in the unit of L.
+    """
+
+    #: Contact pressure p, (N, N) float64, exactly 0 outside the contact.
+    pressure: np.ndarray
+    #: Conjugate-gradient iterations.
+    iterations: int
+    #: Convolutions (FFT round trips) in all.
+    convolutions: int
+    #: Final residual: largest pixel-wise violation of the optimality conditions / std(h).
+    residual: float
+    #: Tolerance the residual had to reach.
+    tolerance: float
+    #: Rigid-body approach since first contact, max(h) − c (length unit).
+    approach: float
+    #: Pixels in contact (p > 0) and at the flow pressure (p = p_m).
+    contact_pixels: int
+    plastic_pixels: int
+    #: Real contact area as a fraction of the apparent area L².
+    contact_area: float
+    #: Mean pressure F_N/L².
+    mean_pressure: float
+    #: Wall-clock seconds of the solve.
+    seconds: float
+
+    @property
+    def contact(self) -> np.ndarray:
+        """Contact map, (N, N) bool: p > 0."""
+        return self.pressure > 0.0
+
+
+class ContactSolver:
+    """FFT contact solver for one grid. Plans and buffers are made once: reuse one solver for many
+    solves on the same grid (e.g. the steps of a slide, warm-started from the previous pressure).
+
+    ``length`` is the side L of the periodic square (length unit), ``effective_modulus`` E* (unit of
+    pressure; see :meth:`wearsim.Material.effective_modulus`).
+    """
+
+    def __init__(
+        self,
+        grid: int,
+        length: float,
+        effective_modulus: float,
+        *,
+        tolerance: float = _wearsim.DEFAULT_TOLERANCE,
+        max_iterations: int = _wearsim.DEFAULT_MAX_ITERATIONS,
+    ) -> None:
+        self._solver = _wearsim.ContactSolver(grid, length, effective_modulus, tolerance, max_iterations)
+
+    grid = property(lambda self: self._solver.grid, doc="Grid size N.")
+    length = property(lambda self: self._solver.length, doc="Side length L.")
+    effective_modulus = property(lambda self: self._solver.effective_modulus, doc="E*.")
+    tolerance = property(lambda self: self._solver.tolerance, doc="Tolerance on the residual.")
+
+    def solve(
+        self,
+        heights: np.ndarray,
+        load: float,
+        *,
+        flow_pressure: float = np.inf,
+        initial_pressure: Optional[np.ndarray] = None,
+    ) -> ContactResult:
+        """Solves the contact of the rigid surface ``heights`` (length unit) at normal load
+        ``load`` = F_N (pressure × length², e.g. E·L² or N) with the pressure bounded by
+        ``flow_pressure`` (``inf``: elastic). ``initial_pressure`` warm-starts the solve (e.g. the
+        previous step's pressure); without it the solve starts from a uniform pressure.
+
+        Raises ``ValueError`` for bad input (NaN heights, a load at or above p_m·L², …) and
+        :class:`wearsim.NotConvergedError` when the iteration limit is reached.
+        """
+        p0 = None if initial_pressure is None else _heights("initial_pressure", initial_pressure)
+        pressure, info = self._solver.solve(_heights("heights", heights), float(load), float(flow_pressure), p0)
+        return ContactResult(pressure=pressure, **info)
+
+    def displacement(self, pressure: np.ndarray) -> np.ndarray:
+        """Zero-mean surface displacement 𝒦p of the half-space under ``pressure`` (length unit)."""
+        return self._solver.displacement(_heights("pressure", pressure))
+
+
+def solve_contact(
+    heights: np.ndarray,
+    load: float,
+    *,
+    effective_modulus: float,
+    length: float = 1.0,
+    flow_pressure: float = np.inf,
+    initial_pressure: Optional[np.ndarray] = None,
+    tolerance: float = _wearsim.DEFAULT_TOLERANCE,
+    max_iterations: int = _wearsim.DEFAULT_MAX_ITERATIONS,
+) -> ContactResult:
+    """One contact solve (see :meth:`ContactSolver.solve`); for many solves on one grid, keep a
+    :class:`ContactSolver`."""
+    heights = _heights("heights", heights)
+    solver = ContactSolver(
+        heights.shape[0], length, effective_modulus, tolerance=tolerance, max_iterations=max_iterations
+    )
+    return solver.solve(heights, load, flow_pressure=flow_pressure, initial_pressure=initial_pressure)

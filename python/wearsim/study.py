@@ -1,0 +1,168 @@
+"""Studies (SPEC §7, §9): a study file expands into jobs (surface pair × material × contact setting ×
+load), each a sliding run stored as one job file in a result folder; finished jobs are skipped when a
+study is run again, so an interrupted study resumes where it stopped. The folder layout is that of
+``wearsim study run``, so the CLI and Python can take turns on the same folder.
+
+Run locally (threads of this machine), or on a Dask cluster by passing a
+``dask.distributed.Client``: each job is then one Dask task, its result sent back to this process,
+which writes the job file (workers need no shared file system). On Slurm::
+
+    from dask.distributed import Client
+    from dask_jobqueue import SLURMCluster
+
+    cluster = SLURMCluster(cores=16, processes=1, memory="32GB", walltime="04:00:00")
+    cluster.scale(jobs=20)                    # 20 Slurm jobs, one Dask worker each
+    table = wearsim.study.run("studies/paper-reduced.toml", client=Client(cluster),
+                              out="paper-reduced", threads=16)
+"""
+from __future__ import annotations
+
+import functools
+import os
+from pathlib import Path
+from typing import Any, Optional, Tuple, Union
+
+import pandas as pd
+
+from . import _wearsim
+
+PathLike = Union[str, os.PathLike]
+
+
+class Study:
+    """An expanded study file."""
+
+    def __init__(self, text: str, base: PathLike, path: Optional[PathLike] = None) -> None:
+        self._study = _wearsim.Study(text, Path(base))
+        #: The study file, when read from one.
+        self.path = None if path is None else Path(path)
+
+    @classmethod
+    def from_file(cls, path: PathLike) -> "Study":
+        path = Path(path)
+        try:
+            text = path.read_text()
+        except OSError as e:
+            raise OSError(f"{path}: cannot read the study file ({e.strerror or e})") from e
+        return cls(text, path.resolve().parent, path)
+
+    @property
+    def hash(self) -> str:
+        """Hash of the parsed study (comments and layout do not count); a result folder is tied to it."""
+        return self._study.hash
+
+    @property
+    def text(self) -> str:
+        return self._study.text
+
+    @property
+    def base(self) -> Path:
+        """Folder that relative surface paths resolve against."""
+        return self._study.base
+
+    def __len__(self) -> int:
+        return len(self._study)
+
+    def jobs(self) -> pd.DataFrame:
+        """One row per job: index, material, every input and the load (the input columns of the
+        tidy results table)."""
+        table = pd.DataFrame(self._study.jobs())
+        for column in table.columns:
+            try:
+                table[column] = pd.to_numeric(table[column])
+            except (ValueError, TypeError):
+                pass  # text inputs (material names, surface files, conventions) stay text
+        return table
+
+    def __repr__(self) -> str:
+        where = f"{str(self.path)!r}, " if self.path else ""
+        return f"Study({where}{len(self)} jobs)"
+
+
+def load(path: PathLike) -> Study:
+    """Reads and expands a study file."""
+    return Study.from_file(path)
+
+
+def _as_study(study: Union[Study, PathLike]) -> Study:
+    return study if isinstance(study, Study) else Study.from_file(study)
+
+
+@functools.lru_cache(maxsize=8)
+def _expanded(text: str, base: str) -> Any:
+    return _wearsim.Study(text, Path(base))
+
+
+def _run_job(text: str, base: str, index: int, threads: Optional[int]) -> str:
+    """A Dask task: expands the study on the worker and runs job ``index``; returns its result as
+    JSON text."""
+    return _expanded(text, base).run_job(index, threads)
+
+
+def _default_out(study: Study) -> Path:
+    stem = study.path.stem if study.path else f"study-{study.hash[:8]}"
+    return Path.cwd() / f"{stem}-results"
+
+
+def run(
+    study: Union[Study, PathLike],
+    client: Any = None,
+    *,
+    out: Optional[PathLike] = None,
+    workers: Optional[int] = None,
+    threads: Optional[int] = None,
+    shard: Optional[Tuple[int, int]] = None,
+) -> pd.DataFrame:
+    """Runs a study (a :class:`Study` or a study file) into the result folder ``out`` (default:
+    ``<study name>-results`` in the working directory), skipping jobs already done there, then
+    collects it. Returns the tidy table, equal to the ``results.csv`` of ``wearsim study collect``.
+
+    Without ``client`` the jobs run here, ``workers`` at a time (default: one per thread, as
+    ``wearsim study run``) sharing this machine's threads (or ``threads`` of them). With a ``dask.distributed.Client`` every pending job is a Dask task (``threads``:
+    threads per task, default all of the worker's machine); job files are written here as tasks
+    finish, so a study stopped midway (Ctrl-C, a lost allocation) resumes on the next call.
+    ``shard=(k, count)`` runs only jobs k−1, k−1+count, … (local runs; the table is then returned
+    only when the whole study is done, else an empty DataFrame).
+    """
+    study = _as_study(study)
+    out = Path(out) if out is not None else _default_out(study)
+    if client is None:
+        study._study.run(out, workers, shard, threads)
+    else:
+        if shard is not None:
+            raise ValueError("invalid `shard`: with a Dask client the cluster runs every job; drop `shard`")
+        from dask.distributed import as_completed
+
+        pending = study._study.prepare(out)
+        futures = {
+            client.submit(
+                _run_job,
+                study.text,
+                str(study.base),
+                index,
+                threads,
+                key=f"wearsim-{study.hash}-job-{index:06d}",
+                pure=False,
+            ): index
+            for index in pending
+        }
+        try:
+            for future in as_completed(futures):
+                study._study.write_result(out, futures[future], future.result())
+        finally:
+            for future in futures:
+                if not future.done():
+                    future.cancel()
+    if shard is not None and study._study.prepare(out):
+        return pd.DataFrame()
+    tidy, _aggregated = collect(out)
+    return tidy
+
+
+def collect(out: PathLike) -> Tuple[pd.DataFrame, pd.DataFrame]:
+    """Collects a finished result folder, writing ``results.csv`` and ``results_aggregated.csv``
+    there as ``wearsim study collect`` does; returns both as DataFrames (tidy: one row per job and
+    fracture energy; aggregated: mean, min and max over surface pairs)."""
+    out = Path(out)
+    _wearsim.collect_study(out)
+    return pd.read_csv(out / "results.csv"), pd.read_csv(out / "results_aggregated.csv")

@@ -1,0 +1,135 @@
+"""The wear models: the static model (Frérot et al. 2018; paper §2, SPEC §5) and the sliding model
+(paper §3, SPEC §6).
+
+The sliding model returns its series as a :class:`pandas.DataFrame` (one row per step, load and
+fracture energy, the columns of ``series.csv``) and its summary as a dict (``summary.json`` of
+``wearsim slide``: inputs, flow pressure, critical diameters, solver statistics and, under
+``"results"``, one entry per load and fracture energy with the wear rate W, its R², the Archard
+coefficient k, the particle rate dN*₊/ds, V₀ and the static model's k_static).
+"""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Any, Dict, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import pandas as pd
+
+from . import _wearsim
+from .junctions import Junctions
+from .surface import _heights
+
+#: Columns of the series, in order.
+SERIES_COLUMNS = [
+    "load",
+    "fracture_energy",
+    "s",
+    "junctions",
+    "contact_area",
+    "iterations",
+    "residual",
+    "n_critical",
+    "n_formed",
+    "n_shrunk",
+    "volume",
+]
+
+
+def static_wear(junctions: Junctions, critical_diameter: float) -> Dict[str, float]:
+    """Static model on one contact solution: ``wear_coefficient`` k_static = Σ_{A_i ≥ A*} A_i / Σ A_i
+    and ``wear_rate_over_omega`` = k_static Σ A_i (volume per sliding distance over the shape factor
+    ω), with A* = π d*²/4; ``critical_diameter`` d* in the unit of the pixel size."""
+    return _wearsim.static_wear_model(
+        [int(p) for p in junctions.pixels], junctions.pixel_size, float(critical_diameter)
+    )
+
+
+def _series(columns: Dict[str, np.ndarray]) -> pd.DataFrame:
+    return pd.DataFrame({c: columns[c] for c in SERIES_COLUMNS})
+
+
+def slide(
+    top: np.ndarray,
+    bottom: np.ndarray,
+    material: _wearsim.Material,
+    loads: Sequence[float],
+    *,
+    length: float = 1.0,
+    modulus: str = "half-space",
+    tolerance: float = _wearsim.DEFAULT_TOLERANCE,
+    max_iterations: int = _wearsim.DEFAULT_MAX_ITERATIONS,
+    connectivity: int = 4,
+    distance: float = 0.5,
+    running_in: float = 0.25,
+    step_running_in: int = 4,
+    step: int = 1,
+    threads: Optional[int] = None,
+) -> Tuple[pd.DataFrame, Dict[str, Any]]:
+    """Slides ``top`` over ``bottom`` (heights, length unit; side ``length``) along x and runs the
+    sliding wear model for every normal load in ``loads`` (F_N, pressure × length²) and every
+    fracture energy of ``material``.
+
+    Schedule (SPEC §6): offsets from 0 in steps of ``step_running_in`` pixels up to the running-in
+    distance ``running_in``·L, then in steps of ``step`` pixels up to ``distance``·L; each step is a
+    contact solve warm-started from the previous one. ``modulus``: "half-space" (E* = E/(1−ν²)) or
+    "composite" (E* = E/(2(1−ν²))). ``threads`` runs on that many threads (default: all).
+
+    Returns ``(series, summary)``: series with the columns :data:`SERIES_COLUMNS` (s in the length
+    unit, volume in length³, contact_area as a fraction of L²), summary as described in the module
+    documentation.
+    """
+    columns, summary = _wearsim.slide(
+        _heights("top", top),
+        _heights("bottom", bottom),
+        float(length),
+        material,
+        [float(f) for f in loads],
+        modulus,
+        tolerance,
+        max_iterations,
+        connectivity,
+        distance,
+        running_in,
+        step_running_in,
+        step,
+        threads,
+    )
+    return _series(columns), summary
+
+
+class RunFile:
+    """A run file (SPEC §9: ``[surface]``, ``[material]``, ``[contact]``, ``[sliding]`` and
+    ``units``), parsed and validated as ``wearsim`` does; relative surface paths resolve against the
+    file's folder."""
+
+    def __init__(self, path: Union[str, os.PathLike]) -> None:
+        self._run = _wearsim.RunFile(Path(path))
+
+    path = property(lambda self: self._run.path, doc="The run file.")
+    units = property(lambda self: self._run.units, doc='Length unit: "L" (reduced) or "m" (SI).')
+    length = property(lambda self: self._run.length, doc="Side length L of the surfaces.")
+    material = property(lambda self: self._run.material, doc="The run's :class:`wearsim.Material`.")
+    effective_modulus = property(lambda self: self._run.effective_modulus, doc="E* under the run's convention.")
+    modulus = property(lambda self: self._run.modulus, doc='"half-space" or "composite".')
+    tolerance = property(lambda self: self._run.tolerance, doc="Contact solver tolerance.")
+    connectivity = property(lambda self: self._run.connectivity, doc="Junction connectivity, 4 or 8.")
+    loads = property(lambda self: self._run.loads, doc="Normal loads of [sliding], or None.")
+
+    def surfaces(self) -> Tuple[np.ndarray, np.ndarray]:
+        """The (top, bottom) surfaces, generated or read as the run file says."""
+        return self._run.surfaces()
+
+    def slide(self, *, threads: Optional[int] = None) -> Tuple[pd.DataFrame, Dict[str, Any]]:
+        """The sliding model exactly as ``wearsim slide RUN`` runs it: ``(series, summary)`` equal to
+        its ``series.csv`` and ``summary.json`` (timings aside)."""
+        columns, summary, _csv = self._run.slide(threads)
+        return _series(columns), summary
+
+    def __repr__(self) -> str:
+        return f"RunFile({str(self.path)!r})"
+
+
+def load_run(path: Union[str, os.PathLike]) -> RunFile:
+    """Reads and validates a run file."""
+    return RunFile(path)

@@ -1,0 +1,66 @@
+"""The tamaas cross-checks from Python: the contact solver (`wearsim.ContactSolver`) against tamaas
+`KatoSaturated` and `PolonskyKeerRey`, and `wearsim.label_junctions` against tamaas `FloodFill`, on
+the same arrays. Skipped, visibly, only where tamaas cannot be imported."""
+import numpy as np
+import pytest
+
+wearsim = pytest.importorskip("wearsim", reason="the wearsim package is not installed: pip install .")
+tm = pytest.importorskip("tamaas", reason="tamaas not installed: pip install tamaas")
+
+
+def tamaas_model(n):
+    model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [1.0, 1.0], [n, n])
+    model.E = 1.0
+    model.nu = 0.3
+    return model
+
+
+@pytest.mark.parametrize("n", [64, 128])
+def test_contact_against_tamaas(n):
+    top, bottom = wearsim.generate_pair(n, seed=11, lambda_lower=8 / n, lambda_upper=0.25, rms_height=0.005)
+    h = wearsim.composite_heights(top, bottom)
+    material = wearsim.Material(1.0, 0.3, 0.01)
+    pm = material.flow_pressure
+    solver = wearsim.ContactSolver(n, 1.0, material.effective_modulus(), tolerance=1e-10)
+
+    saturated = solver.solve(h, 1e-3, flow_pressure=pm)
+    model = tamaas_model(n)
+    tm.KatoSaturated(model, h, 1e-10, pm).solve(1e-3)
+    p_tm = np.array(model.traction).reshape(n, n)
+    assert saturated.plastic_pixels > 0
+    assert np.count_nonzero(saturated.contact != (p_tm > 1e-12 * pm)) <= 3
+    assert np.abs(saturated.pressure - p_tm).max() < 1e-5 * pm
+
+    elastic = solver.solve(h, 1e-3)
+    model = tamaas_model(n)
+    tm.PolonskyKeerRey(model, h, 1e-12).solve(1e-3)
+    p_tm = np.array(model.traction).reshape(n, n)
+    assert np.abs(elastic.pressure - p_tm).max() < 1e-5 * elastic.pressure.max()
+    assert np.count_nonzero(elastic.contact != (p_tm > 0)) <= 2
+
+
+def tamaas_labels(contact, diagonal):
+    n = contact.shape[0]
+    labels = -np.ones(contact.shape, dtype=np.int64)
+    for c, cluster in enumerate(tm.FloodFill.getClusters(contact, diagonal)):
+        for i, j in cluster.points:
+            labels[i % n, j % n] = c
+    return labels
+
+
+@pytest.mark.parametrize("connectivity", [4, 8])
+def test_junctions_of_a_contact_solution_against_floodfill(connectivity):
+    n = 128
+    top, bottom = wearsim.generate_pair(n, seed=5, lambda_lower=8 / n, lambda_upper=0.25, rms_height=0.005)
+    material = wearsim.Material(1.0, 0.3, 0.01)
+    contact = wearsim.solve_contact(
+        wearsim.composite_heights(top, bottom, 17), 2e-3,
+        effective_modulus=material.effective_modulus(), flow_pressure=material.flow_pressure,
+    ).contact
+    ours = wearsim.label_junctions(contact, connectivity=connectivity)
+    theirs = tamaas_labels(contact, connectivity == 8)
+    assert ours.count == theirs.max() + 1 > 5
+    # Same partition: the label pairs form a bijection.
+    pairs = set(zip(ours.labels.ravel().tolist(), theirs.ravel().tolist()))
+    assert len(pairs) == len({a for a, _ in pairs}) == len({b for _, b in pairs})
+    assert sorted(ours.pixels.tolist()) == sorted(np.bincount(theirs[theirs >= 0]).tolist())
