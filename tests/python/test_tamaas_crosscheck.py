@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 tm = pytest.importorskip("tamaas", reason="tamaas not installed: pip install tamaas")
+from tamaas_helpers import tamaas_model  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 WEARSIM = os.environ.get("WEARSIM_BIN", str(ROOT / "target" / "release" / "wearsim"))
@@ -45,13 +46,6 @@ def run_wearsim(tmp_path, n, tau, load):
     h = np.load(out / "top.npy") + np.load(out / "bottom.npy")
     summary = json.loads((out / "summary.json").read_text())
     return h, np.load(out / "pressure.npy"), np.load(out / "contact.npy"), summary
-
-
-def tamaas_model(n):
-    model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [1.0, 1.0], [n, n])
-    model.E = 1.0
-    model.nu = 0.3
-    return model
 
 
 @pytest.mark.parametrize("n", [64, 128])

@@ -8,24 +8,10 @@ import numpy as np
 import pytest
 
 tm = pytest.importorskip("tamaas", reason="tamaas not installed: pip install tamaas")
+from tamaas_helpers import same_partition, tamaas_labels  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 WEARSIM = os.environ.get("WEARSIM_BIN", str(ROOT / "target" / "release" / "wearsim"))
-
-
-def tamaas_partition(contact, diagonal):
-    """Cluster sizes and pixel→cluster map from tamaas (unwrapping its -1/N indices)."""
-    n = contact.shape[0]
-    labels = -np.ones(contact.shape, dtype=np.int64)
-    for c, cluster in enumerate(tm.FloodFill.getClusters(contact, diagonal)):
-        for i, j in cluster.points:
-            labels[i % n, j % n] = c
-    return labels
-
-
-def same_partition(a, b):
-    pairs = set(zip(a.ravel().tolist(), b.ravel().tolist()))
-    return len(pairs) == len({p[0] for p in pairs}) == len({p[1] for p in pairs})
 
 
 @pytest.mark.parametrize("connectivity", [4, 8])
@@ -43,7 +29,7 @@ def test_labels_match_tamaas_floodfill(tmp_path, connectivity, seed):
     )
     labels = np.load(out / "labels.npy")
     info = json.loads((out / "junctions.json").read_text())
-    expected = tamaas_partition(contact, connectivity == 8)
+    expected = tamaas_labels(contact, connectivity == 8)
     assert info["junctions"] == expected.max() + 1
     assert same_partition(labels, expected)
     assert sorted(info["pixels"]) == sorted(np.bincount(expected[expected >= 0]).tolist())

@@ -6,13 +6,7 @@ import pytest
 
 wearsim = pytest.importorskip("wearsim", reason="the wearsim package is not installed: pip install .")
 tm = pytest.importorskip("tamaas", reason="tamaas not installed: pip install tamaas")
-
-
-def tamaas_model(n):
-    model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [1.0, 1.0], [n, n])
-    model.E = 1.0
-    model.nu = 0.3
-    return model
+from tamaas_helpers import same_partition, tamaas_labels, tamaas_model  # noqa: E402
 
 
 @pytest.mark.parametrize("n", [64, 128])
@@ -39,15 +33,6 @@ def test_contact_against_tamaas(n):
     assert np.count_nonzero(elastic.contact != (p_tm > 0)) <= 2
 
 
-def tamaas_labels(contact, diagonal):
-    n = contact.shape[0]
-    labels = -np.ones(contact.shape, dtype=np.int64)
-    for c, cluster in enumerate(tm.FloodFill.getClusters(contact, diagonal)):
-        for i, j in cluster.points:
-            labels[i % n, j % n] = c
-    return labels
-
-
 @pytest.mark.parametrize("connectivity", [4, 8])
 def test_junctions_of_a_contact_solution_against_floodfill(connectivity):
     n = 128
@@ -60,7 +45,5 @@ def test_junctions_of_a_contact_solution_against_floodfill(connectivity):
     ours = wearsim.label_junctions(contact, connectivity=connectivity)
     theirs = tamaas_labels(contact, connectivity == 8)
     assert ours.count == theirs.max() + 1 > 5
-    # Same partition: the label pairs form a bijection.
-    pairs = set(zip(ours.labels.ravel().tolist(), theirs.ravel().tolist()))
-    assert len(pairs) == len({a for a, _ in pairs}) == len({b for _, b in pairs})
+    assert same_partition(ours.labels, theirs)
     assert sorted(ours.pixels.tolist()) == sorted(np.bincount(theirs[theirs >= 0]).tolist())
