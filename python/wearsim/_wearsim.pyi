@@ -1,10 +1,31 @@
 """Type stubs of the compiled extension `wearsim._wearsim` (crates/wearsim-py). Use the public API
 of the `wearsim` package; this layer takes contiguous float64 arrays."""
 from pathlib import Path
-from typing import Any, Dict, List, Optional, Tuple
+from typing import Any, Dict, List, Optional, Tuple, final
 
 import numpy as np
 import numpy.typing as npt
+
+__all__ = [
+    "ContactSolver",
+    "DEFAULT_MAX_ITERATIONS",
+    "DEFAULT_TOLERANCE",
+    "Material",
+    "NotConvergedError",
+    "RunFile",
+    "Study",
+    "WearsimError",
+    "__version__",
+    "collect_study",
+    "composite_heights",
+    "generate_surface",
+    "label_junctions",
+    "pair_seeds",
+    "radial_psd",
+    "slide",
+    "static_wear_model",
+    "surface_statistics",
+]
 
 __version__: str
 DEFAULT_TOLERANCE: float
@@ -13,7 +34,7 @@ DEFAULT_MAX_ITERATIONS: int
 class WearsimError(Exception): ...
 class NotConvergedError(WearsimError): ...
 
-F64Array = npt.NDArray[np.float64]
+_F64Array = npt.NDArray[np.float64]
 
 def generate_surface(
     grid: int,
@@ -24,18 +45,18 @@ def generate_surface(
     rms_height: float,
     seed: int,
     generation: str = "random-phase",
-) -> F64Array: ...
+) -> _F64Array: ...
 def pair_seeds(seed: int) -> Tuple[int, int]: ...
-def surface_statistics(heights: F64Array, length: float) -> Dict[str, float]: ...
-def radial_psd(heights: F64Array, length: float) -> Tuple[F64Array, F64Array]: ...
-def composite_heights(top: F64Array, bottom: F64Array, offset: int) -> F64Array: ...
+def surface_statistics(heights: _F64Array, length: float) -> Dict[str, float]: ...
+def radial_psd(heights: _F64Array, length: float) -> Tuple[_F64Array, _F64Array]: ...
+def composite_heights(top: _F64Array, bottom: _F64Array, offset: int) -> _F64Array: ...
 def label_junctions(
     contact: npt.NDArray[np.bool_], connectivity: int = 4
 ) -> Tuple[npt.NDArray[np.int64], npt.NDArray[np.uint64]]: ...
 def static_wear_model(junction_pixels: List[int], pixel_size: float, critical_diameter: float) -> Dict[str, float]: ...
 def slide(
-    top: F64Array,
-    bottom: F64Array,
+    top: _F64Array,
+    bottom: _F64Array,
     length: float,
     material: Material,
     loads: List[float],
@@ -51,6 +72,7 @@ def slide(
 ) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]: ...
 def collect_study(out: Path) -> Tuple[int, int]: ...
 
+@final
 class Material:
     """Elastic and adhesive-wear properties of the (identical) materials of both surfaces.
 
@@ -58,14 +80,14 @@ class Material:
     E), fracture_energies 𝒢 (reduced: E·L; SI: J/m²), geometry_factor f of eq. (1) (default 3).
     """
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         youngs_modulus: float,
         poisson_ratio: float,
         shear_strength: float,
         fracture_energies: List[float] = ...,
         geometry_factor: float = 3.0,
-    ) -> None: ...
+    ) -> Material: ...
     @property
     def youngs_modulus(self) -> float: ...
     @property
@@ -89,10 +111,11 @@ class Material:
     def effective_modulus(self, modulus: str = "half-space") -> float:
         """E* = E/(1−ν²) ("half-space") or E/(2(1−ν²)) ("composite")."""
 
+@final
 class ContactSolver:
-    def __init__(
-        self, grid: int, length: float, effective_modulus: float, tolerance: float = ..., max_iterations: int = ...
-    ) -> None: ...
+    def __new__(
+        cls, grid: int, length: float, effective_modulus: float, tolerance: float = ..., max_iterations: int = ...
+    ) -> ContactSolver: ...
     @property
     def grid(self) -> int: ...
     @property
@@ -105,15 +128,16 @@ class ContactSolver:
     def max_iterations(self) -> int: ...
     def solve(
         self,
-        heights: F64Array,
+        heights: _F64Array,
         load: float,
         flow_pressure: float = ...,
-        initial_pressure: Optional[F64Array] = None,
-    ) -> Tuple[F64Array, Dict[str, Any]]: ...
-    def displacement(self, pressure: F64Array) -> F64Array: ...
+        initial_pressure: Optional[_F64Array] = None,
+    ) -> Tuple[_F64Array, Dict[str, Any]]: ...
+    def displacement(self, pressure: _F64Array) -> _F64Array: ...
 
+@final
 class RunFile:
-    def __init__(self, path: Path) -> None: ...
+    def __new__(cls, path: Path) -> RunFile: ...
     @property
     def path(self) -> Path: ...
     @property
@@ -134,11 +158,12 @@ class RunFile:
     def connectivity(self) -> int: ...
     @property
     def loads(self) -> Optional[List[float]]: ...
-    def surfaces(self) -> Tuple[F64Array, F64Array]: ...
+    def surfaces(self) -> Tuple[_F64Array, _F64Array]: ...
     def slide(self, threads: Optional[int] = None) -> Tuple[Dict[str, np.ndarray], Dict[str, Any], str]: ...
 
+@final
 class Study:
-    def __init__(self, text: str, base: Path) -> None: ...
+    def __new__(cls, text: str, base: Path) -> Study: ...
     @property
     def text(self) -> str: ...
     @property

@@ -5,6 +5,8 @@ of ``length`` (L in reduced units, m in SI).
 """
 from __future__ import annotations
 
+import functools
+
 from typing import Dict, Literal, Tuple
 
 import numpy as np
@@ -57,7 +59,9 @@ def generate_pair(
     """The (top, bottom) surface pair of a run file with this ``seed``: two independent surfaces
     whose seeds are derived from ``seed`` exactly as ``wearsim surface`` does."""
     top_seed, bottom_seed = _wearsim.pair_seeds(seed)
-    kw = dict(
+    make = functools.partial(
+        generate_surface,
+        grid,
         length=length,
         hurst=hurst,
         lambda_lower=lambda_lower,
@@ -65,7 +69,7 @@ def generate_pair(
         rms_height=rms_height,
         generation=generation,
     )
-    return generate_surface(grid, seed=top_seed, **kw), generate_surface(grid, seed=bottom_seed, **kw)
+    return make(seed=top_seed), make(seed=bottom_seed)
 
 
 def surface_statistics(heights: np.ndarray, length: float = 1.0) -> Dict[str, float]:
