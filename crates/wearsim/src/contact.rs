@@ -394,10 +394,9 @@ impl ContactSolver {
         }
         self.balance_load(heights, pressure, total, pm, f64::NAN, min_len, None);
         let mut convolutions = 0;
-        self.plan.convolve(pressure, &self.kernel, &mut self.u);
-        convolutions += 1;
         let mut reference = 0.0;
-        let mut stats = self.pass_stats(heights, pressure, reference, pm, min_len);
+        let mut stats = self.displacement_and_stats(heights, pressure, reference, pm);
+        convolutions += 1;
         let mut fresh = true; // u was computed from p by FFT, not carried along
         let mut restart = true;
         let mut g_norm_old = 1.0;
@@ -419,10 +418,9 @@ impl ContactSolver {
                 }
                 // Confirm with an exactly balanced load and a freshly computed displacement.
                 self.balance_load(heights, pressure, total, pm, mean, min_len, Some(stats.load));
-                self.plan.convolve(pressure, &self.kernel, &mut self.u);
-                convolutions += 1;
                 reference = mean;
-                stats = self.pass_stats(heights, pressure, reference, pm, min_len);
+                stats = self.displacement_and_stats(heights, pressure, reference, pm);
+                convolutions += 1;
                 fresh = true;
                 continue;
             }
@@ -491,10 +489,9 @@ impl ContactSolver {
                 }
                 self.balance_load(heights, pressure, total, pm, mean, min_len, Some(next.load));
                 // 𝒦p into the spare buffer, so that the carried-along u stays for an undo.
-                self.plan.convolve(pressure, &self.kernel, &mut self.u_alt);
                 std::mem::swap(&mut self.u, &mut self.u_alt);
+                stats = self.displacement_and_stats(heights, pressure, mean, pm);
                 convolutions += 1;
-                stats = self.pass_stats(heights, pressure, mean, pm, min_len);
                 fresh = true;
                 restart = released || backtracks > 0;
                 if stats.energy <= energy_before + slack || backtracks >= 40 {
@@ -555,21 +552,25 @@ impl ContactSolver {
         scale_to_load(pressure, total, pm, min_len, None);
     }
 
-    /// Statistics of g = u − h over the regions defined by p.
-    fn pass_stats(&mut self, heights: &[f64], pressure: &[f64], reference: f64, pm: f64, min_len: usize) -> Stats {
+    /// u = 𝒦p, and the statistics of g = u − h over the regions defined by p, gathered row by
+    /// row as the inverse transform writes u (one pass over the arrays fewer than computing them
+    /// after the convolution).
+    fn displacement_and_stats(&mut self, heights: &[f64], pressure: &[f64], reference: f64, pm: f64) -> Stats {
         let n = self.n;
-        self.stats
-            .par_iter_mut()
-            .with_min_len(min_len)
-            .zip(pressure.par_chunks(n))
-            .zip(self.u.par_chunks(n).zip(heights.par_chunks(n)))
-            .for_each(|((acc, p), (u, h))| {
+        self.plan.convolve_with(
+            pressure,
+            |_, _| {},
+            &self.kernel,
+            &mut self.u,
+            |i, u| {
                 let mut s = Stats::default();
-                for ((&p, &u), &h) in p.iter().zip(u).zip(h) {
+                for ((&p, &u), &h) in pressure[i * n..(i + 1) * n].iter().zip(u).zip(&heights[i * n..(i + 1) * n]) {
                     s.add(p, u, h, reference, pm);
                 }
-                *acc = s;
-            });
+                s
+            },
+            Some(&mut self.stats),
+        );
         Stats::combine(&self.stats)
     }
 

@@ -28,8 +28,14 @@ pub type C64 = Complex<f64>;
 const BLOCK: usize = 16;
 
 /// Raw pointer that may be shared between rayon workers writing disjoint elements.
-#[derive(Clone, Copy)]
 struct SharedMut<T>(*mut T);
+// Copy for any T (a derive would ask T: Copy): it copies the pointer, not the pointee.
+impl<T> Clone for SharedMut<T> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<T> Copy for SharedMut<T> {}
 unsafe impl<T> Send for SharedMut<T> {}
 unsafe impl<T> Sync for SharedMut<T> {}
 
@@ -120,21 +126,21 @@ impl FftPlan {
     /// in the transposed half-spectrum layout without padding (`kernel[qy * N + qx]`), with the
     /// 1/N² normalisation folded in. `input` and `output` may not alias.
     pub fn convolve(&mut self, input: &[f64], kernel: &[f64], output: &mut [f64]) {
-        self.convolve_with(input, |_, _| {}, kernel, output, |_, _| 0.0, None);
+        self.convolve_with(input, |_, _| {}, kernel, output, |_, _| (), None);
     }
 
     /// [`FftPlan::convolve`] with two hooks fused into its row passes, to save whole passes over the
     /// arrays in the solver: `pre(i, row)` may modify the copy of input row `i` before it is
     /// transformed; `post(i, row)` sees output row `i` once written and returns a number stored in
     /// `partials[i]` (when given), for deterministic reductions.
-    pub fn convolve_with(
+    pub fn convolve_with<R: Send>(
         &mut self,
         input: &[f64],
         pre: impl Fn(usize, &mut [f64]) + Sync,
         kernel: &[f64],
         output: &mut [f64],
-        post: impl Fn(usize, &[f64]) -> f64 + Sync,
-        partials: Option<&mut [f64]>,
+        post: impl Fn(usize, &[f64]) -> R + Sync,
+        partials: Option<&mut [R]>,
     ) {
         assert_eq!(kernel.len(), self.half() * self.n, "kernel must hold (N/2+1)·N values");
         self.row_forward(input, pre);
@@ -200,11 +206,11 @@ impl FftPlan {
     }
 
     /// Gathers transposed spectrum columns back into rows and applies the complex-to-real FFT.
-    fn row_inverse(
+    fn row_inverse<R: Send>(
         &mut self,
         output: &mut [f64],
-        post: impl Fn(usize, &[f64]) -> f64 + Sync,
-        partials: Option<&mut [f64]>,
+        post: impl Fn(usize, &[f64]) -> R + Sync,
+        partials: Option<&mut [R]>,
     ) {
         let n = self.n;
         assert_eq!(output.len(), n * n, "output must hold N² values");
@@ -236,7 +242,8 @@ impl FftPlan {
                     c2r.process_with_scratch(row_in, out, scratch).expect("buffer sizes match the plan");
                     let value = post(i0 + r, out);
                     if let Some(p) = partials {
-                        // SAFETY: row i0 + r < n belongs to this block alone.
+                        // SAFETY: row i0 + r < n belongs to this block alone; the slot holds an
+                        // initialised R, dropped by the assignment.
                         unsafe { *p.0.add(i0 + r) = value };
                     }
                 }
