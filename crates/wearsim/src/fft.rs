@@ -8,12 +8,14 @@
 //!   `q_x`), each row padded to `N + 4` so that the stride is not a power of two;
 //! - the transpose is fused into the row passes, in blocks of [`BLOCK`] rows;
 //! - forward column FFT, kernel multiplication and inverse column FFT run in one pass per row;
-//! - work is split with `rayon`, with per-thread scratch; every element is computed by the same
+//! - work is split with `rayon`, with per-thread scratch buffers that grow once and are then
+//!   reused by every transform on that thread (no allocation per transform); every element is computed by the same
 //!   sequence of operations whatever the thread count, so results are bit-identical across thread
 //!   counts.
 //!
 //! Arrays are row-major `a[i * n + j]`: `i` is x (the first NumPy axis), `j` is y.
 
+use std::cell::RefCell;
 use std::sync::Arc;
 
 use rayon::prelude::*;
@@ -23,6 +25,37 @@ use rustfft::{Fft, FftPlanner};
 
 /// Complex number type of the spectra.
 pub type C64 = Complex<f64>;
+
+/// Work buffers of one thread: a real row, a block of complex rows and FFT scratch.
+#[derive(Default)]
+struct Work {
+    real: Vec<f64>,
+    block: Vec<C64>,
+    scratch: Vec<C64>,
+}
+
+thread_local! {
+    static WORK: RefCell<Work> = RefCell::new(Work::default());
+}
+
+/// Runs `f` on this thread's work buffers cut to the given lengths (grown, zero-filled, on first
+/// use of a larger size). `f` must not start another transform on the same thread.
+fn with_work<T>(real: usize, block: usize, scratch: usize, f: impl FnOnce(&mut [f64], &mut [C64], &mut [C64]) -> T) -> T {
+    WORK.with(|w| {
+        let mut w = w.borrow_mut();
+        let w = &mut *w;
+        if w.real.len() < real {
+            w.real.resize(real, 0.0);
+        }
+        if w.block.len() < block {
+            w.block.resize(block, C64::new(0.0, 0.0));
+        }
+        if w.scratch.len() < scratch {
+            w.scratch.resize(scratch, C64::new(0.0, 0.0));
+        }
+        f(&mut w.real[..real], &mut w.block[..block], &mut w.scratch[..scratch])
+    })
+}
 
 /// Rows handled together in the transposing row passes (16 rows of a 4096² array fit in L2).
 const BLOCK: usize = 16;
@@ -103,10 +136,10 @@ impl FftPlan {
         let n = self.n;
         let stride = self.stride;
         let fft = &self.col_forward;
-        self.spectrum.par_chunks_mut(stride).for_each_init(
-            || vec![C64::new(0.0, 0.0); fft.get_inplace_scratch_len()],
-            |scratch, row| fft.process_with_scratch(&mut row[..n], scratch),
-        );
+        let scratch_len = fft.get_inplace_scratch_len();
+        self.spectrum.par_chunks_mut(stride).for_each(|row| {
+            with_work(0, 0, scratch_len, |_, _, scratch| fft.process_with_scratch(&mut row[..n], scratch))
+        });
     }
 
     /// Unnormalised inverse transform of the spectrum buffer into `output` (N² values). The buffer is
@@ -115,11 +148,11 @@ impl FftPlan {
         let n = self.n;
         let stride = self.stride;
         let fft = &self.col_inverse;
-        self.spectrum.par_chunks_mut(stride).for_each_init(
-            || vec![C64::new(0.0, 0.0); fft.get_inplace_scratch_len()],
-            |scratch, row| fft.process_with_scratch(&mut row[..n], scratch),
-        );
-        self.row_inverse(output, |_, _| 0.0, None);
+        let scratch_len = fft.get_inplace_scratch_len();
+        self.spectrum.par_chunks_mut(stride).for_each(|row| {
+            with_work(0, 0, scratch_len, |_, _, scratch| fft.process_with_scratch(&mut row[..n], scratch))
+        });
+        self.row_inverse(output, |_, _| (), None);
     }
 
     /// `output = IFFT(kernel · FFT(input))`, the periodic convolution by a real, even kernel given
@@ -152,17 +185,16 @@ impl FftPlan {
         self.spectrum
             .par_chunks_mut(stride)
             .zip(kernel.par_chunks(n))
-            .for_each_init(
-                || vec![C64::new(0.0, 0.0); scratch_len],
-                |scratch, (row, k)| {
+            .for_each(|(row, k)| {
+                with_work(0, 0, scratch_len, |_, _, scratch| {
                     let row = &mut row[..n];
                     fwd.process_with_scratch(row, scratch);
                     for (c, &w) in row.iter_mut().zip(k) {
                         *c *= w;
                     }
                     inv.process_with_scratch(row, scratch);
-                },
-            );
+                })
+            });
         self.row_inverse(output, post, partials);
     }
 
@@ -174,15 +206,9 @@ impl FftPlan {
         let stride = self.stride;
         let r2c = &self.r2c;
         let spec = SharedMut(self.spectrum.as_mut_ptr());
-        input.par_chunks(BLOCK * n).enumerate().for_each_init(
-            || {
-                (
-                    r2c.make_input_vec(),
-                    vec![C64::new(0.0, 0.0); BLOCK * half],
-                    r2c.make_scratch_vec(),
-                )
-            },
-            |(row_in, block_out, scratch), (b, rows)| {
+        let scratch_len = r2c.get_scratch_len();
+        input.par_chunks(BLOCK * n).enumerate().for_each(|(b, rows)| {
+            with_work(n, BLOCK * half, scratch_len, |row_in, block_out, scratch| {
                 let spec = spec;
                 let rows_here = rows.len() / n;
                 for r in 0..rows_here {
@@ -201,8 +227,8 @@ impl FftPlan {
                         *d = block_out[r * half + qy];
                     }
                 }
-            },
-        );
+            })
+        });
     }
 
     /// Gathers transposed spectrum columns back into rows and applies the complex-to-real FFT.
@@ -222,9 +248,9 @@ impl FftPlan {
         let stride = self.stride;
         let c2r = &self.c2r;
         let spec = &self.spectrum;
-        output.par_chunks_mut(BLOCK * n).enumerate().for_each_init(
-            || (vec![C64::new(0.0, 0.0); BLOCK * half], c2r.make_scratch_vec()),
-            |(block_in, scratch), (b, rows)| {
+        let scratch_len = c2r.get_scratch_len();
+        output.par_chunks_mut(BLOCK * n).enumerate().for_each(|(b, rows)| {
+            with_work(0, BLOCK * half, scratch_len, |_, block_in, scratch| {
                 let rows_here = rows.len() / n;
                 let i0 = b * BLOCK;
                 for qy in 0..half {
@@ -247,8 +273,8 @@ impl FftPlan {
                         unsafe { *p.0.add(i0 + r) = value };
                     }
                 }
-            },
-        );
+            })
+        });
     }
 }
 
