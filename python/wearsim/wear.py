@@ -39,7 +39,8 @@ SERIES_COLUMNS = [
 def static_wear(junctions: Junctions, critical_diameter: float) -> Dict[str, float]:
     """Static model on one contact solution: ``wear_coefficient`` k_static = Σ_{A_i ≥ A*} A_i / Σ A_i
     and ``wear_rate_over_omega`` = k_static Σ A_i (volume per sliding distance over the shape factor
-    ω), with A* = π d*²/4; ``critical_diameter`` d* in the unit of the pixel size."""
+    ω), with A* = π d*²/4; also the counts ``junctions`` and ``critical_junctions`` (A_i ≥ A*).
+    ``critical_diameter`` d* in the unit of the pixel size."""
     return _wearsim.static_wear_model(
         [int(p) for p in junctions.pixels], junctions.pixel_size, float(critical_diameter)
     )

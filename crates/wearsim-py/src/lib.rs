@@ -467,7 +467,8 @@ fn static_wear_model<'py>(
     d.set_item("wear_coefficient", w.wear_coefficient)?;
     d.set_item("wear_rate_over_omega", w.wear_rate_over_omega)?;
     d.set_item("junctions", junctions.len())?;
-    d.set_item("critical_junctions", junctions.iter().filter(|j| j.diameter >= critical_diameter).count())?;
+    let critical_area = std::f64::consts::PI * critical_diameter * critical_diameter / 4.0;
+    d.set_item("critical_junctions", junctions.iter().filter(|j| j.area >= critical_area).count())?;
     Ok(d)
 }
 

@@ -488,7 +488,7 @@ impl ContactSolver {
                     break;
                 }
                 self.balance_load(heights, pressure, total, pm, mean, min_len, Some(next.load));
-                // 𝒦p into the spare buffer, so that the carried-along u stays for an undo.
+                // The carried-along u moves to the spare buffer (kept for an undo); 𝒦p goes into u.
                 std::mem::swap(&mut self.u, &mut self.u_alt);
                 stats = self.displacement_and_stats(heights, pressure, mean, pm);
                 convolutions += 1;
