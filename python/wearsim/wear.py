@@ -124,7 +124,7 @@ class RunFile:
     def slide(self, *, threads: Optional[int] = None) -> Tuple[pd.DataFrame, Dict[str, Any]]:
         """The sliding model exactly as ``wearsim slide RUN`` runs it: ``(series, summary)`` equal to
         its ``series.csv`` and ``summary.json`` (timings aside)."""
-        columns, summary, _csv = self._run.slide(threads)
+        columns, summary = self._run.slide(threads)
         return _series(columns), summary
 
     def __repr__(self) -> str:

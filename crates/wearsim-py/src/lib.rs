@@ -18,7 +18,7 @@ use pyo3::types::PyDict;
 
 use wearsim::config::{RunConfig, SlidingConfig};
 use wearsim::junctions::{JunctionLabeller, NO_JUNCTION};
-use wearsim::output::{series_csv, sliding_summary, RunInputs};
+use wearsim::output::{sliding_summary, RunInputs};
 use wearsim::sliding::{run_sliding, schedule, series, LoadRun, SlidingSetup};
 use wearsim::study::{self, Job, Study};
 use wearsim::wear::static_wear;
@@ -632,13 +632,13 @@ impl PyRunFile {
         Ok((to_array(py, t.n(), t.heights().to_vec()), to_array(py, b.n(), b.heights().to_vec())))
     }
 
-    /// The sliding model as `wearsim slide` runs it. Returns (series columns, summary, series CSV).
+    /// The sliding model as `wearsim slide` runs it. Returns (series columns, summary).
     #[pyo3(signature = (threads = None))]
     fn slide<'py>(
         &self,
         py: Python<'py>,
         threads: Option<usize>,
-    ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>, String)> {
+    ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
         let config = &self.config;
         let Some(sliding) = config.sliding.as_ref() else {
             return Err(PyValueError::new_err(format!(
@@ -661,7 +661,7 @@ impl PyRunFile {
         })?;
         let seconds = start.elapsed().as_secs_f64();
         let summary = sliding_summary(&RunInputs::of_run(config, sliding), &runs, seconds, schedule(n, sliding).len());
-        Ok((series_columns(py, &runs)?, json_to_py(py, &summary)?, series_csv(&runs)))
+        Ok((series_columns(py, &runs)?, json_to_py(py, &summary)?))
     }
 }
 
