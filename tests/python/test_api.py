@@ -142,6 +142,9 @@ def test_slide_equals_the_cli(tmp_path, run_file, wearsim_bin):
     arrays_series, arrays_summary = wearsim.slide(top, bottom, run.material, run.loads)
     pd.testing.assert_frame_equal(arrays_series, series)
     assert arrays_summary["results"] == summary["results"]
+    # The thread count changes nothing.
+    one_thread, _ = wearsim.slide(top, bottom, run.material, run.loads, threads=1)
+    pd.testing.assert_frame_equal(one_thread, series)
     # Bookkeeping invariants: V and N*₊ never decrease within a load and fracture energy.
     for _, g in series.groupby(["load", "fracture_energy"]):
         assert np.all(np.diff(g["volume"]) >= 0) and np.all(np.diff(g["n_formed"]) >= 0)
