@@ -438,13 +438,14 @@ impl ContactSolver {
             let shift = if stats.n_free > 0.0 { sum_t / stats.n_free } else { 0.0 };
 
             // r = 𝒦 t_f with t_f = t − shift on free pixels (zero mean there), and Σ_free r·t_f.
-            let p_ro: &[f64] = pressure;
+            // t is zero outside the free pixels, so `t ≠ 0` marks them without reading p (a free
+            // pixel whose t is exactly 0 is left out consistently here and in the update).
             let t = &self.t;
             self.plan.convolve_with(
                 &self.t,
-                |i, row| {
-                    for (v, &p) in row.iter_mut().zip(&p_ro[i * n..(i + 1) * n]) {
-                        if p > 0.0 && p < pm {
+                |_, row| {
+                    for v in row.iter_mut() {
+                        if *v != 0.0 {
                             *v -= shift;
                         }
                     }
@@ -453,8 +454,8 @@ impl ContactSolver {
                 &mut self.r,
                 |i, row| {
                     let mut s = 0.0;
-                    for ((&r, &tv), &p) in row.iter().zip(&t[i * n..(i + 1) * n]).zip(&p_ro[i * n..(i + 1) * n]) {
-                        if p > 0.0 && p < pm {
+                    for (&r, &tv) in row.iter().zip(&t[i * n..(i + 1) * n]) {
+                        if tv != 0.0 {
                             s += r * (tv - shift);
                         }
                     }
@@ -652,7 +653,7 @@ impl ContactSolver {
                             *p = (pm - tau * d).max(0.0);
                             released += 1.0;
                         }
-                    } else if cg_step {
+                    } else if cg_step && t != 0.0 {
                         let q = *p - tau * (t - shift);
                         if q <= 0.0 {
                             *p = 0.0;
