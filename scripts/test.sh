@@ -18,7 +18,13 @@ fi
 if ! .venv/bin/python -m pip install -q tamaas; then
     echo "WARNING: tamaas could not be installed from PyPI; the tamaas cross-checks will be skipped" >&2
 fi
-# The Python package, built by maturin from this checkout, as a user installs it.
+# The Python package, built by maturin from this checkout, as a user installs it: first into a
+# fresh venv with nothing else (its dependencies come from PyPI), then into the test venv.
+fresh_venv="$(mktemp -d)/venv"
+python3 -m venv "$fresh_venv"
+"$fresh_venv/bin/python" -m pip install -q .
+(cd /tmp && "$fresh_venv/bin/python" -c "import wearsim")
+rm -rf "$fresh_venv"
 .venv/bin/python -m pip install -q .
 (cd /tmp && "$OLDPWD/.venv/bin/python" -c "import wearsim; print('wearsim', wearsim.__version__, 'imported from', wearsim.__file__)")
 # The type stubs match the compiled module, and the package type-checks against them.
