@@ -1,7 +1,7 @@
 """Type stubs of the compiled extension `wearsim._wearsim` (crates/wearsim-py). Use the public API
 of the `wearsim` package; this layer takes contiguous float64 arrays."""
 from pathlib import Path
-from typing import Any, Dict, List, Optional, Tuple, final
+from typing import Any, Callable, Dict, List, Optional, Tuple, final
 
 import numpy as np
 import numpy.typing as npt
@@ -69,6 +69,7 @@ def slide(
     step_running_in: int = 4,
     step: int = 1,
     threads: Optional[int] = None,
+    progress: Optional[Callable[[int, int], None]] = None,
 ) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]: ...
 def collect_study(out: Path) -> Tuple[int, int]: ...
 
@@ -159,7 +160,9 @@ class RunFile:
     @property
     def loads(self) -> Optional[List[float]]: ...
     def surfaces(self) -> Tuple[_F64Array, _F64Array]: ...
-    def slide(self, threads: Optional[int] = None) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]: ...
+    def slide(
+        self, threads: Optional[int] = None, progress: Optional[Callable[[int, int], None]] = None
+    ) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]: ...
 
 @final
 class Study:
@@ -179,6 +182,7 @@ class Study:
         workers: Optional[int] = None,
         shard: Optional[Tuple[int, int]] = None,
         threads: Optional[int] = None,
+        progress: Optional[Callable[[int, int], None]] = None,
     ) -> Tuple[int, int]: ...
     def run_job(self, index: int, threads: Optional[int] = None) -> str: ...
     def write_result(self, out: Path, index: int, result: str) -> None: ...

@@ -25,6 +25,7 @@ from typing import Any, Optional, Tuple, Union
 import pandas as pd
 
 from . import _wearsim
+from ._progress import ProgressArg, callback
 
 PathLike = Union[str, os.PathLike]
 
@@ -112,6 +113,7 @@ def run(
     workers: Optional[int] = None,
     threads: Optional[int] = None,
     shard: Optional[Tuple[int, int]] = None,
+    progress: ProgressArg = None,
 ) -> pd.DataFrame:
     """Runs a study (a :class:`Study` or a study file) into the result folder ``out`` (default:
     ``<study name>-results`` in the working directory), skipping jobs already done there, then
@@ -122,12 +124,14 @@ def run(
     threads per task, default all of the worker's machine); job files are written here as tasks
     finish, so a study stopped midway (Ctrl-C, a lost allocation) resumes on the next call.
     ``shard=(k, count)`` runs only jobs k−1, k−1+count, … (local runs; the table is then returned
-    only when the whole study is done, else an empty DataFrame).
+    only when the whole study is done, else an empty DataFrame). ``progress``: True prints jobs
+    done on stderr; a callable gets ``(jobs done, jobs to run)``.
     """
     study = _as_study(study)
     out = Path(out) if out is not None else _default_out(study)
+    report = callback(progress, "study: job")
     if client is None:
-        study._study.run(out, workers, shard, threads)
+        study._study.run(out, workers, shard, threads, report)
     else:
         if shard is not None:
             raise ValueError("invalid `shard`: with a Dask client the cluster runs every job; drop `shard`")
@@ -147,8 +151,10 @@ def run(
             for index in pending
         }
         try:
-            for future in as_completed(futures):
+            for done, future in enumerate(as_completed(futures), start=1):
                 study._study.write_result(out, futures[future], future.result())
+                if report is not None:
+                    report(done, len(futures))
         finally:
             for future in futures:
                 if not future.done():

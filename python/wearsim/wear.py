@@ -17,6 +17,7 @@ import numpy as np
 import pandas as pd
 
 from . import _wearsim
+from ._progress import ProgressArg, callback
 from .junctions import Junctions
 from .surface import _heights
 
@@ -66,6 +67,7 @@ def slide(
     step_running_in: int = 4,
     step: int = 1,
     threads: Optional[int] = None,
+    progress: ProgressArg = None,
 ) -> Tuple[pd.DataFrame, Dict[str, Any]]:
     """Slides ``top`` over ``bottom`` (heights, length unit; side ``length``) along x and runs the
     sliding wear model for every normal load in ``loads`` (F_N, pressure × length²) and every
@@ -75,6 +77,7 @@ def slide(
     distance ``running_in``·L, then in steps of ``step`` pixels up to ``distance``·L; each step is a
     contact solve warm-started from the previous one. ``modulus``: "half-space" (E* = E/(1−ν²)) or
     "composite" (E* = E/(2(1−ν²))). ``threads`` runs on that many threads (default: all).
+    ``progress``: True prints steps done on stderr; a callable gets ``(steps done, total)``.
 
     Returns ``(series, summary)``: series with the columns :data:`SERIES_COLUMNS` (s in the length
     unit, volume in length³, contact_area as a fraction of L²), summary as described in the module
@@ -95,6 +98,7 @@ def slide(
         step_running_in,
         step,
         threads,
+        callback(progress, "slide: step"),
     )
     return _series(columns), summary
 
@@ -121,10 +125,12 @@ class RunFile:
         """The (top, bottom) surfaces, generated or read as the run file says."""
         return self._run.surfaces()
 
-    def slide(self, *, threads: Optional[int] = None) -> Tuple[pd.DataFrame, Dict[str, Any]]:
+    def slide(
+        self, *, threads: Optional[int] = None, progress: ProgressArg = None
+    ) -> Tuple[pd.DataFrame, Dict[str, Any]]:
         """The sliding model exactly as ``wearsim slide RUN`` runs it: ``(series, summary)`` equal to
-        its ``series.csv`` and ``summary.json`` (timings aside)."""
-        columns, summary = self._run.slide(threads)
+        its ``series.csv`` and ``summary.json`` (timings aside). ``progress`` as for :func:`slide`."""
+        columns, summary = self._run.slide(threads, callback(progress, "slide: step"))
         return _series(columns), summary
 
     def __repr__(self) -> str:

@@ -183,6 +183,27 @@ def test_errors_of_files_and_convergence(tmp_path):
     assert issubclass(wearsim.NotConvergedError, wearsim.WearsimError)
 
 
+def test_progress_callback_and_its_exceptions():
+    top, bottom = wearsim.generate_pair(128, seed=3, lambda_lower=16 / 128, lambda_upper=0.25, rms_height=0.005)
+    m = wearsim.Material(1.0, 0.3, 0.01, [1e-6])
+    calls = []
+    series, _ = wearsim.slide(top, bottom, m, [5e-4, 1e-3], progress=lambda done, total: calls.append((done, total)))
+    steps = len(series)
+    assert calls and calls[-1] == (steps, steps)
+    assert all(a[0] < b[0] for a, b in zip(calls, calls[1:])) and all(t == steps for _, t in calls)
+
+    class Stop(Exception):
+        pass
+
+    def stop(done, total):
+        raise Stop(f"stopped at {done}/{total}")
+
+    with pytest.raises(Stop, match="stopped at"):
+        wearsim.slide(top, bottom, m, [5e-4, 1e-3, 2e-3], distance=1.0, running_in=0.5, progress=stop)
+    with pytest.raises(ValueError, match="invalid `progress`"):
+        wearsim.slide(top, bottom, m, [1e-3], progress="yes")
+
+
 def test_long_calls_release_the_gil():
     top, bottom = wearsim.generate_pair(256, seed=3, lambda_lower=16 / 256, lambda_upper=0.25, rms_height=0.005)
     m = wearsim.Material(1.0, 0.3, 0.01, [1e-6])

@@ -39,7 +39,9 @@ def test_local_run_equals_the_cli(tmp_path, study_file, wearsim_bin):
     assert len(study) == 8
     jobs = study.jobs()
     assert list(jobs["surface.seed"].unique()) == [1, 2] and set(jobs["load"]) == {5e-4, 1e-3}
-    tidy = wearsim.study.run(study, out=tmp_path / "py")
+    calls = []
+    tidy = wearsim.study.run(study, out=tmp_path / "py", progress=lambda d, t: calls.append((d, t)))
+    assert calls[-1] == (8, 8)
     cli = tmp_path / "cli"
     subprocess.run([wearsim_bin, "study", "run", str(study_file), "--out", str(cli)], check=True, capture_output=True)
     subprocess.run([wearsim_bin, "study", "collect", str(cli)], check=True, capture_output=True)

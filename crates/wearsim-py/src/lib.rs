@@ -6,6 +6,7 @@
 //! package `wearsim` around this module.
 
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::mpsc::{channel, RecvTimeoutError};
 use std::time::{Duration, Instant};
 
@@ -49,6 +50,21 @@ fn to_py(e: Error) -> PyErr {
     }
 }
 
+/// Steps or jobs done so far and their total, updated by the worker thread and reported to a Python
+/// callback by the calling thread.
+#[derive(Default)]
+struct Progress {
+    done: AtomicUsize,
+    total: AtomicUsize,
+}
+
+impl Progress {
+    fn set(&self, done: usize, total: usize) {
+        self.total.store(total, Ordering::Relaxed);
+        self.done.store(done, Ordering::Relaxed);
+    }
+}
+
 /// Runs `work` on a worker thread with the GIL released. Every 50 ms the calling thread checks for
 /// signals; on Ctrl-C it raises the interrupt flag, waits for the work to stop and re-raises the
 /// KeyboardInterrupt. `threads`, when given, runs the work on a pool of that many threads.
@@ -57,7 +73,20 @@ fn interruptible<T: Send>(
     threads: Option<usize>,
     work: impl FnOnce(&Interrupt) -> wearsim::Result<T> + Send,
 ) -> PyResult<T> {
+    interruptible_with_progress(py, threads, None, |interrupt, _| work(interrupt))
+}
+
+/// [`interruptible`] with progress: when `callback` is given, the calling thread calls
+/// `callback(done, total)` whenever the work has advanced its [`Progress`], and once at the end. An
+/// exception in the callback stops the work like Ctrl-C and is raised.
+fn interruptible_with_progress<T: Send>(
+    py: Python<'_>,
+    threads: Option<usize>,
+    callback: Option<&Bound<'_, PyAny>>,
+    work: impl FnOnce(&Interrupt, &Progress) -> wearsim::Result<T> + Send,
+) -> PyResult<T> {
     let interrupt = Interrupt::default();
+    let progress = Progress::default();
     let pool = match threads {
         Some(0) => return Err(PyValueError::new_err("invalid `threads`: must be at least 1")),
         Some(t) => Some(
@@ -68,14 +97,25 @@ fn interruptible<T: Send>(
         ),
         None => None,
     };
+    let mut reported = 0;
+    let mut report = || -> PyResult<()> {
+        let done = progress.done.load(Ordering::Relaxed);
+        match callback {
+            Some(f) if done != reported => {
+                reported = done;
+                f.call1((done, progress.total.load(Ordering::Relaxed))).map(|_| ())
+            }
+            _ => Ok(()),
+        }
+    };
     let (tx, rx) = channel();
     std::thread::scope(|scope| {
         let flag = interrupt.clone();
-        let pool = &pool;
+        let (pool, progress) = (&pool, &progress);
         scope.spawn(move || {
             let result = match pool {
-                Some(p) => p.install(|| work(&flag)),
-                None => work(&flag),
+                Some(p) => p.install(|| work(&flag, progress)),
+                None => work(&flag, progress),
             };
             let _ = tx.send(result);
         });
@@ -88,12 +128,16 @@ fn interruptible<T: Send>(
             });
             rx = back;
             match received {
-                Ok(result) => return result.map_err(to_py),
+                Ok(result) => {
+                    let value = result.map_err(to_py)?;
+                    report()?;
+                    return Ok(value);
+                }
                 Err(RecvTimeoutError::Timeout) => {
-                    if let Err(signal) = py.check_signals() {
+                    if let Err(stop) = py.check_signals().and_then(|_| report()) {
                         interrupt.request();
                         let _ = py.detach(move || rx.recv());
-                        return Err(signal);
+                        return Err(stop);
                     }
                 }
                 Err(RecvTimeoutError::Disconnected) => {
@@ -500,7 +544,7 @@ fn series_columns<'py>(py: Python<'py>, runs: &[LoadRun]) -> PyResult<Bound<'py,
 
 /// Sliding model on two given surfaces. Returns (series columns, summary).
 #[pyfunction]
-#[pyo3(signature = (top, bottom, length, material, loads, modulus = "half-space", tolerance = wearsim::contact::DEFAULT_TOLERANCE, max_iterations = wearsim::contact::DEFAULT_MAX_ITERATIONS, connectivity = 4, distance = 0.5, running_in = 0.25, step_running_in = 4, step = 1, threads = None))]
+#[pyo3(signature = (top, bottom, length, material, loads, modulus = "half-space", tolerance = wearsim::contact::DEFAULT_TOLERANCE, max_iterations = wearsim::contact::DEFAULT_MAX_ITERATIONS, connectivity = 4, distance = 0.5, running_in = 0.25, step_running_in = 4, step = 1, threads = None, progress = None))]
 #[allow(clippy::too_many_arguments)]
 fn slide<'py>(
     py: Python<'py>,
@@ -518,6 +562,7 @@ fn slide<'py>(
     step_running_in: usize,
     step: usize,
     threads: Option<usize>,
+    progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
     let t = surface_from("top", &top, length)?;
     let b = surface_from("bottom", &bottom, length)?;
@@ -543,7 +588,7 @@ fn slide<'py>(
     let sliding = SlidingConfig::new(loads, distance, running_in, step_running_in, step, Some(n)).map_err(to_py)?;
     let solver = wearsim::SolverOptions { tolerance, max_iterations };
     let start = Instant::now();
-    let runs = interruptible(py, threads, |interrupt| {
+    let runs = interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, steps| {
         let setup = SlidingSetup {
             material: &material.inner,
             effective_modulus: material.inner.effective_modulus(convention),
@@ -552,7 +597,7 @@ fn slide<'py>(
             sliding: &sliding,
             interrupt: interrupt.clone(),
         };
-        run_sliding(&t, &b, &setup, |_| {})
+        run_sliding(&t, &b, &setup, |view| steps.set(view.done, view.total))
     })?;
     let seconds = start.elapsed().as_secs_f64();
     let inputs = RunInputs {
@@ -633,11 +678,12 @@ impl PyRunFile {
     }
 
     /// The sliding model as `wearsim slide` runs it. Returns (series columns, summary).
-    #[pyo3(signature = (threads = None))]
+    #[pyo3(signature = (threads = None, progress = None))]
     fn slide<'py>(
         &self,
         py: Python<'py>,
         threads: Option<usize>,
+        progress: Option<Bound<'py, PyAny>>,
     ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
         let config = &self.config;
         let Some(sliding) = config.sliding.as_ref() else {
@@ -653,11 +699,11 @@ impl PyRunFile {
             )));
         }
         let start = Instant::now();
-        let (runs, n) = interruptible(py, threads, |interrupt| {
+        let (runs, n) = interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, steps| {
             let (top, bottom) = config.surfaces()?;
             let mut setup = SlidingSetup::from_run(config, sliding);
             setup.interrupt = interrupt.clone();
-            Ok((run_sliding(&top, &bottom, &setup, |_| {})?, top.n()))
+            Ok((run_sliding(&top, &bottom, &setup, |view| steps.set(view.done, view.total))?, top.n()))
         })?;
         let seconds = start.elapsed().as_secs_f64();
         let summary = sliding_summary(&RunInputs::of_run(config, sliding), &runs, seconds, schedule(n, sliding).len());
@@ -751,7 +797,7 @@ impl PyStudy {
 
     /// Runs the jobs of shard `shard` = (k, count) that have no result file, `workers` at a time
     /// (default: one per thread, as `wearsim study run`). Returns (computed, skipped).
-    #[pyo3(signature = (out, workers = None, shard = None, threads = None))]
+    #[pyo3(signature = (out, workers = None, shard = None, threads = None, progress = None))]
     fn run(
         &self,
         py: Python<'_>,
@@ -759,6 +805,7 @@ impl PyStudy {
         workers: Option<usize>,
         shard: Option<(usize, usize)>,
         threads: Option<usize>,
+        progress: Option<Bound<'_, PyAny>>,
     ) -> PyResult<(usize, usize)> {
         let study = &self.study;
         let base = &self.base;
@@ -769,10 +816,10 @@ impl PyStudy {
                 return Err(PyValueError::new_err(format!("invalid `shard`: ({k}, {count}) needs 1 ≤ k ≤ count")))
             }
         };
-        interruptible(py, threads, |interrupt| {
+        interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, done_jobs| {
             study::prepare_folder(&out, study, base)?;
             let workers = workers.unwrap_or_else(rayon::current_num_threads).max(1);
-            study::run_jobs(&out, &jobs, workers, interrupt, |_, _| {})
+            study::run_jobs(&out, &jobs, workers, interrupt, |done, total| done_jobs.set(done, total))
         })
     }
 
