@@ -120,9 +120,10 @@ def run(
     collects it. Returns the tidy table, equal to the ``results.csv`` of ``wearsim study collect``.
 
     Without ``client`` the jobs run here, ``workers`` at a time (default: one per thread, as
-    ``wearsim study run``) sharing this machine's threads (or ``threads`` of them). With a ``dask.distributed.Client`` every pending job is a Dask task (``threads``:
-    threads per task, default all of the worker's machine); job files are written here as tasks
-    finish, so a study stopped midway (Ctrl-C, a lost allocation) resumes on the next call.
+    ``wearsim study run``) sharing this machine's threads (or ``threads`` of them). With a
+    ``dask.distributed.Client`` every pending job is a Dask task (``threads``: threads per task,
+    default all of the worker's machine); job files are written here as tasks finish, so a study
+    stopped midway (Ctrl-C, a lost allocation) resumes on the next call.
     ``shard=(k, count)`` runs only jobs k−1, k−1+count, … (local runs; the table is then returned
     only when the whole study is done, else an empty DataFrame). ``progress``: True prints jobs
     done on stderr; a callable gets ``(jobs done, jobs to run)``.
