@@ -92,9 +92,7 @@ pub fn slide(run: &Path, out: &Path) -> Result<()> {
 pub fn junctions(map: &Path, connectivity: u8, out: &Path) -> Result<()> {
     use ndarray::Array2;
     use ndarray_npy::ReadNpyExt;
-    if connectivity != 4 && connectivity != 8 {
-        bail!("invalid `--connectivity`: {connectivity} must be 4 or 8");
-    }
+    wearsim::junctions::check_connectivity(connectivity).context("--connectivity")?;
     let open = || std::fs::File::open(map).with_context(|| format!("cannot open {}", map.display()));
     let flags: Array2<bool> = match Array2::<bool>::read_npy(open()?) {
         Ok(a) => a,

@@ -231,23 +231,13 @@ impl RunConfig {
             m.geometry_factor.unwrap_or(3.0),
         )?;
         let c = raw.contact;
-        let mut solver = SolverOptions::default();
-        if let Some(t) = c.tolerance {
-            if !(t > 0.0 && t < 1.0) {
-                return Err(Error::param("tolerance", format!("{t} must lie in (0, 1)")));
-            }
-            solver.tolerance = t;
-        }
-        if let Some(m) = c.max_iterations {
-            if m == 0 {
-                return Err(Error::param("max_iterations", "must be at least 1"));
-            }
-            solver.max_iterations = m;
-        }
+        let defaults = SolverOptions::default();
+        let solver = SolverOptions::new(
+            c.tolerance.unwrap_or(defaults.tolerance),
+            c.max_iterations.unwrap_or(defaults.max_iterations),
+        )?;
         let connectivity = c.connectivity.unwrap_or(4);
-        if connectivity != 4 && connectivity != 8 {
-            return Err(Error::param("connectivity", format!("{connectivity} must be 4 or 8")));
-        }
+        crate::junctions::check_connectivity(connectivity)?;
         let sliding = match raw.sliding {
             None => None,
             Some(sl) => {

@@ -47,6 +47,19 @@ pub struct SolverOptions {
     pub max_iterations: usize,
 }
 
+impl SolverOptions {
+    /// Validated settings: `tolerance` in (0, 1), `max_iterations` at least 1.
+    pub fn new(tolerance: f64, max_iterations: usize) -> Result<Self> {
+        if !(tolerance > 0.0 && tolerance < 1.0) {
+            return Err(Error::param("tolerance", format!("{tolerance} must lie in (0, 1)")));
+        }
+        if max_iterations == 0 {
+            return Err(Error::param("max_iterations", "must be at least 1"));
+        }
+        Ok(Self { tolerance, max_iterations })
+    }
+}
+
 impl Default for SolverOptions {
     fn default() -> Self {
         Self { tolerance: DEFAULT_TOLERANCE, max_iterations: DEFAULT_MAX_ITERATIONS }

@@ -239,6 +239,12 @@ pub fn run_sliding(
             return Err(Error::InfeasibleLoad { mean_pressure: load / area, flow_pressure: pm });
         }
     }
+    if setup.material.fracture_energies.is_empty() {
+        return Err(Error::param(
+            "fracture_energies",
+            "the material has none; give at least one 𝒢 to count wear",
+        ));
+    }
     let offsets = schedule(n, setup.sliding);
     if offsets.len() < 2 {
         return Err(Error::param("distance", "the schedule holds fewer than two offsets; raise `distance` or refine `grid`"));

@@ -91,7 +91,8 @@ impl Job {
         let r: JobResult = serde_json::from_str(&text).map_err(|e| Error::io(&p, format!("not a job result ({e})")))?;
         if r.index != self.index || r.material != self.material || r.load != self.load() || r.parameters != self.parameters() {
             return Err(Error::Config(format!(
-                "{} was written for another job ({} at load {:e}, {:?}), not for {} at load {:e}, {:?};                  the folder comes from another version of this study: use a new --out folder",
+                "{} was written for another job ({} at load {:e}, {:?}), not for {} at load {:e}, {:?}; \
+                 the folder comes from another version of this study: use a new --out folder",
                 p.display(),
                 r.material,
                 r.load,
@@ -400,15 +401,13 @@ pub fn run_jobs(
                     let outcome = pool.install(|| run_job(job, interrupt)).and_then(|result| write_result(dir, &result));
                     match outcome {
                         Ok(()) => progress(done.fetch_add(1, Ordering::SeqCst) + 1, pending.len()),
-                        Err(Error::Interrupted) => {
-                            if let Ok(mut slot) = first_error.lock() {
-                                slot.get_or_insert(Error::Interrupted);
-                            }
-                            return;
-                        }
                         Err(e) => {
+                            let e = match e {
+                                Error::Interrupted => e,
+                                e => Error::Config(format!("study job {}: {e}", job.index)),
+                            };
                             if let Ok(mut slot) = first_error.lock() {
-                                slot.get_or_insert(Error::Config(format!("study job {}: {e}", job.index)));
+                                slot.get_or_insert(e);
                             }
                             return;
                         }

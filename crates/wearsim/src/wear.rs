@@ -10,6 +10,8 @@ pub struct StaticWear {
     pub wear_coefficient: f64,
     /// W_static/ω = k_static Σ_i A_i (volume per sliding distance, divided by the shape factor ω).
     pub wear_rate_over_omega: f64,
+    /// Junctions with A_i ≥ A* = π d*²/4.
+    pub critical_junctions: usize,
 }
 
 /// Evaluates the static model for critical diameter d* on the labelled junctions.
@@ -17,9 +19,12 @@ pub fn static_wear(junctions: &[Junction], critical_diameter: f64) -> StaticWear
     let critical_area = std::f64::consts::PI * critical_diameter * critical_diameter / 4.0;
     // fold from +0.0: an empty f64 `sum()` is −0.0, which would print as "-0" in the outputs.
     let total = junctions.iter().fold(0.0, |a, j| a + j.area);
-    let large = junctions.iter().filter(|j| j.area >= critical_area).fold(0.0, |a, j| a + j.area);
+    let (large, critical_junctions) = junctions
+        .iter()
+        .filter(|j| j.area >= critical_area)
+        .fold((0.0, 0), |(a, c), j| (a + j.area, c + 1));
     let k = if total > 0.0 { large / total } else { 0.0 };
-    StaticWear { wear_coefficient: k, wear_rate_over_omega: k * total }
+    StaticWear { wear_coefficient: k, wear_rate_over_omega: k * total, critical_junctions }
 }
 
 /// What one sliding step adds to the record of one d* (SPEC §6).
