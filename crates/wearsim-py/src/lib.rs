@@ -18,12 +18,12 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use wearsim::config::{RunConfig, SlidingConfig};
-use wearsim::junctions::{JunctionLabeller, NO_JUNCTION};
+use wearsim::junctions::{check_connectivity, JunctionLabeller, NO_JUNCTION};
 use wearsim::output::{sliding_summary, RunInputs};
 use wearsim::sliding::{run_sliding, schedule, series, LoadRun, SlidingSetup};
 use wearsim::study::{self, Job, Study};
 use wearsim::wear::static_wear;
-use wearsim::{Error, Interrupt, Material, ModulusConvention, SpectrumParams, Surface};
+use wearsim::{Error, Interrupt, Material, ModulusConvention, SolverOptions, SpectrumParams, Surface};
 
 /// Two arrays returned together (a surface pair, labels and sizes, a spectrum).
 type Pair<'py, A, B> = PyResult<(Bound<'py, A>, Bound<'py, B>)>;
@@ -148,8 +148,8 @@ fn interruptible_with_progress<T: Send>(
     })
 }
 
-/// A square float64 array as (N, values), or a ValueError naming `field`.
-fn square(field: &str, a: &PyReadonlyArray2<'_, f64>) -> PyResult<(usize, Vec<f64>)> {
+/// A square array as (N, values), or a ValueError naming `field`.
+fn square<T: numpy::Element + Copy>(field: &str, a: &PyReadonlyArray2<'_, T>) -> PyResult<(usize, Vec<T>)> {
     let shape = a.shape();
     if shape[0] != shape[1] || shape[0] == 0 {
         return Err(PyValueError::new_err(format!(
@@ -158,6 +158,15 @@ fn square(field: &str, a: &PyReadonlyArray2<'_, f64>) -> PyResult<(usize, Vec<f6
         )));
     }
     Ok((shape[0], a.as_array().iter().copied().collect()))
+}
+
+/// [`square`] for an array that must be `n × n` (the grid of a solver or of another array).
+fn square_of(field: &str, a: &PyReadonlyArray2<'_, f64>, n: usize, of: &str) -> PyResult<Vec<f64>> {
+    let (m, values) = square(field, a)?;
+    if m != n {
+        return Err(PyValueError::new_err(format!("invalid `{field}`: grid {m}² differs from the {of}'s {n}²")));
+    }
+    Ok(values)
 }
 
 fn to_array<'py, T: numpy::Element>(py: Python<'py>, n: usize, values: Vec<T>) -> Bound<'py, PyArray2<T>> {
@@ -221,6 +230,18 @@ fn surface_from(field: &str, heights: &PyReadonlyArray2<'_, f64>, length: f64) -
     Surface::new(field, n, length, values).map_err(to_py)
 }
 
+/// The top and bottom surfaces of a slide, on one grid.
+fn surface_pair(
+    top: &PyReadonlyArray2<'_, f64>,
+    bottom: &PyReadonlyArray2<'_, f64>,
+    length: f64,
+) -> PyResult<(Surface, Surface)> {
+    let t = surface_from("top", top, length)?;
+    let values = square_of("bottom", bottom, t.n(), "top")?;
+    let b = Surface::new("bottom", t.n(), length, values).map_err(to_py)?;
+    Ok((t, b))
+}
+
 #[pyfunction]
 fn surface_statistics<'py>(
     py: Python<'py>,
@@ -256,11 +277,7 @@ fn composite_heights<'py>(
     bottom: PyReadonlyArray2<'py, f64>,
     offset: usize,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let t = surface_from("top", &top, 1.0)?;
-    let b = surface_from("bottom", &bottom, 1.0)?;
-    if t.n() != b.n() {
-        return Err(PyValueError::new_err(format!("invalid `bottom`: grid {}² differs from the top's {}²", b.n(), t.n())));
-    }
+    let (t, b) = surface_pair(&top, &bottom, 1.0)?;
     let n = t.n();
     let mut out = vec![0.0; n * n];
     wearsim::composite_heights(&t, &b, offset, &mut out);
@@ -361,15 +378,9 @@ impl PyContactSolver {
     #[new]
     #[pyo3(signature = (grid, length, effective_modulus, tolerance = wearsim::contact::DEFAULT_TOLERANCE, max_iterations = wearsim::contact::DEFAULT_MAX_ITERATIONS))]
     fn new(grid: usize, length: f64, effective_modulus: f64, tolerance: f64, max_iterations: usize) -> PyResult<Self> {
-        if !(tolerance > 0.0 && tolerance < 1.0) {
-            return Err(PyValueError::new_err(format!("invalid `tolerance`: {tolerance} must lie in (0, 1)")));
-        }
-        if max_iterations == 0 {
-            return Err(PyValueError::new_err("invalid `max_iterations`: must be at least 1"));
-        }
+        let options = SolverOptions::new(tolerance, max_iterations).map_err(to_py)?;
         let mut inner = wearsim::ContactSolver::new(grid, length, effective_modulus).map_err(to_py)?;
-        inner.options.tolerance = tolerance;
-        inner.options.max_iterations = max_iterations;
+        inner.options = options;
         Ok(Self { inner })
     }
 
@@ -405,21 +416,10 @@ impl PyContactSolver {
         initial_pressure: Option<PyReadonlyArray2<'py, f64>>,
     ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyDict>)> {
         let n = self.inner.n();
-        let (hn, h) = square("heights", &heights)?;
-        if hn != n {
-            return Err(PyValueError::new_err(format!("invalid `heights`: grid {hn}² differs from the solver's {n}²")));
-        }
+        let h = square_of("heights", &heights, n, "solver")?;
         let mut pressure = match initial_pressure {
             None => vec![0.0; n * n],
-            Some(p0) => {
-                let (pn, p) = square("initial_pressure", &p0)?;
-                if pn != n {
-                    return Err(PyValueError::new_err(format!(
-                        "invalid `initial_pressure`: grid {pn}² differs from the solver's {n}²"
-                    )));
-                }
-                p
-            }
+            Some(p0) => square_of("initial_pressure", &p0, n, "solver")?,
         };
         let area = self.inner.length() * self.inner.length();
         let solver = &mut self.inner;
@@ -451,10 +451,7 @@ impl PyContactSolver {
         pressure: PyReadonlyArray2<'py, f64>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let n = self.inner.n();
-        let (pn, p) = square("pressure", &pressure)?;
-        if pn != n {
-            return Err(PyValueError::new_err(format!("invalid `pressure`: grid {pn}² differs from the solver's {n}²")));
-        }
+        let p = square_of("pressure", &pressure, n, "solver")?;
         let mut out = vec![0.0; n * n];
         let solver = &mut self.inner;
         py.detach(|| solver.apply_influence(&p, &mut out));
@@ -473,18 +470,8 @@ fn label_junctions<'py>(
     contact: PyReadonlyArray2<'py, bool>,
     connectivity: u8,
 ) -> Pair<'py, PyArray2<i64>, PyArray1<u64>> {
-    if connectivity != 4 && connectivity != 8 {
-        return Err(PyValueError::new_err(format!("invalid `connectivity`: {connectivity} must be 4 or 8")));
-    }
-    let shape = contact.shape();
-    if shape[0] != shape[1] || shape[0] == 0 {
-        return Err(PyValueError::new_err(format!(
-            "invalid `contact`: array is {}×{}; it must be square and non-empty",
-            shape[0], shape[1]
-        )));
-    }
-    let n = shape[0];
-    let flags: Vec<bool> = contact.as_array().iter().copied().collect();
+    check_connectivity(connectivity).map_err(to_py)?;
+    let (n, flags) = square("contact", &contact)?;
     let (labels, sizes) = py.detach(|| {
         let mut labeller = JunctionLabeller::new(n, connectivity);
         labeller.label(|k| flags[k]);
@@ -511,8 +498,7 @@ fn static_wear_model<'py>(
     d.set_item("wear_coefficient", w.wear_coefficient)?;
     d.set_item("wear_rate_over_omega", w.wear_rate_over_omega)?;
     d.set_item("junctions", junctions.len())?;
-    let critical_area = std::f64::consts::PI * critical_diameter * critical_diameter / 4.0;
-    d.set_item("critical_junctions", junctions.iter().filter(|j| j.area >= critical_area).count())?;
+    d.set_item("critical_junctions", w.critical_junctions)?;
     Ok(d)
 }
 
@@ -564,29 +550,12 @@ fn slide<'py>(
     threads: Option<usize>,
     progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
-    let t = surface_from("top", &top, length)?;
-    let b = surface_from("bottom", &bottom, length)?;
-    if t.n() != b.n() {
-        return Err(PyValueError::new_err(format!("invalid `bottom`: grid {}² differs from the top's {}²", b.n(), t.n())));
-    }
+    let (t, b) = surface_pair(&top, &bottom, length)?;
     let n = t.n();
-    if material.inner.fracture_energies.is_empty() {
-        return Err(PyValueError::new_err(
-            "invalid `fracture_energies`: the material has none; give at least one 𝒢 to count wear",
-        ));
-    }
-    if !(tolerance > 0.0 && tolerance < 1.0) {
-        return Err(PyValueError::new_err(format!("invalid `tolerance`: {tolerance} must lie in (0, 1)")));
-    }
-    if max_iterations == 0 {
-        return Err(PyValueError::new_err("invalid `max_iterations`: must be at least 1"));
-    }
-    if connectivity != 4 && connectivity != 8 {
-        return Err(PyValueError::new_err(format!("invalid `connectivity`: {connectivity} must be 4 or 8")));
-    }
+    let solver = SolverOptions::new(tolerance, max_iterations).map_err(to_py)?;
+    check_connectivity(connectivity).map_err(to_py)?;
     let convention = modulus_convention(modulus)?;
     let sliding = SlidingConfig::new(loads, distance, running_in, step_running_in, step, Some(n)).map_err(to_py)?;
-    let solver = wearsim::SolverOptions { tolerance, max_iterations };
     let start = Instant::now();
     let runs = interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, steps| {
         let setup = SlidingSetup {
@@ -692,12 +661,6 @@ impl PyRunFile {
                 self.path.display()
             )));
         };
-        if config.material.fracture_energies.is_empty() {
-            return Err(PyValueError::new_err(format!(
-                "{}: [material] `fracture_energies` is empty; give at least one 𝒢",
-                self.path.display()
-            )));
-        }
         let start = Instant::now();
         let (runs, n) = interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, steps| {
             let (top, bottom) = config.surfaces()?;
