@@ -9,9 +9,9 @@
 //! - the transpose is fused into the row passes, in blocks of [`BLOCK`] rows;
 //! - forward column FFT, kernel multiplication and inverse column FFT run in one pass per row;
 //! - work is split with `rayon`, with per-thread scratch buffers that grow once and are then
-//!   reused by every transform on that thread (no allocation per transform); every element is computed by the same
-//!   sequence of operations whatever the thread count, so results are bit-identical across thread
-//!   counts.
+//!   reused by every transform on that thread (no allocation per transform); every element is
+//!   computed by the same sequence of operations whatever the thread count, so results are
+//!   bit-identical across thread counts.
 //!
 //! Arrays are row-major `a[i * n + j]`: `i` is x (the first NumPy axis), `j` is y.
 
@@ -133,26 +133,25 @@ impl FftPlan {
     /// (row FFTs with the transpose fused in, then column FFTs).
     pub fn forward(&mut self, input: &[f64]) {
         self.row_forward(input, |_, _| {});
-        let n = self.n;
-        let stride = self.stride;
-        let fft = &self.col_forward;
-        let scratch_len = fft.get_inplace_scratch_len();
-        self.spectrum.par_chunks_mut(stride).for_each(|row| {
-            with_work(0, 0, scratch_len, |_, _, scratch| fft.process_with_scratch(&mut row[..n], scratch))
-        });
+        let fft = Arc::clone(&self.col_forward);
+        self.column_pass(&*fft);
     }
 
     /// Unnormalised inverse transform of the spectrum buffer into `output` (N² values). The buffer is
     /// consumed. Divide by N² for the inverse of [`FftPlan::forward`].
     pub fn inverse(&mut self, output: &mut [f64]) {
+        let fft = Arc::clone(&self.col_inverse);
+        self.column_pass(&*fft);
+        self.row_inverse(output, |_, _| (), None);
+    }
+
+    /// `fft` applied in place to every (transposed) spectrum row.
+    fn column_pass(&mut self, fft: &dyn Fft<f64>) {
         let n = self.n;
-        let stride = self.stride;
-        let fft = &self.col_inverse;
         let scratch_len = fft.get_inplace_scratch_len();
-        self.spectrum.par_chunks_mut(stride).for_each(|row| {
+        self.spectrum.par_chunks_mut(self.stride).for_each(|row| {
             with_work(0, 0, scratch_len, |_, _, scratch| fft.process_with_scratch(&mut row[..n], scratch))
         });
-        self.row_inverse(output, |_, _| (), None);
     }
 
     /// `output = IFFT(kernel · FFT(input))`, the periodic convolution by a real, even kernel given
@@ -164,8 +163,8 @@ impl FftPlan {
 
     /// [`FftPlan::convolve`] with two hooks fused into its row passes, to save whole passes over the
     /// arrays in the solver: `pre(i, row)` may modify the copy of input row `i` before it is
-    /// transformed; `post(i, row)` sees output row `i` once written and returns a number stored in
-    /// `partials[i]` (when given), for deterministic reductions.
+    /// transformed; `post(i, row)` sees output row `i` once written and returns a value stored in
+    /// `partials[i]` (when given), for deterministic reductions (a sum, the solver's statistics).
     pub fn convolve_with<R: Send>(
         &mut self,
         input: &[f64],
