@@ -12,7 +12,7 @@ from typing import Optional
 import numpy as np
 
 from . import _wearsim
-from .surface import _heights
+from .surface import _float_grid
 
 
 @dataclass(frozen=True)
@@ -90,13 +90,13 @@ class ContactSolver:
         Raises ``ValueError`` for bad input (NaN heights, a load at or above p_m·L², …) and
         :class:`wearsim.NotConvergedError` when the iteration limit is reached.
         """
-        p0 = None if initial_pressure is None else _heights("initial_pressure", initial_pressure)
-        pressure, info = self._solver.solve(_heights("heights", heights), float(load), float(flow_pressure), p0)
+        p0 = None if initial_pressure is None else _float_grid("initial_pressure", initial_pressure)
+        pressure, info = self._solver.solve(_float_grid("heights", heights), float(load), float(flow_pressure), p0)
         return ContactResult(pressure=pressure, **info)
 
     def displacement(self, pressure: np.ndarray) -> np.ndarray:
         """Zero-mean surface displacement 𝒦p of the half-space under ``pressure`` (length unit)."""
-        return self._solver.displacement(_heights("pressure", pressure))
+        return self._solver.displacement(_float_grid("pressure", pressure))
 
 
 def solve_contact(
@@ -112,7 +112,7 @@ def solve_contact(
 ) -> ContactResult:
     """One contact solve (see :meth:`ContactSolver.solve`); for many solves on one grid, keep a
     :class:`ContactSolver`."""
-    heights = _heights("heights", heights)
+    heights = _float_grid("heights", heights)
     solver = ContactSolver(
         heights.shape[0], length, effective_modulus, tolerance=tolerance, max_iterations=max_iterations
     )

@@ -16,7 +16,8 @@ from . import _wearsim
 Generation = Literal["random-phase", "filtered-noise"]
 
 
-def _heights(name: str, a: np.ndarray) -> np.ndarray:
+def _float_grid(name: str, a: np.ndarray) -> np.ndarray:
+    """A 2-D field (heights, pressure) as a contiguous float64 array, for the extension module."""
     a = np.ascontiguousarray(a, dtype=np.float64)
     if a.ndim != 2:
         raise ValueError(f"invalid `{name}`: a 2-D array is needed, got {a.ndim} dimensions")
@@ -75,13 +76,13 @@ def generate_pair(
 def surface_statistics(heights: np.ndarray, length: float = 1.0) -> Dict[str, float]:
     """RMS height (unit of the heights) and RMS slope (dimensionless, spectral) of a periodic
     surface of side ``length``, with its grid and pixel size."""
-    return _wearsim.surface_statistics(_heights("heights", heights), length)
+    return _wearsim.surface_statistics(_float_grid("heights", heights), length)
 
 
 def radial_psd(heights: np.ndarray, length: float = 1.0) -> Tuple[np.ndarray, np.ndarray]:
     """Radially averaged power spectral density: (q, C(q)), q the wavenumber in cycles per
     ``length`` (q = L/λ), C in height² (as ``wearsim surface`` writes it)."""
-    return _wearsim.radial_psd(_heights("heights", heights), length)
+    return _wearsim.radial_psd(_float_grid("heights", heights), length)
 
 
 def composite_heights(top: np.ndarray, bottom: np.ndarray, offset: int = 0) -> np.ndarray:
@@ -89,4 +90,4 @@ def composite_heights(top: np.ndarray, bottom: np.ndarray, offset: int = 0) -> n
     x: ``bottom + np.roll(top, offset, axis=0)``."""
     if offset < 0:
         raise ValueError(f"invalid `offset`: {offset} must be a non-negative number of pixels")
-    return _wearsim.composite_heights(_heights("top", top), _heights("bottom", bottom), offset)
+    return _wearsim.composite_heights(_float_grid("top", top), _float_grid("bottom", bottom), offset)

@@ -19,7 +19,7 @@ import pandas as pd
 from . import _wearsim
 from ._progress import ProgressArg, callback
 from .junctions import Junctions
-from .surface import _heights
+from .surface import _float_grid
 
 #: Columns of the series, in order.
 SERIES_COLUMNS = [
@@ -84,8 +84,8 @@ def slide(
     documentation.
     """
     columns, summary = _wearsim.slide(
-        _heights("top", top),
-        _heights("bottom", bottom),
+        _float_grid("top", top),
+        _float_grid("bottom", bottom),
         float(length),
         material,
         [float(f) for f in loads],

@@ -263,7 +263,6 @@ fn draw_severity(area: &DrawingArea<impl DrawingBackend, Shift>, points: &[(Stri
         .draw()
         .map_err(|e| err(e.to_string()))?;
     let mut names: Vec<&String> = points.iter().map(|p| &p.0).collect();
-    names.dedup();
     names.sort();
     names.dedup();
     for (i, name) in names.iter().enumerate() {
