@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-wearsim = pytest.importorskip("wearsim", reason="the wearsim package is not installed: pip install .")
+import wearsim
 
 RUN = """
 units = "reduced"

@@ -5,7 +5,7 @@ import subprocess
 import pandas as pd
 import pytest
 
-wearsim = pytest.importorskip("wearsim", reason="the wearsim package is not installed: pip install .")
+import wearsim
 
 STUDY = """
 [surface]

@@ -4,7 +4,7 @@ the same arrays. Skipped, visibly, only where tamaas cannot be imported."""
 import numpy as np
 import pytest
 
-wearsim = pytest.importorskip("wearsim", reason="the wearsim package is not installed: pip install .")
+import wearsim
 tm = pytest.importorskip("tamaas", reason="tamaas not installed: pip install tamaas")
 from tamaas_helpers import same_partition, tamaas_labels, tamaas_model  # noqa: E402
 
