@@ -41,15 +41,33 @@ pub fn peak_memory_mib() -> Option<f64> {
 fn paper_pair(n: usize) -> Result<(Surface, Surface)> {
     let spectrum = SpectrumParams::paper_roughness(n, 1.0);
     let (s1, s2) = pair_seeds(1);
-    Ok((Surface::generate(n, 1.0, &spectrum, s1)?, Surface::generate(n, 1.0, &spectrum, s2)?))
+    Ok((
+        Surface::generate(n, 1.0, &spectrum, s1)?,
+        Surface::generate(n, 1.0, &spectrum, s2)?,
+    ))
 }
 
 pub fn run(args: &BenchArgs) -> Result<()> {
     let threads = rayon::current_num_threads();
-    println!("wearsim {} bench, {threads} threads; paper roughness, τ̃ = 0.010 E, F_N = 1e-3 E L²", wearsim::VERSION);
+    println!(
+        "wearsim {} bench, {threads} threads; paper roughness, τ̃ = 0.010 E, F_N = 1e-3 E L²",
+        wearsim::VERSION
+    );
     println!(
         "{:>5} {:>9} {:>10} {:>6} {:>6} {:>9} {:>10} {:>6} {:>6} {:>9} {:>9} {:>9} {:>9}",
-        "N", "fft_ms", "cold_s", "iters", "convs", "ms/iter", "warm_s", "iters", "convs", "iter/fft", "conv/fft", "warm/cold", "peak_MiB"
+        "N",
+        "fft_ms",
+        "cold_s",
+        "iters",
+        "convs",
+        "ms/iter",
+        "warm_s",
+        "iters",
+        "convs",
+        "iter/fft",
+        "conv/fft",
+        "warm/cold",
+        "peak_MiB"
     );
     let mut rows = Vec::new();
     let material = Material::new(1.0, 0.3, 0.010, vec![], 3.0)?;
@@ -140,14 +158,33 @@ pub fn run_slide(args: &SlideBenchArgs) -> Result<()> {
     let threads = rayon::current_num_threads();
     let material = Material::new(1.0, 0.3, 0.010, vec![0.25e-6, 0.5e-6, 0.75e-6, 1.0e-6], 3.0)?;
     let e_star = material.effective_modulus(ModulusConvention::HalfSpace);
-    let sliding = SlidingConfig { loads: vec![2.5e-4, 5e-4, 1e-3, 2e-3], distance: 0.5, running_in: 0.25, step_running_in: 4, step: 1 };
+    let sliding = SlidingConfig {
+        loads: vec![2.5e-4, 5e-4, 1e-3, 2e-3],
+        distance: 0.5,
+        running_in: 0.25,
+        step_running_in: 4,
+        step: 1,
+    };
     let (top, bottom) = paper_pair(args.n)?;
-    let setup = SlidingSetup { material: &material, effective_modulus: e_star, solver: Default::default(), connectivity: 4, sliding: &sliding, interrupt: Default::default() };
+    let setup = SlidingSetup {
+        material: &material,
+        effective_modulus: e_star,
+        solver: Default::default(),
+        connectivity: 4,
+        sliding: &sliding,
+        interrupt: Default::default(),
+    };
     let t = Instant::now();
     let runs = run_sliding(&top, &bottom, &setup, |_| {})?;
     let total = t.elapsed().as_secs_f64();
     let steps: usize = runs.iter().map(|r| r.steps.len()).sum();
-    let (solve, label, book) = runs.iter().fold((0.0, 0.0, 0.0), |a, r| (a.0 + r.timing.solve, a.1 + r.timing.labelling, a.2 + r.timing.bookkeeping));
+    let (solve, label, book) = runs.iter().fold((0.0, 0.0, 0.0), |a, r| {
+        (
+            a.0 + r.timing.solve,
+            a.1 + r.timing.labelling,
+            a.2 + r.timing.bookkeeping,
+        )
+    });
     let iterations: usize = runs.iter().map(|r| r.total_iterations).sum();
     println!("wearsim {} bench-slide, {threads} threads", wearsim::VERSION);
     println!(

@@ -18,7 +18,11 @@ mod slide;
 mod study;
 
 #[derive(Parser)]
-#[command(name = "wearsim", version, about = "Adhesive wear of rough surfaces in sliding contact (Brink, Frérot & Molinari 2021)")]
+#[command(
+    name = "wearsim",
+    version,
+    about = "Adhesive wear of rough surfaces in sliding contact (Brink, Frérot & Molinari 2021)"
+)]
 struct Cli {
     /// Worker threads (default: all cores). Results do not depend on it.
     #[arg(long, global = true)]
@@ -140,9 +144,20 @@ fn main() {
         Command::Surface { run, out } => surface(&run, &out),
         Command::Contact { run, load, offset, out } => contact(&run, load, offset, &out),
         Command::Slide { run, out } => slide::slide(&run, &out),
-        Command::Animate { run, out, load_index, energy_index, delay } => plot::animate(&run, &out, load_index, energy_index, delay),
+        Command::Animate {
+            run,
+            out,
+            load_index,
+            energy_index,
+            delay,
+        } => plot::animate(&run, &out, load_index, energy_index, delay),
         Command::Junctions { map, connectivity, out } => slide::junctions(&map, connectivity, &out),
-        Command::Study(StudyCommand::Run { study, out, shard, jobs }) => study::run(&study, &out, shard.as_deref(), jobs),
+        Command::Study(StudyCommand::Run {
+            study,
+            out,
+            shard,
+            jobs,
+        }) => study::run(&study, &out, shard.as_deref(), jobs),
         Command::Study(StudyCommand::Collect { dir }) => study::collect(&dir),
         Command::Study(StudyCommand::Plot { dir }) => plot::plot(&dir),
         Command::Bench(args) => bench::run(&args),

@@ -57,23 +57,33 @@ fn curves(jobs: &[Job], results: &[JobResult]) -> Vec<Curve> {
             };
             let label = format!("{} {} G={:.3e}, {d}", job.material, inputs.join(" "), w.fracture_energy);
             let i = *index.entry(label.clone()).or_insert_with(|| {
-                out.push(Curve { label: label.clone(), points: BTreeMap::new() });
+                out.push(Curve {
+                    label: label.clone(),
+                    points: BTreeMap::new(),
+                });
                 out.len() - 1
             });
-            out[i].points.entry(r.load.to_bits()).or_insert((r.load, Vec::new())).1.push([
-                w.static_wear_rate,
-                w.static_wear_coefficient,
-                w.wear_rate,
-                w.wear_coefficient,
-                w.particle_rate,
-            ]);
+            out[i]
+                .points
+                .entry(r.load.to_bits())
+                .or_insert((r.load, Vec::new()))
+                .1
+                .push([
+                    w.static_wear_rate,
+                    w.static_wear_coefficient,
+                    w.wear_rate,
+                    w.wear_coefficient,
+                    w.particle_rate,
+                ]);
         }
     }
     out
 }
 
 fn log_range(values: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
-    let (lo, hi) = values.filter(|v| v.is_finite() && *v > 0.0).fold((f64::INFINITY, 0.0f64), |(a, b), v| (a.min(v), b.max(v)));
+    let (lo, hi) = values
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .fold((f64::INFINITY, 0.0f64), |(a, b), v| (a.min(v), b.max(v)));
     (hi > 0.0).then(|| (lo / 1.5, hi * 1.5))
 }
 
@@ -104,12 +114,18 @@ fn panel(
     let (x0, x1) = log_range(all.iter().map(|p| p.0)).unwrap_or((1e-4, 1e-2));
     let title_style = (FONT, 16).into_font();
     let mut builder = ChartBuilder::on(area);
-    builder.margin(12).x_label_area_size(45).y_label_area_size(75).caption(y_label, title_style);
+    builder
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(75)
+        .caption(y_label, title_style);
     let x_desc = format!("normal load F_N ({load_unit})");
     if log_y {
         let band_values = band.iter().flat_map(|b| [b.0, b.1]);
         let (y0, y1) = log_range(all.iter().flat_map(|p| [p.1, p.2, p.3]).chain(band_values)).unwrap_or((1e-6, 1.0));
-        let mut chart = builder.build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale()).map_err(|e| err(e.to_string()))?;
+        let mut chart = builder
+            .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+            .map_err(|e| err(e.to_string()))?;
         chart
             .configure_mesh()
             .x_desc(x_desc)
@@ -129,7 +145,9 @@ fn panel(
         draw_series(&mut chart, curves, &stats, true)?;
     } else {
         let y1 = all.iter().map(|p| p.3).fold(0.0f64, f64::max).max(1e-12) * 1.1;
-        let mut chart = builder.build_cartesian_2d((x0..x1).log_scale(), 0.0..y1).map_err(|e| err(e.to_string()))?;
+        let mut chart = builder
+            .build_cartesian_2d((x0..x1).log_scale(), 0.0..y1)
+            .map_err(|e| err(e.to_string()))?;
         chart
             .configure_mesh()
             .x_desc(x_desc)
@@ -166,7 +184,11 @@ where
             .map_err(|e| err(e.to_string()))?;
         // Min–max over surface pairs.
         chart
-            .draw_series(pts.iter().filter(|p| !log_y || p.2 > 0.0).map(|p| PathElement::new(vec![(p.0, p.2), (p.0, p.3)], color.stroke_width(1))))
+            .draw_series(
+                pts.iter()
+                    .filter(|p| !log_y || p.2 > 0.0)
+                    .map(|p| PathElement::new(vec![(p.0, p.2), (p.0, p.3)], color.stroke_width(1))),
+            )
             .map_err(|e| err(e.to_string()))?;
     }
     legend(chart, SeriesLabelPosition::UpperLeft)?;
@@ -189,7 +211,13 @@ fn legend<'a, DB: DrawingBackend + 'a, X: Ranged, Y: Ranged>(
 }
 
 /// Draws `figure` into `name.png` and `name.svg`.
-fn save(dir: &Path, name: &str, size: (u32, u32), figure: impl Fn(&DrawingArea<SVGBackend, Shift>) -> Result<()>, figure_png: impl Fn(&DrawingArea<BitMapBackend, Shift>) -> Result<()>) -> Result<()> {
+fn save(
+    dir: &Path,
+    name: &str,
+    size: (u32, u32),
+    figure: impl Fn(&DrawingArea<SVGBackend, Shift>) -> Result<()>,
+    figure_png: impl Fn(&DrawingArea<BitMapBackend, Shift>) -> Result<()>,
+) -> Result<()> {
     let svg = dir.join(format!("{name}.svg"));
     let png = dir.join(format!("{name}.png"));
     let tmp_svg = dir.join(format!(".{name}.svg.tmp"));
@@ -218,12 +246,18 @@ fn severity_figure(out: &Path, jobs: &[Job], results: &[JobResult]) -> Result<Op
     use wearsim::config::SurfaceSource;
     let mut points: Vec<(String, f64, f64)> = Vec::new();
     for (job, r) in jobs.iter().zip(results) {
-        let SurfaceSource::Generated { spectrum, .. } = &job.run.surfaces else { continue };
+        let SurfaceSource::Generated { spectrum, .. } = &job.run.surfaces else {
+            continue;
+        };
         let m = &job.run.material;
         let p_n = r.load / (job.run.length() * job.run.length());
         for w in r.results.iter().filter(|w| w.wear_rate > 0.0) {
             let k_ic = (w.fracture_energy * m.youngs_modulus / (1.0 - m.poisson_ratio * m.poisson_ratio)).sqrt();
-            points.push((job.material.clone(), p_n * spectrum.rms_height.sqrt() / k_ic, w.wear_rate));
+            points.push((
+                job.material.clone(),
+                p_n * spectrum.rms_height.sqrt() / k_ic,
+                w.wear_rate,
+            ));
         }
     }
     if points.len() < 2 {
@@ -242,7 +276,13 @@ fn severity_figure(out: &Path, jobs: &[Job], results: &[JobResult]) -> Result<Op
     Ok(Some((alpha, n_exp)))
 }
 
-fn draw_severity(area: &DrawingArea<impl DrawingBackend, Shift>, points: &[(String, f64, f64)], alpha: f64, n_exp: f64, length: &str) -> Result<()> {
+fn draw_severity(
+    area: &DrawingArea<impl DrawingBackend, Shift>,
+    points: &[(String, f64, f64)],
+    alpha: f64,
+    n_exp: f64,
+    length: &str,
+) -> Result<()> {
     let err = |e: String| anyhow!("drawing failed: {e}");
     let (x0, x1) = log_range(points.iter().map(|p| p.1)).unwrap_or((1e-3, 1.0));
     let (y0, y1) = log_range(points.iter().map(|p| p.2)).unwrap_or((1e-6, 1.0));
@@ -250,7 +290,10 @@ fn draw_severity(area: &DrawingArea<impl DrawingBackend, Shift>, points: &[(Stri
         .margin(12)
         .x_label_area_size(45)
         .y_label_area_size(80)
-        .caption(format!("contact severity: W = α S_cⁿ, α = {alpha:.3e} {length}², n = {n_exp:.3}"), (FONT, 15))
+        .caption(
+            format!("contact severity: W = α S_cⁿ, α = {alpha:.3e} {length}², n = {n_exp:.3}"),
+            (FONT, 15),
+        )
         .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
         .map_err(|e| err(e.to_string()))?;
     chart
@@ -268,13 +311,21 @@ fn draw_severity(area: &DrawingArea<impl DrawingBackend, Shift>, points: &[(Stri
     for (i, name) in names.iter().enumerate() {
         let color = Palette99::pick(i).to_rgba();
         chart
-            .draw_series(points.iter().filter(|p| &p.0 == *name).map(|p| Circle::new((p.1, p.2), 3, color.filled())))
+            .draw_series(
+                points
+                    .iter()
+                    .filter(|p| &p.0 == *name)
+                    .map(|p| Circle::new((p.1, p.2), 3, color.filled())),
+            )
             .map_err(|e| err(e.to_string()))?
             .label(name.to_string())
             .legend(move |(x, y)| Circle::new((x + 9, y), 3, color.filled()));
     }
     chart
-        .draw_series(LineSeries::new([(x0, alpha * x0.powf(n_exp)), (x1, alpha * x1.powf(n_exp))], BLACK.stroke_width(1)))
+        .draw_series(LineSeries::new(
+            [(x0, alpha * x0.powf(n_exp)), (x1, alpha * x1.powf(n_exp))],
+            BLACK.stroke_width(1),
+        ))
         .map_err(|e| err(e.to_string()))?
         .label("fit")
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(1)));
@@ -286,7 +337,11 @@ fn draw_severity(area: &DrawingArea<impl DrawingBackend, Shift>, points: &[(Stri
 fn series_panel(area: &DrawingArea<impl DrawingBackend, Shift>, job: &Job, r: &JobResult, counts: bool) -> Result<()> {
     let err = |e: String| anyhow!("drawing failed: {e}");
     let (_, _, length) = units_of(job);
-    let sliding = job.run.sliding.as_ref().ok_or_else(|| anyhow!("job without [sliding]"))?;
+    let sliding = job
+        .run
+        .sliding
+        .as_ref()
+        .ok_or_else(|| anyhow!("job without [sliding]"))?;
     let running_in = sliding.running_in * job.run.length();
     let s_max = r.steps.last().map(|s| s.s).unwrap_or(1.0).max(1e-300);
     let n_e = r.results.len();
@@ -297,7 +352,11 @@ fn series_panel(area: &DrawingArea<impl DrawingBackend, Shift>, job: &Job, r: &J
         .fold(0.0f64, f64::max)
         .max(1e-300)
         * 1.1;
-    let caption = if counts { "particles: N*₊ (formed), N* (critical now), N*₋ = N*₊ − N*" } else { "wear volume V(s)" };
+    let caption = if counts {
+        "particles: N*₊ (formed), N* (critical now), N*₋ = N*₊ − N*"
+    } else {
+        "wear volume V(s)"
+    };
     let mut chart = ChartBuilder::on(area)
         .margin(12)
         .x_label_area_size(45)
@@ -308,13 +367,20 @@ fn series_panel(area: &DrawingArea<impl DrawingBackend, Shift>, job: &Job, r: &J
     chart
         .configure_mesh()
         .x_desc(format!("sliding distance s ({length})"))
-        .y_desc(if counts { "count".to_string() } else { format!("V ({length}³)") })
+        .y_desc(if counts {
+            "count".to_string()
+        } else {
+            format!("V ({length}³)")
+        })
         .label_style((FONT, 13))
         .draw()
         .map_err(|e| err(e.to_string()))?;
     // Running-in region.
     chart
-        .draw_series(std::iter::once(Rectangle::new([(0.0, 0.0), (running_in, y_max)], RGBColor(230, 230, 230).filled())))
+        .draw_series(std::iter::once(Rectangle::new(
+            [(0.0, 0.0), (running_in, y_max)],
+            RGBColor(230, 230, 230).filled(),
+        )))
         .map_err(|e| err(e.to_string()))?
         .label("running-in")
         .legend(|(x, y)| Rectangle::new([(x, y - 5), (x + 18, y + 5)], RGBColor(230, 230, 230).filled()));
@@ -330,25 +396,42 @@ fn series_panel(area: &DrawingArea<impl DrawingBackend, Shift>, job: &Job, r: &J
             for (k, (name, f)) in styles.iter().enumerate() {
                 let c = color.mix(1.0 - 0.3 * k as f64);
                 chart
-                    .draw_series(LineSeries::new(r.steps.iter().map(|s| (s.s, f(s))), c.stroke_width(2 - (k as u32).min(1))))
+                    .draw_series(LineSeries::new(
+                        r.steps.iter().map(|s| (s.s, f(s))),
+                        c.stroke_width(2 - (k as u32).min(1)),
+                    ))
                     .map_err(|er| err(er.to_string()))?
                     .label(format!("{name}, {d}"))
                     .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(2)));
             }
         } else {
             chart
-                .draw_series(LineSeries::new(r.steps.iter().map(|s| (s.s, s.volume[e])), color.stroke_width(2)))
+                .draw_series(LineSeries::new(
+                    r.steps.iter().map(|s| (s.s, s.volume[e])),
+                    color.stroke_width(2),
+                ))
                 .map_err(|er| err(er.to_string()))?
                 .label(format!("V, {d}"))
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
             // Fitted line W·s + b over s ≥ running-in (least squares, as in the results).
-            let fit: Vec<(f64, f64)> = r.steps.iter().filter(|s| s.s >= running_in - 1e-12).map(|s| (s.s, s.volume[e])).collect();
+            let fit: Vec<(f64, f64)> = r
+                .steps
+                .iter()
+                .filter(|s| s.s >= running_in - 1e-12)
+                .map(|s| (s.s, s.volume[e]))
+                .collect();
             if fit.len() >= 2 {
                 let m = fit.len() as f64;
-                let (mx, my) = (fit.iter().map(|p| p.0).sum::<f64>() / m, fit.iter().map(|p| p.1).sum::<f64>() / m);
+                let (mx, my) = (
+                    fit.iter().map(|p| p.0).sum::<f64>() / m,
+                    fit.iter().map(|p| p.1).sum::<f64>() / m,
+                );
                 let b = my - w.wear_rate * mx;
                 chart
-                    .draw_series(LineSeries::new([(0.0, b), (s_max, b + w.wear_rate * s_max)], BLACK.stroke_width(1)))
+                    .draw_series(LineSeries::new(
+                        [(0.0, b), (s_max, b + w.wear_rate * s_max)],
+                        BLACK.stroke_width(1),
+                    ))
                     .map_err(|er| err(er.to_string()))?
                     .label(format!("fit: W = {:.3e} (R² = {:.3})", w.wear_rate, w.wear_rate_r2))
                     .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(1)));
@@ -392,8 +475,28 @@ pub fn plot(dir: &Path) -> Result<()> {
         (3, "wear coefficient k = W p̃ / F_N".into(), true),
     )?;
     {
-        let svg = |root: &DrawingArea<SVGBackend, Shift>| panel(root, &curves, 4, &format!("particle rate dN*₊/ds (1/{length})"), load_unit, true, None);
-        let png = |root: &DrawingArea<BitMapBackend, Shift>| panel(root, &curves, 4, &format!("particle rate dN*₊/ds (1/{length})"), load_unit, true, None);
+        let svg = |root: &DrawingArea<SVGBackend, Shift>| {
+            panel(
+                root,
+                &curves,
+                4,
+                &format!("particle rate dN*₊/ds (1/{length})"),
+                load_unit,
+                true,
+                None,
+            )
+        };
+        let png = |root: &DrawingArea<BitMapBackend, Shift>| {
+            panel(
+                root,
+                &curves,
+                4,
+                &format!("particle rate dN*₊/ds (1/{length})"),
+                load_unit,
+                true,
+                None,
+            )
+        };
         save(&out, "fig5_particle_rate", (800, 600), svg, png)?;
     }
     severity_figure(&out, &study.jobs, &results)?;
@@ -401,8 +504,12 @@ pub fn plot(dir: &Path) -> Result<()> {
         // Kim et al. (1986): rolling wear coefficients 6e-7 … 1.5e-3 (paper §4.3, Fig. 6). k is
         // dimensionless, so the comparison is drawn for studies in any units.
         let band = Some((6e-7, 1.5e-3, "Kim et al. 1986, rolling experiments"));
-        let svg = |root: &DrawingArea<SVGBackend, Shift>| panel(root, &curves, 3, "wear coefficient k", load_unit, true, band);
-        let png = |root: &DrawingArea<BitMapBackend, Shift>| panel(root, &curves, 3, "wear coefficient k", load_unit, true, band);
+        let svg = |root: &DrawingArea<SVGBackend, Shift>| {
+            panel(root, &curves, 3, "wear coefficient k", load_unit, true, band)
+        };
+        let png = |root: &DrawingArea<BitMapBackend, Shift>| {
+            panel(root, &curves, 3, "wear coefficient k", load_unit, true, band)
+        };
         save(&out, "fig6_kim_comparison", (900, 600), svg, png)?;
     }
     // Series of one representative job: the first surface pair, the middle load, the first material.
@@ -413,9 +520,26 @@ pub fn plot(dir: &Path) -> Result<()> {
         l
     };
     let mid = loads[loads.len() / 2];
-    let (job, r) = study.jobs.iter().zip(&results).find(|(_, r)| r.load == mid).ok_or_else(|| anyhow!("no job at the middle load"))?;
-    save(&out, "fig3_wear_volume", (900, 600), |root| series_panel(root, job, r, false), |root| series_panel(root, job, r, false))?;
-    save(&out, "appB_particle_counts", (900, 600), |root| series_panel(root, job, r, true), |root| series_panel(root, job, r, true))?;
+    let (job, r) = study
+        .jobs
+        .iter()
+        .zip(&results)
+        .find(|(_, r)| r.load == mid)
+        .ok_or_else(|| anyhow!("no job at the middle load"))?;
+    save(
+        &out,
+        "fig3_wear_volume",
+        (900, 600),
+        |root| series_panel(root, job, r, false),
+        |root| series_panel(root, job, r, false),
+    )?;
+    save(
+        &out,
+        "appB_particle_counts",
+        (900, 600),
+        |root| series_panel(root, job, r, true),
+        |root| series_panel(root, job, r, true),
+    )?;
     println!("wrote figures to {}", out.display());
     Ok(())
 }
@@ -431,11 +555,16 @@ pub fn animate(run: &Path, out: &Path, load_index: usize, energy_index: usize, d
     use wearsim::wear::JunctionState;
     register_font();
     let config = RunConfig::from_path(run).with_context(|| format!("run file {}", run.display()))?;
-    let mut sliding = config.sliding.clone().ok_or_else(|| anyhow!("run file {}: a [sliding] table is needed", run.display()))?;
-    let load = *sliding
-        .loads
-        .get(load_index)
-        .ok_or_else(|| anyhow!("invalid `--load-index {load_index}`: the run has {} loads", sliding.loads.len()))?;
+    let mut sliding = config
+        .sliding
+        .clone()
+        .ok_or_else(|| anyhow!("run file {}: a [sliding] table is needed", run.display()))?;
+    let load = *sliding.loads.get(load_index).ok_or_else(|| {
+        anyhow!(
+            "invalid `--load-index {load_index}`: the run has {} loads",
+            sliding.loads.len()
+        )
+    })?;
     sliding.loads = vec![load];
     if energy_index >= config.material.fracture_energies.len() {
         anyhow::bail!(
@@ -452,7 +581,9 @@ pub fn animate(run: &Path, out: &Path, load_index: usize, energy_index: usize, d
     let step_px = (n / 512).max(1); // and at most about 1024 px where it is larger
     let side = (n / step_px) as u32 * scale;
     let setup = SlidingSetup::from_run(&config, &sliding);
-    let d_star = config.material.critical_diameter(config.material.fracture_energies[energy_index]);
+    let d_star = config
+        .material
+        .critical_diameter(config.material.fracture_energies[energy_index]);
     let tmp = out.with_extension("tmp.gif");
     let length_unit = config.units.length_unit();
     let mut frame_error: Option<anyhow::Error> = None;
@@ -481,21 +612,34 @@ pub fn animate(run: &Path, out: &Path, load_index: usize, energy_index: usize, d
                             JunctionState::Disabled => RGBColor(40, 90, 200),
                         };
                         // x (first axis, the sliding direction) runs left to right.
-                        let (x, y) = ((i / step_px) as i32 * scale as i32, (j / step_px) as i32 * scale as i32 + 40);
-                        root.draw(&Rectangle::new([(x, y), (x + scale as i32, y + scale as i32)], color.filled()))
-                            .map_err(|e| anyhow!("{e}"))?;
+                        let (x, y) = (
+                            (i / step_px) as i32 * scale as i32,
+                            (j / step_px) as i32 * scale as i32 + 40,
+                        );
+                        root.draw(&Rectangle::new(
+                            [(x, y), (x + scale as i32, y + scale as i32)],
+                            color.filled(),
+                        ))
+                        .map_err(|e| anyhow!("{e}"))?;
                     }
                 }
                 let w = view.record.wear[energy_index];
                 let font = (FONT, 13).into_font().color(&BLACK);
                 root.draw_text(
-                    &format!("s = {:.4} {length_unit}   V = {:.3e}   N*₊ = {}   d* = {:.3e} {length_unit}", view.record.s, w.volume, w.n_formed, d_star),
+                    &format!(
+                        "s = {:.4} {length_unit}   V = {:.3e}   N*₊ = {}   d* = {:.3e} {length_unit}",
+                        view.record.s, w.volume, w.n_formed, d_star
+                    ),
                     &font,
                     (6, 4),
                 )
                 .map_err(|e| anyhow!("{e}"))?;
-                root.draw_text("grey: below d*   red: forming a particle   orange: disabled, ≥ d*   blue: disabled", &font, (6, 22))
-                    .map_err(|e| anyhow!("{e}"))?;
+                root.draw_text(
+                    "grey: below d*   red: forming a particle   orange: disabled, ≥ d*   blue: disabled",
+                    &font,
+                    (6, 22),
+                )
+                .map_err(|e| anyhow!("{e}"))?;
                 root.present().map_err(|e| anyhow!("{e}"))
             };
             if let Err(e) = draw() {

@@ -23,10 +23,16 @@ fn show_length(units: Units, value: f64) -> String {
 pub fn slide(run: &Path, out: &Path) -> Result<()> {
     let config = RunConfig::from_path(run).with_context(|| format!("run file {}", run.display()))?;
     let Some(sliding) = config.sliding.clone() else {
-        bail!("run file {}: a [sliding] table with `loads` is needed for `slide`", run.display());
+        bail!(
+            "run file {}: a [sliding] table with `loads` is needed for `slide`",
+            run.display()
+        );
     };
     if config.material.fracture_energies.is_empty() {
-        bail!("run file {}: [material] `fracture_energies` is empty; give at least one 𝒢", run.display());
+        bail!(
+            "run file {}: [material] `fracture_energies` is empty; give at least one 𝒢",
+            run.display()
+        );
     }
     let (top, bottom) = config.surfaces()?;
     let n = top.n();
@@ -35,9 +41,16 @@ pub fn slide(run: &Path, out: &Path) -> Result<()> {
     }
     let flow_pressure = config.material.flow_pressure();
     let diameters = config.material.critical_diameters();
-    eprintln!("flow pressure p_m = {flow_pressure:.6e} ({})", if config.units == Units::Si { "Pa" } else { "E" });
+    eprintln!(
+        "flow pressure p_m = {flow_pressure:.6e} ({})",
+        if config.units == Units::Si { "Pa" } else { "E" }
+    );
     for (g, d) in config.material.fracture_energies.iter().zip(&diameters) {
-        eprintln!("𝒢 = {g:.4e}: critical diameter d* = {} ({:.1} px)", show_length(config.units, *d), d / top.pixel_size());
+        eprintln!(
+            "𝒢 = {g:.4e}: critical diameter d* = {} ({:.1} px)",
+            show_length(config.units, *d),
+            d / top.pixel_size()
+        );
     }
     let steps_per_load = schedule(n, &sliding).len();
     let setup = SlidingSetup::from_run(&config, &sliding);
@@ -57,7 +70,12 @@ pub fn slide(run: &Path, out: &Path) -> Result<()> {
         if let Some(b) = &bar {
             b.set_position(done as u64);
         } else if done % steps_per_load == 0 {
-            eprintln!("load {}/{} done ({done}/{total} steps, {:.1} s)", done / steps_per_load, sliding.loads.len(), start.elapsed().as_secs_f64());
+            eprintln!(
+                "load {}/{} done ({done}/{total} steps, {:.1} s)",
+                done / steps_per_load,
+                sliding.loads.len(),
+                start.elapsed().as_secs_f64()
+            );
         }
     })?;
     if let Some(b) = bar {
@@ -83,7 +101,11 @@ pub fn slide(run: &Path, out: &Path) -> Result<()> {
             );
         }
     }
-    println!("{} steps in {seconds:.1} s; wrote {}", steps_per_load * runs.len(), out.display());
+    println!(
+        "{} steps in {seconds:.1} s; wrote {}",
+        steps_per_load * runs.len(),
+        out.display()
+    );
     Ok(())
 }
 
@@ -103,12 +125,19 @@ pub fn junctions(map: &Path, connectivity: u8, out: &Path) -> Result<()> {
     };
     let (rows, cols) = flags.dim();
     if rows != cols || rows == 0 {
-        bail!("{}: contact map is {rows}×{cols}; it must be square and non-empty", map.display());
+        bail!(
+            "{}: contact map is {rows}×{cols}; it must be square and non-empty",
+            map.display()
+        );
     }
     let flat: Vec<bool> = flags.iter().copied().collect();
     let mut labeller = JunctionLabeller::new(rows, connectivity);
     let count = labeller.label(|k| flat[k]);
-    let labels: Vec<i64> = labeller.labels().iter().map(|&l| if l == NO_JUNCTION { -1 } else { l as i64 }).collect();
+    let labels: Vec<i64> = labeller
+        .labels()
+        .iter()
+        .map(|&l| if l == NO_JUNCTION { -1 } else { l as i64 })
+        .collect();
     std::fs::create_dir_all(out).with_context(|| format!("cannot create output folder {}", out.display()))?;
     let array = ndarray::Array2::from_shape_vec((rows, rows), labels)?;
     atomic_write(&out.join("labels.npy"), |w| {

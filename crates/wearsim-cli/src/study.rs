@@ -16,11 +16,19 @@ fn resolve_shard(arg: Option<&str>) -> Result<(usize, usize)> {
         Ok((k, n))
     };
     if let Some(a) = arg {
-        let (k, n) = a.split_once('/').with_context(|| format!("invalid `--shard {a}`: write K/N, e.g. 2/8"))?;
+        let (k, n) = a
+            .split_once('/')
+            .with_context(|| format!("invalid `--shard {a}`: write K/N, e.g. 2/8"))?;
         return parse(k, n).with_context(|| format!("invalid `--shard {a}`"));
     }
-    if let (Ok(id), Ok(count)) = (std::env::var("SLURM_ARRAY_TASK_ID"), std::env::var("SLURM_ARRAY_TASK_COUNT")) {
-        let min: usize = std::env::var("SLURM_ARRAY_TASK_MIN").ok().and_then(|m| m.parse().ok()).unwrap_or(0);
+    if let (Ok(id), Ok(count)) = (
+        std::env::var("SLURM_ARRAY_TASK_ID"),
+        std::env::var("SLURM_ARRAY_TASK_COUNT"),
+    ) {
+        let min: usize = std::env::var("SLURM_ARRAY_TASK_MIN")
+            .ok()
+            .and_then(|m| m.parse().ok())
+            .unwrap_or(0);
         let id: usize = id.parse().context("SLURM_ARRAY_TASK_ID is not a number")?;
         return parse(&(id - min.min(id) + 1).to_string(), &count).context("Slurm job array");
     }
@@ -29,16 +37,26 @@ fn resolve_shard(arg: Option<&str>) -> Result<(usize, usize)> {
 
 pub fn run(study_path: &Path, out: &Path, shard_arg: Option<&str>, workers: Option<usize>) -> Result<()> {
     let text = std::fs::read_to_string(study_path).with_context(|| format!("cannot read {}", study_path.display()))?;
-    let base = study_path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let base = study_path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
     let study = expand(&text, base).with_context(|| format!("study file {}", study_path.display()))?;
     let (k, n) = resolve_shard(shard_arg)?;
     prepare_folder(out, &study, base)?;
     let jobs = shard(&study.jobs, k, n);
     let workers = workers.unwrap_or_else(rayon::current_num_threads);
-    eprintln!("study {}: {} jobs, shard {k}/{n} holds {}; {workers} workers", study.hash, study.jobs.len(), jobs.len());
+    eprintln!(
+        "study {}: {} jobs, shard {k}/{n} holds {}; {workers} workers",
+        study.hash,
+        study.jobs.len(),
+        jobs.len()
+    );
     let bar = std::io::stderr().is_terminal().then(|| {
         let b = indicatif::ProgressBar::new(0);
-        b.set_style(indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} jobs, {eta} left").expect("valid template"));
+        b.set_style(
+            indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} jobs, {eta} left").expect("valid template"),
+        );
         b
     });
     let (computed, skipped) = run_jobs(out, &jobs, workers, &Default::default(), |done, total| match &bar {
@@ -51,7 +69,10 @@ pub fn run(study_path: &Path, out: &Path, shard_arg: Option<&str>, workers: Opti
     if let Some(b) = bar {
         b.finish_and_clear();
     }
-    println!("computed {computed} jobs, skipped {skipped} already done; results in {}", out.join("jobs").display());
+    println!(
+        "computed {computed} jobs, skipped {skipped} already done; results in {}",
+        out.join("jobs").display()
+    );
     Ok(())
 }
 

@@ -11,7 +11,10 @@ fn wearsim() -> Command {
 fn write_npy(path: &Path, shape: &[usize], values: &[f64]) {
     let shape_txt = match shape.len() {
         1 => format!("({},)", shape[0]),
-        _ => format!("({})", shape.iter().map(|s| s.to_string()).collect::<Vec<_>>().join(", ")),
+        _ => format!(
+            "({})",
+            shape.iter().map(|s| s.to_string()).collect::<Vec<_>>().join(", ")
+        ),
     };
     let mut header = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': {shape_txt}, }}");
     while (10 + header.len() + 1) % 64 != 0 {
@@ -52,7 +55,17 @@ fn run_file(dir: &Path, text: &str) -> std::path::PathBuf {
 fn contact_fails(dir: &Path, text: &str, load: &str) -> String {
     let run = run_file(dir, text);
     let out = dir.join("out");
-    let o = wearsim().args(["contact", run.to_str().unwrap(), "--load", load, "--out", out.to_str().unwrap()]).output().unwrap();
+    let o = wearsim()
+        .args([
+            "contact",
+            run.to_str().unwrap(),
+            "--load",
+            load,
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
     assert!(!o.status.success());
     assert!(!out.exists(), "output written despite the error");
     let err = String::from_utf8(o.stderr).unwrap();
@@ -65,18 +78,40 @@ fn surface_and_contact_write_their_files() {
     let dir = tempfile::tempdir().unwrap();
     let run = run_file(dir.path(), GENERATED);
     let out = dir.path().join("o");
-    let ok = wearsim().args(["surface", run.to_str().unwrap(), "--out", out.to_str().unwrap()]).status().unwrap();
+    let ok = wearsim()
+        .args(["surface", run.to_str().unwrap(), "--out", out.to_str().unwrap()])
+        .status()
+        .unwrap();
     assert!(ok.success());
     for f in ["top.npy", "bottom.npy", "statistics.json"] {
         assert!(out.join(f).is_file(), "{f}");
     }
     let ok = wearsim()
-        .args(["contact", run.to_str().unwrap(), "--load", "1e-3", "--offset", "0.03125", "--out", out.to_str().unwrap()])
+        .args([
+            "contact",
+            run.to_str().unwrap(),
+            "--load",
+            "1e-3",
+            "--offset",
+            "0.03125",
+            "--out",
+            out.to_str().unwrap(),
+        ])
         .status()
         .unwrap();
     assert!(ok.success());
     let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
-    for key in ["contact_area", "mean_pressure", "approach", "iterations", "residual", "tolerance", "effective_modulus", "flow_pressure", "seconds"] {
+    for key in [
+        "contact_area",
+        "mean_pressure",
+        "approach",
+        "iterations",
+        "residual",
+        "tolerance",
+        "effective_modulus",
+        "flow_pressure",
+        "seconds",
+    ] {
         assert!(summary.contains(&format!("\"{key}\"")), "summary lacks {key}");
     }
     assert!(out.join("pressure.npy").is_file() && out.join("contact.npy").is_file());
@@ -89,19 +124,39 @@ fn surface_and_contact_write_their_files() {
     std::fs::write(&run2, read).unwrap();
     let out2 = dir.path().join("o2");
     let ok = wearsim()
-        .args(["contact", run2.to_str().unwrap(), "--load", "1e-3", "--offset", "0.03125", "--out", out2.to_str().unwrap()])
+        .args([
+            "contact",
+            run2.to_str().unwrap(),
+            "--load",
+            "1e-3",
+            "--offset",
+            "0.03125",
+            "--out",
+            out2.to_str().unwrap(),
+        ])
         .status()
         .unwrap();
     assert!(ok.success());
-    assert_eq!(std::fs::read(out.join("pressure.npy")).unwrap(), std::fs::read(out2.join("pressure.npy")).unwrap());
+    assert_eq!(
+        std::fs::read(out.join("pressure.npy")).unwrap(),
+        std::fs::read(out2.join("pressure.npy")).unwrap()
+    );
 }
 
 #[test]
 fn bad_material_and_load_are_one_line_errors() {
     let dir = tempfile::tempdir().unwrap();
-    let e = contact_fails(dir.path(), &GENERATED.replace("youngs_modulus = 1.0", "youngs_modulus = -1.0"), "1e-3");
+    let e = contact_fails(
+        dir.path(),
+        &GENERATED.replace("youngs_modulus = 1.0", "youngs_modulus = -1.0"),
+        "1e-3",
+    );
     assert!(e.contains("youngs_modulus"), "{e}");
-    let e = contact_fails(dir.path(), &GENERATED.replace("poisson_ratio = 0.3", "poisson_ratio = 0.5"), "1e-3");
+    let e = contact_fails(
+        dir.path(),
+        &GENERATED.replace("poisson_ratio = 0.3", "poisson_ratio = 0.5"),
+        "1e-3",
+    );
     assert!(e.contains("poisson_ratio"), "{e}");
     // p_m = 3√3·0.01 ≈ 0.052: a load of 0.06 E L² cannot be carried.
     let e = contact_fails(dir.path(), GENERATED, "0.06");
@@ -143,15 +198,32 @@ fn slide_writes_summary_and_series() {
     let dir = tempfile::tempdir().unwrap();
     let run = run_file(dir.path(), &format!("{GENERATED}{SLIDING}"));
     let out = dir.path().join("o");
-    let o = wearsim().args(["slide", run.to_str().unwrap(), "--out", out.to_str().unwrap()]).output().unwrap();
+    let o = wearsim()
+        .args(["slide", run.to_str().unwrap(), "--out", out.to_str().unwrap()])
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
-    for key in ["flow_pressure", "critical_diameter", "effective_modulus", "wear_rate", "wear_coefficient", "particle_rate", "initial_volume", "static_wear_coefficient", "static_wear_rate", "tolerance"] {
+    for key in [
+        "flow_pressure",
+        "critical_diameter",
+        "effective_modulus",
+        "wear_rate",
+        "wear_coefficient",
+        "particle_rate",
+        "initial_volume",
+        "static_wear_coefficient",
+        "static_wear_rate",
+        "tolerance",
+    ] {
         assert!(summary.contains(&format!("\"{key}\"")), "summary lacks {key}");
     }
     let series = std::fs::read_to_string(out.join("series.csv")).unwrap();
     let mut lines = series.lines();
-    assert_eq!(lines.next().unwrap(), "load,fracture_energy,s,junctions,contact_area,n_critical,n_formed,n_shrunk,volume");
+    assert_eq!(
+        lines.next().unwrap(),
+        "load,fracture_energy,s,junctions,contact_area,n_critical,n_formed,n_shrunk,volume"
+    );
     // 64 px: 4 offsets of 4 px in running-in, then 16 of 1 px; 2 loads × 1 fracture energy.
     assert_eq!(lines.count(), 2 * 20);
 }
@@ -161,26 +233,49 @@ fn bad_sliding_input_is_a_one_line_error() {
     let dir = tempfile::tempdir().unwrap();
     let cases = [
         (format!("{GENERATED}[sliding]\nloads = []\n"), "loads"),
-        (format!("{GENERATED}[sliding]\nloads = [1e-3]\ndistance = 0.2\nrunning_in = 0.25\n"), "running_in"),
+        (
+            format!("{GENERATED}[sliding]\nloads = [1e-3]\ndistance = 0.2\nrunning_in = 0.25\n"),
+            "running_in",
+        ),
         (format!("{GENERATED}[sliding]\nloads = [1e-3]\nstep = 64\n"), "step"),
         (format!("{GENERATED}[sliding]\nloads = [1e-3]\nspeed = 1\n"), "speed"),
-        (GENERATED.replace("grid = 64\n", "grid = 64\ntop = \"missing.npy\"\n"), "surface"),
+        (
+            GENERATED.replace("grid = 64\n", "grid = 64\ntop = \"missing.npy\"\n"),
+            "surface",
+        ),
     ];
     for (text, needle) in cases {
         let run = run_file(dir.path(), &text);
         let out = dir.path().join("o");
-        let o = wearsim().args(["slide", run.to_str().unwrap(), "--out", out.to_str().unwrap()]).output().unwrap();
+        let o = wearsim()
+            .args(["slide", run.to_str().unwrap(), "--out", out.to_str().unwrap()])
+            .output()
+            .unwrap();
         assert!(!o.status.success());
         assert!(!out.exists());
         let err = String::from_utf8(o.stderr).unwrap();
         assert_eq!(err.trim_end().lines().count(), 1, "{err}");
         assert!(err.contains(needle), "{needle}: {err}");
     }
-    let missing = format!("[surface]\ntop = \"a.npy\"\nbottom = \"b.npy\"\nlength = 1.0\n{}{SLIDING}", &GENERATED[GENERATED.find("[material]").unwrap()..]);
+    let missing = format!(
+        "[surface]\ntop = \"a.npy\"\nbottom = \"b.npy\"\nlength = 1.0\n{}{SLIDING}",
+        &GENERATED[GENERATED.find("[material]").unwrap()..]
+    );
     let run = run_file(dir.path(), &missing);
-    let o = wearsim().args(["slide", run.to_str().unwrap(), "--out", dir.path().join("o").to_str().unwrap()]).output().unwrap();
+    let o = wearsim()
+        .args([
+            "slide",
+            run.to_str().unwrap(),
+            "--out",
+            dir.path().join("o").to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
     let err = String::from_utf8(o.stderr).unwrap();
-    assert!(!o.status.success() && err.contains("a.npy") && err.contains("not found"), "{err}");
+    assert!(
+        !o.status.success() && err.contains("a.npy") && err.contains("not found"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -188,15 +283,46 @@ fn animate_writes_a_gif_with_one_frame_per_step() {
     let dir = tempfile::tempdir().unwrap();
     let run = run_file(dir.path(), &format!("{GENERATED}{SLIDING}"));
     let gif = dir.path().join("slide.gif");
-    let o = wearsim().args(["animate", run.to_str().unwrap(), "--out", gif.to_str().unwrap(), "--load-index", "1"]).output().unwrap();
+    let o = wearsim()
+        .args([
+            "animate",
+            run.to_str().unwrap(),
+            "--out",
+            gif.to_str().unwrap(),
+            "--load-index",
+            "1",
+        ])
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let bytes = std::fs::read(&gif).unwrap();
     assert!(bytes.starts_with(b"GIF89a"));
     // 20 offsets at 64 px: one image descriptor (0x2C after a graphic control block) per frame.
-    let frames = bytes.windows(3).filter(|w| w[0] == 0x00 && w[1] == 0x2C && w[2] == 0x00).count();
+    let frames = bytes
+        .windows(3)
+        .filter(|w| w[0] == 0x00 && w[1] == 0x2C && w[2] == 0x00)
+        .count();
     assert!(frames >= 20, "{frames} frames");
-    let o = wearsim().args(["animate", run.to_str().unwrap(), "--out", dir.path().join("a.png").to_str().unwrap()]).output().unwrap();
+    let o = wearsim()
+        .args([
+            "animate",
+            run.to_str().unwrap(),
+            "--out",
+            dir.path().join("a.png").to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
     assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains(".gif"));
-    let o = wearsim().args(["animate", run.to_str().unwrap(), "--out", gif.to_str().unwrap(), "--load-index", "5"]).output().unwrap();
+    let o = wearsim()
+        .args([
+            "animate",
+            run.to_str().unwrap(),
+            "--out",
+            gif.to_str().unwrap(),
+            "--load-index",
+            "5",
+        ])
+        .output()
+        .unwrap();
     assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("load-index"));
 }

@@ -36,7 +36,10 @@ fn run_study(study: &Path, out: &Path, extra: &[&str]) -> String {
 }
 
 fn collect(out: &Path) -> (String, String) {
-    let o = wearsim().args(["study", "collect", out.to_str().unwrap()]).output().unwrap();
+    let o = wearsim()
+        .args(["study", "collect", out.to_str().unwrap()])
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     (
         std::fs::read_to_string(out.join("results.csv")).unwrap(),
@@ -46,7 +49,10 @@ fn collect(out: &Path) -> (String, String) {
 
 fn job_files(out: &Path) -> Vec<String> {
     match std::fs::read_dir(out.join("jobs")) {
-        Ok(d) => d.flatten().map(|e| e.file_name().to_string_lossy().to_string()).collect(),
+        Ok(d) => d
+            .flatten()
+            .map(|e| e.file_name().to_string_lossy().to_string())
+            .collect(),
         Err(_) => Vec::new(),
     }
 }
@@ -55,7 +61,9 @@ fn job_files(out: &Path) -> Vec<String> {
 fn killed_study_resumes_to_the_same_results() {
     let dir = tempfile::tempdir().unwrap();
     // Slower jobs than the shard test, so that the kill lands part-way.
-    let text = STUDY.replace("grid = 128", "grid = 256").replace("lambda_lower = 0.0625", "lambda_lower = 0.0625\nhurst = 0.7");
+    let text = STUDY
+        .replace("grid = 128", "grid = 256")
+        .replace("lambda_lower = 0.0625", "lambda_lower = 0.0625\nhurst = 0.7");
     let study = dir.path().join("study.toml");
     std::fs::write(&study, &text).unwrap();
     let reference = dir.path().join("reference");
@@ -66,14 +74,25 @@ fn killed_study_resumes_to_the_same_results() {
 
     let out = dir.path().join("killed");
     let mut child = wearsim()
-        .args(["study", "run", study.to_str().unwrap(), "--out", out.to_str().unwrap(), "--jobs", "2"])
+        .args([
+            "study",
+            "run",
+            study.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--jobs",
+            "2",
+        ])
         .stdout(Stdio::null())
         .stderr(Stdio::null())
         .spawn()
         .unwrap();
     let start = Instant::now();
     loop {
-        let done = job_files(&out).iter().filter(|f| f.ends_with(".json") && !f.starts_with('.')).count();
+        let done = job_files(&out)
+            .iter()
+            .filter(|f| f.ends_with(".json") && !f.starts_with('.'))
+            .count();
         if done >= 3 || start.elapsed() > Duration::from_secs(120) {
             break;
         }
@@ -82,17 +101,32 @@ fn killed_study_resumes_to_the_same_results() {
     child.kill().unwrap(); // SIGKILL
     child.wait().unwrap();
     let finished: Vec<String> = job_files(&out).into_iter().filter(|f| !f.starts_with('.')).collect();
-    assert!(!finished.is_empty() && finished.len() < total, "kill did not land part-way: {} jobs", finished.len());
+    assert!(
+        !finished.is_empty() && finished.len() < total,
+        "kill did not land part-way: {} jobs",
+        finished.len()
+    );
     // Collecting an unfinished study is an error naming what is missing.
-    let o = wearsim().args(["study", "collect", out.to_str().unwrap()]).output().unwrap();
+    let o = wearsim()
+        .args(["study", "collect", out.to_str().unwrap()])
+        .output()
+        .unwrap();
     assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("no result yet"));
 
     let stdout = run_study(&study, &out, &[]);
     assert!(
-        stdout.contains(&format!("computed {} jobs, skipped {}", total - finished.len(), finished.len())),
+        stdout.contains(&format!(
+            "computed {} jobs, skipped {}",
+            total - finished.len(),
+            finished.len()
+        )),
         "a finished job was recomputed: {stdout}"
     );
-    assert!(job_files(&out).iter().all(|f| !f.starts_with('.')), "partial file left: {:?}", job_files(&out));
+    assert!(
+        job_files(&out).iter().all(|f| !f.starts_with('.')),
+        "partial file left: {:?}",
+        job_files(&out)
+    );
     assert_eq!(collect(&out), (tidy_ref, agg_ref));
 }
 
@@ -110,19 +144,40 @@ fn shards_and_worker_counts_give_the_unsharded_results() {
     }
     assert_eq!(collect(&sharded), expected);
     // Figures from the collected study: every one as PNG and SVG.
-    let o = wearsim().args(["study", "plot", sharded.to_str().unwrap()]).output().unwrap();
+    let o = wearsim()
+        .args(["study", "plot", sharded.to_str().unwrap()])
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    for name in ["fig2_static_model", "fig3_wear_volume", "fig4_sliding_wear", "fig5_particle_rate", "appB_particle_counts", "appF_contact_severity", "fig6_kim_comparison"] {
+    for name in [
+        "fig2_static_model",
+        "fig3_wear_volume",
+        "fig4_sliding_wear",
+        "fig5_particle_rate",
+        "appB_particle_counts",
+        "appF_contact_severity",
+        "fig6_kim_comparison",
+    ] {
         for ext in ["png", "svg"] {
             let f = sharded.join("figures").join(format!("{name}.{ext}"));
-            assert!(std::fs::metadata(&f).map(|m| m.len() > 1000).unwrap_or(false), "{} missing or empty", f.display());
+            assert!(
+                std::fs::metadata(&f).map(|m| m.len() > 1000).unwrap_or(false),
+                "{} missing or empty",
+                f.display()
+            );
         }
     }
     // A Slurm job array picks its shard from the environment.
     let slurm = dir.path().join("slurm");
     for id in 1..=2 {
         let o = wearsim()
-            .args(["study", "run", study.to_str().unwrap(), "--out", slurm.to_str().unwrap()])
+            .args([
+                "study",
+                "run",
+                study.to_str().unwrap(),
+                "--out",
+                slurm.to_str().unwrap(),
+            ])
             .env("SLURM_ARRAY_TASK_ID", id.to_string())
             .env("SLURM_ARRAY_TASK_COUNT", "2")
             .env("SLURM_ARRAY_TASK_MIN", "1")
@@ -134,12 +189,33 @@ fn shards_and_worker_counts_give_the_unsharded_results() {
     assert_eq!(collect(&slurm), expected);
     // A job file can never be attributed to another job.
     std::fs::copy(whole.join("jobs/job-000000.json"), whole.join("jobs/job-000001.json")).unwrap();
-    let o = wearsim().args(["study", "collect", whole.to_str().unwrap()]).output().unwrap();
+    let o = wearsim()
+        .args(["study", "collect", whole.to_str().unwrap()])
+        .output()
+        .unwrap();
     assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("written for another job"));
-    let o = wearsim().args(["study", "run", study.to_str().unwrap(), "--out", whole.to_str().unwrap()]).output().unwrap();
+    let o = wearsim()
+        .args([
+            "study",
+            "run",
+            study.to_str().unwrap(),
+            "--out",
+            whole.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
     assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("written for another job"));
     // A changed study file is refused in an existing folder.
     std::fs::write(&study, STUDY.replace("0.012", "0.011")).unwrap();
-    let o = wearsim().args(["study", "run", study.to_str().unwrap(), "--out", whole.to_str().unwrap()]).output().unwrap();
+    let o = wearsim()
+        .args([
+            "study",
+            "run",
+            study.to_str().unwrap(),
+            "--out",
+            whole.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
     assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("different study"));
 }

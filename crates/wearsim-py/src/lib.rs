@@ -44,9 +44,10 @@ fn to_py(e: Error) -> PyErr {
         Error::Io { .. } => PyOSError::new_err(message),
         Error::NotConverged { .. } => NotConvergedError::new_err(message),
         Error::Interrupted => pyo3::exceptions::PyKeyboardInterrupt::new_err(message),
-        Error::InvalidParameter { .. } | Error::InvalidSurface { .. } | Error::Config(_) | Error::InfeasibleLoad { .. } => {
-            PyValueError::new_err(message)
-        }
+        Error::InvalidParameter { .. }
+        | Error::InvalidSurface { .. }
+        | Error::Config(_)
+        | Error::InfeasibleLoad { .. } => PyValueError::new_err(message),
     }
 }
 
@@ -141,7 +142,9 @@ fn interruptible_with_progress<T: Send>(
                     }
                 }
                 Err(RecvTimeoutError::Disconnected) => {
-                    return Err(PyRuntimeError::new_err("wearsim's worker thread stopped without a result"))
+                    return Err(PyRuntimeError::new_err(
+                        "wearsim's worker thread stopped without a result",
+                    ))
                 }
             }
         }
@@ -164,13 +167,17 @@ fn square<T: numpy::Element + Copy>(field: &str, a: &PyReadonlyArray2<'_, T>) ->
 fn square_of(field: &str, a: &PyReadonlyArray2<'_, f64>, n: usize, of: &str) -> PyResult<Vec<f64>> {
     let (m, values) = square(field, a)?;
     if m != n {
-        return Err(PyValueError::new_err(format!("invalid `{field}`: grid {m}² differs from the {of}'s {n}²")));
+        return Err(PyValueError::new_err(format!(
+            "invalid `{field}`: grid {m}² differs from the {of}'s {n}²"
+        )));
     }
     Ok(values)
 }
 
 fn to_array<'py, T: numpy::Element>(py: Python<'py>, n: usize, values: Vec<T>) -> Bound<'py, PyArray2<T>> {
-    Array2::from_shape_vec((n, n), values).expect("N² values").into_pyarray(py)
+    Array2::from_shape_vec((n, n), values)
+        .expect("N² values")
+        .into_pyarray(py)
 }
 
 fn modulus_convention(name: &str) -> PyResult<ModulusConvention> {
@@ -214,7 +221,13 @@ fn generate_surface<'py>(
             )))
         }
     };
-    let params = SpectrumParams { hurst, lambda_lower, lambda_upper, rms_height, generation };
+    let params = SpectrumParams {
+        hurst,
+        lambda_lower,
+        lambda_upper,
+        rms_height,
+        generation,
+    };
     params.validate(grid, length).map_err(to_py)?;
     let surface = interruptible(py, None, |_| Surface::generate(grid, length, &params, seed))?;
     Ok(to_array(py, grid, surface.heights().to_vec()))
@@ -310,9 +323,15 @@ impl PyMaterial {
         fracture_energies: Vec<f64>,
         geometry_factor: f64,
     ) -> PyResult<Self> {
-        Material::new(youngs_modulus, poisson_ratio, shear_strength, fracture_energies, geometry_factor)
-            .map(|inner| Self { inner })
-            .map_err(to_py)
+        Material::new(
+            youngs_modulus,
+            poisson_ratio,
+            shear_strength,
+            fracture_energies,
+            geometry_factor,
+        )
+        .map(|inner| Self { inner })
+        .map_err(to_py)
     }
 
     #[getter]
@@ -475,7 +494,11 @@ fn label_junctions<'py>(
     let (labels, sizes) = py.detach(|| {
         let mut labeller = JunctionLabeller::new(n, connectivity);
         labeller.label(|k| flags[k]);
-        let labels: Vec<i64> = labeller.labels().iter().map(|&l| if l == NO_JUNCTION { -1 } else { l as i64 }).collect();
+        let labels: Vec<i64> = labeller
+            .labels()
+            .iter()
+            .map(|&l| if l == NO_JUNCTION { -1 } else { l as i64 })
+            .collect();
         let sizes: Vec<u64> = labeller.sizes().iter().map(|&s| s as u64).collect();
         (labels, sizes)
     });
@@ -492,7 +515,10 @@ fn static_wear_model<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     wearsim::material::positive("pixel_size", pixel_size).map_err(to_py)?;
     wearsim::material::positive("critical_diameter", critical_diameter).map_err(to_py)?;
-    let junctions: Vec<_> = junction_pixels.iter().map(|&p| wearsim::junctions::Junction::new(p, pixel_size)).collect();
+    let junctions: Vec<_> = junction_pixels
+        .iter()
+        .map(|&p| wearsim::junctions::Junction::new(p, pixel_size))
+        .collect();
     let w = static_wear(&junctions, critical_diameter);
     let d = PyDict::new(py);
     d.set_item("wear_coefficient", w.wear_coefficient)?;
@@ -511,7 +537,10 @@ fn series_columns<'py>(py: Python<'py>, runs: &[LoadRun]) -> PyResult<Bound<'py,
     let d = PyDict::new(py);
     macro_rules! column {
         ($name:ident) => {
-            d.set_item(stringify!($name), rows.iter().map(|r| r.$name).collect::<Vec<_>>().into_pyarray(py))?;
+            d.set_item(
+                stringify!($name),
+                rows.iter().map(|r| r.$name).collect::<Vec<_>>().into_pyarray(py),
+            )?;
         };
     }
     column!(load);
@@ -612,7 +641,9 @@ impl PyRunFile {
     }
     #[getter]
     fn material(&self) -> PyMaterial {
-        PyMaterial { inner: self.config.material.clone() }
+        PyMaterial {
+            inner: self.config.material.clone(),
+        }
     }
     #[getter]
     fn effective_modulus(&self) -> f64 {
@@ -643,7 +674,10 @@ impl PyRunFile {
     fn surfaces<'py>(&self, py: Python<'py>) -> Pair<'py, PyArray2<f64>, PyArray2<f64>> {
         let config = &self.config;
         let (t, b) = interruptible(py, None, |_| config.surfaces())?;
-        Ok((to_array(py, t.n(), t.heights().to_vec()), to_array(py, b.n(), b.heights().to_vec())))
+        Ok((
+            to_array(py, t.n(), t.heights().to_vec()),
+            to_array(py, b.n(), b.heights().to_vec()),
+        ))
     }
 
     /// The sliding model as `wearsim slide` runs it. Returns (series columns, summary).
@@ -666,10 +700,18 @@ impl PyRunFile {
             let (top, bottom) = config.surfaces()?;
             let mut setup = SlidingSetup::from_run(config, sliding);
             setup.interrupt = interrupt.clone();
-            Ok((run_sliding(&top, &bottom, &setup, |view| steps.set(view.done, view.total))?, top.n()))
+            Ok((
+                run_sliding(&top, &bottom, &setup, |view| steps.set(view.done, view.total))?,
+                top.n(),
+            ))
         })?;
         let seconds = start.elapsed().as_secs_f64();
-        let summary = sliding_summary(&RunInputs::of_run(config, sliding), &runs, seconds, schedule(n, sliding).len());
+        let summary = sliding_summary(
+            &RunInputs::of_run(config, sliding),
+            &runs,
+            seconds,
+            schedule(n, sliding).len(),
+        );
         Ok((series_columns(py, &runs)?, json_to_py(py, &summary)?))
     }
 }
@@ -689,10 +731,12 @@ struct PyStudy {
 
 impl PyStudy {
     fn job(&self, index: usize) -> PyResult<&Job> {
-        self.study
-            .jobs
-            .get(index)
-            .ok_or_else(|| PyValueError::new_err(format!("invalid job index {index}: the study has {} jobs", self.study.jobs.len())))
+        self.study.jobs.get(index).ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "invalid job index {index}: the study has {} jobs",
+                self.study.jobs.len()
+            ))
+        })
     }
 }
 
@@ -776,13 +820,17 @@ impl PyStudy {
             None => study.jobs.iter().collect(),
             Some((k, count)) if count >= 1 && (1..=count).contains(&k) => study::shard(&study.jobs, k, count),
             Some((k, count)) => {
-                return Err(PyValueError::new_err(format!("invalid `shard`: ({k}, {count}) needs 1 ≤ k ≤ count")))
+                return Err(PyValueError::new_err(format!(
+                    "invalid `shard`: ({k}, {count}) needs 1 ≤ k ≤ count"
+                )))
             }
         };
         interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, done_jobs| {
             study::prepare_folder(&out, study, base)?;
             let workers = workers.unwrap_or_else(rayon::current_num_threads).max(1);
-            study::run_jobs(&out, &jobs, workers, interrupt, |done, total| done_jobs.set(done, total))
+            study::run_jobs(&out, &jobs, workers, interrupt, |done, total| {
+                done_jobs.set(done, total)
+            })
         })
     }
 

@@ -91,7 +91,12 @@ struct RawSliding {
 #[serde(tag = "source", rename_all = "lowercase")]
 pub enum SurfaceSource {
     /// Generated from spectral parameters and one seed (top and bottom seeds derived from it).
-    Generated { grid: usize, length: f64, spectrum: SpectrumParams, seed: u64 },
+    Generated {
+        grid: usize,
+        length: f64,
+        spectrum: SpectrumParams,
+        seed: u64,
+    },
     /// Read from `.npy` files (paths resolved against the run file's folder).
     Files { top: PathBuf, bottom: PathBuf, length: f64 },
 }
@@ -122,13 +127,19 @@ impl SlidingConfig {
         grid: Option<usize>,
     ) -> Result<Self> {
         if loads.is_empty() {
-            return Err(Error::param("loads", "the list is empty; give at least one normal load"));
+            return Err(Error::param(
+                "loads",
+                "the list is empty; give at least one normal load",
+            ));
         }
         for &f in &loads {
             crate::material::positive("loads", f)?;
         }
         if !(distance > 0.0 && distance <= 1.0) {
-            return Err(Error::param("distance", format!("{distance} must lie in (0, 1] (a fraction of L)")));
+            return Err(Error::param(
+                "distance",
+                format!("{distance} must lie in (0, 1] (a fraction of L)"),
+            ));
         }
         if !(running_in >= 0.0 && running_in < distance) {
             return Err(Error::param(
@@ -138,10 +149,19 @@ impl SlidingConfig {
         }
         for (field, v) in [("step_running_in", step_running_in), ("step", step)] {
             if v == 0 || grid.is_some_and(|g| v >= g) {
-                return Err(Error::param(field, format!("{v} pixels must be at least 1 and below the grid size")));
+                return Err(Error::param(
+                    field,
+                    format!("{v} pixels must be at least 1 and below the grid size"),
+                ));
             }
         }
-        Ok(Self { loads, distance, running_in, step_running_in, step })
+        Ok(Self {
+            loads,
+            distance,
+            running_in,
+            step_running_in,
+            step,
+        })
     }
 }
 
@@ -175,7 +195,8 @@ impl RunConfig {
 
     /// Parses run-file text; relative surface paths are resolved against `base`.
     pub fn from_toml(text: &str, base: &Path) -> Result<Self> {
-        let raw: RawRun = toml::from_str(text).map_err(|e| Error::Config(e.to_string().trim_end().replace('\n', " ")))?;
+        let raw: RawRun =
+            toml::from_str(text).map_err(|e| Error::Config(e.to_string().trim_end().replace('\n', " ")))?;
         let s = raw.surface;
         let surfaces = match (&s.top, &s.bottom) {
             (Some(top), Some(bottom)) => {
@@ -193,28 +214,44 @@ impl RunConfig {
                         )));
                     }
                 }
-                let length = s.length.ok_or_else(|| missing("length", "give the physical side length of the files"))?;
+                let length = s
+                    .length
+                    .ok_or_else(|| missing("length", "give the physical side length of the files"))?;
                 crate::material::positive("length", length)?;
                 let (top, bottom) = (base.join(top), base.join(bottom));
                 for p in [&top, &bottom] {
                     if !p.is_file() {
-                        return Err(Error::io(p, "surface file not found (paths are relative to the run file)"));
+                        return Err(Error::io(
+                            p,
+                            "surface file not found (paths are relative to the run file)",
+                        ));
                     }
                 }
                 SurfaceSource::Files { top, bottom, length }
             }
             (None, None) => {
-                let grid = s.grid.ok_or_else(|| missing("grid", "give the number of pixels per side, e.g. 512"))?;
+                let grid = s
+                    .grid
+                    .ok_or_else(|| missing("grid", "give the number of pixels per side, e.g. 512"))?;
                 let length = s.length.unwrap_or(1.0);
                 let spectrum = SpectrumParams {
                     hurst: s.hurst.unwrap_or(0.7),
-                    lambda_lower: s.lambda_lower.ok_or_else(|| missing("lambda_lower", "e.g. 16 pixels, 16·length/grid"))?,
-                    lambda_upper: s.lambda_upper.ok_or_else(|| missing("lambda_upper", "e.g. length/16"))?,
+                    lambda_lower: s
+                        .lambda_lower
+                        .ok_or_else(|| missing("lambda_lower", "e.g. 16 pixels, 16·length/grid"))?,
+                    lambda_upper: s
+                        .lambda_upper
+                        .ok_or_else(|| missing("lambda_upper", "e.g. length/16"))?,
                     rms_height: s.rms_height.ok_or_else(|| missing("rms_height", "e.g. 0.005·length"))?,
                     generation: s.generation.unwrap_or_default(),
                 };
                 spectrum.validate(grid, length)?;
-                SurfaceSource::Generated { grid, length, spectrum, seed: s.seed.unwrap_or(0) }
+                SurfaceSource::Generated {
+                    grid,
+                    length,
+                    spectrum,
+                    seed: s.seed.unwrap_or(0),
+                }
             }
             _ => {
                 return Err(Error::Config(
@@ -269,7 +306,12 @@ impl RunConfig {
     /// The top and bottom surfaces: generated (seeds derived from the run's seed) or read.
     pub fn surfaces(&self) -> Result<(Surface, Surface)> {
         match &self.surfaces {
-            SurfaceSource::Generated { grid, length, spectrum, seed } => {
+            SurfaceSource::Generated {
+                grid,
+                length,
+                spectrum,
+                seed,
+            } => {
                 let (top_seed, bottom_seed) = pair_seeds(*seed);
                 let (top, bottom) = rayon::join(
                     || Surface::generate(*grid, *length, spectrum, top_seed),
@@ -340,11 +382,17 @@ loads = [1e-3]
 
     #[test]
     fn unknown_keys_are_named() {
-        let e = RunConfig::from_toml(&RUN.replace("hurst", "hurts"), Path::new(".")).unwrap_err().to_string();
+        let e = RunConfig::from_toml(&RUN.replace("hurst", "hurts"), Path::new("."))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("hurts"), "{e}");
-        let e = RunConfig::from_toml(&RUN.replace("loads = [1e-3]", "loads = []"), Path::new(".")).unwrap_err().to_string();
+        let e = RunConfig::from_toml(&RUN.replace("loads = [1e-3]", "loads = []"), Path::new("."))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("loads"), "{e}");
-        let e = RunConfig::from_toml(&RUN.replace("0.3", "0.7"), Path::new(".")).unwrap_err().to_string();
+        let e = RunConfig::from_toml(&RUN.replace("0.3", "0.7"), Path::new("."))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("poisson_ratio"), "{e}");
     }
 }

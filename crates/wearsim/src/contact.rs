@@ -56,13 +56,19 @@ impl SolverOptions {
         if max_iterations == 0 {
             return Err(Error::param("max_iterations", "must be at least 1"));
         }
-        Ok(Self { tolerance, max_iterations })
+        Ok(Self {
+            tolerance,
+            max_iterations,
+        })
     }
 }
 
 impl Default for SolverOptions {
     fn default() -> Self {
-        Self { tolerance: DEFAULT_TOLERANCE, max_iterations: DEFAULT_MAX_ITERATIONS }
+        Self {
+            tolerance: DEFAULT_TOLERANCE,
+            max_iterations: DEFAULT_MAX_ITERATIONS,
+        }
     }
 }
 
@@ -362,23 +368,32 @@ impl ContactSolver {
         }
         crate::material::positive("load", mean_pressure)?;
         if !(flow_pressure > 0.0) {
-            return Err(Error::param("flow_pressure", format!("{flow_pressure} must be positive")));
+            return Err(Error::param(
+                "flow_pressure",
+                format!("{flow_pressure} must be positive"),
+            ));
         }
         if mean_pressure >= flow_pressure {
-            return Err(Error::InfeasibleLoad { mean_pressure, flow_pressure });
+            return Err(Error::InfeasibleLoad {
+                mean_pressure,
+                flow_pressure,
+            });
         }
         // Height statistics in one deterministic parallel pass: Σ(h − h₀), Σ(h − h₀)², max, finite.
         let h0 = heights[0];
         let (sum, sum_sq, h_max, finite) = heights
             .par_chunks(n)
             .map(|row| {
-                row.iter().fold((0.0, 0.0, f64::NEG_INFINITY, true), |(s, q, m, f), &h| {
-                    (s + (h - h0), q + (h - h0) * (h - h0), m.max(h), f && h.is_finite())
-                })
+                row.iter()
+                    .fold((0.0, 0.0, f64::NEG_INFINITY, true), |(s, q, m, f), &h| {
+                        (s + (h - h0), q + (h - h0) * (h - h0), m.max(h), f && h.is_finite())
+                    })
             })
             .collect::<Vec<_>>()
             .into_iter()
-            .fold((0.0, 0.0, f64::NEG_INFINITY, true), |a, b| (a.0 + b.0, a.1 + b.1, a.2.max(b.2), a.3 && b.3));
+            .fold((0.0, 0.0, f64::NEG_INFINITY, true), |a, b| {
+                (a.0 + b.0, a.1 + b.1, a.2.max(b.2), a.3 && b.3)
+            });
         if !finite || !h0.is_finite() {
             let k = heights.iter().position(|h| !h.is_finite()).unwrap_or(0);
             return Err(Error::InvalidSurface {
@@ -395,7 +410,11 @@ impl ContactSolver {
         let shift_mean = sum / nn as f64;
         let h_std = (sum_sq / nn as f64 - shift_mean * shift_mean).max(0.0).sqrt();
         // Residual scale: the surface's RMS height, or for a flat surface the elastic length P·L/E*.
-        let scale = if h_std > 0.0 { h_std } else { mean_pressure * self.length / self.effective_modulus };
+        let scale = if h_std > 0.0 {
+            h_std
+        } else {
+            mean_pressure * self.length / self.effective_modulus
+        };
         let min_len = (8192 / n).max(1);
 
         // Initial guess: the given field when usable, else uniform pressure.
@@ -438,14 +457,22 @@ impl ContactSolver {
                 continue;
             }
             if iterations >= self.options.max_iterations {
-                return Err(Error::NotConverged { iterations, residual, tolerance });
+                return Err(Error::NotConverged {
+                    iterations,
+                    residual,
+                    tolerance,
+                });
             }
             self.interrupt.check()?;
             iterations += 1;
 
             // Conjugate direction on the free pixels: t = (g − ḡ) + β t.
             let g_norm = stats.gradient_norm_sq(reference, mean);
-            let beta = if restart || g_norm_old <= 0.0 { 0.0 } else { g_norm / g_norm_old };
+            let beta = if restart || g_norm_old <= 0.0 {
+                0.0
+            } else {
+                g_norm / g_norm_old
+            };
             g_norm_old = g_norm;
             let (sum_t, sum_dt) = self.pass_direction(heights, pressure, mean, beta, pm, min_len);
             let shift = if stats.n_free > 0.0 { sum_t / stats.n_free } else { 0.0 };
@@ -492,8 +519,15 @@ impl ContactSolver {
             let mut tau = tau;
             let mut backtracks = 0;
             loop {
-                let (next, changed_total, released, clipped) =
-                    self.pass_update(heights, pressure, mean, tau, if cg_step { shift } else { f64::NAN }, pm, min_len);
+                let (next, changed_total, released, clipped) = self.pass_update(
+                    heights,
+                    pressure,
+                    mean,
+                    tau,
+                    if cg_step { shift } else { f64::NAN },
+                    pm,
+                    min_len,
+                );
                 let drift = (changed_total - total).abs() > 1e-12 * total;
                 if !(clipped || released || drift || !cg_step) {
                     stats = next;
@@ -512,7 +546,10 @@ impl ContactSolver {
                     break;
                 }
                 // Undo: p from its copy, u = (u − τr) + τr from the carried-along field.
-                pressure.par_iter_mut().zip(self.p_old.par_iter()).for_each(|(p, &o)| *p = o);
+                pressure
+                    .par_iter_mut()
+                    .zip(self.p_old.par_iter())
+                    .for_each(|(p, &o)| *p = o);
                 let step = if cg_step { tau } else { 0.0 };
                 self.u
                     .par_iter_mut()
@@ -546,7 +583,13 @@ impl ContactSolver {
             let carried: f64 = pressure.iter().sum();
             let missing = total - carried;
             let u = &self.u;
-            let penetration = |i: usize| if mean.is_nan() { 0.0 } else { (mean - (u[i] - heights[i])).max(0.0) };
+            let penetration = |i: usize| {
+                if mean.is_nan() {
+                    0.0
+                } else {
+                    (mean - (u[i] - heights[i])).max(0.0)
+                }
+            };
             let (weight_sum, n_zero) = pressure
                 .iter()
                 .enumerate()
@@ -578,7 +621,11 @@ impl ContactSolver {
             &mut self.u,
             |i, u| {
                 let mut s = Stats::default();
-                for ((&p, &u), &h) in pressure[i * n..(i + 1) * n].iter().zip(u).zip(&heights[i * n..(i + 1) * n]) {
+                for ((&p, &u), &h) in pressure[i * n..(i + 1) * n]
+                    .iter()
+                    .zip(u)
+                    .zip(&heights[i * n..(i + 1) * n])
+                {
                     s.add(p, u, h, reference, pm);
                 }
                 s
@@ -603,7 +650,11 @@ impl ContactSolver {
             .par_iter_mut()
             .with_min_len(min_len)
             .zip(self.t.par_chunks_mut(n))
-            .zip(pressure.par_chunks(n).zip(self.u.par_chunks(n).zip(heights.par_chunks(n))))
+            .zip(
+                pressure
+                    .par_chunks(n)
+                    .zip(self.u.par_chunks(n).zip(heights.par_chunks(n))),
+            )
             .for_each(|((acc, t), (p, (u, h)))| {
                 let (mut st, mut sdt) = (0.0, 0.0);
                 for (((t, &p), &u), &h) in t.iter_mut().zip(p).zip(u).zip(h) {
@@ -647,7 +698,11 @@ impl ContactSolver {
             .with_min_len(min_len)
             .zip(totals.par_iter_mut().zip(events.par_iter_mut()))
             .zip(pressure.par_chunks_mut(n).zip(self.u.par_chunks_mut(n)))
-            .zip(self.t.par_chunks(n).zip(self.r.par_chunks(n).zip(heights.par_chunks(n))))
+            .zip(
+                self.t
+                    .par_chunks(n)
+                    .zip(self.r.par_chunks(n).zip(heights.par_chunks(n))),
+            )
             .zip(self.p_old.par_chunks_mut(n))
             .for_each(|((((acc, (total, event)), (p, u)), (t, (r, h))), p_old)| {
                 p_old.copy_from_slice(p);
@@ -712,7 +767,11 @@ fn scale_to_load(pressure: &mut [f64], total: f64, pm: f64, min_len: usize, sums
     }
     // Which pixels scale: the free ones, or all contact pixels if the plastic zone alone is too much.
     let scale_plastic = plastic_sum >= total || free_sum == 0.0;
-    let (fixed, movable) = if scale_plastic { (0.0, free_sum + plastic_sum) } else { (plastic_sum, free_sum) };
+    let (fixed, movable) = if scale_plastic {
+        (0.0, free_sum + plastic_sum)
+    } else {
+        (plastic_sum, free_sum)
+    };
     if movable <= 0.0 || pm * n_contact as f64 <= total {
         pressure.par_iter_mut().for_each(|p| {
             if *p > 0.0 {

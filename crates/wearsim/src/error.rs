@@ -36,7 +36,11 @@ pub enum Error {
         "contact solver did not converge: residual {residual:.3e} after {iterations} iterations, \
          tolerance {tolerance:.3e}; raise `max_iterations` or loosen `tolerance` in [contact]"
     )]
-    NotConverged { iterations: usize, residual: f64, tolerance: f64 },
+    NotConverged {
+        iterations: usize,
+        residual: f64,
+        tolerance: f64,
+    },
 
     /// The caller asked the computation to stop (Ctrl-C in the Python front end).
     #[error("interrupted")]
@@ -49,12 +53,18 @@ pub type Result<T> = std::result::Result<T, Error>;
 impl Error {
     /// Shorthand for [`Error::InvalidParameter`].
     pub fn param(field: impl Into<String>, message: impl Into<String>) -> Self {
-        Error::InvalidParameter { field: field.into(), message: message.into() }
+        Error::InvalidParameter {
+            field: field.into(),
+            message: message.into(),
+        }
     }
 
     /// Shorthand for [`Error::Io`].
     pub fn io(path: impl Into<PathBuf>, message: impl ToString) -> Self {
-        Error::Io { path: path.into(), message: message.to_string() }
+        Error::Io {
+            path: path.into(),
+            message: message.to_string(),
+        }
     }
 }
 

@@ -40,7 +40,12 @@ thread_local! {
 
 /// Runs `f` on this thread's work buffers cut to the given lengths (grown, zero-filled, on first
 /// use of a larger size). `f` must not start another transform on the same thread.
-fn with_work<T>(real: usize, block: usize, scratch: usize, f: impl FnOnce(&mut [f64], &mut [C64], &mut [C64]) -> T) -> T {
+fn with_work<T>(
+    real: usize,
+    block: usize,
+    scratch: usize,
+    f: impl FnOnce(&mut [f64], &mut [C64], &mut [C64]) -> T,
+) -> T {
     WORK.with(|w| {
         let mut w = w.borrow_mut();
         let w = &mut *w;
@@ -150,7 +155,9 @@ impl FftPlan {
         let n = self.n;
         let scratch_len = fft.get_inplace_scratch_len();
         self.spectrum.par_chunks_mut(self.stride).for_each(|row| {
-            with_work(0, 0, scratch_len, |_, _, scratch| fft.process_with_scratch(&mut row[..n], scratch))
+            with_work(0, 0, scratch_len, |_, _, scratch| {
+                fft.process_with_scratch(&mut row[..n], scratch)
+            })
         });
     }
 
@@ -264,7 +271,8 @@ impl FftPlan {
                     row_in[0].im = 0.0;
                     row_in[half - 1].im = 0.0;
                     let out = &mut rows[r * n..(r + 1) * n];
-                    c2r.process_with_scratch(row_in, out, scratch).expect("buffer sizes match the plan");
+                    c2r.process_with_scratch(row_in, out, scratch)
+                        .expect("buffer sizes match the plan");
                     let value = post(i0 + r, out);
                     if let Some(p) = partials {
                         // SAFETY: row i0 + r < n belongs to this block alone; the slot holds an

@@ -38,7 +38,12 @@ impl Junction {
     pub fn new(pixels: usize, dx: f64) -> Self {
         let area = pixels as f64 * dx * dx;
         let diameter = 2.0 * (area / std::f64::consts::PI).sqrt();
-        Self { pixels, area, diameter, volume: std::f64::consts::PI * diameter.powi(3) / 6.0 }
+        Self {
+            pixels,
+            area,
+            diameter,
+            volume: std::f64::consts::PI * diameter.powi(3) / 6.0,
+        }
     }
 }
 
@@ -227,7 +232,12 @@ mod tests {
     }
 
     fn maps() -> impl Strategy<Value = (usize, Vec<bool>)> {
-        (3usize..12).prop_flat_map(|n| (Just(n), proptest::collection::vec(proptest::bool::weighted(0.45), n * n)))
+        (3usize..12).prop_flat_map(|n| {
+            (
+                Just(n),
+                proptest::collection::vec(proptest::bool::weighted(0.45), n * n),
+            )
+        })
     }
 
     proptest! {

@@ -41,7 +41,11 @@ pub fn composite_heights(top: &Surface, bottom: &Surface, offset: usize, out: &m
     let (t, b) = (top.heights(), bottom.heights());
     out.par_chunks_mut(n).enumerate().for_each(|(i, row)| {
         let src = (i + n - offset % n) % n;
-        for ((o, &bv), &tv) in row.iter_mut().zip(&b[i * n..(i + 1) * n]).zip(&t[src * n..(src + 1) * n]) {
+        for ((o, &bv), &tv) in row
+            .iter_mut()
+            .zip(&b[i * n..(i + 1) * n])
+            .zip(&t[src * n..(src + 1) * n])
+        {
             *o = bv + tv;
         }
     });

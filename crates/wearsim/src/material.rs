@@ -59,7 +59,13 @@ impl Material {
             positive("fracture_energies", g)?;
         }
         positive("geometry_factor", geometry_factor)?;
-        Ok(Self { youngs_modulus, poisson_ratio, shear_strength, fracture_energies, geometry_factor })
+        Ok(Self {
+            youngs_modulus,
+            poisson_ratio,
+            shear_strength,
+            fracture_energies,
+            geometry_factor,
+        })
     }
 
     /// Shear modulus μ = E/(2(1+ν)).
@@ -80,7 +86,10 @@ impl Material {
 
     /// Critical diameters for every fracture energy, in the order given.
     pub fn critical_diameters(&self) -> Vec<f64> {
-        self.fracture_energies.iter().map(|&g| self.critical_diameter(g)).collect()
+        self.fracture_energies
+            .iter()
+            .map(|&g| self.critical_diameter(g))
+            .collect()
     }
 
     /// Effective modulus E* of the equivalent contact of a rigid surface on a half-space.

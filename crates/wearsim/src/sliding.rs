@@ -5,6 +5,7 @@
 
 use std::time::Instant;
 
+use crate::composite_heights;
 use crate::config::SlidingConfig;
 use crate::contact::{ContactSolver, SolverOptions};
 use crate::error::{Error, Interrupt, Result};
@@ -12,7 +13,6 @@ use crate::junctions::JunctionLabeller;
 use crate::material::Material;
 use crate::surface::Surface;
 use crate::wear::{static_wear, SlidingBookkeeping, StaticWear, StepWear};
-use crate::composite_heights;
 
 /// Sliding offsets in pixels (SPEC §6): from 0 in steps of `step_running_in` while below the
 /// running-in distance, then from the running-in distance in steps of `step` while below the total
@@ -156,7 +156,9 @@ pub fn results_json(runs: &[LoadRun]) -> (serde_json::Value, serde_json::Value) 
         .flat_map(|r| {
             r.results.iter().map(move |w| {
                 let mut v = serde_json::to_value(w).expect("plain numbers serialise");
-                v.as_object_mut().expect("a struct serialises to an object").insert("load".into(), json!(r.load));
+                v.as_object_mut()
+                    .expect("a struct serialises to an object")
+                    .insert("load".into(), json!(r.load));
                 v
             })
         })
@@ -228,7 +230,10 @@ pub fn run_sliding(
 ) -> Result<Vec<LoadRun>> {
     let n = top.n();
     if bottom.n() != n || (bottom.length() - top.length()).abs() > 1e-12 * top.length() {
-        return Err(Error::param("surface", "top and bottom surfaces must share grid and side length"));
+        return Err(Error::param(
+            "surface",
+            "top and bottom surfaces must share grid and side length",
+        ));
     }
     let length = top.length();
     let area = length * length;
@@ -236,7 +241,10 @@ pub fn run_sliding(
     let pm = setup.material.flow_pressure();
     for &load in &setup.sliding.loads {
         if load / area >= pm {
-            return Err(Error::InfeasibleLoad { mean_pressure: load / area, flow_pressure: pm });
+            return Err(Error::InfeasibleLoad {
+                mean_pressure: load / area,
+                flow_pressure: pm,
+            });
         }
     }
     if setup.material.fracture_energies.is_empty() {
@@ -247,7 +255,10 @@ pub fn run_sliding(
     }
     let offsets = schedule(n, setup.sliding);
     if offsets.len() < 2 {
-        return Err(Error::param("distance", "the schedule holds fewer than two offsets; raise `distance` or refine `grid`"));
+        return Err(Error::param(
+            "distance",
+            "the schedule holds fewer than two offsets; raise `distance` or refine `grid`",
+        ));
     }
     let running_in = (setup.sliding.running_in * n as f64).round() as usize;
     let diameters = setup.material.critical_diameters();
@@ -280,7 +291,10 @@ pub fn run_sliding(
             if offset == 0 {
                 statics = diameters.iter().map(|&d| static_wear(&junctions, d)).collect();
             }
-            let wear: Vec<StepWear> = books.iter_mut().map(|b| b.step(&labeller, &junctions, &mut scratch)).collect();
+            let wear: Vec<StepWear> = books
+                .iter_mut()
+                .map(|b| b.step(&labeller, &junctions, &mut scratch))
+                .collect();
             let t3 = Instant::now();
             timing.solve += (t1 - t0).as_secs_f64();
             timing.labelling += (t2 - t1).as_secs_f64();
@@ -346,7 +360,13 @@ mod tests {
 
     #[test]
     fn paper_schedule_has_1280_offsets_at_4096_and_160_at_512() {
-        let cfg = SlidingConfig { loads: vec![1e-3], distance: 0.5, running_in: 0.25, step_running_in: 4, step: 1 };
+        let cfg = SlidingConfig {
+            loads: vec![1e-3],
+            distance: 0.5,
+            running_in: 0.25,
+            step_running_in: 4,
+            step: 1,
+        };
         let s = schedule(4096, &cfg);
         assert_eq!(s.len(), 1280);
         assert_eq!(&s[..3], &[0, 4, 8]);

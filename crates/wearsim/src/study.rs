@@ -42,10 +42,23 @@ impl Job {
         use crate::config::SurfaceSource;
         let r = &self.run;
         let m = &r.material;
-        let (mut grid, mut hurst, mut lower, mut upper, mut rms, mut seed, mut top, mut bottom) =
-            (String::new(), String::new(), String::new(), String::new(), String::new(), String::new(), String::new(), String::new());
+        let (mut grid, mut hurst, mut lower, mut upper, mut rms, mut seed, mut top, mut bottom) = (
+            String::new(),
+            String::new(),
+            String::new(),
+            String::new(),
+            String::new(),
+            String::new(),
+            String::new(),
+            String::new(),
+        );
         match &r.surfaces {
-            SurfaceSource::Generated { grid: g, spectrum, seed: s, .. } => {
+            SurfaceSource::Generated {
+                grid: g,
+                spectrum,
+                seed: s,
+                ..
+            } => {
                 grid = g.to_string();
                 hurst = format!("{:e}", spectrum.hurst);
                 lower = format!("{:e}", spectrum.lambda_lower);
@@ -59,7 +72,14 @@ impl Job {
             }
         }
         vec![
-            ("units", if r.units == crate::config::Units::Si { "si".into() } else { "reduced".into() }),
+            (
+                "units",
+                if r.units == crate::config::Units::Si {
+                    "si".into()
+                } else {
+                    "reduced".into()
+                },
+            ),
             ("surface.grid", grid),
             ("surface.length", format!("{:e}", r.length())),
             ("surface.hurst", hurst),
@@ -81,7 +101,11 @@ impl Job {
 
     /// The job's single load.
     pub fn load(&self) -> f64 {
-        self.run.sliding.as_ref().and_then(|s| s.loads.first().copied()).unwrap_or(f64::NAN)
+        self.run
+            .sliding
+            .as_ref()
+            .and_then(|s| s.loads.first().copied())
+            .unwrap_or(f64::NAN)
     }
 
     /// Reads this job's result file, checking that it was written for this job.
@@ -89,7 +113,11 @@ impl Job {
         let p = job_path(dir, self.index);
         let text = std::fs::read_to_string(&p).map_err(|e| Error::io(&p, e))?;
         let r: JobResult = serde_json::from_str(&text).map_err(|e| Error::io(&p, format!("not a job result ({e})")))?;
-        if r.index != self.index || r.material != self.material || r.load != self.load() || r.parameters != self.parameters() {
+        if r.index != self.index
+            || r.material != self.material
+            || r.load != self.load()
+            || r.parameters != self.parameters()
+        {
             return Err(Error::Config(format!(
                 "{} was written for another job ({} at load {:e}, {:?}), not for {} at load {:e}, {:?}; \
                  the folder comes from another version of this study: use a new --out folder",
@@ -117,7 +145,9 @@ pub struct Study {
 }
 
 fn fnv1a(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| (h ^ b as u64).wrapping_mul(0x0100_0000_01b3))
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
+        (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
+    })
 }
 
 /// Cartesian product of the list-valued keys of `table` (except `keep_lists`): every combination as
@@ -149,7 +179,9 @@ fn product(table: &Table, section: &str, keep_lists: &[&str]) -> Vec<(Table, BTr
 
 /// Expands a study file's text; relative surface paths resolve against `base`.
 pub fn expand(text: &str, base: &Path) -> Result<Study> {
-    let table: Table = text.parse::<Table>().map_err(|e| Error::Config(e.to_string().trim_end().replace('\n', " ")))?;
+    let table: Table = text
+        .parse::<Table>()
+        .map_err(|e| Error::Config(e.to_string().trim_end().replace('\n', " ")))?;
     let canonical = toml::to_string(&table).map_err(|e| Error::Config(e.to_string()))?;
     let hash = format!("{:016x}", fnv1a(canonical.as_bytes()));
     let section = |name: &str| -> Result<Table> {
@@ -161,14 +193,20 @@ pub fn expand(text: &str, base: &Path) -> Result<Study> {
     };
     for key in table.keys() {
         if !["units", "surface", "material", "materials", "contact", "sliding"].contains(&key.as_str()) {
-            return Err(Error::Config(format!("unknown key `{key}` at the top of the study file")));
+            return Err(Error::Config(format!(
+                "unknown key `{key}` at the top of the study file"
+            )));
         }
     }
     // Materials: one [material] table (lists allowed) or a [[materials]] array of named tables.
     // (name, material table, varying material values, surface overrides of this material)
     let mut materials: Vec<(String, Table, BTreeMap<String, Value>, Table)> = Vec::new();
     match (table.get("material"), table.get("materials")) {
-        (Some(_), Some(_)) => return Err(Error::Config("give either [material] or [[materials]], not both".into())),
+        (Some(_), Some(_)) => {
+            return Err(Error::Config(
+                "give either [material] or [[materials]], not both".into(),
+            ))
+        }
         (_, Some(Value::Array(items))) => {
             for (i, item) in items.iter().enumerate() {
                 let Value::Table(t) = item else {
@@ -185,14 +223,22 @@ pub fn expand(text: &str, base: &Path) -> Result<Study> {
                 let overrides = match t.remove("surface") {
                     None => Table::new(),
                     Some(Value::Table(o)) => o,
-                    Some(_) => return Err(Error::Config(format!("[[materials]] `{name}`: `surface` must be a table"))),
+                    Some(_) => {
+                        return Err(Error::Config(format!(
+                            "[[materials]] `{name}`: `surface` must be a table"
+                        )))
+                    }
                 };
                 for (m, v) in product(&t, "material", &["fracture_energies"]) {
                     materials.push((name.clone(), m, v, overrides.clone()));
                 }
             }
         }
-        (_, Some(_)) => return Err(Error::Config("`materials` must be an array of tables ([[materials]])".into())),
+        (_, Some(_)) => {
+            return Err(Error::Config(
+                "`materials` must be an array of tables ([[materials]])".into(),
+            ))
+        }
         (_, None) => {
             let mut t = section("material")?;
             let name = match t.remove("name") {
@@ -209,7 +255,12 @@ pub fn expand(text: &str, base: &Path) -> Result<Study> {
     let sliding = section("sliding")?;
     let loads = match sliding.get("loads") {
         Some(Value::Array(l)) if !l.is_empty() => l.clone(),
-        _ => return Err(Error::param("loads", "a study needs a non-empty [sliding] `loads` list")),
+        _ => {
+            return Err(Error::param(
+                "loads",
+                "a study needs a non-empty [sliding] `loads` list",
+            ))
+        }
     };
     let mut jobs = Vec::new();
     for (name, material, mv, overrides) in &materials {
@@ -235,7 +286,12 @@ pub fn expand(text: &str, base: &Path) -> Result<Study> {
                     let mut varying = sv.clone();
                     varying.extend(mv.clone());
                     varying.extend(cv.clone());
-                    jobs.push(Job { index, material: name.clone(), run: config, varying });
+                    jobs.push(Job {
+                        index,
+                        material: name.clone(),
+                        run: config,
+                        varying,
+                    });
                 }
             }
         }
@@ -301,7 +357,10 @@ pub fn job_path(dir: &Path, index: usize) -> PathBuf {
 pub fn run_job(job: &Job, interrupt: &Interrupt) -> Result<JobResult> {
     let start = std::time::Instant::now();
     let run = &job.run;
-    let sliding = run.sliding.as_ref().ok_or_else(|| Error::param("loads", "job without [sliding]"))?;
+    let sliding = run
+        .sliding
+        .as_ref()
+        .ok_or_else(|| Error::param("loads", "job without [sliding]"))?;
     let (top, bottom) = run.surfaces()?;
     let mut setup = SlidingSetup::from_run(run, sliding);
     setup.interrupt = interrupt.clone();
@@ -344,7 +403,10 @@ pub fn prepare_folder(dir: &Path, study: &Study, base: &Path) -> Result<()> {
             write_text(&hash_path, &study.hash)?;
         }
     }
-    for entry in std::fs::read_dir(dir.join("jobs")).map_err(|e| Error::io(dir, e))?.flatten() {
+    for entry in std::fs::read_dir(dir.join("jobs"))
+        .map_err(|e| Error::io(dir, e))?
+        .flatten()
+    {
         let name = entry.file_name().to_string_lossy().to_string();
         if name.starts_with('.') && name.contains(".tmp") {
             let _ = std::fs::remove_file(entry.path());
@@ -398,7 +460,9 @@ pub fn run_jobs(
                     }
                     let i = next.fetch_add(1, Ordering::SeqCst);
                     let Some(job) = pending.get(i) else { return };
-                    let outcome = pool.install(|| run_job(job, interrupt)).and_then(|result| write_result(dir, &result));
+                    let outcome = pool
+                        .install(|| run_job(job, interrupt))
+                        .and_then(|result| write_result(dir, &result));
                     match outcome {
                         Ok(()) => progress(done.fetch_add(1, Ordering::SeqCst) + 1, pending.len()),
                         Err(e) => {
@@ -450,9 +514,16 @@ const RESULT_COLUMNS: [&str; 10] = [
 pub fn load_results(dir: &Path) -> Result<(Study, Vec<JobResult>)> {
     let path = dir.join("study.toml");
     let text = std::fs::read_to_string(&path).map_err(|e| Error::io(&path, e))?;
-    let base = std::fs::read_to_string(dir.join("study.base")).map(PathBuf::from).unwrap_or_else(|_| dir.to_path_buf());
+    let base = std::fs::read_to_string(dir.join("study.base"))
+        .map(PathBuf::from)
+        .unwrap_or_else(|_| dir.to_path_buf());
     let study = expand(&text, &base)?;
-    let missing: Vec<usize> = study.jobs.iter().map(|j| j.index).filter(|&i| !job_path(dir, i).is_file()).collect();
+    let missing: Vec<usize> = study
+        .jobs
+        .iter()
+        .map(|j| j.index)
+        .filter(|&i| !job_path(dir, i).is_file())
+        .collect();
     if !missing.is_empty() {
         return Err(Error::Config(format!(
             "{} of {} jobs have no result yet (first: {}); run `wearsim study run` again to finish them",
@@ -461,7 +532,11 @@ pub fn load_results(dir: &Path) -> Result<(Study, Vec<JobResult>)> {
             missing[0]
         )));
     }
-    let results = study.jobs.iter().map(|job| job.read_result(dir)).collect::<Result<Vec<_>>>()?;
+    let results = study
+        .jobs
+        .iter()
+        .map(|job| job.read_result(dir))
+        .collect::<Result<Vec<_>>>()?;
     Ok((study, results))
 }
 
@@ -471,7 +546,11 @@ pub fn load_results(dir: &Path) -> Result<(Study, Vec<JobResult>)> {
 /// the study is unfinished.
 pub fn collect(dir: &Path) -> Result<(usize, usize)> {
     let (study, results) = load_results(dir)?;
-    let input_keys: Vec<&str> = study.jobs.first().map(|j| j.inputs().iter().map(|(k, _)| *k).collect()).unwrap_or_default();
+    let input_keys: Vec<&str> = study
+        .jobs
+        .first()
+        .map(|j| j.inputs().iter().map(|(k, _)| *k).collect())
+        .unwrap_or_default();
     let mut header = vec!["job".to_string(), "material".into()];
     header.extend(input_keys.iter().map(|k| k.to_string()));
     header.extend(["load", "fracture_energy"].map(String::from));
@@ -504,7 +583,13 @@ pub fn collect(dir: &Path) -> Result<(usize, usize)> {
             tidy += &(line.join(",") + "\n");
             rows += 1;
             let mut key = vec![job.material.clone()];
-            key.extend(input_keys.iter().zip(&inputs).filter(|(k, _)| **k != "surface.seed").map(|(_, v)| v.clone()));
+            key.extend(
+                input_keys
+                    .iter()
+                    .zip(&inputs)
+                    .filter(|(k, _)| **k != "surface.seed")
+                    .map(|(_, v)| v.clone()),
+            );
             key.push(format!("{:e}", r.load));
             key.push(format!("{:e}", w.fracture_energy));
             let g = *group_index.entry(key.clone()).or_insert_with(|| {
@@ -514,7 +599,11 @@ pub fn collect(dir: &Path) -> Result<(usize, usize)> {
             groups[g].1.push(values.to_vec());
         }
     }
-    let group_keys: Vec<String> = input_keys.iter().filter(|k| **k != "surface.seed").map(|k| k.to_string()).collect();
+    let group_keys: Vec<String> = input_keys
+        .iter()
+        .filter(|k| **k != "surface.seed")
+        .map(|k| k.to_string())
+        .collect();
     let mut agg_header = vec!["material".to_string()];
     agg_header.extend(group_keys);
     agg_header.extend(["load", "fracture_energy", "surface_pairs"].map(String::from));
@@ -577,7 +666,10 @@ loads = [5e-4, 1e-3]
         // Layout and comments do not change the hash; values do.
         let again = expand(&format!("# comment\n{STUDY}"), Path::new(".")).unwrap();
         assert_eq!(s.hash, again.hash);
-        assert_ne!(s.hash, expand(&STUDY.replace("0.012", "0.011"), Path::new(".")).unwrap().hash);
+        assert_ne!(
+            s.hash,
+            expand(&STUDY.replace("0.012", "0.011"), Path::new(".")).unwrap().hash
+        );
     }
 
     #[test]
@@ -592,7 +684,11 @@ loads = [5e-4, 1e-3]
         let hard: Vec<&Job> = s.jobs.iter().filter(|j| j.material == "hard").collect();
         assert_eq!(hard.len(), 12);
         assert!(hard.iter().all(|j| j.varying.contains_key("surface.rms_height")));
-        assert!(s.jobs.iter().filter(|j| j.material == "soft").all(|j| !j.varying.contains_key("surface.rms_height")));
+        assert!(s
+            .jobs
+            .iter()
+            .filter(|j| j.material == "soft")
+            .all(|j| !j.varying.contains_key("surface.rms_height")));
     }
 
     #[test]
@@ -606,9 +702,14 @@ loads = [5e-4, 1e-3]
     #[test]
     fn bad_study_files_are_errors() {
         assert!(expand(&STUDY.replace("loads = [5e-4, 1e-3]", "loads = []"), Path::new(".")).is_err());
-        let e = expand(&STUDY.replace("hurst", "x").replace("grid = 64", "grid = 64\nhurts = 0.7"), Path::new("."))
-            .unwrap_err()
-            .to_string();
+        let e = expand(
+            &STUDY
+                .replace("hurst", "x")
+                .replace("grid = 64", "grid = 64\nhurts = 0.7"),
+            Path::new("."),
+        )
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("hurts"), "{e}");
     }
 }

@@ -95,7 +95,10 @@ impl SpectrumParams {
 
 pub(crate) fn check_grid(n: usize) -> Result<()> {
     if n < 16 || n % 2 != 0 {
-        return Err(Error::param("grid", format!("{n} must be an even number of pixels ≥ 16 (powers of two are fastest)")));
+        return Err(Error::param(
+            "grid",
+            format!("{n} must be an even number of pixels ≥ 16 (powers of two are fastest)"),
+        ));
     }
     Ok(())
 }
@@ -116,7 +119,10 @@ impl Surface {
     /// Wraps a height field after checking it: square, at least 16², even side, all finite.
     pub fn new(name: &str, n: usize, length: f64, heights: Vec<f64>) -> Result<Self> {
         if heights.is_empty() {
-            return Err(Error::InvalidSurface { name: name.into(), message: "the height array is empty".into() });
+            return Err(Error::InvalidSurface {
+                name: name.into(),
+                message: "the height array is empty".into(),
+            });
         }
         if heights.len() != n * n {
             return Err(Error::InvalidSurface {
@@ -124,7 +130,10 @@ impl Surface {
                 message: format!("{} values do not fill a {n}×{n} grid", heights.len()),
             });
         }
-        check_grid(n).map_err(|e| Error::InvalidSurface { name: name.into(), message: e.to_string() })?;
+        check_grid(n).map_err(|e| Error::InvalidSurface {
+            name: name.into(),
+            message: e.to_string(),
+        })?;
         crate::material::positive("length", length)?;
         if let Some(k) = heights.iter().position(|h| !h.is_finite()) {
             return Err(Error::InvalidSurface {
@@ -296,7 +305,10 @@ impl Surface {
             }
         });
         let n4 = ((n * n) as f64).powi(2);
-        (1..shells).filter(|&m| count[m] > 0.0).map(|m| (m as f64, sum[m] / count[m] / n4)).collect()
+        (1..shells)
+            .filter(|&m| count[m] > 0.0)
+            .map(|m| (m as f64, sum[m] / count[m] / n4))
+            .collect()
     }
 }
 

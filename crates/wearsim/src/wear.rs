@@ -24,7 +24,11 @@ pub fn static_wear(junctions: &[Junction], critical_diameter: f64) -> StaticWear
         .filter(|j| j.area >= critical_area)
         .fold((0.0, 0), |(a, c), j| (a + j.area, c + 1));
     let k = if total > 0.0 { large / total } else { 0.0 };
-    StaticWear { wear_coefficient: k, wear_rate_over_omega: k * total, critical_junctions }
+    StaticWear {
+        wear_coefficient: k,
+        wear_rate_over_omega: k * total,
+        critical_junctions,
+    }
 }
 
 /// What one sliding step adds to the record of one d* (SPEC §6).
@@ -140,7 +144,11 @@ impl SlidingBookkeeping {
                 self.blocked.push(k);
             }
         }
-        StepWear { n_critical, n_formed: self.n_formed, volume: self.volume }
+        StepWear {
+            n_critical,
+            n_formed: self.n_formed,
+            volume: self.volume,
+        }
     }
 }
 
@@ -175,7 +183,10 @@ mod tests {
 
     fn assert_record(r: StepWear, n_critical: usize, n_formed: usize, volume: f64) {
         assert_eq!((r.n_critical, r.n_formed), (n_critical, n_formed), "{r:?}");
-        assert!((r.volume - volume).abs() <= 1e-12 * volume.abs(), "{r:?} vs volume {volume}");
+        assert!(
+            (r.volume - volume).abs() <= 1e-12 * volume.abs(),
+            "{r:?} vs volume {volume}"
+        );
     }
 
     #[test]

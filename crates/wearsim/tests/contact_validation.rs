@@ -34,7 +34,10 @@ fn hertz_sphere_on_flat() {
     let dx = 1.0 / n as f64;
     let h: Vec<f64> = (0..n * n)
         .map(|k| {
-            let (x, y) = (((k / n) as f64 - n as f64 / 2.0) * dx, ((k % n) as f64 - n as f64 / 2.0) * dx);
+            let (x, y) = (
+                ((k / n) as f64 - n as f64 / 2.0) * dx,
+                ((k % n) as f64 - n as f64 / 2.0) * dx,
+            );
             -(x * x + y * y) / (2.0 * radius)
         })
         .collect();
@@ -43,7 +46,10 @@ fn hertz_sphere_on_flat() {
     let info = solver.solve(&h, force, f64::INFINITY, &mut p).unwrap();
     let a_num = (info.contact_pixels as f64 * dx * dx / PI).sqrt();
     let p_max = p.iter().copied().fold(0.0, f64::max);
-    assert!((a_num / a_hertz - 1.0).abs() < 0.015, "contact radius {a_num} vs Hertz {a_hertz}");
+    assert!(
+        (a_num / a_hertz - 1.0).abs() < 0.015,
+        "contact radius {a_num} vs Hertz {a_hertz}"
+    );
     assert!((p_max / p0 - 1.0).abs() < 0.015, "peak pressure {p_max} vs Hertz {p0}");
     // Hertz profile p0 √(1 − r²/a²) at half the radius.
     let c = n / 2;
@@ -57,7 +63,9 @@ fn hertz_sphere_on_flat() {
 fn westergaard_sinusoid_in_full_contact() {
     let n = 64;
     let g0 = 0.01;
-    let h: Vec<f64> = (0..n * n).map(|k| g0 * (2.0 * PI * (k / n) as f64 / n as f64).cos()).collect();
+    let h: Vec<f64> = (0..n * n)
+        .map(|k| g0 * (2.0 * PI * (k / n) as f64 / n as f64).cos())
+        .collect();
     let p_star = PI * E_STAR * g0 / 1.0; // full-contact pressure amplitude, π E* g / λ
     let mean = 2.0 * p_star;
     let mut solver = ContactSolver::new(n, 1.0, E_STAR).unwrap();
@@ -102,7 +110,10 @@ fn small_flow_pressure_tends_to_the_fully_plastic_limit() {
         let limit = load / pm;
         let gap = area / limit - 1.0;
         assert!(gap >= 0.0, "area below the plastic limit");
-        assert!(gap < previous_gap, "area does not approach F/p_m: {gap} after {previous_gap}");
+        assert!(
+            gap < previous_gap,
+            "area does not approach F/p_m: {gap} after {previous_gap}"
+        );
         previous_gap = gap;
     }
     assert!(previous_gap < 0.05, "area/(F/p_m) − 1 = {previous_gap}");
@@ -154,7 +165,10 @@ fn default_tolerance_gives_converged_contact_maps() {
         let mut tight = vec![0.0; n * n];
         solver.solve(&h, load, pm, &mut tight).unwrap();
         let changed = p.iter().zip(&tight).filter(|(a, b)| (**a > 0.0) != (**b > 0.0)).count();
-        assert_eq!(changed, 0, "load {load}: {changed} contact pixels change with a 100× tighter tolerance");
+        assert_eq!(
+            changed, 0,
+            "load {load}: {changed} contact pixels change with a 100× tighter tolerance"
+        );
     }
 }
 
@@ -192,12 +206,16 @@ fn solution_does_not_depend_on_thread_count() {
     let n = 128;
     let h = paper_pair(n, 6);
     let solve = |threads: usize| {
-        rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(|| {
-            let mut solver = ContactSolver::new(n, 1.0, E_STAR).unwrap();
-            let mut p = vec![0.0; n * n];
-            let info = solver.solve(&h, 1e-3, flow_pressure(0.01), &mut p).unwrap();
-            (p, info.iterations)
-        })
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| {
+                let mut solver = ContactSolver::new(n, 1.0, E_STAR).unwrap();
+                let mut p = vec![0.0; n * n];
+                let info = solver.solve(&h, 1e-3, flow_pressure(0.01), &mut p).unwrap();
+                (p, info.iterations)
+            })
     };
     assert_eq!(solve(1), solve(2));
 }
@@ -209,7 +227,10 @@ fn infeasible_load_and_non_convergence_are_errors() {
     let pm = flow_pressure(0.01);
     let mut solver = ContactSolver::new(n, 1.0, E_STAR).unwrap();
     let mut p = vec![0.0; n * n];
-    assert!(matches!(solver.solve(&h, pm, pm, &mut p), Err(Error::InfeasibleLoad { .. })));
+    assert!(matches!(
+        solver.solve(&h, pm, pm, &mut p),
+        Err(Error::InfeasibleLoad { .. })
+    ));
     solver.options.max_iterations = 1;
     solver.options.tolerance = 1e-14;
     let e = solver.solve(&h, 1e-3, pm, &mut vec![0.0; n * n]).unwrap_err();
@@ -245,14 +266,21 @@ fn generated_psd_follows_the_self_affine_power_law() {
         };
         let s = Surface::generate(n, 1.0, &spectrum, 9).unwrap();
         // Least-squares slope of log C(q) against log q inside the band (q from 6 to 60).
-        let pts: Vec<(f64, f64)> =
-            s.radial_psd().into_iter().filter(|(q, _)| *q >= 6.0 && *q <= 60.0).map(|(q, c)| (q.ln(), c.ln())).collect();
+        let pts: Vec<(f64, f64)> = s
+            .radial_psd()
+            .into_iter()
+            .filter(|(q, _)| *q >= 6.0 && *q <= 60.0)
+            .map(|(q, c)| (q.ln(), c.ln()))
+            .collect();
         let m = pts.len() as f64;
         let (sx, sy) = pts.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x, b + y));
         let (mx, my) = (sx / m, sy / m);
         let slope = pts.iter().map(|(x, y)| (x - mx) * (y - my)).sum::<f64>()
             / pts.iter().map(|(x, _)| (x - mx) * (x - mx)).sum::<f64>();
         let expected = -2.0 * (1.0 + hurst);
-        assert!((slope - expected).abs() < slack, "{generation:?}: slope {slope} vs {expected}");
+        assert!(
+            (slope - expected).abs() < slack,
+            "{generation:?}: slope {slope} vs {expected}"
+        );
     }
 }

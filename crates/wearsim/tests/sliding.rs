@@ -16,25 +16,38 @@ fn setup_surfaces(n: usize) -> (Surface, Surface) {
         generation: Generation::RandomPhase,
     };
     let (a, b) = pair_seeds(21);
-    (Surface::generate(n, 1.0, &spectrum, a).unwrap(), Surface::generate(n, 1.0, &spectrum, b).unwrap())
+    (
+        Surface::generate(n, 1.0, &spectrum, a).unwrap(),
+        Surface::generate(n, 1.0, &spectrum, b).unwrap(),
+    )
 }
 
 fn run(threads: usize) -> (Vec<LoadRun>, Material, SlidingConfig, Surface, Surface) {
     let n = 64;
     let (top, bottom) = setup_surfaces(n);
     let material = Material::new(1.0, 0.3, 0.01, vec![0.1e-6, 0.5e-6], 3.0).unwrap();
-    let sliding = SlidingConfig { loads: vec![5e-4, 2e-3], distance: 0.5, running_in: 0.25, step_running_in: 4, step: 1 };
-    let runs = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(|| {
-        let setup = SlidingSetup {
-            material: &material,
-            effective_modulus: material.effective_modulus(ModulusConvention::HalfSpace),
-            solver: Default::default(),
-            connectivity: 4,
-            sliding: &sliding,
-            interrupt: Default::default(),
-        };
-        run_sliding(&top, &bottom, &setup, |_| {}).unwrap()
-    });
+    let sliding = SlidingConfig {
+        loads: vec![5e-4, 2e-3],
+        distance: 0.5,
+        running_in: 0.25,
+        step_running_in: 4,
+        step: 1,
+    };
+    let runs = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+        .install(|| {
+            let setup = SlidingSetup {
+                material: &material,
+                effective_modulus: material.effective_modulus(ModulusConvention::HalfSpace),
+                solver: Default::default(),
+                connectivity: 4,
+                sliding: &sliding,
+                interrupt: Default::default(),
+            };
+            run_sliding(&top, &bottom, &setup, |_| {}).unwrap()
+        });
     (runs, material, sliding, top, bottom)
 }
 
@@ -49,7 +62,10 @@ fn bookkeeping_invariants_and_initial_volume() {
             let mut last = (0usize, 0.0f64);
             for st in &r.steps {
                 let w = st.wear[e];
-                assert!(w.n_formed >= last.0 && w.volume >= last.1, "cumulative counts must not decrease");
+                assert!(
+                    w.n_formed >= last.0 && w.volume >= last.1,
+                    "cumulative counts must not decrease"
+                );
                 assert!(w.n_critical <= st.junctions);
                 assert_eq!(w.n_shrunk(), w.n_formed as i64 - w.n_critical as i64);
                 last = (w.n_formed, w.volume);
@@ -67,8 +83,17 @@ fn bookkeeping_invariants_and_initial_volume() {
         let mut labeller = JunctionLabeller::new(n, 4);
         labeller.label(|k| p[k] > 0.0);
         for (e, d) in material.critical_diameters().into_iter().enumerate() {
-            let v0: f64 = labeller.junctions(1.0 / n as f64).iter().filter(|j| j.diameter >= d).map(|j| j.volume).sum();
-            assert!((r.results[e].initial_volume - v0).abs() <= 1e-12 * v0.max(1e-300), "V₀ {} vs {v0}", r.results[e].initial_volume);
+            let v0: f64 = labeller
+                .junctions(1.0 / n as f64)
+                .iter()
+                .filter(|j| j.diameter >= d)
+                .map(|j| j.volume)
+                .sum();
+            assert!(
+                (r.results[e].initial_volume - v0).abs() <= 1e-12 * v0.max(1e-300),
+                "V₀ {} vs {v0}",
+                r.results[e].initial_volume
+            );
         }
     }
     // The smaller d* forms at least as many particles at s = 0.
@@ -78,6 +103,13 @@ fn bookkeeping_invariants_and_initial_volume() {
 #[test]
 fn sliding_results_do_not_depend_on_thread_count() {
     // Everything but the wall-clock timings.
-    let strip = |runs: Vec<LoadRun>| runs.into_iter().map(|r| (r.steps, r.results, r.total_iterations)).collect::<Vec<_>>();
-    assert!(strip(run(1).0) == strip(run(2).0), "results differ between 1 and 2 threads");
+    let strip = |runs: Vec<LoadRun>| {
+        runs.into_iter()
+            .map(|r| (r.steps, r.results, r.total_iterations))
+            .collect::<Vec<_>>()
+    };
+    assert!(
+        strip(run(1).0) == strip(run(2).0),
+        "results differ between 1 and 2 threads"
+    );
 }

@@ -20,6 +20,9 @@ fn shipped_study_files_expand() {
         let study = expand(&text, &dir).unwrap_or_else(|e| panic!("{file}: {e}"));
         assert_eq!(study.jobs.len(), jobs, "{file}");
     }
-    let shipped = std::fs::read_dir(&dir).unwrap().filter(|e| e.as_ref().unwrap().path().extension().is_some_and(|x| x == "toml")).count();
+    let shipped = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter(|e| e.as_ref().unwrap().path().extension().is_some_and(|x| x == "toml"))
+        .count();
     assert_eq!(shipped, expected.len(), "a study file is not checked here");
 }
