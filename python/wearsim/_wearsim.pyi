@@ -13,6 +13,7 @@ __all__ = [
     "Material",
     "NotConvergedError",
     "RunFile",
+    "SERIES_COLUMNS",
     "Study",
     "WearsimError",
     "__version__",
@@ -30,6 +31,7 @@ __all__ = [
 __version__: str
 DEFAULT_TOLERANCE: float
 DEFAULT_MAX_ITERATIONS: int
+SERIES_COLUMNS: List[str]
 
 class WearsimError(Exception): ...
 class NotConvergedError(WearsimError): ...
@@ -174,7 +176,7 @@ class Study:
     @property
     def hash(self) -> str: ...
     def __len__(self) -> int: ...
-    def jobs(self) -> List[Dict[str, Any]]: ...
+    def jobs(self) -> Dict[str, Any]: ...
     def prepare(self, out: Path) -> List[int]: ...
     def run(
         self,

@@ -67,13 +67,7 @@ class Study:
     def jobs(self) -> pd.DataFrame:
         """One row per job: index, material, every input and the load (the input columns of the
         tidy results table)."""
-        table = pd.DataFrame(self._study.jobs())
-        for column in table.columns:
-            try:
-                table[column] = pd.to_numeric(table[column])
-            except (ValueError, TypeError):
-                pass  # text inputs (material names, surface files, conventions) stay text
-        return table
+        return pd.DataFrame(self._study.jobs())
 
     def __repr__(self) -> str:
         where = f"{str(self.path)!r}, " if self.path else ""

@@ -21,20 +21,8 @@ from ._progress import ProgressArg, callback
 from .junctions import Junctions
 from .surface import _float_grid
 
-#: Columns of the series, in order.
-SERIES_COLUMNS = [
-    "load",
-    "fracture_energy",
-    "s",
-    "junctions",
-    "contact_area",
-    "iterations",
-    "residual",
-    "n_critical",
-    "n_formed",
-    "n_shrunk",
-    "volume",
-]
+#: Columns of the series, in order: those of ``series.csv`` (defined once, in the library).
+SERIES_COLUMNS = list(_wearsim.SERIES_COLUMNS)
 
 
 def static_wear(junctions: Junctions, critical_diameter: float) -> Dict[str, float]:

@@ -5,8 +5,10 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
+use crate::check::{connectivity as check_connectivity, positive};
 use crate::contact::SolverOptions;
 use crate::error::{Error, Result};
+use crate::io::{parent_or_dot, read_text};
 use crate::material::{Material, ModulusConvention};
 use crate::surface::{pair_seeds, Generation, SpectrumParams, Surface};
 
@@ -133,7 +135,7 @@ impl SlidingConfig {
             ));
         }
         for &f in &loads {
-            crate::material::positive("loads", f)?;
+            positive("loads", f)?;
         }
         if !(distance > 0.0 && distance <= 1.0) {
             return Err(Error::param(
@@ -179,24 +181,42 @@ pub struct RunConfig {
 }
 
 fn missing(field: &str, hint: &str) -> Error {
-    Error::Config(format!("[surface] `{field}` is missing; {hint}"))
+    Error::run_file(format!("[surface] `{field}` is missing; {hint}"))
+}
+
+/// A TOML error message on one line (they come with a source excerpt over several lines).
+fn one_line(message: &str) -> String {
+    message.trim_end().replace('\n', " ")
 }
 
 impl RunConfig {
     /// Reads and validates a run file.
     pub fn from_path(path: &Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
-        let base = path.parent().unwrap_or(Path::new("."));
-        Self::from_toml(&text, base).map_err(|e| match e {
-            Error::Config(m) => Error::Config(format!("{}: {m}", path.display())),
+        let text = read_text(path)?;
+        Self::from_toml(&text, parent_or_dot(path)).map_err(|e| match e {
+            Error::RunFile { path: None, message } => Error::RunFile {
+                path: Some(path.into()),
+                message,
+            },
             other => other,
         })
     }
 
     /// Parses run-file text; relative surface paths are resolved against `base`.
     pub fn from_toml(text: &str, base: &Path) -> Result<Self> {
-        let raw: RawRun =
-            toml::from_str(text).map_err(|e| Error::Config(e.to_string().trim_end().replace('\n', " ")))?;
+        let raw: RawRun = toml::from_str(text).map_err(|e| Error::run_file(one_line(&e.to_string())))?;
+        Self::from_raw(raw, base)
+    }
+
+    /// A run described by a parsed TOML table (a study's job), without a round trip through text.
+    pub fn from_table(table: toml::Table, base: &Path) -> Result<Self> {
+        let raw: RawRun = toml::Value::Table(table)
+            .try_into()
+            .map_err(|e| Error::run_file(one_line(&e.to_string())))?;
+        Self::from_raw(raw, base)
+    }
+
+    fn from_raw(raw: RawRun, base: &Path) -> Result<Self> {
         let s = raw.surface;
         let surfaces = match (&s.top, &s.bottom) {
             (Some(top), Some(bottom)) => {
@@ -209,7 +229,7 @@ impl RunConfig {
                     ("seed", s.seed.is_some()),
                 ] {
                     if value {
-                        return Err(Error::Config(format!(
+                        return Err(Error::run_file(format!(
                             "[surface] `{field}` has no meaning when `top` and `bottom` are read from files; remove it"
                         )));
                     }
@@ -217,11 +237,11 @@ impl RunConfig {
                 let length = s
                     .length
                     .ok_or_else(|| missing("length", "give the physical side length of the files"))?;
-                crate::material::positive("length", length)?;
+                positive("length", length)?;
                 let (top, bottom) = (base.join(top), base.join(bottom));
                 for p in [&top, &bottom] {
                     if !p.is_file() {
-                        return Err(Error::io(
+                        return Err(Error::file(
                             p,
                             "surface file not found (paths are relative to the run file)",
                         ));
@@ -254,8 +274,8 @@ impl RunConfig {
                 }
             }
             _ => {
-                return Err(Error::Config(
-                    "[surface] give both `top` and `bottom` files, or neither (to generate the surfaces)".into(),
+                return Err(Error::run_file(
+                    "[surface] give both `top` and `bottom` files, or neither (to generate the surfaces)",
                 ))
             }
         };
@@ -270,11 +290,11 @@ impl RunConfig {
         let c = raw.contact;
         let defaults = SolverOptions::default();
         let solver = SolverOptions::new(
-            c.tolerance.unwrap_or(defaults.tolerance),
-            c.max_iterations.unwrap_or(defaults.max_iterations),
+            c.tolerance.unwrap_or(defaults.tolerance()),
+            c.max_iterations.unwrap_or(defaults.max_iterations()),
         )?;
         let connectivity = c.connectivity.unwrap_or(4);
-        crate::junctions::check_connectivity(connectivity)?;
+        check_connectivity(connectivity)?;
         let sliding = match raw.sliding {
             None => None,
             Some(sl) => {
@@ -344,6 +364,88 @@ impl RunConfig {
     pub fn effective_modulus(&self) -> f64 {
         self.material.effective_modulus(self.modulus)
     }
+
+    /// Every input of the run as one flat record (the fracture energies and loads aside, which a
+    /// results table has one row per).
+    pub fn inputs(&self) -> InputRecord {
+        let m = &self.material;
+        let mut record = InputRecord {
+            units: self.units,
+            grid: None,
+            length: self.length(),
+            hurst: None,
+            lambda_lower: None,
+            lambda_upper: None,
+            rms_height: None,
+            seed: None,
+            top: None,
+            bottom: None,
+            youngs_modulus: m.youngs_modulus,
+            poisson_ratio: m.poisson_ratio,
+            shear_strength: m.shear_strength,
+            geometry_factor: m.geometry_factor,
+            modulus: self.modulus,
+            tolerance: self.solver.tolerance(),
+            connectivity: self.connectivity,
+        };
+        match &self.surfaces {
+            SurfaceSource::Generated {
+                grid, spectrum, seed, ..
+            } => {
+                record.grid = Some(*grid);
+                record.hurst = Some(spectrum.hurst);
+                record.lambda_lower = Some(spectrum.lambda_lower);
+                record.lambda_upper = Some(spectrum.lambda_upper);
+                record.rms_height = Some(spectrum.rms_height);
+                record.seed = Some(*seed);
+            }
+            SurfaceSource::Files { top, bottom, .. } => {
+                record.top = Some(top.display().to_string());
+                record.bottom = Some(bottom.display().to_string());
+            }
+        }
+        record
+    }
+}
+
+/// Every input of a run as one flat record with the same fields for every run (absent ones empty):
+/// the input columns of a study's results table, and what identifies a study job in its job file.
+/// Field names are the run file's `section.key`.
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, Deserialize)]
+pub struct InputRecord {
+    pub units: Units,
+    #[serde(rename = "surface.grid")]
+    pub grid: Option<usize>,
+    #[serde(rename = "surface.length")]
+    pub length: f64,
+    #[serde(rename = "surface.hurst")]
+    pub hurst: Option<f64>,
+    #[serde(rename = "surface.lambda_lower")]
+    pub lambda_lower: Option<f64>,
+    #[serde(rename = "surface.lambda_upper")]
+    pub lambda_upper: Option<f64>,
+    #[serde(rename = "surface.rms_height")]
+    pub rms_height: Option<f64>,
+    #[serde(rename = "surface.seed")]
+    pub seed: Option<u64>,
+    #[serde(rename = "surface.top")]
+    pub top: Option<String>,
+    #[serde(rename = "surface.bottom")]
+    pub bottom: Option<String>,
+    #[serde(rename = "material.youngs_modulus")]
+    pub youngs_modulus: f64,
+    #[serde(rename = "material.poisson_ratio")]
+    pub poisson_ratio: f64,
+    #[serde(rename = "material.shear_strength")]
+    pub shear_strength: f64,
+    #[serde(rename = "material.geometry_factor")]
+    pub geometry_factor: f64,
+    #[serde(rename = "contact.modulus")]
+    pub modulus: ModulusConvention,
+    #[serde(rename = "contact.tolerance")]
+    pub tolerance: f64,
+    #[serde(rename = "contact.connectivity")]
+    pub connectivity: u8,
 }
 
 #[cfg(test)]

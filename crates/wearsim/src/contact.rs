@@ -27,6 +27,7 @@ use std::f64::consts::PI;
 
 use rayon::prelude::*;
 
+use crate::check::{grid as check_grid, positive};
 use crate::error::{Error, Interrupt, Result};
 use crate::fft::{radial_kernel, FftPlan};
 
@@ -41,10 +42,8 @@ pub const DEFAULT_MAX_ITERATIONS: usize = 20_000;
 /// Convergence settings of the contact solver.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct SolverOptions {
-    /// Tolerance on the residual (module documentation).
-    pub tolerance: f64,
-    /// Iteration limit; reaching it is an [`Error::NotConverged`].
-    pub max_iterations: usize,
+    tolerance: f64,
+    max_iterations: usize,
 }
 
 impl SolverOptions {
@@ -61,6 +60,16 @@ impl SolverOptions {
             max_iterations,
         })
     }
+
+    /// Tolerance on the residual (module documentation).
+    pub fn tolerance(&self) -> f64 {
+        self.tolerance
+    }
+
+    /// Iteration limit; reaching it is an [`Error::NotConverged`] from [`ContactSolver::solve`].
+    pub fn max_iterations(&self) -> usize {
+        self.max_iterations
+    }
 }
 
 impl Default for SolverOptions {
@@ -72,9 +81,21 @@ impl Default for SolverOptions {
     }
 }
 
+/// Why a solve stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Termination {
+    /// The residual reached the tolerance, confirmed on a freshly computed displacement.
+    Converged,
+    /// The iteration limit was reached first.
+    MaxIterations,
+}
+
 /// What one solve reports beside the pressure field.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct SolveInfo {
+    /// Why the solve stopped ([`ContactSolver::solve`] returns only converged solves).
+    pub termination: Termination,
     /// Conjugate-gradient iterations (one convolution 𝒦t each).
     pub iterations: usize,
     /// Convolutions performed in all (iterations plus recomputations of 𝒦p).
@@ -278,18 +299,42 @@ pub struct ContactSolver {
     stats: Vec<Stats>,
     sums: Vec<[f64; 2]>,
     row_partials: Vec<f64>,
-    /// Convergence settings used by [`ContactSolver::solve`].
-    pub options: SolverOptions,
+    options: SolverOptions,
     /// Checked once per iteration: a raised flag ends the solve with [`Error::Interrupted`].
-    pub interrupt: Interrupt,
+    interrupt: Interrupt,
+}
+
+/// The constants of one solve and the state carried from one iteration to the next.
+struct SolveState {
+    /// Flow pressure p_m.
+    pm: f64,
+    /// Total load Σp = N² F_N/L².
+    total: f64,
+    /// Residual scale: std(h), or P·L/E* for a flat surface.
+    scale: f64,
+    h_std: f64,
+    h_max: f64,
+    /// Rows per rayon task in the element-wise passes.
+    min_len: usize,
+    /// Statistics of g = 𝒦p − h over the free, non-contact and plastic pixels of the current p.
+    stats: Stats,
+    /// Shift subtracted from g in `stats` (the previous mean gap), for accurate sums.
+    reference: f64,
+    /// Whether u was computed from p by FFT, not carried along.
+    fresh: bool,
+    /// Whether the next direction restarts the conjugation.
+    restart: bool,
+    g_norm_old: f64,
+    iterations: usize,
+    convolutions: usize,
 }
 
 impl ContactSolver {
     /// Solver for an `n × n` periodic grid of side `length` on a half-space of effective modulus E*.
     pub fn new(n: usize, length: f64, effective_modulus: f64) -> Result<Self> {
-        crate::surface::check_grid(n)?;
-        crate::material::positive("length", length)?;
-        crate::material::positive("effective_modulus", effective_modulus)?;
+        check_grid(n)?;
+        positive("length", length)?;
+        positive("effective_modulus", effective_modulus)?;
         let nn = (n * n) as f64;
         // û = 2 p̂ / (E* |k|), |k| = 2π|q|/L; the q = 0 mode is the rigid-body position, set by the load.
         let kernel = radial_kernel(n, |qx, qy| {
@@ -340,9 +385,26 @@ impl ContactSolver {
         self.effective_modulus
     }
 
-    /// Surface displacement 𝒦p of the last solve (zero mean), valid after [`ContactSolver::solve`].
-    pub fn displacement(&self) -> &[f64] {
-        &self.u
+    /// The solver with these convergence settings (validated by [`SolverOptions::new`]).
+    pub fn with_options(mut self, options: SolverOptions) -> Self {
+        self.options = options;
+        self
+    }
+
+    /// The solver checking `interrupt` once per iteration.
+    pub fn with_interrupt(mut self, interrupt: Interrupt) -> Self {
+        self.interrupt = interrupt;
+        self
+    }
+
+    /// Replaces the interrupt flag (a solver kept across calls that each bring their own flag).
+    pub fn set_interrupt(&mut self, interrupt: Interrupt) {
+        self.interrupt = interrupt;
+    }
+
+    /// Convergence settings.
+    pub fn options(&self) -> SolverOptions {
+        self.options
     }
 
     /// Applies the influence operator: `out = 𝒦 p` (zero-mean displacement of the half-space).
@@ -354,6 +416,7 @@ impl ContactSolver {
     /// `mean_pressure` = F_N/L², with flow pressure `flow_pressure` (`f64::INFINITY` for a purely
     /// elastic solve). `pressure` is both the initial guess and the result: pass the previous
     /// step's converged field to warm-start, or zeros for a cold start (uniform pressure).
+    /// Reaching the iteration limit is an [`Error::NotConverged`].
     pub fn solve(
         &mut self,
         heights: &[f64],
@@ -361,13 +424,67 @@ impl ContactSolver {
         flow_pressure: f64,
         pressure: &mut [f64],
     ) -> Result<SolveInfo> {
+        let info = self.run(heights, mean_pressure, flow_pressure, pressure)?;
+        match info.termination {
+            Termination::Converged => Ok(info),
+            Termination::MaxIterations => Err(Error::NotConverged {
+                iterations: info.iterations,
+                residual: info.residual,
+                tolerance: info.tolerance,
+            }),
+        }
+    }
+
+    /// [`ContactSolver::solve`] that returns the state reached at the iteration limit instead of an
+    /// error: the caller inspects [`SolveInfo::termination`] (and `pressure` holds the last
+    /// iterate). A raised interrupt flag still ends the solve with [`Error::Interrupted`].
+    pub fn run(
+        &mut self,
+        heights: &[f64],
+        mean_pressure: f64,
+        flow_pressure: f64,
+        pressure: &mut [f64],
+    ) -> Result<SolveInfo> {
+        let mut state = self.start(heights, mean_pressure, flow_pressure, pressure)?;
+        loop {
+            let mean = state.stats.mean_gap(state.reference);
+            let residual = state.stats.violation(mean) / state.scale;
+            if residual <= self.options.tolerance {
+                if state.fresh {
+                    return Ok(self.finish(&state, mean, residual, Termination::Converged));
+                }
+                // Confirm with an exactly balanced load and a freshly computed displacement.
+                self.balance_load(heights, pressure, &state, mean, Some(state.stats.load));
+                state.reference = mean;
+                state.stats = self.displacement_and_stats(heights, pressure, state.reference, state.pm);
+                state.convolutions += 1;
+                state.fresh = true;
+                continue;
+            }
+            if state.iterations >= self.options.max_iterations {
+                return Ok(self.finish(&state, mean, residual, Termination::MaxIterations));
+            }
+            self.interrupt.check()?;
+            self.iterate(&mut state, heights, pressure, mean);
+        }
+    }
+
+    /// Set-up of a solve: checks the inputs, measures the heights, makes the initial guess (the
+    /// given field when usable, else uniform pressure) carry the load, and computes its statistics.
+    fn start(
+        &mut self,
+        heights: &[f64],
+        mean_pressure: f64,
+        flow_pressure: f64,
+        pressure: &mut [f64],
+    ) -> Result<SolveState> {
         let n = self.n;
         let nn = n * n;
         if heights.len() != nn || pressure.len() != nn {
             return Err(Error::param("heights", format!("arrays must hold {n}×{n} values")));
         }
-        crate::material::positive("load", mean_pressure)?;
-        if !(flow_pressure > 0.0) {
+        positive("load", mean_pressure)?;
+        if flow_pressure.is_nan() || flow_pressure <= 0.0 {
             return Err(Error::param(
                 "flow_pressure",
                 format!("{flow_pressure} must be positive"),
@@ -401,10 +518,6 @@ impl ContactSolver {
                 message: format!("height at ({}, {}) is {}", k / n, k % n, heights[k]),
             });
         }
-        let tolerance = self.options.tolerance;
-        if !(tolerance > 0.0) {
-            return Err(Error::param("tolerance", format!("{tolerance} must be positive")));
-        }
         let pm = flow_pressure;
         let total = mean_pressure * nn as f64;
         let shift_mean = sum / nn as f64;
@@ -417,148 +530,148 @@ impl ContactSolver {
         };
         let min_len = (8192 / n).max(1);
 
-        // Initial guess: the given field when usable, else uniform pressure.
         let usable = pressure.par_iter().all(|p| p.is_finite() && *p >= 0.0) && pressure.par_iter().any(|&p| p > 0.0);
         if usable {
             pressure.par_iter_mut().for_each(|p| *p = p.min(pm));
         } else {
             pressure.par_iter_mut().for_each(|p| *p = mean_pressure);
         }
-        self.balance_load(heights, pressure, total, pm, f64::NAN, min_len, None);
-        let mut convolutions = 0;
-        let mut reference = 0.0;
-        let mut stats = self.displacement_and_stats(heights, pressure, reference, pm);
-        convolutions += 1;
-        let mut fresh = true; // u was computed from p by FFT, not carried along
-        let mut restart = true;
-        let mut g_norm_old = 1.0;
-        let mut iterations = 0;
+        let mut state = SolveState {
+            pm,
+            total,
+            scale,
+            h_std,
+            h_max,
+            min_len,
+            stats: Stats::default(),
+            reference: 0.0,
+            fresh: true,
+            restart: true,
+            g_norm_old: 1.0,
+            iterations: 0,
+            convolutions: 0,
+        };
+        self.balance_load(heights, pressure, &state, f64::NAN, None);
+        state.stats = self.displacement_and_stats(heights, pressure, state.reference, pm);
+        state.convolutions += 1;
+        Ok(state)
+    }
+
+    /// One iteration: the conjugate direction on the free pixels, its convolution, and the step
+    /// (clipped to the bounds, releasing bound pixels whose gap points inwards), shortened until the
+    /// objective descends when it left the CG line.
+    fn iterate(&mut self, state: &mut SolveState, heights: &[f64], pressure: &mut [f64], mean: f64) {
+        let n = self.n;
+        let (pm, total, min_len) = (state.pm, state.total, state.min_len);
+        state.iterations += 1;
+
+        // Conjugate direction on the free pixels: t = (g − ḡ) + β t.
+        let g_norm = state.stats.gradient_norm_sq(state.reference, mean);
+        let beta = if state.restart || state.g_norm_old <= 0.0 {
+            0.0
+        } else {
+            g_norm / state.g_norm_old
+        };
+        state.g_norm_old = g_norm;
+        let (sum_t, sum_dt) = self.pass_direction(heights, pressure, mean, beta, pm, min_len);
+        let n_free = state.stats.n_free;
+        let shift = if n_free > 0.0 { sum_t / n_free } else { 0.0 };
+
+        // r = 𝒦 t_f with t_f = t − shift on free pixels (zero mean there), and Σ_free r·t_f.
+        // t is zero outside the free pixels, so `t ≠ 0` marks them without reading p (a free
+        // pixel whose t is exactly 0 is left out consistently here and in the update).
+        let t = &self.t;
+        self.plan.convolve_with(
+            &self.t,
+            |_, row| {
+                for v in row.iter_mut() {
+                    if *v != 0.0 {
+                        *v -= shift;
+                    }
+                }
+            },
+            &self.kernel,
+            &mut self.r,
+            |i, row| {
+                let mut s = 0.0;
+                for (&r, &tv) in row.iter().zip(&t[i * n..(i + 1) * n]) {
+                    if tv != 0.0 {
+                        s += r * (tv - shift);
+                    }
+                }
+                s
+            },
+            Some(&mut self.row_partials),
+        );
+        state.convolutions += 1;
+        let curvature: f64 = self.row_partials.iter().sum();
+        let (tau, cg_step) = if n_free > 0.0 && curvature > 0.0 && sum_dt > 0.0 {
+            (sum_dt / curvature, true)
+        } else {
+            (1.0 / self.self_influence, false)
+        };
+
+        // Step, clip to the bounds, release bound pixels whose gap points inwards; the next
+        // iteration's statistics come out of the same pass. A step that changed p off the CG
+        // line is checked on the objective and shortened until it descends (projected search).
+        let energy_before = state.stats.energy;
+        let slack = 1e-13 * (energy_before.abs() + total * state.h_std.max(state.h_max.abs()));
+        let mut tau = tau;
+        let mut backtracks = 0;
         loop {
-            let mean = stats.mean_gap(reference);
-            let residual = stats.violation(mean) / scale;
-            if residual <= tolerance {
-                if fresh {
-                    return Ok(SolveInfo {
-                        iterations,
-                        convolutions,
-                        residual,
-                        tolerance,
-                        approach: h_max + mean,
-                        contact_pixels: stats.load.n_contact,
-                        plastic_pixels: stats.n_plastic as usize,
-                    });
-                }
-                // Confirm with an exactly balanced load and a freshly computed displacement.
-                self.balance_load(heights, pressure, total, pm, mean, min_len, Some(stats.load));
-                reference = mean;
-                stats = self.displacement_and_stats(heights, pressure, reference, pm);
-                convolutions += 1;
-                fresh = true;
-                continue;
-            }
-            if iterations >= self.options.max_iterations {
-                return Err(Error::NotConverged {
-                    iterations,
-                    residual,
-                    tolerance,
-                });
-            }
-            self.interrupt.check()?;
-            iterations += 1;
-
-            // Conjugate direction on the free pixels: t = (g − ḡ) + β t.
-            let g_norm = stats.gradient_norm_sq(reference, mean);
-            let beta = if restart || g_norm_old <= 0.0 {
-                0.0
-            } else {
-                g_norm / g_norm_old
-            };
-            g_norm_old = g_norm;
-            let (sum_t, sum_dt) = self.pass_direction(heights, pressure, mean, beta, pm, min_len);
-            let shift = if stats.n_free > 0.0 { sum_t / stats.n_free } else { 0.0 };
-
-            // r = 𝒦 t_f with t_f = t − shift on free pixels (zero mean there), and Σ_free r·t_f.
-            // t is zero outside the free pixels, so `t ≠ 0` marks them without reading p (a free
-            // pixel whose t is exactly 0 is left out consistently here and in the update).
-            let t = &self.t;
-            self.plan.convolve_with(
-                &self.t,
-                |_, row| {
-                    for v in row.iter_mut() {
-                        if *v != 0.0 {
-                            *v -= shift;
-                        }
-                    }
-                },
-                &self.kernel,
-                &mut self.r,
-                |i, row| {
-                    let mut s = 0.0;
-                    for (&r, &tv) in row.iter().zip(&t[i * n..(i + 1) * n]) {
-                        if tv != 0.0 {
-                            s += r * (tv - shift);
-                        }
-                    }
-                    s
-                },
-                Some(&mut self.row_partials),
+            let (next, changed_total, released, clipped) = self.pass_update(
+                heights,
+                pressure,
+                mean,
+                tau,
+                if cg_step { shift } else { f64::NAN },
+                pm,
+                min_len,
             );
-            convolutions += 1;
-            let curvature: f64 = self.row_partials.iter().sum();
-            let (tau, cg_step) = if stats.n_free > 0.0 && curvature > 0.0 && sum_dt > 0.0 {
-                (sum_dt / curvature, true)
-            } else {
-                (1.0 / self.self_influence, false)
-            };
-
-            // Step, clip to the bounds, release bound pixels whose gap points inwards; the next
-            // iteration's statistics come out of the same pass. A step that changed p off the CG
-            // line is checked on the objective and shortened until it descends (projected search).
-            let energy_before = stats.energy;
-            let slack = 1e-13 * (energy_before.abs() + total * h_std.max(h_max.abs()));
-            let mut tau = tau;
-            let mut backtracks = 0;
-            loop {
-                let (next, changed_total, released, clipped) = self.pass_update(
-                    heights,
-                    pressure,
-                    mean,
-                    tau,
-                    if cg_step { shift } else { f64::NAN },
-                    pm,
-                    min_len,
-                );
-                let drift = (changed_total - total).abs() > 1e-12 * total;
-                if !(clipped || released || drift || !cg_step) {
-                    stats = next;
-                    fresh = false;
-                    restart = false;
-                    break;
-                }
-                self.balance_load(heights, pressure, total, pm, mean, min_len, Some(next.load));
-                // The carried-along u moves to the spare buffer (kept for an undo); 𝒦p goes into u.
-                std::mem::swap(&mut self.u, &mut self.u_alt);
-                stats = self.displacement_and_stats(heights, pressure, mean, pm);
-                convolutions += 1;
-                fresh = true;
-                restart = released || backtracks > 0;
-                if stats.energy <= energy_before + slack || backtracks >= 40 {
-                    break;
-                }
-                // Undo: p from its copy, u = (u − τr) + τr from the carried-along field.
-                pressure
-                    .par_iter_mut()
-                    .zip(self.p_old.par_iter())
-                    .for_each(|(p, &o)| *p = o);
-                let step = if cg_step { tau } else { 0.0 };
-                self.u
-                    .par_iter_mut()
-                    .zip(self.u_alt.par_iter().zip(self.r.par_iter()))
-                    .for_each(|(u, (&a, &r))| *u = a + step * r);
-                tau *= 0.25;
-                backtracks += 1;
+            let drift = (changed_total - total).abs() > 1e-12 * total;
+            if !(clipped || released || drift || !cg_step) {
+                state.stats = next;
+                state.fresh = false;
+                state.restart = false;
+                break;
             }
-            reference = mean;
+            self.balance_load(heights, pressure, state, mean, Some(next.load));
+            // The carried-along u moves to the spare buffer (kept for an undo); 𝒦p goes into u.
+            std::mem::swap(&mut self.u, &mut self.u_alt);
+            state.stats = self.displacement_and_stats(heights, pressure, mean, pm);
+            state.convolutions += 1;
+            state.fresh = true;
+            state.restart = released || backtracks > 0;
+            if state.stats.energy <= energy_before + slack || backtracks >= 40 {
+                break;
+            }
+            // Undo: p from its copy, u = (u − τr) + τr from the carried-along field.
+            pressure
+                .par_iter_mut()
+                .zip(self.p_old.par_iter())
+                .for_each(|(p, &o)| *p = o);
+            let step = if cg_step { tau } else { 0.0 };
+            self.u
+                .par_iter_mut()
+                .zip(self.u_alt.par_iter().zip(self.r.par_iter()))
+                .for_each(|(u, (&a, &r))| *u = a + step * r);
+            tau *= 0.25;
+            backtracks += 1;
+        }
+        state.reference = mean;
+    }
+
+    /// What a solve reports, from its last statistics.
+    fn finish(&self, state: &SolveState, mean: f64, residual: f64, termination: Termination) -> SolveInfo {
+        SolveInfo {
+            termination,
+            iterations: state.iterations,
+            convolutions: state.convolutions,
+            residual,
+            tolerance: self.options.tolerance,
+            approach: state.h_max + mean,
+            contact_pixels: state.stats.load.n_contact,
+            plastic_pixels: state.stats.n_plastic as usize,
         }
     }
 
@@ -567,15 +680,14 @@ impl ContactSolver {
     /// proportion to their penetration −(g − ḡ) (all non-contact pixels evenly when `mean` is NaN or
     /// none penetrates), then the load is balanced again.
     fn balance_load(
-        &mut self,
+        &self,
         heights: &[f64],
         pressure: &mut [f64],
-        total: f64,
-        pm: f64,
+        state: &SolveState,
         mean: f64,
-        min_len: usize,
         mut sums: Option<LoadSums>,
     ) {
+        let (total, pm, min_len) = (state.total, state.pm, state.min_len);
         for _ in 0..4 {
             if scale_to_load(pressure, total, pm, min_len, sums.take()) {
                 return;

@@ -1,10 +1,11 @@
-//! Typed errors of the library. Front ends add context (which file, which command).
+//! Typed errors of the library, each naming what is at fault and the fix. Front ends add context
+//! (which command) and map the kinds onto their own (exit codes, Python exceptions).
 
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
-/// Everything that can go wrong in wearsim's library, each with the field at fault and the fix.
+/// Everything that can go wrong in wearsim's library.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
     /// A parameter outside its physical or numerical range.
@@ -15,13 +16,46 @@ pub enum Error {
     #[error("invalid surface `{name}`: {message}")]
     InvalidSurface { name: String, message: String },
 
-    /// A file that could not be read or written.
-    #[error("{path}: {message}")]
-    Io { path: PathBuf, message: String },
+    /// A file or folder that could not be read or written.
+    #[error("{}: {source}", path.display())]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
 
-    /// A run or study file that does not describe a valid simulation.
-    #[error("{0}")]
-    Config(String),
+    /// A file whose content is not what it should be (a `.npy` header, a job file, a stored study).
+    #[error("{}: {message}", path.display())]
+    InvalidFile { path: PathBuf, message: String },
+
+    /// A run or study file that does not describe a valid simulation (syntax, unknown or missing
+    /// keys, wrong types); `path` is the file when it came from one.
+    #[error("{}{message}", path.as_ref().map(|p| format!("{}: ", p.display())).unwrap_or_default())]
+    RunFile { path: Option<PathBuf>, message: String },
+
+    /// A study folder that cannot take this study's results (another study's, or another
+    /// version's, job files).
+    #[error("{}: {message}", dir.display())]
+    StudyFolder { dir: PathBuf, message: String },
+
+    /// One job of a study failed; `source` says why.
+    #[error("study job {index} ({material}, load {load:e}): {source}")]
+    Job {
+        index: usize,
+        material: String,
+        load: f64,
+        #[source]
+        source: Box<Error>,
+    },
+
+    /// Some jobs of a study failed; the others were finished and their files written, so that a
+    /// new run computes only the failed ones.
+    #[error(
+        "{} of {total} jobs failed (the other finished jobs are saved; run the study again to retry only the failed ones): {}",
+        failed.len(),
+        failed.iter().map(|e| e.to_string()).collect::<Vec<_>>().join("; ")
+    )]
+    JobsFailed { failed: Vec<Error>, total: usize },
 
     /// The mean pressure reaches the flow pressure: the surfaces would have to be in full plastic
     /// contact, where the saturated model has no solution.
@@ -42,7 +76,7 @@ pub enum Error {
         tolerance: f64,
     },
 
-    /// The caller asked the computation to stop (Ctrl-C in the Python front end).
+    /// The caller asked the computation to stop (Ctrl-C).
     #[error("interrupted")]
     Interrupted,
 }
@@ -60,10 +94,36 @@ impl Error {
     }
 
     /// Shorthand for [`Error::Io`].
-    pub fn io(path: impl Into<PathBuf>, message: impl ToString) -> Self {
+    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
         Error::Io {
             path: path.into(),
-            message: message.to_string(),
+            source,
+        }
+    }
+
+    /// Shorthand for [`Error::InvalidFile`].
+    pub fn file(path: impl Into<PathBuf>, message: impl Into<String>) -> Self {
+        Error::InvalidFile {
+            path: path.into(),
+            message: message.into(),
+        }
+    }
+
+    /// Shorthand for [`Error::RunFile`] without a path (text handed over by the caller).
+    pub fn run_file(message: impl Into<String>) -> Self {
+        Error::RunFile {
+            path: None,
+            message: message.into(),
+        }
+    }
+
+    /// The error that decides the kind: the cause of a failed job, the first of several failed
+    /// jobs, otherwise the error itself. Front ends pick their exception type from it.
+    pub fn root(&self) -> &Error {
+        match self {
+            Error::Job { source, .. } => source.root(),
+            Error::JobsFailed { failed, .. } => failed.first().map_or(self, Error::root),
+            other => other,
         }
     }
 }
@@ -91,5 +151,40 @@ impl Interrupt {
         } else {
             Ok(())
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_failed_job_keeps_the_kind_of_its_cause() {
+        let cause = Error::NotConverged {
+            iterations: 3,
+            residual: 1.0,
+            tolerance: 1e-8,
+        };
+        let job = Error::Job {
+            index: 4,
+            material: "steel".into(),
+            load: 1e-3,
+            source: Box::new(cause),
+        };
+        assert!(matches!(job.root(), Error::NotConverged { .. }));
+        let text = job.to_string();
+        assert!(
+            text.starts_with("study job 4 (steel, load 1e-3)") && text.contains("did not converge"),
+            "{text}"
+        );
+        let all = Error::JobsFailed {
+            failed: vec![job],
+            total: 9,
+        };
+        assert!(matches!(all.root(), Error::NotConverged { .. }));
+        assert!(all.to_string().starts_with("1 of 9 jobs failed"));
+        let io = Error::io("x", std::io::Error::other("disk full"));
+        let source = std::error::Error::source(&io).map(|s| s.to_string());
+        assert_eq!(source.as_deref(), Some("disk full"));
     }
 }

@@ -2,7 +2,7 @@
 //!
 //! Every solver iteration applies the half-space influence operator 𝒦 once, that is one real 2D FFT
 //! round trip with a multiplication by a real kernel in between. This module is that round trip,
-//! tuned as described in `shared/PERFORMANCE.md`:
+//! tuned for memory traffic (docs/performance.md has the measurements):
 //! - plans are made once ([`FftPlan::new`]) and every N² buffer is preallocated;
 //! - the half spectrum is kept *transposed*: `N/2 + 1` rows (one per `q_y`) of length `N` (over
 //!   `q_x`), each row padded to `N + 4` so that the stride is not a power of two;
@@ -74,8 +74,16 @@ impl<T> Clone for SharedMut<T> {
     }
 }
 impl<T> Copy for SharedMut<T> {}
-unsafe impl<T> Send for SharedMut<T> {}
-unsafe impl<T> Sync for SharedMut<T> {}
+impl<T> SharedMut<T> {
+    /// The pointer (a method, so that closures capture the whole `Send` wrapper, not its field).
+    fn get(self) -> *mut T {
+        self.0
+    }
+}
+// SAFETY: the pointer is only used to write disjoint elements from different threads (each use
+// says which), which is sound when the elements themselves may be sent between threads.
+unsafe impl<T: Send> Send for SharedMut<T> {}
+unsafe impl<T: Send> Sync for SharedMut<T> {}
 
 /// FFT plans and the transposed half-spectrum buffer for one N×N grid.
 pub struct FftPlan {
@@ -92,7 +100,7 @@ pub struct FftPlan {
 impl FftPlan {
     /// Plans the transforms for an `n × n` grid (`n ≥ 2`, even).
     pub fn new(n: usize) -> Self {
-        assert!(n >= 2 && n % 2 == 0, "FFT grid size must be even and at least 2");
+        assert!(n >= 2 && n & 1 == 0, "FFT grid size must be even and at least 2");
         let mut real = RealFftPlanner::<f64>::new();
         let mut complex = FftPlanner::<f64>::new();
         let stride = n + 4;
@@ -215,7 +223,6 @@ impl FftPlan {
         let scratch_len = r2c.get_scratch_len();
         input.par_chunks(BLOCK * n).enumerate().for_each(|(b, rows)| {
             with_work(n, BLOCK * half, scratch_len, |row_in, block_out, scratch| {
-                let spec = spec;
                 let rows_here = rows.len() / n;
                 for r in 0..rows_here {
                     // r2c overwrites its input: work on a copy of the row.
@@ -228,7 +235,7 @@ impl FftPlan {
                 for qy in 0..half {
                     // SAFETY: block `b` writes columns i0..i0+rows_here of every spectrum row, which no
                     // other block touches; all indices are inside the buffer.
-                    let dst = unsafe { std::slice::from_raw_parts_mut(spec.0.add(qy * stride + i0), rows_here) };
+                    let dst = unsafe { std::slice::from_raw_parts_mut(spec.get().add(qy * stride + i0), rows_here) };
                     for (r, d) in dst.iter_mut().enumerate() {
                         *d = block_out[r * half + qy];
                     }
@@ -277,7 +284,7 @@ impl FftPlan {
                     if let Some(p) = partials {
                         // SAFETY: row i0 + r < n belongs to this block alone; the slot holds an
                         // initialised R, dropped by the assignment.
-                        unsafe { *p.0.add(i0 + r) = value };
+                        unsafe { *p.get().add(i0 + r) = value };
                     }
                 }
             })

@@ -5,17 +5,6 @@
 //! allocates nothing once the buffers have grown to the largest contact seen; its cost is linear in
 //! the number of pixels.
 
-use crate::error::{Error, Result};
-
-/// Checks a junction connectivity: 4 (edge neighbours) or 8 (edge and corner neighbours).
-pub fn check_connectivity(connectivity: u8) -> Result<()> {
-    if connectivity == 4 || connectivity == 8 {
-        Ok(())
-    } else {
-        Err(Error::param("connectivity", format!("{connectivity} must be 4 or 8")))
-    }
-}
-
 /// Label of a pixel not in contact.
 pub const NO_JUNCTION: u32 = u32::MAX;
 

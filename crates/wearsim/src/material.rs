@@ -1,5 +1,6 @@
 //! Material parameters and the quantities derived from them (SPEC §1, paper §2).
 
+use crate::check::positive;
 use crate::error::{Error, Result};
 
 /// How the effective modulus E* of the equivalent half-space is formed (SPEC §3).
@@ -19,6 +20,22 @@ impl ModulusConvention {
         match self {
             ModulusConvention::HalfSpace => "half-space",
             ModulusConvention::Composite => "composite",
+        }
+    }
+}
+
+impl std::str::FromStr for ModulusConvention {
+    type Err = Error;
+
+    /// Parses the name written in run files (`modulus = "half-space"`).
+    fn from_str(name: &str) -> Result<Self> {
+        match name {
+            "half-space" => Ok(ModulusConvention::HalfSpace),
+            "composite" => Ok(ModulusConvention::Composite),
+            other => Err(Error::param(
+                "modulus",
+                format!("\"{other}\"; use \"half-space\" (E* = E/(1−ν²)) or \"composite\" (E* = E/(2(1−ν²)))"),
+            )),
         }
     }
 }
@@ -99,14 +116,6 @@ impl Material {
             ModulusConvention::HalfSpace => plane_strain,
             ModulusConvention::Composite => plane_strain / 2.0,
         }
-    }
-}
-
-pub fn positive(field: &str, value: f64) -> Result<()> {
-    if value.is_finite() && value > 0.0 {
-        Ok(())
-    } else {
-        Err(Error::param(field, format!("{value} must be a finite positive number")))
     }
 }
 

@@ -1,65 +1,228 @@
-//! Result files. Every file is written to a temporary sibling and renamed into place, so a killed
-//! run never leaves a half-written result behind.
+//! Every result document wearsim writes, built in one place: the provenance block they share, the
+//! summary and series of a sliding run, the summary of one contact solve, surface statistics,
+//! junction tables, study job files and the tidy results tables. Front ends (the CLI, the Python
+//! bindings) call these and only choose where the files go.
+//!
+//! Tables are derived from one typed row each ([`SeriesRow`], [`TidyRow`]): their columns are the
+//! rows' serde fields in order, so a column list is never kept by hand. Numbers are written in
+//! Rust's shortest round-trip form (`{:e}` for floats); an undefined value (NaN, a missing input) is
+//! an empty cell.
 
-use std::io::{BufWriter, Write};
-use std::path::Path;
+use std::collections::BTreeMap;
 
-use serde_json::json;
+use serde::{Deserialize, Serialize};
+use serde_json::{json, Value};
 
-use crate::config::{RunConfig, SlidingConfig, Units};
-use crate::contact::SolverOptions;
+use crate::config::{InputRecord, RunConfig, SlidingConfig, SurfaceSource, Units};
+use crate::contact::{SolveInfo, SolverOptions};
 use crate::error::{Error, Result};
 use crate::material::{Material, ModulusConvention};
-use crate::sliding::{results_json, series, LoadRun};
+use crate::sliding::{LoadRun, StepRecord, WearResult};
+use crate::surface::Surface;
 
-/// Writes `path` atomically: `write` fills a temporary file in the same folder, which is then
-/// flushed, synced and renamed over `path`. On error the temporary file is removed.
-pub fn atomic_write(path: &Path, write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>) -> Result<()> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let file_name = path.file_name().ok_or_else(|| Error::io(path, "not a file path"))?;
-    let tmp = dir.join(format!(".{}.tmp{}", file_name.to_string_lossy(), std::process::id()));
-    let result = (|| -> std::io::Result<()> {
-        let file = std::fs::File::create(&tmp)?;
-        let mut w = BufWriter::new(file);
-        write(&mut w)?;
-        let file = w.into_inner().map_err(|e| e.into_error())?;
-        file.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(Error::io(path, e));
+/// Where a result came from: software version, the command line of the process that wrote it, and
+/// the date (UTC, RFC 3339).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Provenance {
+    pub software: String,
+    pub command: String,
+    pub date: String,
+}
+
+impl Provenance {
+    /// This process, now.
+    pub fn current() -> Self {
+        let command = std::env::args_os()
+            .map(|a| {
+                let a = a.to_string_lossy().to_string();
+                if a.is_empty() || a.contains(char::is_whitespace) {
+                    format!("'{a}'")
+                } else {
+                    a
+                }
+            })
+            .collect::<Vec<_>>()
+            .join(" ");
+        Self {
+            software: format!("wearsim {}", crate::VERSION),
+            command,
+            date: humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string(),
+        }
     }
-    Ok(())
 }
 
-/// Writes a text file atomically.
-pub fn write_text(path: &Path, text: &str) -> Result<()> {
-    atomic_write(path, |w| w.write_all(text.as_bytes()))
+// ---------------------------------------------------------------------------------------------
+// Tables
+
+/// One cell of a table.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Cell {
+    Float(f64),
+    Int(i64),
+    Text(String),
+    /// An undefined number (NaN) or an input that does not apply.
+    Empty,
 }
 
-/// `series.csv` of a sliding run: one row per step, load and fracture energy (SPEC §9), plain CSV
-/// for pandas and R; units and provenance are in the summary.
+impl Cell {
+    fn of(value: &Value) -> Cell {
+        match value {
+            Value::Null => Cell::Empty,
+            Value::Bool(b) => Cell::Text(b.to_string()),
+            Value::Number(n) => match (n.as_i64(), n.as_u64(), n.as_f64()) {
+                (Some(i), _, _) => Cell::Int(i),
+                (None, Some(u), _) => Cell::Int(i64::try_from(u).unwrap_or(i64::MAX)),
+                (_, _, Some(f)) => Cell::Float(f),
+                _ => Cell::Empty,
+            },
+            Value::String(s) => Cell::Text(s.clone()),
+            other => Cell::Text(other.to_string()),
+        }
+    }
+
+    /// The cell as CSV text.
+    pub fn text(&self) -> String {
+        match self {
+            Cell::Float(f) if f.is_finite() => format!("{f:e}"),
+            Cell::Float(_) | Cell::Empty => String::new(),
+            Cell::Int(i) => i.to_string(),
+            Cell::Text(s) => s.clone(),
+        }
+    }
+
+    /// The cell as a number (NaN where it is not one).
+    pub fn number(&self) -> f64 {
+        match self {
+            Cell::Float(f) => *f,
+            Cell::Int(i) => *i as f64,
+            _ => f64::NAN,
+        }
+    }
+}
+
+/// A table: named columns and rows of cells.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Table {
+    pub columns: Vec<String>,
+    pub rows: Vec<Vec<Cell>>,
+}
+
+/// The fields of a serialised row, in order (nested `#[serde(flatten)]` structs inline).
+fn fields<T: Serialize>(row: &T) -> Vec<(String, Value)> {
+    match serde_json::to_value(row).expect("result rows serialise to JSON") {
+        Value::Object(map) => map.into_iter().collect(),
+        other => vec![("value".into(), other)],
+    }
+}
+
+/// The column names of row type `T`, from a default row.
+pub fn columns<T: Serialize + Default>() -> Vec<String> {
+    fields(&T::default()).into_iter().map(|(k, _)| k).collect()
+}
+
+impl Table {
+    /// The table of `rows`, one column per field of `T`.
+    pub fn of<T: Serialize + Default>(rows: &[T]) -> Self {
+        Self {
+            columns: columns::<T>(),
+            rows: rows
+                .iter()
+                .map(|r| fields(r).iter().map(|(_, v)| Cell::of(v)).collect())
+                .collect(),
+        }
+    }
+
+    /// Index of a column.
+    pub fn column(&self, name: &str) -> Option<usize> {
+        self.columns.iter().position(|c| c == name)
+    }
+
+    /// The table as CSV (RFC 4180 quoting: text with commas, quotes or newlines stays one field).
+    pub fn to_csv(&self) -> String {
+        let mut w = csv::Writer::from_writer(Vec::new());
+        let write = |w: &mut csv::Writer<Vec<u8>>| -> csv::Result<()> {
+            w.write_record(&self.columns)?;
+            for row in &self.rows {
+                w.write_record(row.iter().map(Cell::text))?;
+            }
+            w.flush()?;
+            Ok(())
+        };
+        write(&mut w).expect("writing CSV into memory cannot fail");
+        String::from_utf8(w.into_inner().expect("flushed")).expect("cells are UTF-8")
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sliding runs
+
+/// One row of a sliding run's series (`series.csv` of `wearsim slide`, the DataFrame of the Python
+/// `slide`): one step of one load for one fracture energy. The first nine columns are the paper's
+/// record per step (§3); `iterations` and `residual` are the contact solver's.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct SeriesRow {
+    /// Normal load F_N.
+    pub load: f64,
+    /// Fracture energy 𝒢.
+    pub fracture_energy: f64,
+    /// Sliding distance s in the run's length unit.
+    pub s: f64,
+    /// Number of junctions N.
+    pub junctions: usize,
+    /// Real contact area as a fraction of the apparent area L².
+    pub contact_area: f64,
+    /// N*: junctions with d_i ≥ d* at this step.
+    pub n_critical: usize,
+    /// N*₊: particles formed so far, s = 0 included.
+    pub n_formed: usize,
+    /// N*₋ = N*₊ − N*.
+    pub n_shrunk: i64,
+    /// V: wear volume so far, s = 0 included.
+    pub volume: f64,
+    /// Contact solver iterations of this step.
+    pub iterations: usize,
+    /// Contact solver residual of this step.
+    pub residual: f64,
+}
+
+/// The series of every load and fracture energy: load by load, then fracture energy, then step.
+pub fn series_rows(runs: &[LoadRun]) -> Vec<SeriesRow> {
+    let mut rows = Vec::new();
+    for r in runs {
+        for (e, w) in r.results.iter().enumerate() {
+            for st in &r.steps {
+                let sw = &st.wear[e];
+                rows.push(SeriesRow {
+                    load: r.load,
+                    fracture_energy: w.fracture_energy,
+                    s: st.s,
+                    junctions: st.junctions,
+                    contact_area: st.contact_area,
+                    n_critical: sw.n_critical,
+                    n_formed: sw.n_formed,
+                    n_shrunk: sw.n_shrunk(),
+                    volume: sw.volume,
+                    iterations: st.iterations,
+                    residual: st.residual,
+                });
+            }
+        }
+    }
+    rows
+}
+
+/// `series.csv` of a sliding run: plain CSV for pandas and R; units and provenance are in the
+/// summary beside it.
 pub fn series_csv(runs: &[LoadRun]) -> String {
-    let mut text = String::from("load,fracture_energy,s,junctions,contact_area,n_critical,n_formed,n_shrunk,volume\n");
-    for r in series(runs) {
-        text += &format!(
-            "{:e},{:e},{:e},{},{:e},{},{},{},{:e}\n",
-            r.load, r.fracture_energy, r.s, r.junctions, r.contact_area, r.n_critical, r.n_formed, r.n_shrunk, r.volume
-        );
-    }
-    text
+    Table::of(&series_rows(runs)).to_csv()
 }
 
 /// What a sliding run was given, for its summary.
-pub struct RunInputs<'a> {
+pub struct SlidingInputs<'a> {
     pub units: Units,
-    /// Where the surfaces came from (a run file's [`crate::config::SurfaceSource`], or a description
-    /// of arrays handed over by the caller).
-    pub surfaces: serde_json::Value,
+    /// Where the surfaces came from (a run file's [`SurfaceSource`], or a description of arrays
+    /// handed over by the caller).
+    pub surfaces: Value,
     pub material: &'a Material,
     pub modulus: ModulusConvention,
     pub solver: SolverOptions,
@@ -67,12 +230,12 @@ pub struct RunInputs<'a> {
     pub sliding: &'a SlidingConfig,
 }
 
-impl<'a> RunInputs<'a> {
+impl<'a> SlidingInputs<'a> {
     /// The inputs of a run file with a sliding schedule.
     pub fn of_run(config: &'a RunConfig, sliding: &'a SlidingConfig) -> Self {
         Self {
             units: config.units,
-            surfaces: serde_json::to_value(&config.surfaces).expect("plain data serialises"),
+            surfaces: surface_source(&config.surfaces),
             material: &config.material,
             modulus: config.modulus,
             solver: config.solver,
@@ -82,25 +245,67 @@ impl<'a> RunInputs<'a> {
     }
 }
 
-/// `summary.json` of a sliding run (SPEC §9): inputs, derived quantities, solver statistics and the
-/// results per load and fracture energy, with the conventions they follow.
-pub fn sliding_summary(inputs: &RunInputs, runs: &[LoadRun], seconds: f64, steps_per_load: usize) -> serde_json::Value {
-    let (results, solver) = results_json(runs);
-    let m = inputs.material;
+fn surface_source(source: &SurfaceSource) -> Value {
+    serde_json::to_value(source).expect("plain data serialises")
+}
+
+/// The contact settings of a run as they appear in its outputs.
+fn contact_inputs(modulus: ModulusConvention, solver: SolverOptions, connectivity: u8) -> Value {
     json!({
-        "software": format!("wearsim {}", crate::VERSION),
+        "modulus": modulus.name(),
+        "tolerance": solver.tolerance(),
+        "max_iterations": solver.max_iterations(),
+        "connectivity": connectivity,
+    })
+}
+
+/// How the residual is defined, as written into every output that reports one.
+pub const RESIDUAL_DEFINITION: &str = "max over pixels of the violation of the optimality conditions (|g+c| on \
+free, max(0,-(g+c)) on non-contact, max(0,g+c) on plastic pixels) divided by std(h)";
+
+/// `summary.json` of a sliding run: provenance, inputs, derived quantities, solver statistics and
+/// the results per load and fracture energy, with the conventions they follow.
+pub fn sliding_summary(inputs: &SlidingInputs, runs: &[LoadRun], seconds: f64, steps_per_load: usize) -> Value {
+    let m = inputs.material;
+    let results: Vec<Value> = runs
+        .iter()
+        .flat_map(|r| {
+            r.results.iter().map(move |w| {
+                let mut v = serde_json::to_value(w).expect("plain numbers serialise");
+                v.as_object_mut()
+                    .expect("a struct serialises to an object")
+                    .insert("load".into(), json!(r.load));
+                v
+            })
+        })
+        .collect();
+    let solver: Vec<Value> = runs
+        .iter()
+        .map(|r| {
+            json!({
+                "load": r.load,
+                "total_iterations": r.total_iterations,
+                "max_iterations": r.max_iterations,
+                "mean_iterations": r.total_iterations as f64 / r.steps.len() as f64,
+                "max_residual": r.steps.iter().map(|s| s.residual).fold(0.0, f64::max),
+                "seconds": {"solve": r.timing.solve, "labelling": r.timing.labelling, "bookkeeping": r.timing.bookkeeping},
+            })
+        })
+        .collect();
+    json!({
+        "provenance": Provenance::current(),
         "units": inputs.units,
         "inputs": {
             "surfaces": inputs.surfaces,
             "material": m,
-            "contact": {"modulus": inputs.modulus.name(), "tolerance": inputs.solver.tolerance, "max_iterations": inputs.solver.max_iterations, "connectivity": inputs.connectivity},
+            "contact": contact_inputs(inputs.modulus, inputs.solver, inputs.connectivity),
             "sliding": inputs.sliding,
         },
         "flow_pressure": m.flow_pressure(),
         "critical_diameter": m.fracture_energies.iter().zip(m.critical_diameters()).map(|(g, d)| json!({"fracture_energy": g, "critical_diameter": d})).collect::<Vec<_>>(),
         "effective_modulus": m.effective_modulus(inputs.modulus),
         "modulus_convention": inputs.modulus.name(),
-        "solver": {"tolerance": inputs.solver.tolerance, "residual_definition": "max pixel-wise violation of the optimality conditions / std(h)", "per_load": solver},
+        "solver": {"tolerance": inputs.solver.tolerance(), "residual_definition": RESIDUAL_DEFINITION, "per_load": solver},
         "steps_per_load": steps_per_load,
         "fit": "least-squares lines of V and N*₊ against s over the steps with s ≥ running_in·L",
         "static_wear_rate_convention": "W_static/ω = k_static Σ A_i at s = 0",
@@ -110,21 +315,392 @@ pub fn sliding_summary(inputs: &RunInputs, runs: &[LoadRun], seconds: f64, steps
     })
 }
 
+// ---------------------------------------------------------------------------------------------
+// One contact solve
+
+/// What one contact solve reports: the numbers of `wearsim contact`'s summary and of the Python
+/// `ContactResult`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ContactRecord {
+    /// Real contact area as a fraction of L².
+    pub contact_area: f64,
+    pub contact_pixels: usize,
+    pub plastic_pixels: usize,
+    /// Mean pressure of the solution, F_N/L² to round-off.
+    pub mean_pressure: f64,
+    /// Rigid-body approach since first contact (length unit).
+    pub approach: f64,
+    pub iterations: usize,
+    pub convolutions: usize,
+    pub residual: f64,
+    pub tolerance: f64,
+    pub seconds: f64,
+}
+
+impl ContactRecord {
+    /// The record of a solve that produced `pressure`.
+    pub fn new(info: &SolveInfo, pressure: &[f64], seconds: f64) -> Self {
+        let pixels = pressure.len().max(1) as f64;
+        Self {
+            contact_area: info.contact_pixels as f64 / pixels,
+            contact_pixels: info.contact_pixels,
+            plastic_pixels: info.plastic_pixels,
+            mean_pressure: pressure.iter().sum::<f64>() / pixels,
+            approach: info.approach,
+            iterations: info.iterations,
+            convolutions: info.convolutions,
+            residual: info.residual,
+            tolerance: info.tolerance,
+            seconds,
+        }
+    }
+}
+
+/// `summary.json` of `wearsim contact`: provenance, the solve's record, the load and offset, and
+/// the run's inputs and derived quantities.
+pub fn contact_summary(
+    config: &RunConfig,
+    load: f64,
+    offset: f64,
+    offset_pixels: usize,
+    record: &ContactRecord,
+) -> Value {
+    let mut doc = json!({
+        "provenance": Provenance::current(),
+        "units": config.units,
+        "load": load,
+        "offset": offset,
+        "offset_pixels": offset_pixels,
+    });
+    let object = doc.as_object_mut().expect("an object");
+    if let Value::Object(fields) = serde_json::to_value(record).expect("plain numbers serialise") {
+        object.extend(fields);
+    }
+    object.extend([
+        ("residual_definition".to_string(), json!(RESIDUAL_DEFINITION)),
+        ("effective_modulus".to_string(), json!(config.effective_modulus())),
+        ("modulus_convention".to_string(), json!(config.modulus.name())),
+        ("flow_pressure".to_string(), json!(config.material.flow_pressure())),
+        (
+            "critical_diameters".to_string(),
+            json!(config.material.critical_diameters()),
+        ),
+        ("material".to_string(), json!(config.material)),
+        ("surfaces".to_string(), surface_source(&config.surfaces)),
+        (
+            "contact".to_string(),
+            contact_inputs(config.modulus, config.solver, config.connectivity),
+        ),
+    ]);
+    doc
+}
+
+// ---------------------------------------------------------------------------------------------
+// Surfaces and junctions
+
+/// Statistics of one surface, as `wearsim surface` writes them and Python's `surface_statistics`
+/// returns them.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SurfaceStatistics {
+    pub grid: usize,
+    pub length: f64,
+    pub pixel_size: f64,
+    pub rms_height: f64,
+    pub rms_slope: f64,
+    /// Radially averaged PSD as (q, C(q)) pairs (see [`PSD_CONVENTION`]).
+    pub psd: Vec<[f64; 2]>,
+}
+
+/// How the radially averaged PSD is defined.
+pub const PSD_CONVENTION: &str = "psd[q] = mean over the shell |q| ∈ [m−½, m+½) of |ĥ(q)|²/N⁴ (variance per \
+Fourier mode, length²); q in units of 2π/L";
+
+impl SurfaceStatistics {
+    /// The statistics of `s`.
+    pub fn of(s: &Surface) -> Self {
+        Self {
+            grid: s.n(),
+            length: s.length(),
+            pixel_size: s.pixel_size(),
+            rms_height: s.rms_height(),
+            rms_slope: s.rms_slope(),
+            psd: s.radial_psd().iter().map(|(q, c)| [*q, *c]).collect(),
+        }
+    }
+}
+
+/// `statistics.json` of `wearsim surface`.
+pub fn surface_summary(config: &RunConfig, top: &SurfaceStatistics, bottom: &SurfaceStatistics) -> Value {
+    json!({
+        "provenance": Provenance::current(),
+        "units": config.units,
+        "surfaces": surface_source(&config.surfaces),
+        "psd_convention": PSD_CONVENTION,
+        "top": top,
+        "bottom": bottom,
+    })
+}
+
+/// `junctions.json` of `wearsim junctions`: pixel count per junction.
+pub fn junctions_summary(connectivity: u8, pixels: &[usize]) -> Value {
+    json!({
+        "provenance": Provenance::current(),
+        "connectivity": connectivity,
+        "junctions": pixels.len(),
+        "pixels": pixels,
+    })
+}
+
+// ---------------------------------------------------------------------------------------------
+// Studies
+
+/// What a study's job file holds: which job it is (checked when the file is read back, so that a
+/// file can never be attributed to another job), and its results.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct JobResult {
+    pub provenance: Provenance,
+    pub index: usize,
+    pub material: String,
+    /// Every input of the job.
+    pub inputs: InputRecord,
+    pub load: f64,
+    pub flow_pressure: f64,
+    pub effective_modulus: f64,
+    pub results: Vec<WearResult>,
+    /// Per step: s, junctions, contact area; per fracture energy: n_critical, n_formed, volume.
+    pub steps: Vec<StepRow>,
+    pub total_iterations: usize,
+    pub seconds: f64,
+}
+
+/// One step of a job file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StepRow {
+    pub s: f64,
+    pub junctions: usize,
+    pub contact_area: f64,
+    pub n_critical: Vec<usize>,
+    pub n_formed: Vec<usize>,
+    pub volume: Vec<f64>,
+}
+
+impl From<&StepRecord> for StepRow {
+    fn from(r: &StepRecord) -> Self {
+        Self {
+            s: r.s,
+            junctions: r.junctions,
+            contact_area: r.contact_area,
+            n_critical: r.wear.iter().map(|w| w.n_critical).collect(),
+            n_formed: r.wear.iter().map(|w| w.n_formed).collect(),
+            volume: r.wear.iter().map(|w| w.volume).collect(),
+        }
+    }
+}
+
+impl JobResult {
+    /// The job file's text.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).expect("job results serialise")
+    }
+
+    /// Parses a job file's text.
+    pub fn from_json(text: &str) -> std::result::Result<Self, serde_json::Error> {
+        serde_json::from_str(text)
+    }
+}
+
+/// One row of a study's tidy table (`results.csv`): one job × fracture energy, with every input of
+/// the job, the load and the results.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct TidyRow {
+    pub job: usize,
+    pub material: String,
+    #[serde(flatten)]
+    pub inputs: InputRecord,
+    pub load: f64,
+    #[serde(flatten)]
+    pub result: WearResult,
+    pub flow_pressure: f64,
+}
+
+impl TidyRow {
+    /// The rows of one job file, one per fracture energy.
+    pub fn of_job(result: &JobResult) -> Vec<TidyRow> {
+        result
+            .results
+            .iter()
+            .map(|w| TidyRow {
+                job: result.index,
+                material: result.material.clone(),
+                inputs: result.inputs.clone(),
+                load: result.load,
+                result: w.clone(),
+                flow_pressure: result.flow_pressure,
+            })
+            .collect()
+    }
+}
+
+/// Columns of the tidy table that vary between surface pairs of one setting and are averaged over
+/// in the aggregated table: the results.
+fn result_columns() -> Vec<String> {
+    let mut c: Vec<String> = columns::<WearResult>()
+        .into_iter()
+        .filter(|c| c != "fracture_energy")
+        .collect();
+    c.push("flow_pressure".into());
+    c
+}
+
+/// The aggregated table of a tidy table: one row per setting (every column but the job index, the
+/// seed and the results), with the number of surface pairs and the mean, min and max over them of
+/// every result column. Rows keep the order in which settings first appear; undefined results
+/// (empty cells) are left out of the statistics.
+pub fn aggregate(tidy: &Table) -> Table {
+    let values = result_columns();
+    let value_index: Vec<usize> = values.iter().filter_map(|c| tidy.column(c)).collect();
+    let key_index: Vec<usize> = (0..tidy.columns.len())
+        .filter(|i| !value_index.contains(i) && !["job", "surface.seed"].contains(&tidy.columns[*i].as_str()))
+        .collect();
+    let mut order: BTreeMap<Vec<String>, usize> = BTreeMap::new();
+    let mut groups: Vec<(Vec<Cell>, Vec<&Vec<Cell>>)> = Vec::new();
+    for row in &tidy.rows {
+        let key: Vec<Cell> = key_index.iter().map(|&i| row[i].clone()).collect();
+        let text: Vec<String> = key.iter().map(Cell::text).collect();
+        let g = *order.entry(text).or_insert_with(|| {
+            groups.push((key, Vec::new()));
+            groups.len() - 1
+        });
+        groups[g].1.push(row);
+    }
+    let mut columns: Vec<String> = key_index.iter().map(|&i| tidy.columns[i].clone()).collect();
+    columns.push("surface_pairs".into());
+    for &i in &value_index {
+        let c = &tidy.columns[i];
+        columns.extend([format!("{c}_mean"), format!("{c}_min"), format!("{c}_max")]);
+    }
+    let rows = groups
+        .into_iter()
+        .map(|(key, members)| {
+            let mut line = key;
+            line.push(Cell::Int(members.len() as i64));
+            for &i in &value_index {
+                let v: Vec<f64> = members.iter().map(|m| m[i].number()).filter(|x| !x.is_nan()).collect();
+                if v.is_empty() {
+                    line.extend([Cell::Empty, Cell::Empty, Cell::Empty]);
+                    continue;
+                }
+                let mean = v.iter().sum::<f64>() / v.len() as f64;
+                let min = v.iter().copied().fold(f64::INFINITY, f64::min);
+                let max = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                line.extend([Cell::Float(mean), Cell::Float(min), Cell::Float(max)]);
+            }
+            line
+        })
+        .collect();
+    Table { columns, rows }
+}
+
+/// Writes `results.csv` (tidy) and `results_aggregated.csv` into `dir`; returns their row counts.
+pub fn write_results_tables(dir: &std::path::Path, rows: &[TidyRow]) -> Result<(usize, usize)> {
+    let tidy = Table::of(rows);
+    let aggregated = aggregate(&tidy);
+    crate::io::write_text(&dir.join("results.csv"), &tidy.to_csv())?;
+    crate::io::write_text(&dir.join("results_aggregated.csv"), &aggregated.to_csv())?;
+    Ok((tidy.rows.len(), aggregated.rows.len()))
+}
+
+/// Reads a job file, with the fix in the message when it cannot be used.
+pub fn read_job_file(path: &std::path::Path) -> Result<JobResult> {
+    let text = crate::io::read_text(path)?;
+    JobResult::from_json(&text).map_err(|e| {
+        Error::file(
+            path,
+            format!(
+                "not a readable job result ({e}); it was cut short or written by another version of wearsim: delete \
+                 it and run the study again to recompute that job"
+            ),
+        )
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn failed_write_leaves_nothing() {
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("a.txt");
-        let err = atomic_write(&path, |w| {
-            w.write_all(b"half")?;
-            Err(std::io::Error::other("boom"))
-        });
-        assert!(err.is_err());
-        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
-        write_text(&path, "whole").unwrap();
-        assert_eq!(std::fs::read_to_string(&path).unwrap(), "whole");
+    fn columns_come_from_the_row_types() {
+        assert_eq!(
+            columns::<SeriesRow>(),
+            [
+                "load",
+                "fracture_energy",
+                "s",
+                "junctions",
+                "contact_area",
+                "n_critical",
+                "n_formed",
+                "n_shrunk",
+                "volume",
+                "iterations",
+                "residual"
+            ]
+        );
+        let tidy = columns::<TidyRow>();
+        assert_eq!(&tidy[..3], ["job", "material", "units"]);
+        assert!(tidy.contains(&"surface.seed".to_string()) && tidy.contains(&"wear_rate".to_string()));
+        assert_eq!(tidy.last().map(String::as_str), Some("flow_pressure"));
+    }
+
+    #[test]
+    fn csv_quotes_text_and_leaves_undefined_numbers_empty() {
+        #[derive(Default, Serialize)]
+        struct Row {
+            name: String,
+            x: f64,
+            n: Option<u64>,
+        }
+        let rows = [
+            Row {
+                name: "a, \"b\"\nc".into(),
+                x: f64::NAN,
+                n: None,
+            },
+            Row {
+                name: "d".into(),
+                x: 2.5e-4,
+                n: Some(3),
+            },
+        ];
+        let text = Table::of(&rows).to_csv();
+        assert_eq!(text, "name,x,n\n\"a, \"\"b\"\"\nc\",,\nd,2.5e-4,3\n");
+    }
+
+    #[test]
+    fn aggregation_groups_over_seeds_and_skips_undefined_results() {
+        let row = |job: usize, seed: u64, wear_rate: f64| TidyRow {
+            job,
+            material: "m".into(),
+            inputs: InputRecord {
+                seed: Some(seed),
+                ..InputRecord::default()
+            },
+            load: 1e-3,
+            result: WearResult {
+                wear_rate,
+                ..WearResult::default()
+            },
+            flow_pressure: 0.05,
+        };
+        let tidy = Table::of(&[row(0, 1, 1.0), row(1, 2, 3.0), row(2, 3, f64::NAN)]);
+        let agg = aggregate(&tidy);
+        assert_eq!(agg.rows.len(), 1);
+        let at = |name: &str| agg.rows[0][agg.column(name).unwrap()].clone();
+        assert_eq!(at("surface_pairs"), Cell::Int(3));
+        assert_eq!(
+            (at("wear_rate_mean"), at("wear_rate_min"), at("wear_rate_max")),
+            (Cell::Float(2.0), Cell::Float(1.0), Cell::Float(3.0))
+        );
+        assert!(agg.column("surface.seed").is_none() && agg.column("job").is_none());
     }
 }

@@ -5,13 +5,12 @@
 
 use std::time::Instant;
 
-use crate::composite_heights;
-use crate::config::SlidingConfig;
+use crate::config::{RunConfig, SlidingConfig};
 use crate::contact::{ContactSolver, SolverOptions};
 use crate::error::{Error, Interrupt, Result};
 use crate::junctions::JunctionLabeller;
 use crate::material::Material;
-use crate::surface::Surface;
+use crate::surface::{composite_heights, Surface};
 use crate::wear::{static_wear, SlidingBookkeeping, StaticWear, StepWear};
 
 /// Sliding offsets in pixels (SPEC §6): from 0 in steps of `step_running_in` while below the
@@ -61,7 +60,7 @@ pub fn line_fit(x: &[f64], y: &[f64]) -> (f64, f64) {
 }
 
 /// Results per load and fracture energy (SPEC §6, §9); also the record stored in study job files.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct WearResult {
     pub fracture_energy: f64,
     pub critical_diameter: f64,
@@ -103,82 +102,6 @@ pub struct LoadRun {
     pub timing: Timing,
 }
 
-/// One row of a sliding run's series (`series.csv` of `wearsim slide`, the DataFrame of the Python
-/// `slide`): one step of one load for one fracture energy.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
-pub struct SeriesRow {
-    pub load: f64,
-    pub fracture_energy: f64,
-    /// Sliding distance s in the run's length unit.
-    pub s: f64,
-    pub junctions: usize,
-    pub contact_area: f64,
-    pub iterations: usize,
-    pub residual: f64,
-    pub n_critical: usize,
-    pub n_formed: usize,
-    pub n_shrunk: i64,
-    pub volume: f64,
-}
-
-/// The series of every load and fracture energy, load by load, then fracture energy, then step.
-pub fn series(runs: &[LoadRun]) -> Vec<SeriesRow> {
-    let mut rows = Vec::new();
-    for r in runs {
-        for (e, w) in r.results.iter().enumerate() {
-            for st in &r.steps {
-                let sw = &st.wear[e];
-                rows.push(SeriesRow {
-                    load: r.load,
-                    fracture_energy: w.fracture_energy,
-                    s: st.s,
-                    junctions: st.junctions,
-                    contact_area: st.contact_area,
-                    iterations: st.iterations,
-                    residual: st.residual,
-                    n_critical: sw.n_critical,
-                    n_formed: sw.n_formed,
-                    n_shrunk: sw.n_shrunk(),
-                    volume: sw.volume,
-                });
-            }
-        }
-    }
-    rows
-}
-
-/// The results (one entry per load × fracture energy) and per-load solver statistics of a run, the
-/// part of `summary.json` that does not depend on where the inputs came from.
-pub fn results_json(runs: &[LoadRun]) -> (serde_json::Value, serde_json::Value) {
-    use serde_json::json;
-    let results: Vec<_> = runs
-        .iter()
-        .flat_map(|r| {
-            r.results.iter().map(move |w| {
-                let mut v = serde_json::to_value(w).expect("plain numbers serialise");
-                v.as_object_mut()
-                    .expect("a struct serialises to an object")
-                    .insert("load".into(), json!(r.load));
-                v
-            })
-        })
-        .collect();
-    let solver: Vec<_> = runs
-        .iter()
-        .map(|r| {
-            json!({
-                "load": r.load,
-                "total_iterations": r.total_iterations,
-                "max_iterations": r.max_iterations,
-                "mean_iterations": r.total_iterations as f64 / r.steps.len() as f64,
-                "max_residual": r.steps.iter().map(|s| s.residual).fold(0.0, f64::max),
-                "seconds": {"solve": r.timing.solve, "labelling": r.timing.labelling, "bookkeeping": r.timing.bookkeeping},
-            })
-        })
-        .collect();
-    (json!(results), json!(solver))
-}
-
 /// Everything a sliding run needs besides the surfaces.
 #[derive(Debug, Clone)]
 pub struct SlidingSetup<'a> {
@@ -193,7 +116,7 @@ pub struct SlidingSetup<'a> {
 
 impl<'a> SlidingSetup<'a> {
     /// The setup a run file describes, for the given schedule (the run's own, or one load of it).
-    pub fn from_run(run: &'a crate::config::RunConfig, sliding: &'a SlidingConfig) -> Self {
+    pub fn from_run(run: &'a RunConfig, sliding: &'a SlidingConfig) -> Self {
         Self {
             material: &run.material,
             effective_modulus: run.effective_modulus(),
@@ -253,6 +176,17 @@ pub fn run_sliding(
             "the material has none; give at least one 𝒢 to count wear",
         ));
     }
+    for (field, step) in [
+        ("step_running_in", setup.sliding.step_running_in),
+        ("step", setup.sliding.step),
+    ] {
+        if step >= n {
+            return Err(Error::param(
+                field,
+                format!("{step} pixels must be below the grid size {n}"),
+            ));
+        }
+    }
     let offsets = schedule(n, setup.sliding);
     if offsets.len() < 2 {
         return Err(Error::param(
@@ -263,9 +197,9 @@ pub fn run_sliding(
     let running_in = (setup.sliding.running_in * n as f64).round() as usize;
     let diameters = setup.material.critical_diameters();
     let total_steps = offsets.len() * setup.sliding.loads.len();
-    let mut solver = ContactSolver::new(n, length, setup.effective_modulus)?;
-    solver.options = setup.solver;
-    solver.interrupt = setup.interrupt.clone();
+    let mut solver = ContactSolver::new(n, length, setup.effective_modulus)?
+        .with_options(setup.solver)
+        .with_interrupt(setup.interrupt.clone());
     let mut labeller = JunctionLabeller::new(n, setup.connectivity);
     let mut heights = vec![0.0; n * n];
     let mut pressure = vec![0.0; n * n];

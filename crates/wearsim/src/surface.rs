@@ -8,9 +8,10 @@ use rand_chacha::ChaCha20Rng;
 use rand_distr::StandardNormal;
 use rayon::prelude::*;
 
+use crate::check::{grid as check_grid, positive};
 use crate::error::{Error, Result};
 use crate::fft::{radial_kernel, wavenumber, FftPlan, C64};
-use crate::output::atomic_write;
+use crate::io::{read_npy_2d, write_npy_f64, NpyType};
 
 /// A periodic height field on an N×N grid of side `length`; `heights[i * n + j]`, i along x.
 #[derive(Debug, Clone, PartialEq)]
@@ -29,6 +30,22 @@ pub enum Generation {
     RandomPhase,
     /// Gaussian white noise filtered by √Φ(q).
     FilteredNoise,
+}
+
+impl std::str::FromStr for Generation {
+    type Err = Error;
+
+    /// Parses the name written in run files (`generation = "random-phase"`).
+    fn from_str(name: &str) -> Result<Self> {
+        match name {
+            "random-phase" => Ok(Generation::RandomPhase),
+            "filtered-noise" => Ok(Generation::FilteredNoise),
+            other => Err(Error::param(
+                "generation",
+                format!("\"{other}\"; use \"random-phase\" or \"filtered-noise\""),
+            )),
+        }
+    }
 }
 
 /// Statistics of a self-affine surface (SPEC §1–2). Lengths in the run's length unit.
@@ -63,12 +80,12 @@ impl SpectrumParams {
     /// Checks the parameters against a grid of `n` pixels over `length`.
     pub fn validate(&self, n: usize, length: f64) -> Result<()> {
         check_grid(n)?;
-        crate::material::positive("length", length)?;
+        positive("length", length)?;
         if !(self.hurst > 0.0 && self.hurst <= 1.0) {
             return Err(Error::param("hurst", format!("{} must lie in (0, 1]", self.hurst)));
         }
-        crate::material::positive("rms_height", self.rms_height)?;
-        crate::material::positive("lambda_lower", self.lambda_lower)?;
+        positive("rms_height", self.rms_height)?;
+        positive("lambda_lower", self.lambda_lower)?;
         let dx = length / n as f64;
         if self.lambda_lower < 2.0 * dx * (1.0 - 1e-12) {
             return Err(Error::param(
@@ -91,16 +108,6 @@ impl SpectrumParams {
         }
         Ok(())
     }
-}
-
-pub(crate) fn check_grid(n: usize) -> Result<()> {
-    if n < 16 || n % 2 != 0 {
-        return Err(Error::param(
-            "grid",
-            format!("{n} must be an even number of pixels ≥ 16 (powers of two are fastest)"),
-        ));
-    }
-    Ok(())
 }
 
 /// Seeds of the top and bottom surfaces derived from one user seed (SplitMix64 steps), so that the
@@ -134,7 +141,7 @@ impl Surface {
             name: name.into(),
             message: e.to_string(),
         })?;
-        crate::material::positive("length", length)?;
+        positive("length", length)?;
         if let Some(k) = heights.iter().position(|h| !h.is_finite()) {
             return Err(Error::InvalidSurface {
                 name: name.into(),
@@ -215,36 +222,23 @@ impl Surface {
 
     /// Reads a square 2D `.npy` array of f64 or f32 heights (C or Fortran order).
     pub fn read_npy(path: &Path, length: f64) -> Result<Self> {
-        use ndarray::Array2;
-        use ndarray_npy::ReadNpyExt;
         let name = path.display().to_string();
-        let open = || std::fs::File::open(path).map_err(|e| Error::io(path, e));
-        let array: Array2<f64> = match Array2::<f64>::read_npy(open()?) {
-            Ok(a) => a,
-            Err(e64) => match Array2::<f32>::read_npy(open()?) {
-                Ok(a) => a.mapv(f64::from),
-                Err(_) => {
-                    return Err(Error::InvalidSurface {
-                        name,
-                        message: format!("not a 2D float64/float32 .npy array ({e64})"),
-                    })
-                }
-            },
-        };
-        let (rows, cols) = array.dim();
-        if rows != cols {
+        let array = read_npy_2d(path, &[NpyType::Float64, NpyType::Float32], "a height map")?;
+        if array.rows != array.cols {
             return Err(Error::InvalidSurface {
                 name,
-                message: format!("array is {rows}×{cols}; a periodic surface must be square"),
+                message: format!(
+                    "array is {}×{}; a periodic surface must be square",
+                    array.rows, array.cols
+                ),
             });
         }
-        let heights: Vec<f64> = array.iter().copied().collect(); // logical (C) order
-        Self::new(&name, rows, length, heights)
+        Self::new(&name, array.rows, length, array.values)
     }
 
     /// Writes the heights as a float64 `.npy` array (atomically: temporary file, then rename).
     pub fn write_npy(&self, path: &Path) -> Result<()> {
-        write_npy_f64(path, self.n, &self.heights)
+        write_npy_f64(path, self.n, self.n, &self.heights)
     }
 
     /// Grid size N.
@@ -326,18 +320,23 @@ fn for_each_mode(plan: &FftPlan, mut f: impl FnMut(f64, f64, C64, f64)) {
     }
 }
 
-/// Writes an N×N float64 array as `.npy`, atomically.
-pub fn write_npy_f64(path: &Path, n: usize, values: &[f64]) -> Result<()> {
-    use ndarray_npy::WriteNpyExt;
-    let array = ndarray::ArrayView2::from_shape((n, n), values).map_err(|e| Error::io(path, e))?;
-    atomic_write(path, |w| array.write_npy(w).map_err(std::io::Error::other))
-}
-
-/// Writes an N×N boolean-like array (0/1 bytes) as a NumPy `bool` `.npy`, atomically.
-pub fn write_npy_bool(path: &Path, n: usize, values: &[bool]) -> Result<()> {
-    use ndarray_npy::WriteNpyExt;
-    let array = ndarray::ArrayView2::from_shape((n, n), values).map_err(|e| Error::io(path, e))?;
-    atomic_write(path, |w| array.write_npy(w).map_err(std::io::Error::other))
+/// Composite height of Johnson's equivalent rigid surface at a sliding offset of `offset` pixels
+/// along x (paper §2): `bottom + np.roll(top, offset, axis=0)`, i.e.
+/// `h[i, j] = bottom[i, j] + top[(i − offset) mod N, j]`. Written into `out` (N² values).
+pub fn composite_heights(top: &Surface, bottom: &Surface, offset: usize, out: &mut [f64]) {
+    let n = top.n();
+    assert_eq!(bottom.n(), n, "surfaces must share the grid");
+    let (t, b) = (top.heights(), bottom.heights());
+    out.par_chunks_mut(n).enumerate().for_each(|(i, row)| {
+        let src = (i + n - offset % n) % n;
+        for ((o, &bv), &tv) in row
+            .iter_mut()
+            .zip(&b[i * n..(i + 1) * n])
+            .zip(&t[src * n..(src + 1) * n])
+        {
+            *o = bv + tv;
+        }
+    });
 }
 
 #[cfg(test)]

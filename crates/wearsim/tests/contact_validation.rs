@@ -5,7 +5,9 @@
 use std::f64::consts::PI;
 
 use wearsim::surface::pair_seeds;
-use wearsim::{composite_heights, ContactSolver, Error, Generation, SpectrumParams, Surface};
+use wearsim::{
+    composite_heights, ContactSolver, Error, Generation, SolverOptions, SpectrumParams, Surface, Termination,
+};
 
 const E_STAR: f64 = 1.0 / (1.0 - 0.09); // E = 1, ν = 0.3
 
@@ -68,8 +70,9 @@ fn westergaard_sinusoid_in_full_contact() {
         .collect();
     let p_star = PI * E_STAR * g0 / 1.0; // full-contact pressure amplitude, π E* g / λ
     let mean = 2.0 * p_star;
-    let mut solver = ContactSolver::new(n, 1.0, E_STAR).unwrap();
-    solver.options.tolerance = 1e-12;
+    let mut solver = ContactSolver::new(n, 1.0, E_STAR)
+        .unwrap()
+        .with_options(SolverOptions::new(1e-12, 20_000).unwrap());
     let mut p = vec![0.0; n * n];
     solver.solve(&h, mean, f64::INFINITY, &mut p).unwrap();
     for (k, &pk) in p.iter().enumerate() {
@@ -161,7 +164,8 @@ fn default_tolerance_gives_converged_contact_maps() {
         let mut solver = ContactSolver::new(n, 1.0, E_STAR).unwrap();
         let mut p = vec![0.0; n * n];
         solver.solve(&h, load, pm, &mut p).unwrap();
-        solver.options.tolerance /= 100.0;
+        let tighter = SolverOptions::new(solver.options().tolerance() / 100.0, 20_000).unwrap();
+        let mut solver = solver.with_options(tighter);
         let mut tight = vec![0.0; n * n];
         solver.solve(&h, load, pm, &mut tight).unwrap();
         let changed = p.iter().zip(&tight).filter(|(a, b)| (**a > 0.0) != (**b > 0.0)).count();
@@ -231,10 +235,12 @@ fn infeasible_load_and_non_convergence_are_errors() {
         solver.solve(&h, pm, pm, &mut p),
         Err(Error::InfeasibleLoad { .. })
     ));
-    solver.options.max_iterations = 1;
-    solver.options.tolerance = 1e-14;
+    let mut solver = solver.with_options(SolverOptions::new(1e-14, 1).unwrap());
     let e = solver.solve(&h, 1e-3, pm, &mut vec![0.0; n * n]).unwrap_err();
     assert!(matches!(e, Error::NotConverged { iterations: 1, .. }), "{e}");
+    // `run` returns the state at the limit instead, with the reason.
+    let info = solver.run(&h, 1e-3, pm, &mut vec![0.0; n * n]).unwrap();
+    assert_eq!((info.termination, info.iterations), (Termination::MaxIterations, 1));
 }
 
 #[test]
@@ -242,13 +248,12 @@ fn a_raised_interrupt_stops_the_solve_and_a_fresh_one_does_not() {
     let n = 64;
     let h = paper_pair(n, 7);
     let pm = flow_pressure(0.01);
-    let mut solver = ContactSolver::new(n, 1.0, E_STAR).unwrap();
     let flag = wearsim::Interrupt::default();
-    solver.interrupt = flag.clone();
+    let mut solver = ContactSolver::new(n, 1.0, E_STAR).unwrap().with_interrupt(flag.clone());
     flag.request();
     let e = solver.solve(&h, 1e-3, pm, &mut vec![0.0; n * n]).unwrap_err();
     assert!(matches!(e, Error::Interrupted), "{e}");
-    solver.interrupt = wearsim::Interrupt::default();
+    solver.set_interrupt(wearsim::Interrupt::default());
     assert!(solver.solve(&h, 1e-3, pm, &mut vec![0.0; n * n]).is_ok());
 }
 

@@ -12,7 +12,7 @@ use wearsim::surface::pair_seeds;
 use wearsim::{composite_heights, ContactSolver, Material, ModulusConvention, SpectrumParams, Surface};
 
 #[derive(clap::Args)]
-pub struct BenchArgs {
+pub struct Args {
     /// Grid sizes to time.
     #[arg(long, value_delimiter = ',', default_values_t = vec![512usize, 1024, 2048, 4096])]
     sizes: Vec<usize>,
@@ -47,7 +47,7 @@ fn paper_pair(n: usize) -> Result<(Surface, Surface)> {
     ))
 }
 
-pub fn run(args: &BenchArgs) -> Result<()> {
+pub fn run(args: &Args) -> Result<()> {
     let threads = rayon::current_num_threads();
     println!(
         "wearsim {} bench, {threads} threads; paper roughness, τ̃ = 0.010 E, F_N = 1e-3 E L²",
@@ -130,8 +130,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         }));
     }
     if let Some(path) = &args.json {
-        let doc = json!({"software": format!("wearsim {}", wearsim::VERSION), "threads": threads, "tolerance": wearsim::contact::DEFAULT_TOLERANCE, "rows": rows});
-        wearsim::output::write_text(path, &serde_json::to_string_pretty(&doc)?)?;
+        let doc = json!({"provenance": wearsim::output::Provenance::current(), "threads": threads, "tolerance": wearsim::contact::DEFAULT_TOLERANCE, "rows": rows});
+        wearsim::io::write_json(path, &doc)?;
     }
     Ok(())
 }
@@ -140,7 +140,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
 /// energies, the paper's schedule) with its time per step split into solve / labelling /
 /// bookkeeping; then warm steps at `--warm-n`, extrapolated to the paper's schedule.
 #[derive(clap::Args)]
-pub struct SlideBenchArgs {
+pub struct SlideArgs {
     /// Grid of the full sliding run.
     #[arg(long, default_value_t = 512)]
     n: usize,
@@ -152,7 +152,7 @@ pub struct SlideBenchArgs {
     warm_steps: usize,
 }
 
-pub fn run_slide(args: &SlideBenchArgs) -> Result<()> {
+pub fn run_slide(args: &SlideArgs) -> Result<()> {
     use wearsim::config::SlidingConfig;
     use wearsim::sliding::{run_sliding, schedule, SlidingSetup};
     let threads = rayon::current_num_threads();

@@ -1,10 +1,32 @@
 //! `wearsim study run | collect`: studies on the local machine or as a Slurm job array.
 
 use std::io::IsTerminal;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
 use wearsim::study::{collect as collect_study, expand, prepare_folder, run_jobs, shard};
+
+#[derive(clap::Args)]
+pub struct RunArgs {
+    /// Study file (a run file whose fields may be lists, or with [[materials]]).
+    study: PathBuf,
+    /// Study folder (created if missing).
+    #[arg(long)]
+    out: PathBuf,
+    /// Run only shard K of N (jobs with index ≡ K−1 mod N); default from SLURM_ARRAY_TASK_ID /
+    /// SLURM_ARRAY_TASK_COUNT inside a Slurm job array, else 1/1.
+    #[arg(long)]
+    shard: Option<String>,
+    /// Jobs run at once, sharing the threads (default: one job per thread); 1 for large grids.
+    #[arg(long)]
+    jobs: Option<usize>,
+}
+
+#[derive(clap::Args)]
+pub struct CollectArgs {
+    /// Study folder.
+    dir: PathBuf,
+}
 
 /// `K/N` from `--shard`, else from a Slurm job array, else 1/1.
 fn resolve_shard(arg: Option<&str>) -> Result<(usize, usize)> {
@@ -35,7 +57,8 @@ fn resolve_shard(arg: Option<&str>) -> Result<(usize, usize)> {
     Ok((1, 1))
 }
 
-pub fn run(study_path: &Path, out: &Path, shard_arg: Option<&str>, workers: Option<usize>) -> Result<()> {
+pub fn run(args: &RunArgs) -> Result<()> {
+    let (study_path, out, shard_arg, workers) = (&args.study, &args.out, args.shard.as_deref(), args.jobs);
     let text = std::fs::read_to_string(study_path).with_context(|| format!("cannot read {}", study_path.display()))?;
     let base = study_path
         .parent()
@@ -76,7 +99,8 @@ pub fn run(study_path: &Path, out: &Path, shard_arg: Option<&str>, workers: Opti
     Ok(())
 }
 
-pub fn collect(dir: &Path) -> Result<()> {
+pub fn collect(args: &CollectArgs) -> Result<()> {
+    let dir = &args.dir;
     let (rows, groups) = collect_study(dir).with_context(|| format!("study folder {}", dir.display()))?;
     println!(
         "wrote {} ({rows} rows) and {} ({groups} rows)",

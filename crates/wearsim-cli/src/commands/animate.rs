@@ -1,0 +1,139 @@
+//! `wearsim animate`: the sliding run of one load as an animated GIF, like the paper's Video 1. Each
+//! frame is the contact map of one step, junctions coloured by their state for one fracture energy:
+//! grey below d*, red forming a particle now, orange at or above d* but disabled (its particle is
+//! already counted), blue disabled below d*; s and V are written on the frame.
+
+use std::path::PathBuf;
+
+use anyhow::{anyhow, Result};
+use plotters::prelude::*;
+use wearsim::junctions::NO_JUNCTION;
+use wearsim::sliding::{run_sliding, SlidingSetup};
+use wearsim::wear::JunctionState;
+
+use super::load_run;
+use crate::figures::{register_font, FONT};
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// Run file (TOML, see README) with a [sliding] table.
+    run: PathBuf,
+    /// Output file (.gif).
+    #[arg(long)]
+    out: PathBuf,
+    /// Which of the run's loads (0 = first).
+    #[arg(long, default_value_t = 0)]
+    load_index: usize,
+    /// Which of the run's fracture energies sets d* for the colours (0 = first).
+    #[arg(long, default_value_t = 0)]
+    energy_index: usize,
+    /// Frame delay in milliseconds.
+    #[arg(long, default_value_t = 80)]
+    delay: u32,
+}
+
+pub fn run(args: &Args) -> Result<()> {
+    let (run, out, load_index, energy_index, delay_ms) =
+        (&args.run, &args.out, args.load_index, args.energy_index, args.delay);
+    register_font();
+    let config = load_run(run)?;
+    let mut sliding = config
+        .sliding
+        .clone()
+        .ok_or_else(|| anyhow!("run file {}: a [sliding] table is needed", run.display()))?;
+    let load = *sliding.loads.get(load_index).ok_or_else(|| {
+        anyhow!(
+            "invalid `--load-index {load_index}`: the run has {} loads",
+            sliding.loads.len()
+        )
+    })?;
+    sliding.loads = vec![load];
+    if energy_index >= config.material.fracture_energies.len() {
+        anyhow::bail!(
+            "invalid `--energy-index {energy_index}`: the run has {} fracture energies",
+            config.material.fracture_energies.len()
+        );
+    }
+    if out.extension().and_then(|e| e.to_str()) != Some("gif") {
+        anyhow::bail!("invalid `--out {}`: the animation is a .gif file", out.display());
+    }
+    let (top, bottom) = config.surfaces()?;
+    let n = top.n();
+    let scale = (512 / n).max(1) as u32; // frames of at least 512 px where the grid is smaller
+    let step_px = (n / 512).max(1); // and at most about 1024 px where it is larger
+    let side = (n / step_px) as u32 * scale;
+    let setup = SlidingSetup::from_run(&config, &sliding);
+    let d_star = config
+        .material
+        .critical_diameter(config.material.fracture_energies[energy_index]);
+    let tmp = out.with_extension("tmp.gif");
+    let length_unit = config.units.length_unit();
+    let mut frame_error: Option<anyhow::Error> = None;
+    {
+        let root = BitMapBackend::gif(&tmp, (side, side + 40), delay_ms)
+            .map_err(|e| anyhow!("cannot write {}: {e}", tmp.display()))?
+            .into_drawing_area();
+        run_sliding(&top, &bottom, &setup, |view| {
+            if frame_error.is_some() {
+                return;
+            }
+            let draw = || -> Result<()> {
+                root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
+                let labels = view.labeller.labels();
+                let states = view.bookkeeping[energy_index].states();
+                for i in (0..n).step_by(step_px) {
+                    for j in (0..n).step_by(step_px) {
+                        let l = labels[i * n + j];
+                        if l == NO_JUNCTION {
+                            continue;
+                        }
+                        let color = match states[l as usize] {
+                            JunctionState::Below => RGBColor(150, 150, 150),
+                            JunctionState::Forming => RGBColor(220, 30, 30),
+                            JunctionState::DisabledCritical => RGBColor(245, 150, 20),
+                            JunctionState::Disabled => RGBColor(40, 90, 200),
+                        };
+                        // x (first axis, the sliding direction) runs left to right.
+                        let (x, y) = (
+                            (i / step_px) as i32 * scale as i32,
+                            (j / step_px) as i32 * scale as i32 + 40,
+                        );
+                        root.draw(&Rectangle::new(
+                            [(x, y), (x + scale as i32, y + scale as i32)],
+                            color.filled(),
+                        ))
+                        .map_err(|e| anyhow!("{e}"))?;
+                    }
+                }
+                let w = view.record.wear[energy_index];
+                let font = (FONT, 13).into_font().color(&BLACK);
+                root.draw_text(
+                    &format!(
+                        "s = {:.4} {length_unit}   V = {:.3e}   N*₊ = {}   d* = {:.3e} {length_unit}",
+                        view.record.s, w.volume, w.n_formed, d_star
+                    ),
+                    &font,
+                    (6, 4),
+                )
+                .map_err(|e| anyhow!("{e}"))?;
+                root.draw_text(
+                    "grey: below d*   red: forming a particle   orange: disabled, ≥ d*   blue: disabled",
+                    &font,
+                    (6, 22),
+                )
+                .map_err(|e| anyhow!("{e}"))?;
+                root.present().map_err(|e| anyhow!("{e}"))
+            };
+            if let Err(e) = draw() {
+                frame_error = Some(e);
+            }
+        })?;
+    }
+    if let Some(e) = frame_error {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(e);
+    }
+    std::fs::rename(&tmp, out)?;
+    println!("wrote {}", out.display());
+    Ok(())
+}

@@ -1,0 +1,71 @@
+//! `wearsim junctions`: junction labels of a contact map.
+
+use std::path::PathBuf;
+
+use anyhow::{bail, Context, Result};
+use wearsim::io::{read_npy_2d, write_json, write_npy_i64, NpyType};
+use wearsim::junctions::{JunctionLabeller, NO_JUNCTION};
+use wearsim::output::junctions_summary;
+
+use super::create_dir;
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// Contact map (.npy: bool, or numbers where > 0 is contact, e.g. the contact.npy or
+    /// pressure.npy written by `wearsim contact`).
+    map: PathBuf,
+    /// 4 or 8.
+    #[arg(long, default_value_t = 4)]
+    connectivity: u8,
+    /// Output folder (created if missing).
+    #[arg(long)]
+    out: PathBuf,
+}
+
+/// Labels the junctions of a contact map and writes `labels.npy` (int64, −1 outside contact) and
+/// `junctions.json` (pixel count per junction).
+pub fn run(args: &Args) -> Result<()> {
+    let (map, connectivity, out) = (&args.map, args.connectivity, &args.out);
+    wearsim::check::connectivity(connectivity).context("--connectivity")?;
+    let accepted = [
+        NpyType::Bool,
+        NpyType::Float64,
+        NpyType::Float32,
+        NpyType::Int64,
+        NpyType::Int32,
+        NpyType::Int16,
+        NpyType::Int8,
+        NpyType::UInt8,
+    ];
+    let array = read_npy_2d(map, &accepted, "a contact map")?;
+    let (rows, cols) = (array.rows, array.cols);
+    if rows != cols || rows == 0 {
+        bail!(
+            "{}: contact map is {rows}×{cols}; it must be square and non-empty",
+            map.display()
+        );
+    }
+    if let Some(k) = array.values.iter().position(|v| v.is_nan()) {
+        bail!(
+            "{}: the contact map holds NaN at ({}, {}); a contact map is bool, or numbers where > 0 is contact",
+            map.display(),
+            k / cols,
+            k % cols
+        );
+    }
+    let mut labeller = JunctionLabeller::new(rows, connectivity);
+    let count = labeller.label(|k| array.values[k] > 0.0);
+    let labels: Vec<i64> = labeller
+        .labels()
+        .iter()
+        .map(|&l| if l == NO_JUNCTION { -1 } else { l as i64 })
+        .collect();
+    create_dir(out)?;
+    write_npy_i64(&out.join("labels.npy"), rows, rows, &labels)?;
+    write_json(
+        &out.join("junctions.json"),
+        &junctions_summary(connectivity, labeller.sizes()),
+    )?;
+    println!("{count} junctions; wrote {}", out.display());
+    Ok(())
+}

@@ -1,0 +1,237 @@
+//! The material, the contact solver, and junctions with the static model.
+
+use std::time::Instant;
+
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use wearsim::junctions::{JunctionLabeller, NO_JUNCTION};
+use wearsim::output::ContactRecord;
+use wearsim::wear::static_wear;
+use wearsim::{Interrupt, Material, ModulusConvention, SolverOptions};
+
+use crate::error::{interruptible, to_py};
+use crate::{json_to_py, square, square_of, to_array, Pair};
+
+/// Elastic and adhesive-wear properties of the (identical) materials of both surfaces.
+///
+/// youngs_modulus E (reduced: 1; SI: Pa), poisson_ratio ν in (−1, 0.5), shear_strength τ̃ (unit of
+/// E), fracture_energies 𝒢 (reduced: E·L; SI: J/m²; one wear bookkeeping each), geometry_factor f
+/// of paper eq. (1), 3 by default. Derived: flow_pressure p_m = 3√3 τ̃, critical_diameters
+/// d* = 2 f 𝒢 μ / τ̃² (length unit), effective_modulus(modulus) E*.
+#[pyclass(name = "Material", module = "wearsim._wearsim", frozen)]
+#[derive(Clone)]
+pub struct PyMaterial {
+    pub inner: Material,
+}
+
+#[pymethods]
+impl PyMaterial {
+    #[new]
+    #[pyo3(signature = (youngs_modulus, poisson_ratio, shear_strength, fracture_energies = Vec::new(), geometry_factor = 3.0))]
+    fn new(
+        youngs_modulus: f64,
+        poisson_ratio: f64,
+        shear_strength: f64,
+        fracture_energies: Vec<f64>,
+        geometry_factor: f64,
+    ) -> PyResult<Self> {
+        Material::new(
+            youngs_modulus,
+            poisson_ratio,
+            shear_strength,
+            fracture_energies,
+            geometry_factor,
+        )
+        .map(|inner| Self { inner })
+        .map_err(to_py)
+    }
+
+    #[getter]
+    fn youngs_modulus(&self) -> f64 {
+        self.inner.youngs_modulus
+    }
+    #[getter]
+    fn poisson_ratio(&self) -> f64 {
+        self.inner.poisson_ratio
+    }
+    #[getter]
+    fn shear_strength(&self) -> f64 {
+        self.inner.shear_strength
+    }
+    #[getter]
+    fn fracture_energies(&self) -> Vec<f64> {
+        self.inner.fracture_energies.clone()
+    }
+    #[getter]
+    fn geometry_factor(&self) -> f64 {
+        self.inner.geometry_factor
+    }
+    #[getter]
+    fn shear_modulus(&self) -> f64 {
+        self.inner.shear_modulus()
+    }
+    #[getter]
+    fn flow_pressure(&self) -> f64 {
+        self.inner.flow_pressure()
+    }
+    #[getter]
+    fn critical_diameters(&self) -> Vec<f64> {
+        self.inner.critical_diameters()
+    }
+    fn critical_diameter(&self, fracture_energy: f64) -> PyResult<f64> {
+        wearsim::check::positive("fracture_energy", fracture_energy).map_err(to_py)?;
+        Ok(self.inner.critical_diameter(fracture_energy))
+    }
+    #[pyo3(signature = (modulus = "half-space"))]
+    fn effective_modulus(&self, modulus: &str) -> PyResult<f64> {
+        Ok(self
+            .inner
+            .effective_modulus(modulus.parse::<ModulusConvention>().map_err(to_py)?))
+    }
+    fn __repr__(&self) -> String {
+        let m = &self.inner;
+        format!(
+            "Material(youngs_modulus={:e}, poisson_ratio={}, shear_strength={:e}, fracture_energies={:?}, geometry_factor={})",
+            m.youngs_modulus, m.poisson_ratio, m.shear_strength, m.fracture_energies, m.geometry_factor
+        )
+    }
+}
+
+/// FFT contact solver for one grid, reused across solves (plans and buffers are made once).
+#[pyclass(name = "ContactSolver", module = "wearsim._wearsim")]
+pub struct PyContactSolver {
+    inner: wearsim::ContactSolver,
+}
+
+#[pymethods]
+impl PyContactSolver {
+    #[new]
+    #[pyo3(signature = (grid, length, effective_modulus, tolerance = wearsim::contact::DEFAULT_TOLERANCE, max_iterations = wearsim::contact::DEFAULT_MAX_ITERATIONS))]
+    fn new(grid: usize, length: f64, effective_modulus: f64, tolerance: f64, max_iterations: usize) -> PyResult<Self> {
+        let options = SolverOptions::new(tolerance, max_iterations).map_err(to_py)?;
+        let inner = wearsim::ContactSolver::new(grid, length, effective_modulus)
+            .map_err(to_py)?
+            .with_options(options);
+        Ok(Self { inner })
+    }
+
+    #[getter]
+    fn grid(&self) -> usize {
+        self.inner.n()
+    }
+    #[getter]
+    fn length(&self) -> f64 {
+        self.inner.length()
+    }
+    #[getter]
+    fn effective_modulus(&self) -> f64 {
+        self.inner.effective_modulus()
+    }
+    #[getter]
+    fn tolerance(&self) -> f64 {
+        self.inner.options().tolerance()
+    }
+    #[getter]
+    fn max_iterations(&self) -> usize {
+        self.inner.options().max_iterations()
+    }
+
+    /// Returns (pressure, info dict); see the Python wrapper for the meaning.
+    #[pyo3(signature = (heights, load, flow_pressure = f64::INFINITY, initial_pressure = None))]
+    fn solve<'py>(
+        &mut self,
+        py: Python<'py>,
+        heights: PyReadonlyArray2<'py, f64>,
+        load: f64,
+        flow_pressure: f64,
+        initial_pressure: Option<PyReadonlyArray2<'py, f64>>,
+    ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyAny>)> {
+        let n = self.inner.n();
+        let h = square_of("heights", &heights, n, "solver")?;
+        let mut pressure = match initial_pressure {
+            None => vec![0.0; n * n],
+            Some(p0) => square_of("initial_pressure", &p0, n, "solver")?,
+        };
+        let area = self.inner.length() * self.inner.length();
+        let solver = &mut self.inner;
+        let start = Instant::now();
+        let info = interruptible(py, None, |interrupt| {
+            solver.set_interrupt(interrupt.clone());
+            let r = solver.solve(&h, load / area, flow_pressure, &mut pressure);
+            solver.set_interrupt(Interrupt::default());
+            r
+        })?;
+        let d = json_to_py(py, &ContactRecord::new(&info, &pressure, start.elapsed().as_secs_f64()))?;
+        Ok((to_array(py, n, pressure), d))
+    }
+
+    /// Displacement 𝒦p of a pressure field (zero mean).
+    fn displacement<'py>(
+        &mut self,
+        py: Python<'py>,
+        pressure: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let n = self.inner.n();
+        let p = square_of("pressure", &pressure, n, "solver")?;
+        let mut out = vec![0.0; n * n];
+        let solver = &mut self.inner;
+        py.detach(|| solver.apply_influence(&p, &mut out));
+        Ok(to_array(py, n, out))
+    }
+}
+
+/// Labels of a contact map (−1 outside contact) and the pixel count of every junction.
+#[pyfunction]
+#[pyo3(signature = (contact, connectivity = 4))]
+fn label_junctions<'py>(
+    py: Python<'py>,
+    contact: PyReadonlyArray2<'py, bool>,
+    connectivity: u8,
+) -> Pair<'py, PyArray2<i64>, PyArray1<u64>> {
+    wearsim::check::connectivity(connectivity).map_err(to_py)?;
+    let (n, flags) = square("contact", &contact)?;
+    let (labels, sizes) = py.detach(|| {
+        let mut labeller = JunctionLabeller::new(n, connectivity);
+        labeller.label(|k| flags[k]);
+        let labels: Vec<i64> = labeller
+            .labels()
+            .iter()
+            .map(|&l| if l == NO_JUNCTION { -1 } else { l as i64 })
+            .collect();
+        let sizes: Vec<u64> = labeller.sizes().iter().map(|&s| s as u64).collect();
+        (labels, sizes)
+    });
+    Ok((to_array(py, n, labels), sizes.into_pyarray(py)))
+}
+
+/// Static model (paper §2, Frérot et al. 2018) on the junction pixel counts of one contact map.
+#[pyfunction]
+fn static_wear_model<'py>(
+    py: Python<'py>,
+    junction_pixels: Vec<usize>,
+    pixel_size: f64,
+    critical_diameter: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    wearsim::check::positive("pixel_size", pixel_size).map_err(to_py)?;
+    wearsim::check::positive("critical_diameter", critical_diameter).map_err(to_py)?;
+    let junctions: Vec<_> = junction_pixels
+        .iter()
+        .map(|&p| wearsim::junctions::Junction::new(p, pixel_size))
+        .collect();
+    let w = static_wear(&junctions, critical_diameter);
+    let d = PyDict::new(py);
+    d.set_item("wear_coefficient", w.wear_coefficient)?;
+    d.set_item("wear_rate_over_omega", w.wear_rate_over_omega)?;
+    d.set_item("junctions", junctions.len())?;
+    d.set_item("critical_junctions", w.critical_junctions)?;
+    Ok(d)
+}
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyMaterial>()?;
+    m.add_class::<PyContactSolver>()?;
+    m.add_function(wrap_pyfunction!(label_junctions, m)?)?;
+    m.add_function(wrap_pyfunction!(static_wear_model, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,299 @@
+//! Study file → jobs: the Cartesian product of the list-valued keys, each combination deserialised
+//! straight into a validated [`RunConfig`] with a single load.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use toml::{Table, Value};
+
+use crate::config::{InputRecord, RunConfig};
+use crate::error::{Error, Result};
+use crate::output::JobResult;
+
+/// One job of a study: a single-load run and the parameters that vary across the study.
+#[derive(Debug, Clone)]
+pub struct Job {
+    /// Position in the expansion order; the job file is `jobs/job-{index:06}.json`.
+    pub index: usize,
+    /// Name of the material (`[[materials]]` `name`, or "material").
+    pub material: String,
+    /// The run, with a single load.
+    pub run: RunConfig,
+    /// Values of the study's list-valued keys for this job ("section.key" → value), for labels.
+    pub varying: BTreeMap<String, Value>,
+}
+
+impl Job {
+    /// Every input of the job (the columns of the tidy table beside the results).
+    pub fn inputs(&self) -> InputRecord {
+        self.run.inputs()
+    }
+
+    /// The job's single load.
+    pub fn load(&self) -> f64 {
+        self.run
+            .sliding
+            .as_ref()
+            .and_then(|s| s.loads.first().copied())
+            .unwrap_or(f64::NAN)
+    }
+
+    /// Whether a job result was computed for this job: same index, material, load and inputs
+    /// (compared as values).
+    pub fn is_result_of(&self, r: &JobResult) -> bool {
+        r.index == self.index && r.material == self.material && r.load == self.load() && r.inputs == self.inputs()
+    }
+
+    /// One line saying which job this is, for messages.
+    pub fn describe(&self) -> String {
+        format!("job {} ({}, load {:e})", self.index, self.material, self.load())
+    }
+}
+
+/// An expanded study.
+#[derive(Debug, Clone)]
+pub struct Study {
+    pub jobs: Vec<Job>,
+    /// FNV-1a hash of the parsed study (comments and layout do not count).
+    pub hash: String,
+    /// The study file's canonical TOML.
+    pub canonical: String,
+}
+
+fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
+        (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
+/// Cartesian product of the list-valued keys of `table` (except `keep_lists`): every combination as
+/// a table of single values, with the chosen values.
+fn product(table: &Table, section: &str, keep_lists: &[&str]) -> Vec<(Table, BTreeMap<String, Value>)> {
+    let mut out = vec![(Table::new(), BTreeMap::new())];
+    for (key, value) in table {
+        let varies = matches!(value, Value::Array(_)) && !keep_lists.contains(&key.as_str());
+        let choices: Vec<Value> = match value {
+            Value::Array(items) if varies => items.clone(),
+            other => vec![other.clone()],
+        };
+        let mut next = Vec::with_capacity(out.len() * choices.len());
+        for (t, v) in &out {
+            for c in &choices {
+                let mut t = t.clone();
+                t.insert(key.clone(), c.clone());
+                let mut v = v.clone();
+                if varies {
+                    v.insert(format!("{section}.{key}"), c.clone());
+                }
+                next.push((t, v));
+            }
+        }
+        out = next;
+    }
+    out
+}
+
+/// One material of a study: its name, its table of single values, the values that vary, and the
+/// surface keys it overrides.
+type MaterialChoice = (String, Table, BTreeMap<String, Value>, Table);
+
+/// The materials of a study: one `[material]` table (lists allowed) or a `[[materials]]` array of
+/// named tables, each possibly with a `surface` table of its own surface parameters.
+fn materials(table: &Table) -> Result<Vec<MaterialChoice>> {
+    let mut materials = Vec::new();
+    match (table.get("material"), table.get("materials")) {
+        (Some(_), Some(_)) => return Err(Error::run_file("give either [material] or [[materials]], not both")),
+        (_, Some(Value::Array(items))) => {
+            for (i, item) in items.iter().enumerate() {
+                let Value::Table(t) = item else {
+                    return Err(Error::run_file("[[materials]] entries must be tables"));
+                };
+                let mut t = t.clone();
+                let name = match t.remove("name") {
+                    Some(Value::String(s)) => s,
+                    None => format!("material{}", i + 1),
+                    Some(_) => return Err(Error::run_file("[[materials]] `name` must be a string")),
+                };
+                // A material may carry its own surface parameters (e.g. the steady-state h_rms of
+                // Kim et al.'s ceramics): `[materials.surface]` keys replace those of [surface].
+                let overrides = match t.remove("surface") {
+                    None => Table::new(),
+                    Some(Value::Table(o)) => o,
+                    Some(_) => {
+                        return Err(Error::run_file(format!(
+                            "[[materials]] `{name}`: `surface` must be a table"
+                        )))
+                    }
+                };
+                for (m, v) in product(&t, "material", &["fracture_energies"]) {
+                    materials.push((name.clone(), m, v, overrides.clone()));
+                }
+            }
+        }
+        (_, Some(_)) => {
+            return Err(Error::run_file(
+                "`materials` must be an array of tables ([[materials]])",
+            ))
+        }
+        (_, None) => {
+            let mut t = section(table, "material")?;
+            let name = match t.remove("name") {
+                Some(Value::String(s)) => s,
+                _ => "material".to_string(),
+            };
+            for (m, v) in product(&t, "material", &["fracture_energies"]) {
+                materials.push((name.clone(), m, v, Table::new()));
+            }
+        }
+    }
+    Ok(materials)
+}
+
+fn section(table: &Table, name: &str) -> Result<Table> {
+    match table.get(name) {
+        None => Ok(Table::new()),
+        Some(Value::Table(t)) => Ok(t.clone()),
+        Some(_) => Err(Error::run_file(format!("`{name}` must be a table"))),
+    }
+}
+
+/// Expands a study file's text; relative surface paths resolve against `base`.
+pub fn expand(text: &str, base: &Path) -> Result<Study> {
+    let table: Table = text
+        .parse::<Table>()
+        .map_err(|e| Error::run_file(e.to_string().trim_end().replace('\n', " ")))?;
+    let canonical = toml::to_string(&table).map_err(|e| Error::run_file(e.to_string()))?;
+    let hash = format!("{:016x}", fnv1a(canonical.as_bytes()));
+    for key in table.keys() {
+        if !["units", "surface", "material", "materials", "contact", "sliding"].contains(&key.as_str()) {
+            return Err(Error::run_file(format!(
+                "unknown key `{key}` at the top of the study file"
+            )));
+        }
+    }
+    let materials = materials(&table)?;
+    let base_surface = section(&table, "surface")?;
+    let contacts = product(&section(&table, "contact")?, "contact", &[]);
+    let sliding = section(&table, "sliding")?;
+    let loads = match sliding.get("loads") {
+        Some(Value::Array(l)) if !l.is_empty() => l.clone(),
+        _ => {
+            return Err(Error::param(
+                "loads",
+                "a study needs a non-empty [sliding] `loads` list",
+            ))
+        }
+    };
+    let mut jobs = Vec::new();
+    for (name, material, mv, overrides) in &materials {
+        let mut surface_table = base_surface.clone();
+        surface_table.extend(overrides.clone());
+        for (surface, sv) in &product(&surface_table, "surface", &[]) {
+            for (contact, cv) in &contacts {
+                for load in &loads {
+                    let mut run = Table::new();
+                    if let Some(u) = table.get("units") {
+                        run.insert("units".into(), u.clone());
+                    }
+                    run.insert("surface".into(), Value::Table(surface.clone()));
+                    run.insert("material".into(), Value::Table(material.clone()));
+                    run.insert("contact".into(), Value::Table(contact.clone()));
+                    let mut sl = sliding.clone();
+                    sl.insert("loads".into(), Value::Array(vec![load.clone()]));
+                    run.insert("sliding".into(), Value::Table(sl));
+                    let index = jobs.len();
+                    let config = RunConfig::from_table(run, base)
+                        .map_err(|e| Error::run_file(format!("study job {index} ({name}): {e}")))?;
+                    let mut varying = sv.clone();
+                    varying.extend(mv.clone());
+                    varying.extend(cv.clone());
+                    jobs.push(Job {
+                        index,
+                        material: name.clone(),
+                        run: config,
+                        varying,
+                    });
+                }
+            }
+        }
+    }
+    Ok(Study { jobs, hash, canonical })
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+
+    pub(crate) const STUDY: &str = r#"
+[surface]
+grid = 64
+lambda_lower = 0.125
+lambda_upper = 0.25
+rms_height = 0.005
+seed = [1, 2, 3]
+[[materials]]
+name = "soft"
+youngs_modulus = 1.0
+poisson_ratio = 0.3
+shear_strength = [0.008, 0.01]
+fracture_energies = [0.5e-6, 1e-6]
+[[materials]]
+name = "hard"
+youngs_modulus = 1.0
+poisson_ratio = 0.3
+shear_strength = 0.012
+fracture_energies = [0.5e-6]
+[sliding]
+loads = [5e-4, 1e-3]
+"#;
+
+    #[test]
+    fn expansion_is_the_cartesian_product() {
+        let s = expand(STUDY, Path::new(".")).unwrap();
+        // 3 seeds × (2 + 1) materials × 2 loads.
+        assert_eq!(s.jobs.len(), 18);
+        assert_eq!(s.jobs[0].varying.get("surface.seed"), Some(&Value::Integer(1)));
+        assert!(s.jobs.iter().all(|j| j.run.sliding.as_ref().unwrap().loads.len() == 1));
+        assert_eq!(s.jobs.iter().filter(|j| j.material == "hard").count(), 6);
+        // Layout and comments do not change the hash; values do.
+        let again = expand(&format!("# comment\n{STUDY}"), Path::new(".")).unwrap();
+        assert_eq!(s.hash, again.hash);
+        assert_ne!(
+            s.hash,
+            expand(&STUDY.replace("0.012", "0.011"), Path::new(".")).unwrap().hash
+        );
+    }
+
+    #[test]
+    fn materials_may_override_surface_parameters() {
+        let text = STUDY.replace(
+            "name = \"hard\"\n",
+            "name = \"hard\"\nsurface = { rms_height = [0.004, 0.006] }\n",
+        );
+        let s = expand(&text, Path::new(".")).unwrap();
+        // 3 seeds × (2 soft + 2 hard surface variants) × 2 loads.
+        assert_eq!(s.jobs.len(), 24);
+        let hard: Vec<&Job> = s.jobs.iter().filter(|j| j.material == "hard").collect();
+        assert_eq!(hard.len(), 12);
+        assert!(hard.iter().all(|j| j.varying.contains_key("surface.rms_height")));
+        assert!(s
+            .jobs
+            .iter()
+            .filter(|j| j.material == "soft")
+            .all(|j| !j.varying.contains_key("surface.rms_height")));
+    }
+
+    #[test]
+    fn bad_study_files_are_errors() {
+        assert!(expand(&STUDY.replace("loads = [5e-4, 1e-3]", "loads = []"), Path::new(".")).is_err());
+        let e = expand(
+            &STUDY
+                .replace("hurst", "x")
+                .replace("grid = 64", "grid = 64\nhurts = 0.7"),
+            Path::new("."),
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("hurts"), "{e}");
+    }
+}

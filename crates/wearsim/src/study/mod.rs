@@ -1,0 +1,21 @@
+//! Studies (paper §4 and its appendices): a study file is a run file whose fields may be lists, or
+//! whose materials are a `[[materials]]` array of named tables. The study is their Cartesian
+//! product, one job per surface pair × material × contact setting × load (every fracture energy
+//! inside the job), in four steps, one file each:
+//!
+//! - [`expand`]: study file → jobs, each a validated single-load run;
+//! - [`store`]: the study folder — the stored study, one job file per finished job written
+//!   atomically, checked when read back;
+//! - [`run`]: runs pending jobs, several at once, resumably (a killed study resumes where it
+//!   stopped);
+//! - [`collect`]: job files → the tidy table and its aggregate over surface pairs.
+
+pub mod collect;
+pub mod expand;
+pub mod run;
+pub mod store;
+
+pub use collect::{collect, load_results};
+pub use expand::{expand, Job, Study};
+pub use run::{run_job, run_jobs, shard};
+pub use store::{job_path, prepare_folder, write_result};
