@@ -1,4 +1,4 @@
-"""The saturated-pressure contact solver (SPEC §3, paper §2 and appendix A).
+"""The saturated-pressure contact solver (paper §2 and appendix A).
 
 Contact of a rigid surface of heights h with a periodic elastic half-space of effective modulus
 E*, pressure bounded by the flow pressure p_m (0 ≤ p ≤ p_m), mean pressure F_N/L². Solved by a

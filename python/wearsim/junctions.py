@@ -1,4 +1,4 @@
-"""Contact junctions (SPEC §4): connected components of the contact map, periodic in x and y."""
+"""Contact junctions (paper §2–3): connected components of the contact map, periodic in x and y."""
 from __future__ import annotations
 
 from dataclasses import dataclass

@@ -1,4 +1,4 @@
-"""Studies (SPEC §7, §9): a study file expands into jobs (surface pair × material × contact setting ×
+"""Studies (paper §4 and appendices): a study file expands into jobs (surface pair × material × contact setting ×
 load), each a sliding run stored as one job file in a result folder; finished jobs are skipped when a
 study is run again, so an interrupted study resumes where it stopped. The folder layout is that of
 ``wearsim study run``, so the CLI and Python can take turns on the same folder.

@@ -1,4 +1,4 @@
-"""Periodic self-affine rough surfaces (SPEC §2) as NumPy arrays, and their statistics.
+"""Periodic self-affine rough surfaces (paper §4.1) as NumPy arrays, and their statistics.
 
 Arrays are ``(N, N)`` float64, ``h[i, j]`` with i along the sliding direction x; lengths in the unit
 of ``length`` (L in reduced units, m in SI).

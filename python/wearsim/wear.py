@@ -1,5 +1,5 @@
-"""The wear models: the static model (Frérot et al. 2018; paper §2, SPEC §5) and the sliding model
-(paper §3, SPEC §6).
+"""The wear models: the static model (Frérot et al. 2018; paper §2) and the sliding model
+(paper §3).
 
 The sliding model returns its series as a :class:`pandas.DataFrame` (one row per step, load and
 fracture energy, the columns of ``series.csv``) and its summary as a dict (``summary.json`` of
@@ -61,7 +61,7 @@ def slide(
     sliding wear model for every normal load in ``loads`` (F_N, pressure × length²) and every
     fracture energy of ``material``.
 
-    Schedule (SPEC §6): offsets from 0 in steps of ``step_running_in`` pixels up to the running-in
+    Schedule (paper §3): offsets from 0 in steps of ``step_running_in`` pixels up to the running-in
     distance ``running_in``·L, then in steps of ``step`` pixels up to ``distance``·L; each step is a
     contact solve warm-started from the previous one. ``modulus``: "half-space" (E* = E/(1−ν²)) or
     "composite" (E* = E/(2(1−ν²))). ``threads`` runs on that many threads (default: all).
@@ -92,7 +92,7 @@ def slide(
 
 
 class RunFile:
-    """A run file (SPEC §9: ``[surface]``, ``[material]``, ``[contact]``, ``[sliding]`` and
+    """A run file (``[surface]``, ``[material]``, ``[contact]``, ``[sliding]`` and
     ``units``), parsed and validated as ``wearsim`` does; relative surface paths resolve against the
     file's folder."""
 

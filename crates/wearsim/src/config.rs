@@ -1,4 +1,4 @@
-//! Run files (SPEC §9): TOML parsed strictly (unknown keys are errors naming the key) and turned
+//! Run files: TOML parsed strictly (unknown keys are errors naming the key) and turned
 //! into a validated [`RunConfig`] before any work starts.
 
 use std::path::{Path, PathBuf};
@@ -103,7 +103,7 @@ pub enum SurfaceSource {
     Files { top: PathBuf, bottom: PathBuf, length: f64 },
 }
 
-/// The sliding schedule (SPEC §6); distances as fractions of L, steps in pixels.
+/// The sliding schedule (paper §3); distances as fractions of L, steps in pixels.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct SlidingConfig {
     /// Normal loads F_N (E·L² reduced, N in SI).

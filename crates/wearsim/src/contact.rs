@@ -1,5 +1,5 @@
 //! Saturated-pressure (elastic–perfectly-plastic) contact of a rigid rough surface on a periodic
-//! elastic half-space, solved by FFT boundary elements (SPEC §3, paper §2 and appendix A).
+//! elastic half-space, solved by FFT boundary elements (paper §2 and appendix A).
 //!
 //! Problem: find p minimising ½⟨p, 𝒦p⟩ − ⟨p, h⟩ subject to 0 ≤ p ≤ p_m and mean(p) = F_N/L², where
 //! û(q) = 2 p̂(q)/(E*|k|) is the periodic half-space displacement. Its optimality conditions, with

@@ -1,4 +1,4 @@
-//! Contact junctions (SPEC §4, paper §2): connected components of the contact map with periodic
+//! Contact junctions (paper §2): connected components of the contact map with periodic
 //! boundaries in x and y, by union–find over the pixels in contact.
 //!
 //! The labeller keeps its buffers between calls (a sliding run labels every step), so labelling

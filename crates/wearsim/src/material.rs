@@ -1,9 +1,9 @@
-//! Material parameters and the quantities derived from them (SPEC §1, paper §2).
+//! Material parameters and the quantities derived from them (paper §2, Eq. 1).
 
 use crate::check::positive;
 use crate::error::{Error, Result};
 
-/// How the effective modulus E* of the equivalent half-space is formed (SPEC §3).
+/// How the effective modulus E* of the equivalent half-space is formed (Johnson's equivalence of two rough elastic bodies).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize, Default)]
 #[serde(rename_all = "kebab-case")]
 pub enum ModulusConvention {
@@ -128,7 +128,7 @@ mod tests {
         let m = Material::new(1.0, 0.3, 0.010, vec![0.5e-6], 3.0).unwrap();
         assert!((m.critical_diameter(0.5e-6) - 0.011_54).abs() < 1e-5);
         assert!((m.flow_pressure() - 0.051_96).abs() < 1e-5);
-        // Si3N4 of Kim et al. (SPEC §7): d* = 7.65 µm.
+        // Si3N4 of Kim et al. (paper Table 1): d* = 7.65 µm.
         let si3n4 = Material::new(294e9, 0.27, 2.89e9, vec![91.97], 3.0).unwrap();
         assert!((si3n4.critical_diameter(91.97) * 1e6 - 7.65).abs() < 0.01);
     }

@@ -1,4 +1,4 @@
-//! The sliding simulation (paper §3, SPEC §6): slide the top surface over the bottom one along x,
+//! The sliding simulation (paper §3): slide the top surface over the bottom one along x,
 //! solve the contact at every offset (warm-started from the previous step), label the junctions,
 //! and advance one wear bookkeeping per fracture energy on the shared contact solutions. Ends with
 //! the least-squares wear rate, particle rate and Archard wear coefficient after running-in.
@@ -13,7 +13,7 @@ use crate::material::Material;
 use crate::surface::{composite_heights, Surface};
 use crate::wear::{static_wear, SlidingBookkeeping, StaticWear, StepWear};
 
-/// Sliding offsets in pixels (SPEC §6): from 0 in steps of `step_running_in` while below the
+/// Sliding offsets in pixels (paper §3): from 0 in steps of `step_running_in` while below the
 /// running-in distance, then from the running-in distance in steps of `step` while below the total
 /// distance (the end point excluded). Distances are rounded to whole pixels.
 pub fn schedule(n: usize, sliding: &SlidingConfig) -> Vec<usize> {
@@ -59,7 +59,7 @@ pub fn line_fit(x: &[f64], y: &[f64]) -> (f64, f64) {
     (slope, r2)
 }
 
-/// Results per load and fracture energy (SPEC §6, §9); also the record stored in study job files.
+/// Results per load and fracture energy (paper §3–4); also the record stored in study job files.
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct WearResult {
     pub fracture_energy: f64,

@@ -1,4 +1,4 @@
-//! Periodic self-affine rough surfaces (SPEC §2): generation, `.npy` input/output and statistics.
+//! Periodic self-affine rough surfaces (paper §2 and §4.1): generation, `.npy` input/output and statistics.
 
 use std::f64::consts::PI;
 use std::path::Path;
@@ -48,7 +48,7 @@ impl std::str::FromStr for Generation {
     }
 }
 
-/// Statistics of a self-affine surface (SPEC §1–2). Lengths in the run's length unit.
+/// Statistics of a self-affine surface (paper §4.1). Lengths in the run's length unit.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct SpectrumParams {
     /// Hurst exponent H, in (0, 1].
@@ -64,8 +64,8 @@ pub struct SpectrumParams {
 }
 
 impl SpectrumParams {
-    /// The paper's roughness on an `n`-pixel grid of side `length` (SPEC §7, the benchmarks of issue
-    /// 2): H = 0.7, λ_l = 16 Δx, λ_u = min(256 Δx, L/2), h_rms = 0.005 L, random phases.
+    /// The paper's roughness on an `n`-pixel grid of side `length` (paper §4.1, used by the benchmarks):
+    /// H = 0.7, λ_l = 16 Δx, λ_u = min(256 Δx, L/2), h_rms = 0.005 L, random phases.
     pub fn paper_roughness(n: usize, length: f64) -> Self {
         let dx = length / n as f64;
         Self {

@@ -1,9 +1,9 @@
-//! The wear models: the static model of Frérot et al. (2018) (paper §2, SPEC §5) and the bookkeeping
-//! of the sliding model (paper §3, SPEC §6), one [`SlidingBookkeeping`] per critical diameter d*.
+//! The wear models: the static model of Frérot et al. (2018) (paper §2) and the bookkeeping
+//! of the sliding model (paper §3), one [`SlidingBookkeeping`] per critical diameter d*.
 
 use crate::junctions::{Junction, JunctionLabeller, NO_JUNCTION};
 
-/// Static model from one contact solution (SPEC §5).
+/// Static model from one contact solution (paper §2).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct StaticWear {
     /// k_static = Σ_{A_i ≥ A*} A_i / Σ_i A_i.
@@ -31,7 +31,7 @@ pub fn static_wear(junctions: &[Junction], critical_diameter: f64) -> StaticWear
     }
 }
 
-/// What one sliding step adds to the record of one d* (SPEC §6).
+/// What one sliding step adds to the record of one d* (paper §3).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct StepWear {
     /// N*: junctions with d_i ≥ d* at this step.
@@ -43,7 +43,7 @@ pub struct StepWear {
 }
 
 impl StepWear {
-    /// N*₋ := N*₊ − N* (SPEC §6), as a signed number.
+    /// N*₋ := N*₊ − N* (paper appendix B), as a signed number.
     pub fn n_shrunk(&self) -> i64 {
         self.n_formed as i64 - self.n_critical as i64
     }
@@ -62,8 +62,8 @@ pub enum JunctionState {
     Disabled,
 }
 
-/// Formed / disabled / active states carried from step to step by pixel overlap (paper §3,
-/// SPEC §6). A junction that shares a pixel with a junction of the previous step that formed a
+/// Formed / disabled / active states carried from step to step by pixel overlap (paper §3).
+/// A junction that shares a pixel with a junction of the previous step that formed a
 /// particle or was disabled is disabled; every other junction is active, and an active junction
 /// with d_i ≥ d* forms a particle (V += v_i, N*₊ += 1) and counts as formed for the next step.
 #[derive(Debug, Clone)]

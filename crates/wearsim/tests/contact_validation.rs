@@ -1,4 +1,4 @@
-//! Analytic validation of the contact solver (issue 2): Hertz, Westergaard, the elastic and fully
+//! Analytic validation of the contact solver: Hertz, Westergaard, the elastic and fully
 //! plastic limits, load balance, pixel-wise optimality, converged contact maps, and the PSD of
 //! generated surfaces. Small grids so that CI on two cores stays fast.
 

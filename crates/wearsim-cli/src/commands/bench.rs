@@ -1,4 +1,4 @@
-//! `wearsim bench`: the contact engine's benchmark (issue 2), all numbers measured in one run on the
+//! `wearsim bench`: the contact engine's benchmark, all numbers measured in one run on the
 //! same surfaces. Paper roughness: λ_l = 16 px, λ_u = min(256 px, N/2), h_rms = 0.005 L, H = 0.7,
 //! τ̃ = 0.010 E, F_N = 10⁻³ E L², E = 1, ν = 0.3, default tolerance.
 
