@@ -11,6 +11,7 @@ CPU times, which steal time does not inflate.
 Paper roughness at the given grid, τ̃ = 0.01 E, two loads, two fracture energies, the default
 schedule (running-in ¼ L in 4-pixel steps, then 1-pixel steps up to ½ L).
 """
+
 import argparse
 import resource
 import statistics
@@ -64,7 +65,9 @@ def main():
 
         for r in range(args.repeats):
             t, c = time.perf_counter(), children_cpu()
-            subprocess.run([str(WEARSIM), "slide", str(run_path), "--out", str(tmp / f"cli{r}")], check=True, capture_output=True)
+            subprocess.run(
+                [str(WEARSIM), "slide", str(run_path), "--out", str(tmp / f"cli{r}")], check=True, capture_output=True
+            )
             wall["cli"].append(time.perf_counter() - t)
             cpu["cli"].append(children_cpu() - c)
             t, c = time.perf_counter(), time.process_time()

@@ -8,6 +8,7 @@ the outputs: the contact maps of all solvers are compared pixel by pixel and pri
 
     python bench/reference.py --sizes 256 512 [--kato-max 256]
 """
+
 import argparse
 import json
 import subprocess
@@ -42,7 +43,9 @@ def wearsim_solve(tmp, n, tau):
     run.write_text(RUN.format(n=n, lam_l=16 / n, lam_u=min(256, n // 2) / n, tau=tau))
     out = tmp / f"out{n}_{tau}"
     subprocess.run([str(WEARSIM), "surface", str(run), "--out", str(out)], check=True, capture_output=True)
-    subprocess.run([str(WEARSIM), "contact", str(run), "--load", "1e-3", "--out", str(out)], check=True, capture_output=True)
+    subprocess.run(
+        [str(WEARSIM), "contact", str(run), "--load", "1e-3", "--out", str(out)], check=True, capture_output=True
+    )
     s = json.loads((out / "summary.json").read_text())
     h = np.load(out / "top.npy") + np.load(out / "bottom.npy")
     return h, np.load(out / "pressure.npy"), s
@@ -112,7 +115,8 @@ def main():
             try:
                 t, p = tamaas_solve(h, n, None)
                 diff = np.count_nonzero((p > 0) != (p_el > 0))
-                print(f"{n:>5} {'tamaas PolonskyKeerRey 1e-12':<34} {t:>9.3f} {'':>7} {diff:>6} {t / s_el['seconds']:>9.1f}")
+                name = "tamaas PolonskyKeerRey 1e-12"
+                print(f"{n:>5} {name:<34} {t:>9.3f} {'':>7} {diff:>6} {t / s_el['seconds']:>9.1f}")
             except Exception as e:  # noqa: BLE001
                 print(f"{n:>5} tamaas unavailable: {e}")
 

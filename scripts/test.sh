@@ -1,35 +1,73 @@
 #!/usr/bin/env bash
-# All of wearsim's tests: Rust unit, validation and CLI tests; then the Python package built from
-# this checkout (`pip install .` into .venv, with numpy, pandas, dask, matplotlib, pytest, mypy and
-# tamaas from PyPI), its type stubs checked against the compiled module (mypy stubtest), its pytest
-# suite (API, studies on a Dask LocalCluster, tamaas cross-checks of the CLI and of the Python API)
-# and the example script.
+# All of wearsim's tests, each phase announced with the seconds elapsed:
+#   formatting and lints (cargo fmt, clippy, ruff);
+#   the Rust unit, validation and CLI tests (one release build, which also gives target/release/wearsim);
+#   the Python package: one abi3 wheel built by maturin, installed into a fresh venv with cargo off the
+#   PATH (a user without a Rust toolchain) and into .venv with the pinned test dependencies of
+#   tests/python/requirements.txt; its type stubs (mypy stubtest), mypy, the pytest suite (API, studies on
+#   a Dask LocalCluster, cross-checks against tamaas from PyPI) and examples/python/quickstart.py.
+# The Python dependencies are installed in the background while Rust compiles.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+root="$PWD"
+phase() { printf '\n== [%4ds] %s\n' "$SECONDS" "$1"; }
 
-cargo test --workspace --locked
-
-cargo build --release --locked -p wearsim-cli
+phase "Python test environment: .venv with the pinned dependencies (in the background)"
 if [ ! -x .venv/bin/python ]; then
     python3 -m venv .venv
 fi
-.venv/bin/python -m pip install -q --upgrade pip >/dev/null 2>&1 || true
-.venv/bin/python -m pip install -q numpy pandas "dask[distributed]" matplotlib pytest mypy pandas-stubs
-if ! .venv/bin/python -m pip install -q tamaas; then
-    echo "WARNING: tamaas could not be installed from PyPI; the tamaas cross-checks will be skipped" >&2
+mkdir -p target
+pip_log="$root/target/pip-install.log"
+(
+    .venv/bin/python -m pip install -q --upgrade pip &&
+        .venv/bin/python -m pip install -q -r tests/python/requirements.txt
+) >"$pip_log" 2>&1 &
+pip_pid=$!
+
+phase "Formatting: cargo fmt --check"
+cargo fmt --all --check
+
+phase "Lints: cargo clippy --workspace --all-targets -- -D warnings"
+cargo clippy --workspace --all-targets --locked -q -- -D warnings
+
+phase "Rust tests: unit, property, analytic validation, CLI (release build)"
+cargo test --release --workspace --locked
+
+phase "Waiting for the Python test environment"
+if ! wait "$pip_pid"; then
+    cat "$pip_log" >&2
+    echo "error: installing the pinned Python test dependencies failed (log above)" >&2
+    exit 1
 fi
-# The Python package, built by maturin from this checkout, as a user installs it: first into a
-# fresh venv with nothing else (its dependencies come from PyPI), then into the test venv.
-fresh_venv="$(mktemp -d)/venv"
-python3 -m venv "$fresh_venv"
-"$fresh_venv/bin/python" -m pip install -q .
-(cd /tmp && "$fresh_venv/bin/python" -c "import wearsim")
-rm -rf "$fresh_venv"
-.venv/bin/python -m pip install -q .
-(cd /tmp && "$OLDPWD/.venv/bin/python" -c "import wearsim; print('wearsim', wearsim.__version__, 'imported from', wearsim.__file__)")
-# The type stubs match the compiled module, and the package type-checks against them.
-(cd /tmp && "$OLDPWD/.venv/bin/python" -m mypy.stubtest wearsim._wearsim)
+
+phase "Python lints: ruff check, ruff format --check"
+.venv/bin/ruff check
+.venv/bin/ruff format --check
+
+phase "Python wheel: maturin, release, abi3"
+rm -rf target/wheels
+.venv/bin/python -m pip wheel -q . --no-deps -w target/wheels
+wheel=$(ls target/wheels/wearsim-*.whl)
+echo "built $wheel"
+
+phase "The wheel in a fresh venv, without cargo on the PATH"
+fresh="$(mktemp -d)/venv"
+python3 -m venv "$fresh"
+no_cargo_path=$(printf '%s' "$PATH" | tr ':' '\n' | grep -v -e cargo -e rustup | paste -sd: -)
+(cd /tmp && env PATH="$no_cargo_path" "$fresh/bin/python" -m pip install -q "$root/$wheel")
+(cd /tmp && env PATH="$no_cargo_path" "$fresh/bin/python" -c "import shutil, wearsim; assert shutil.which('cargo') is None; print('wearsim', wearsim.__version__, 'from the wheel, without cargo')")
+rm -rf "$fresh"
+
+phase "The wheel in .venv; type stubs against the compiled module; mypy"
+.venv/bin/python -m pip install -q --force-reinstall --no-deps "$wheel"
+(cd /tmp && "$root/.venv/bin/python" -c "import wearsim; print('wearsim', wearsim.__version__, 'imported from', wearsim.__file__)")
+(cd /tmp && "$root/.venv/bin/python" -m mypy.stubtest wearsim._wearsim)
 (cd python && ../.venv/bin/python -m mypy wearsim)
 
-WEARSIM_BIN="$PWD/target/release/wearsim" .venv/bin/python -m pytest -rs tests/python
+phase "Python tests: pytest"
+WEARSIM_BIN="$root/target/release/wearsim" .venv/bin/python -m pytest -rs tests/python
+
+phase "Python example: examples/python/quickstart.py"
 MPLBACKEND=Agg .venv/bin/python examples/python/quickstart.py --out "$(mktemp -d)/python-example"
+
+phase "All tests passed"

@@ -7,6 +7,7 @@ a Dask cluster, with matplotlib figures.
 Reduced units throughout: E = 1, L = 1 (pressures in E, lengths in L, loads in E·L², fracture
 energies in E·L). A grid of 128² keeps it to seconds; the paper's results need 4096².
 """
+
 import argparse
 from pathlib import Path
 
@@ -15,7 +16,6 @@ import matplotlib
 matplotlib.use("Agg")  # files only; drop this line in a notebook
 import matplotlib.pyplot as plt
 import numpy as np
-
 import wearsim
 
 HERE = Path(__file__).resolve().parent
@@ -31,7 +31,9 @@ def main(out: Path) -> None:
     print(f"surface: {n}², h_rms = {stats['rms_height']:.4f} L, rms slope = {stats['rms_slope']:.3f}")
 
     # %% 2. Material: τ̃ = 0.01 E gives p_m = 3√3 τ̃; d* from each fracture energy (eq. 1).
-    material = wearsim.Material(youngs_modulus=1.0, poisson_ratio=0.3, shear_strength=0.01, fracture_energies=[0.5e-6, 1e-6])
+    material = wearsim.Material(
+        youngs_modulus=1.0, poisson_ratio=0.3, shear_strength=0.01, fracture_energies=[0.5e-6, 1e-6]
+    )
     print(f"flow pressure p_m = {material.flow_pressure:.4f} E, d* = {np.round(material.critical_diameters, 4)} L")
 
     # %% 3. One saturated contact at F_N = 1e-3 E L², its junctions and the static model.
@@ -55,12 +57,17 @@ def main(out: Path) -> None:
             s = series[(series.load == load) & (series.fracture_energy == g)]
             ax.plot(s.s, s.volume, label=f"$F_N$ = {load:g} $EL^2$")
         ax.axvline(0.25, color="0.6", lw=0.8, ls="--")
-        ax.set(title=f"$\\mathcal{{G}}$ = {g:g} $EL$ ($d^*$ = {d:.3f} $L$)", xlabel="sliding distance $s/L$", ylabel="wear volume $V/L^3$")
+        ax.set(
+            title=f"$\\mathcal{{G}}$ = {g:g} $EL$ ($d^*$ = {d:.3f} $L$)",
+            xlabel="sliding distance $s/L$",
+            ylabel="wear volume $V/L^3$",
+        )
     axes[0].legend(frameon=False)
     fig.tight_layout()
     fig.savefig(out / "wear_volume.png", dpi=120)
     for r in summary["results"]:
-        print(f"F_N = {r['load']:g}, 𝒢 = {r['fracture_energy']:g}: W = {r['wear_rate']:.3e} L², k = {r['wear_coefficient']:.3e}")
+        load, energy = r["load"], r["fracture_energy"]
+        print(f"F_N = {load:g}, 𝒢 = {energy:g}: W = {r['wear_rate']:.3e} L², k = {r['wear_coefficient']:.3e}")
 
     # %% 5. A small study on a Dask cluster (here two local worker processes; on Slurm use
     # dask_jobqueue.SLURMCluster, see wearsim.study). The table equals `wearsim study collect`.

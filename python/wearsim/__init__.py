@@ -16,6 +16,8 @@ Units: every quantity is in the unit system of its inputs. In reduced units E = 
 
 Long calls release the GIL and stop on Ctrl-C (KeyboardInterrupt).
 """
+
+from . import contact, junctions, study, surface, wear
 from ._wearsim import (
     DEFAULT_MAX_ITERATIONS,
     DEFAULT_TOLERANCE,
@@ -24,7 +26,6 @@ from ._wearsim import (
     WearsimError,
     __version__,
 )
-from . import contact, junctions, study, surface, wear
 from .contact import ContactResult, ContactSolver, solve_contact
 from .junctions import Junctions, label_junctions
 from .surface import composite_heights, generate_pair, generate_surface, radial_psd, surface_statistics

@@ -1,5 +1,6 @@
 """Progress reporting of long calls: ``progress=True`` prints a line on stderr; a callable receives
 ``(done, total)`` (steps of a slide, jobs of a study) from the calling thread."""
+
 from __future__ import annotations
 
 import sys

@@ -1,5 +1,6 @@
 """Type stubs of the compiled extension `wearsim._wearsim` (crates/wearsim-py). Use the public API
 of the `wearsim` package; this layer takes contiguous float64 arrays."""
+
 from pathlib import Path
 from typing import Any, Callable, Dict, List, Optional, Tuple, final
 

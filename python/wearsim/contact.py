@@ -4,6 +4,7 @@ Contact of a rigid surface of heights h with a periodic elastic half-space of ef
 E*, pressure bounded by the flow pressure p_m (0 ≤ p ≤ p_m), mean pressure F_N/L². Solved by a
 bound-constrained conjugate gradient on FFT boundary elements; exact zeros outside the contact.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass

@@ -1,4 +1,5 @@
 """Contact junctions (paper §2–3): connected components of the contact map, periodic in x and y."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass

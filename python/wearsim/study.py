@@ -15,6 +15,7 @@ which writes the job file (workers need no shared file system). On Slurm::
     table = wearsim.study.run("studies/paper-reduced.toml", client=Client(cluster),
                               out="paper-reduced", threads=16)
 """
+
 from __future__ import annotations
 
 import functools

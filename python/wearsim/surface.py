@@ -3,10 +3,10 @@
 Arrays are ``(N, N)`` float64, ``h[i, j]`` with i along the sliding direction x; lengths in the unit
 of ``length`` (L in reduced units, m in SI).
 """
+
 from __future__ import annotations
 
 import functools
-
 from typing import Dict, Literal, Tuple
 
 import numpy as np
@@ -41,9 +41,7 @@ def generate_surface(
     ``lambda_lower`` (cut-off), scaled to exactly ``rms_height``; lengths in the unit of ``length``.
     The same seed gives the same surface whatever the thread count.
     """
-    return _wearsim.generate_surface(
-        grid, length, hurst, lambda_lower, lambda_upper, rms_height, seed, generation
-    )
+    return _wearsim.generate_surface(grid, length, hurst, lambda_lower, lambda_upper, rms_height, seed, generation)
 
 
 def generate_pair(

@@ -7,6 +7,7 @@ fracture energy, the columns of ``series.csv``) and its summary as a dict (``sum
 ``"results"``, one entry per load and fracture energy with the wear rate W, its R², the Archard
 coefficient k, the particle rate dN*₊/ds, V₀ and the static model's k_static).
 """
+
 from __future__ import annotations
 
 import os

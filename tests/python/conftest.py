@@ -1,4 +1,5 @@
 """Shared fixtures of the Python tests: the CLI binary and the installed `wearsim` package."""
+
 import os
 from pathlib import Path
 

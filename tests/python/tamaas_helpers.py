@@ -1,4 +1,5 @@
 """tamaas set-up shared by the cross-checks (imported only after tamaas is known to be importable)."""
+
 import numpy as np
 import tamaas as tm
 

@@ -1,5 +1,6 @@
 """The Python API (`import wearsim`): round trips against the CLI, physics checks, errors raised as
 Python exceptions with the library's messages, GIL release and Ctrl-C."""
+
 import json
 import re
 import signal
@@ -12,7 +13,6 @@ import time
 import numpy as np
 import pandas as pd
 import pytest
-
 import wearsim
 
 RUN = """
@@ -49,7 +49,9 @@ def run_file(tmp_path):
 
 
 def test_surfaces_equal_the_cli_pair(tmp_path, run_file, wearsim_bin):
-    subprocess.run([wearsim_bin, "surface", str(run_file), "--out", str(tmp_path / "s")], check=True, capture_output=True)
+    subprocess.run(
+        [wearsim_bin, "surface", str(run_file), "--out", str(tmp_path / "s")], check=True, capture_output=True
+    )
     top, bottom = wearsim.generate_pair(64, seed=7, **SURFACE)
     np.testing.assert_array_equal(top, np.load(tmp_path / "s" / "top.npy"))
     np.testing.assert_array_equal(bottom, np.load(tmp_path / "s" / "bottom.npy"))
@@ -86,7 +88,9 @@ def test_contact_solve_balance_warm_start_and_cli(tmp_path, run_file, wearsim_bi
     assert cold.contact_pixels == np.count_nonzero(cold.contact)
     # Same solution as `wearsim contact` on the run file.
     out = tmp_path / "c"
-    subprocess.run([wearsim_bin, "contact", str(run_file), "--load", "1e-3", "--out", str(out)], check=True, capture_output=True)
+    subprocess.run(
+        [wearsim_bin, "contact", str(run_file), "--load", "1e-3", "--out", str(out)], check=True, capture_output=True
+    )
     np.testing.assert_array_equal(cold.pressure, np.load(out / "pressure.npy"))
     summary = json.loads((out / "summary.json").read_text())
     assert summary["iterations"] == cold.iterations
@@ -133,7 +137,10 @@ def test_slide_equals_the_cli(tmp_path, run_file, wearsim_bin):
     assert list(series.columns) == wearsim.wear.SERIES_COLUMNS
     for column in cli_series.columns:
         np.testing.assert_allclose(series[column].to_numpy(), cli_series[column].to_numpy(), rtol=1e-6, err_msg=column)
-    key = lambda r: (r["load"], r["fracture_energy"])
+
+    def key(r):
+        return (r["load"], r["fracture_energy"])
+
     for a, b in zip(sorted(summary["results"], key=key), sorted(cli_summary["results"], key=key)):
         assert a == pytest.approx(b, rel=1e-12, nan_ok=True)
     assert summary["inputs"] == cli_summary["inputs"]
@@ -157,13 +164,25 @@ def test_slide_equals_the_cli(tmp_path, run_file, wearsim_bin):
         (lambda: wearsim.Material(-1.0, 0.3, 0.01), "invalid `youngs_modulus`"),
         (lambda: wearsim.Material(1.0, 0.6, 0.01), "invalid `poisson_ratio`"),
         (lambda: wearsim.ContactSolver(63, 1.0, 1.0), "invalid `grid`"),
-        (lambda: wearsim.generate_surface(64, lambda_lower=0.01, lambda_upper=0.25, rms_height=0.005), "invalid `lambda_lower`"),
+        (
+            lambda: wearsim.generate_surface(64, lambda_lower=0.01, lambda_upper=0.25, rms_height=0.005),
+            "invalid `lambda_lower`",
+        ),
         (lambda: wearsim.solve_contact(np.zeros((32, 16)), 1e-3, effective_modulus=1.0), "must be square"),
-        (lambda: wearsim.solve_contact(np.zeros((32, 32)), 0.1, effective_modulus=1.0, flow_pressure=0.05), "load cannot be carried"),
+        (
+            lambda: wearsim.solve_contact(np.zeros((32, 32)), 0.1, effective_modulus=1.0, flow_pressure=0.05),
+            "load cannot be carried",
+        ),
         (lambda: wearsim.label_junctions(np.ones((8, 8)), connectivity=6), "invalid `connectivity`"),
         (lambda: wearsim.surface_statistics(np.full((16, 16), np.nan)), "NaN"),
-        (lambda: wearsim.slide(np.zeros((32, 32)), np.zeros((32, 32)), wearsim.Material(1, 0.3, 0.01), [1e-3]), "fracture_energies"),
-        (lambda: wearsim.slide(np.zeros((32, 32)), np.zeros((32, 32)), wearsim.Material(1, 0.3, 0.01, [1e-6]), []), "invalid `loads`"),
+        (
+            lambda: wearsim.slide(np.zeros((32, 32)), np.zeros((32, 32)), wearsim.Material(1, 0.3, 0.01), [1e-3]),
+            "fracture_energies",
+        ),
+        (
+            lambda: wearsim.slide(np.zeros((32, 32)), np.zeros((32, 32)), wearsim.Material(1, 0.3, 0.01, [1e-6]), []),
+            "invalid `loads`",
+        ),
     ],
 )
 def test_bad_input_raises_value_error_naming_the_field(call, message):

@@ -1,10 +1,10 @@
 """Studies from Python: local runs equal `wearsim study run` + `collect`; a run on a Dask
 LocalCluster with two worker processes equals the local run; resume after a partial run."""
+
 import subprocess
 
 import pandas as pd
 import pytest
-
 import wearsim
 
 STUDY = """
@@ -60,7 +60,9 @@ def test_resume_skips_finished_jobs_and_mixes_with_the_cli(tmp_path, study_file,
     done = sorted(p.name for p in (out / "jobs").iterdir())
     assert len(done) == 4
     mtimes = {p.name: p.stat().st_mtime_ns for p in (out / "jobs").iterdir()}
-    result = subprocess.run([wearsim_bin, "study", "run", str(study_file), "--out", str(out)], check=True, capture_output=True, text=True)
+    result = subprocess.run(
+        [wearsim_bin, "study", "run", str(study_file), "--out", str(out)], check=True, capture_output=True, text=True
+    )
     assert "computed 4 jobs, skipped 4" in result.stdout + result.stderr
     assert all((out / "jobs" / name).stat().st_mtime_ns == t for name, t in mtimes.items())
     tidy = wearsim.study.run(study_file, out=out)

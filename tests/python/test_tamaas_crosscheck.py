@@ -4,6 +4,7 @@ wearsim is run through its CLI (`wearsim surface`, `wearsim contact`); tamaas so
 composite surface with `PolonskyKeerRey` (elastic) and `KatoSaturated` (saturated pressure).
 Skipped, visibly, only where tamaas cannot be imported.
 """
+
 import json
 import os
 import subprocess
@@ -42,7 +43,9 @@ def run_wearsim(tmp_path, n, tau, load):
     run.write_text(RUN.format(n=n, lam=8.0 / n, tau=tau))
     out = tmp_path / "out"
     subprocess.run([WEARSIM, "surface", str(run), "--out", str(out)], check=True, capture_output=True)
-    subprocess.run([WEARSIM, "contact", str(run), "--load", str(load), "--out", str(out)], check=True, capture_output=True)
+    subprocess.run(
+        [WEARSIM, "contact", str(run), "--load", str(load), "--out", str(out)], check=True, capture_output=True
+    )
     h = np.load(out / "top.npy") + np.load(out / "bottom.npy")
     summary = json.loads((out / "summary.json").read_text())
     return h, np.load(out / "pressure.npy"), np.load(out / "contact.npy"), summary

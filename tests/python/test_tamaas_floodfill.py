@@ -1,4 +1,5 @@
 """Junction labelling (`wearsim junctions`) against tamaas's periodic FloodFill on random maps."""
+
 import json
 import os
 import subprocess

@@ -1,10 +1,11 @@
 """The tamaas cross-checks from Python: the contact solver (`wearsim.ContactSolver`) against tamaas
 `KatoSaturated` and `PolonskyKeerRey`, and `wearsim.label_junctions` against tamaas `FloodFill`, on
 the same arrays. Skipped, visibly, only where tamaas cannot be imported."""
+
 import numpy as np
 import pytest
-
 import wearsim
+
 tm = pytest.importorskip("tamaas", reason="tamaas not installed: pip install tamaas")
 from tamaas_helpers import same_partition, tamaas_labels, tamaas_model  # noqa: E402
 
@@ -39,8 +40,10 @@ def test_junctions_of_a_contact_solution_against_floodfill(connectivity):
     top, bottom = wearsim.generate_pair(n, seed=5, lambda_lower=8 / n, lambda_upper=0.25, rms_height=0.005)
     material = wearsim.Material(1.0, 0.3, 0.01)
     contact = wearsim.solve_contact(
-        wearsim.composite_heights(top, bottom, 17), 2e-3,
-        effective_modulus=material.effective_modulus(), flow_pressure=material.flow_pressure,
+        wearsim.composite_heights(top, bottom, 17),
+        2e-3,
+        effective_modulus=material.effective_modulus(),
+        flow_pressure=material.flow_pressure,
     ).contact
     ours = wearsim.label_junctions(contact, connectivity=connectivity)
     theirs = tamaas_labels(contact, connectivity == 8)
