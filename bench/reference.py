@@ -41,13 +41,13 @@ fracture_energies = [0.5e-6]
 def wearsim_solve(tmp, n, tau):
     run = tmp / f"run{n}_{tau}.toml"
     run.write_text(RUN.format(n=n, lam_l=16 / n, lam_u=min(256, n // 2) / n, tau=tau))
-    out = tmp / f"out{n}_{tau}"
-    subprocess.run([str(WEARSIM), "surface", str(run), "--out", str(out)], check=True, capture_output=True)
+    surfaces, out = tmp / f"surfaces{n}_{tau}", tmp / f"contact{n}_{tau}"
+    subprocess.run([str(WEARSIM), "surface", str(run), "--out", str(surfaces)], check=True, capture_output=True)
     subprocess.run(
         [str(WEARSIM), "contact", str(run), "--load", "1e-3", "--out", str(out)], check=True, capture_output=True
     )
     s = json.loads((out / "summary.json").read_text())
-    h = np.load(out / "top.npy") + np.load(out / "bottom.npy")
+    h = np.load(surfaces / "top.npy") + np.load(surfaces / "bottom.npy")
     return h, np.load(out / "pressure.npy"), s
 
 

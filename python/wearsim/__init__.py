@@ -29,7 +29,7 @@ from ._wearsim import (
 from .contact import ContactResult, ContactSolver, solve_contact
 from .junctions import Junctions, label_junctions
 from .surface import composite_heights, generate_pair, generate_surface, radial_psd, surface_statistics
-from .wear import RunFile, load_run, slide, static_wear
+from .wear import ResolutionWarning, RunFile, load_run, slide, static_wear
 
 __all__ = [
     "DEFAULT_MAX_ITERATIONS",
@@ -39,6 +39,7 @@ __all__ = [
     "Junctions",
     "Material",
     "NotConvergedError",
+    "ResolutionWarning",
     "RunFile",
     "WearsimError",
     "__version__",

@@ -19,9 +19,11 @@ which writes the job file (workers need no shared file system). On Slurm::
 from __future__ import annotations
 
 import functools
+import json
 import os
+import warnings
 from pathlib import Path
-from typing import Any, Optional, Tuple, Union
+from typing import Any, Dict, Optional, Tuple, Union
 
 import pandas as pd
 
@@ -127,7 +129,16 @@ def run(
     out = Path(out) if out is not None else _default_out(study)
     report = callback(progress, "study: job")
     if client is None:
-        study._study.run(out, workers, shard, threads, report)
+        outcome = study._study.run(out, workers, shard, threads, report)
+        for note in outcome["notes"] + [f"recomputed: {why}" for why in outcome["recomputed"]]:
+            warnings.warn(note, stacklevel=2)
+        if outcome["claimed_elsewhere"]:
+            warnings.warn(
+                f"{len(outcome['claimed_elsewhere'])} jobs are being computed by another run on {out}; "
+                "collect once it has finished",
+                stacklevel=2,
+            )
+            return pd.DataFrame()
     else:
         if shard is not None:
             raise ValueError("invalid `shard`: with a Dask client the cluster runs every job; drop `shard`")
@@ -161,10 +172,24 @@ def run(
     return tidy
 
 
+def _with_units(table: pd.DataFrame, units: Dict[str, str]) -> pd.DataFrame:
+    table.attrs["units"] = {c: u for c, u in units.items() if c in table.columns}
+    return table
+
+
 def collect(out: PathLike) -> Tuple[pd.DataFrame, pd.DataFrame]:
     """Collects a finished result folder, writing ``results.csv`` and ``results_aggregated.csv``
     there as ``wearsim study collect`` does; returns both as DataFrames (tidy: one row per job and
     fracture energy; aggregated: mean, min and max over surface pairs)."""
     out = Path(out)
     _wearsim.collect_study(out)
-    return pd.read_csv(out / "results.csv"), pd.read_csv(out / "results_aggregated.csv")
+    units = json.loads((out / "results.units.json").read_text())["columns"]
+    # Text columns (material names, warnings) stay text even when every cell is empty.
+    text = {"material": str, "warnings": str, "surface.top": str, "surface.bottom": str}
+    tidy = pd.read_csv(out / "results.csv", dtype=text, keep_default_na=False, na_values=[""])
+    aggregated = pd.read_csv(out / "results_aggregated.csv", dtype=text, keep_default_na=False, na_values=[""])
+    for table in (tidy, aggregated):
+        for column in ("warnings",):
+            if column in table.columns:
+                table[column] = table[column].fillna("")
+    return _with_units(tidy, units), _with_units(aggregated, units)

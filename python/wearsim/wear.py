@@ -11,6 +11,7 @@ coefficient k, the particle rate dN*₊/ds, V₀ and the static model's k_static
 from __future__ import annotations
 
 import os
+import warnings
 from pathlib import Path
 from typing import Any, Dict, Optional, Sequence, Tuple, Union
 
@@ -38,6 +39,16 @@ def static_wear(junctions: Junctions, critical_diameter: float) -> Dict[str, flo
 
 def _series(columns: Dict[str, np.ndarray]) -> pd.DataFrame:
     return pd.DataFrame({c: columns[c] for c in SERIES_COLUMNS})
+
+
+class ResolutionWarning(UserWarning):
+    """A result is under-resolved or undefined: d* or λ_l of a few pixels, no or few particles after
+    running-in, a poor fit. The same sentences are in ``summary["warnings"]``."""
+
+
+def _warn(summary: Dict[str, Any]) -> None:
+    for message in summary.get("warnings", []):
+        warnings.warn(message, ResolutionWarning, stacklevel=3)
 
 
 def slide(
@@ -89,6 +100,7 @@ def slide(
         threads,
         callback(progress, "slide: step"),
     )
+    _warn(summary)
     return _series(columns), summary
 
 
@@ -120,6 +132,7 @@ class RunFile:
         """The sliding model exactly as ``wearsim slide RUN`` runs it: ``(series, summary)`` equal to
         its ``series.csv`` and ``summary.json`` (timings aside). ``progress`` as for :func:`slide`."""
         columns, summary = self._run.slide(threads, callback(progress, "slide: step"))
+        _warn(summary)
         return _series(columns), summary
 
     def __repr__(self) -> str:

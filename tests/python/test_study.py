@@ -46,7 +46,8 @@ def test_local_run_equals_the_cli(tmp_path, study_file, wearsim_bin):
     subprocess.run([wearsim_bin, "study", "run", str(study_file), "--out", str(cli)], check=True, capture_output=True)
     subprocess.run([wearsim_bin, "study", "collect", str(cli)], check=True, capture_output=True)
     assert (tmp_path / "py" / "results.csv").read_text() == (cli / "results.csv").read_text()
-    pd.testing.assert_frame_equal(tidy, pd.read_csv(cli / "results.csv"))
+    pd.testing.assert_frame_equal(tidy, wearsim.study.collect(cli)[0])
+    assert tidy.attrs["units"]["wear_rate"] == "L²" and tidy.attrs["units"]["load"] == "E L²"
     assert len(tidy) == 16
     tidy2, aggregated = wearsim.study.collect(tmp_path / "py")
     pd.testing.assert_frame_equal(tidy2, tidy)

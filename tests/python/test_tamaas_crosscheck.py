@@ -41,12 +41,12 @@ tolerance = 1e-10
 def run_wearsim(tmp_path, n, tau, load):
     run = tmp_path / "run.toml"
     run.write_text(RUN.format(n=n, lam=8.0 / n, tau=tau))
-    out = tmp_path / "out"
-    subprocess.run([WEARSIM, "surface", str(run), "--out", str(out)], check=True, capture_output=True)
+    surfaces, out = tmp_path / "surfaces", tmp_path / "contact"
+    subprocess.run([WEARSIM, "surface", str(run), "--out", str(surfaces)], check=True, capture_output=True)
     subprocess.run(
         [WEARSIM, "contact", str(run), "--load", str(load), "--out", str(out)], check=True, capture_output=True
     )
-    h = np.load(out / "top.npy") + np.load(out / "bottom.npy")
+    h = np.load(surfaces / "top.npy") + np.load(surfaces / "bottom.npy")
     summary = json.loads((out / "summary.json").read_text())
     return h, np.load(out / "pressure.npy"), np.load(out / "contact.npy"), summary
 

@@ -6,6 +6,7 @@ use clap::{Parser, Subcommand};
 
 mod commands;
 mod figures;
+mod progress;
 
 use commands::{animate, bench, contact, junctions, plot, slide, study, surface};
 
@@ -16,9 +17,15 @@ use commands::{animate, bench, contact, junctions, plot, slide, study, surface};
     about = "Adhesive wear of rough surfaces in sliding contact (Brink, Frérot & Molinari 2021)"
 )]
 struct Cli {
-    /// Worker threads (default: all cores). Results do not depend on it.
+    /// Worker threads (default: all cores; at most four per core). Results do not depend on it.
     #[arg(long, global = true)]
     threads: Option<usize>,
+    /// Show no progress.
+    #[arg(long, global = true)]
+    quiet: bool,
+    /// Show progress as plain lines (at least every 30 s) even on a terminal, as in a batch log.
+    #[arg(long, global = true)]
+    log: bool,
     #[command(subcommand)]
     command: Command,
 }
@@ -61,8 +68,21 @@ enum StudyCommand {
 
 fn main() {
     let cli = Cli::parse();
-    if let Some(t) = cli.threads {
-        if let Err(e) = rayon::ThreadPoolBuilder::new().num_threads(t).build_global() {
+    progress::configure(cli.quiet, cli.log);
+    if let Some(requested) = cli.threads {
+        let threads = match wearsim::check::threads(requested) {
+            Ok((t, note)) => {
+                if let Some(note) = note {
+                    eprintln!("warning: --threads: {note}");
+                }
+                t
+            }
+            Err(e) => {
+                eprintln!("error: --threads: {e}");
+                std::process::exit(2);
+            }
+        };
+        if let Err(e) = rayon::ThreadPoolBuilder::new().num_threads(threads).build_global() {
             eprintln!("error: --threads: {e}");
             std::process::exit(2);
         }

@@ -1,55 +1,10 @@
 //! The CLI on good and bad input: one-line errors naming the field, non-zero exit, nothing written.
 
+mod common;
+
 use std::path::Path;
-use std::process::Command;
 
-fn wearsim() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_wearsim"))
-}
-
-/// Minimal NumPy v1.0 writer for little-endian float64 arrays of any shape.
-fn write_npy(path: &Path, shape: &[usize], values: &[f64]) {
-    let shape_txt = match shape.len() {
-        1 => format!("({},)", shape[0]),
-        _ => format!(
-            "({})",
-            shape.iter().map(|s| s.to_string()).collect::<Vec<_>>().join(", ")
-        ),
-    };
-    let mut header = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': {shape_txt}, }}");
-    while (10 + header.len() + 1) % 64 != 0 {
-        header.push(' ');
-    }
-    header.push('\n');
-    let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
-    bytes.extend_from_slice(&(header.len() as u16).to_le_bytes());
-    bytes.extend_from_slice(header.as_bytes());
-    for v in values {
-        bytes.extend_from_slice(&v.to_le_bytes());
-    }
-    std::fs::write(path, bytes).unwrap();
-}
-
-const GENERATED: &str = r#"
-[surface]
-grid = 64
-length = 1.0
-lambda_lower = 0.0625
-lambda_upper = 0.25
-rms_height = 0.005
-seed = 1
-[material]
-youngs_modulus = 1.0
-poisson_ratio = 0.3
-shear_strength = 0.01
-fracture_energies = [0.5e-6]
-"#;
-
-fn run_file(dir: &Path, text: &str) -> std::path::PathBuf {
-    let p = dir.join("run.toml");
-    std::fs::write(&p, text).unwrap();
-    p
-}
+use common::{run_file, wearsim, write_npy, GENERATED};
 
 /// Runs `wearsim contact` expecting failure; returns stderr and checks that nothing was written.
 fn contact_fails(dir: &Path, text: &str, load: &str) -> String {
@@ -86,6 +41,7 @@ fn surface_and_contact_write_their_files() {
     for f in ["top.npy", "bottom.npy", "statistics.json"] {
         assert!(out.join(f).is_file(), "{f}");
     }
+    let contact = dir.path().join("c");
     let ok = wearsim()
         .args([
             "contact",
@@ -95,12 +51,12 @@ fn surface_and_contact_write_their_files() {
             "--offset",
             "0.03125",
             "--out",
-            out.to_str().unwrap(),
+            contact.to_str().unwrap(),
         ])
         .status()
         .unwrap();
     assert!(ok.success());
-    let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    let summary = std::fs::read_to_string(contact.join("summary.json")).unwrap();
     for key in [
         "contact_area",
         "mean_pressure",
@@ -114,7 +70,7 @@ fn surface_and_contact_write_their_files() {
     ] {
         assert!(summary.contains(&format!("\"{key}\"")), "summary lacks {key}");
     }
-    assert!(out.join("pressure.npy").is_file() && out.join("contact.npy").is_file());
+    assert!(contact.join("pressure.npy").is_file() && contact.join("contact.npy").is_file());
     // Read the written surfaces back as a run (files relative to the run file).
     let read = format!(
         "[surface]\ntop = \"o/top.npy\"\nbottom = \"o/bottom.npy\"\nlength = 1.0\n{}",
@@ -138,7 +94,7 @@ fn surface_and_contact_write_their_files() {
         .unwrap();
     assert!(ok.success());
     assert_eq!(
-        std::fs::read(out.join("pressure.npy")).unwrap(),
+        std::fs::read(contact.join("pressure.npy")).unwrap(),
         std::fs::read(out2.join("pressure.npy")).unwrap()
     );
 }
@@ -222,7 +178,8 @@ fn slide_writes_summary_and_series() {
     let mut lines = series.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "load,fracture_energy,s,junctions,contact_area,n_critical,n_formed,n_shrunk,volume,iterations,residual"
+        "load,fracture_energy,s,junctions,contact_area,n_critical,n_formed,n_shrunk,volume,initial_junctions,\
+         static_wear_coefficient,static_wear_rate,iterations,residual"
     );
     // 64 px: 4 offsets of 4 px in running-in, then 16 of 1 px; 2 loads × 1 fracture energy.
     assert_eq!(lines.count(), 2 * 20);

@@ -2,12 +2,12 @@
 //! the same results without recomputing finished jobs; shards and worker counts change nothing.
 
 use std::path::Path;
-use std::process::{Command, Stdio};
+use std::process::Stdio;
 use std::time::{Duration, Instant};
 
-fn wearsim() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_wearsim"))
-}
+mod common;
+
+use common::wearsim;
 
 const STUDY: &str = r#"
 [surface]
@@ -97,7 +97,11 @@ fn killed_study_resumes_to_the_same_results() {
     }
     child.kill().unwrap(); // SIGKILL
     child.wait().unwrap();
-    let finished: Vec<String> = job_files(&out).into_iter().filter(|f| !f.starts_with('.')).collect();
+    // Finished jobs: their result files (the killed run also leaves the claim of the job it was on).
+    let finished: Vec<String> = job_files(&out)
+        .into_iter()
+        .filter(|f| f.ends_with(".json") && !f.starts_with('.'))
+        .collect();
     assert!(
         !finished.is_empty() && finished.len() < total,
         "kill did not land part-way: {} jobs",
@@ -120,8 +124,10 @@ fn killed_study_resumes_to_the_same_results() {
         "a finished job was recomputed: {stdout}"
     );
     assert!(
-        job_files(&out).iter().all(|f| !f.starts_with('.')),
-        "partial file left: {:?}",
+        job_files(&out)
+            .iter()
+            .all(|f| f.ends_with(".json") && !f.starts_with('.')),
+        "partial or claim file left: {:?}",
         job_files(&out)
     );
     assert_eq!(collect(&out), (tidy_ref, agg_ref));

@@ -73,8 +73,23 @@ pub fn interruptible_with_progress<T: Send>(
 ) -> PyResult<T> {
     let interrupt = Interrupt::default();
     let progress = Progress::default();
+    let threads = match threads {
+        Some(requested) => {
+            let (t, note) = wearsim::check::threads(requested).map_err(to_py)?;
+            if let Some(note) = note {
+                let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
+                PyErr::warn(
+                    py,
+                    &category,
+                    &std::ffi::CString::new(format!("threads: {note}")).unwrap_or_default(),
+                    1,
+                )?;
+            }
+            Some(t)
+        }
+        None => None,
+    };
     let pool = match threads {
-        Some(0) => return Err(PyValueError::new_err("invalid `threads`: must be at least 1")),
         Some(t) => Some(
             rayon::ThreadPoolBuilder::new()
                 .num_threads(t)

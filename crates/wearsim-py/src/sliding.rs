@@ -72,8 +72,9 @@ fn slide<'py>(
         solver,
         connectivity,
         sliding: &sliding,
+        warnings: Vec::new(),
     };
-    let mut summary = sliding_summary(&inputs, &runs, seconds, schedule(n, &sliding).len());
+    let mut summary = sliding_summary(&inputs, &runs, t.pixel_size(), seconds, schedule(n, &sliding).len());
     summary.as_object_mut().expect("an object").remove("units");
     Ok((series_columns(py, &runs)?, json_to_py(py, &summary)?))
 }
@@ -162,19 +163,18 @@ impl PyRunFile {
             )));
         };
         let start = Instant::now();
-        let (runs, n) = interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, steps| {
+        let (runs, n, pixel_size) = interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, steps| {
             let (top, bottom) = config.surfaces()?;
             let mut setup = SlidingSetup::from_run(config, sliding);
             setup.interrupt = interrupt.clone();
-            Ok((
-                run_sliding(&top, &bottom, &setup, |view| steps.set(view.done, view.total))?,
-                top.n(),
-            ))
+            let runs = run_sliding(&top, &bottom, &setup, |view| steps.set(view.done, view.total))?;
+            Ok((runs, top.n(), top.pixel_size()))
         })?;
         let seconds = start.elapsed().as_secs_f64();
         let summary = sliding_summary(
             &SlidingInputs::of_run(config, sliding),
             &runs,
+            pixel_size,
             seconds,
             schedule(n, sliding).len(),
         );

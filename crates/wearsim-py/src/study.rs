@@ -10,7 +10,7 @@ use wearsim::output::{JobResult, Table};
 use wearsim::study::{self, Job, Study};
 
 use crate::error::{interruptible, interruptible_with_progress, to_py};
-use crate::table_to_py;
+use crate::{json_to_py, table_to_py};
 
 /// One row of `Study.jobs()`: the input columns of the tidy results table.
 #[derive(Default, serde::Serialize)]
@@ -93,9 +93,7 @@ impl PyStudy {
             study::prepare_folder(&out, study, base)?;
             let mut pending = Vec::new();
             for job in &study.jobs {
-                if study::job_path(&out, job.index).is_file() {
-                    study::store::read_result(job, &out)?;
-                } else {
+                if !matches!(study::stored_result(job, &out)?, study::Stored::Done(_)) {
                     pending.push(job.index);
                 }
             }
@@ -104,17 +102,19 @@ impl PyStudy {
     }
 
     /// Runs the jobs of shard `shard` = (k, count) that have no result file, `workers` at a time
-    /// (default: one per thread, as `wearsim study run`). Returns (computed, skipped).
+    /// (default: one per thread, as `wearsim study run`, fewer where memory is short). Returns a dict:
+    /// computed, skipped, claimed_elsewhere (job indices another run is computing), recomputed
+    /// (job files that could not be read, with the reason), notes.
     #[pyo3(signature = (out, workers = None, shard = None, threads = None, progress = None))]
-    fn run(
+    fn run<'py>(
         &self,
-        py: Python<'_>,
+        py: Python<'py>,
         out: PathBuf,
         workers: Option<usize>,
         shard: Option<(usize, usize)>,
         threads: Option<usize>,
         progress: Option<Bound<'_, PyAny>>,
-    ) -> PyResult<(usize, usize)> {
+    ) -> PyResult<Bound<'py, PyAny>> {
         let study = &self.study;
         let base = &self.base;
         let jobs: Vec<&Job> = match shard {
@@ -126,13 +126,25 @@ impl PyStudy {
                 )))
             }
         };
-        interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, done_jobs| {
+        let (summary, note) = interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, done_jobs| {
+            let requested = workers.unwrap_or_else(rayon::current_num_threads).max(1);
+            let (workers, note) = study::workers_for_memory(&jobs, requested)?;
             study::prepare_folder(&out, study, base)?;
-            let workers = workers.unwrap_or_else(rayon::current_num_threads).max(1);
-            study::run_jobs(&out, &jobs, workers, interrupt, |done, total| {
+            let summary = study::run_jobs(&out, &jobs, workers, interrupt, |done, total| {
                 done_jobs.set(done, total)
-            })
-        })
+            })?;
+            Ok((summary, note))
+        })?;
+        json_to_py(
+            py,
+            &serde_json::json!({
+                "computed": summary.computed,
+                "skipped": summary.skipped,
+                "claimed_elsewhere": summary.claimed_elsewhere,
+                "recomputed": summary.recomputed,
+                "notes": note.into_iter().collect::<Vec<_>>(),
+            }),
+        )
     }
 
     /// Runs job `index` and returns its result as JSON text (what its job file holds); writes nothing.

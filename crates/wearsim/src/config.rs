@@ -119,7 +119,8 @@ pub struct SlidingConfig {
 }
 
 impl SlidingConfig {
-    /// A validated schedule; `grid`, when known, bounds the steps.
+    /// A validated schedule; `grid`, when known, bounds the steps and must leave at least two steps
+    /// after running-in ([`SlidingConfig::check_grid`]).
     pub fn new(
         loads: Vec<f64>,
         distance: f64,
@@ -150,21 +151,79 @@ impl SlidingConfig {
             ));
         }
         for (field, v) in [("step_running_in", step_running_in), ("step", step)] {
-            if v == 0 || grid.is_some_and(|g| v >= g) {
-                return Err(Error::param(
-                    field,
-                    format!("{v} pixels must be at least 1 and below the grid size"),
-                ));
+            if v == 0 {
+                return Err(Error::param(field, format!("{v} pixels must be at least 1")));
             }
         }
-        Ok(Self {
+        let config = Self {
             loads,
             distance,
             running_in,
             step_running_in,
             step,
-        })
+        };
+        if let Some(n) = grid {
+            config.check_grid(n)?;
+        }
+        Ok(config)
     }
+
+    /// Sliding offsets in pixels on an `n`-pixel grid (paper §3): from 0 in steps of
+    /// `step_running_in` while below the running-in distance, then from the running-in distance in
+    /// steps of `step` while below the total distance (the end point excluded). Distances are
+    /// rounded to whole pixels. The paper's schedule gives 1,280 offsets at N = 4096.
+    pub fn offsets(&self, n: usize) -> Vec<usize> {
+        let (running_in, distance) = (self.running_in_pixels(n), self.distance_pixels(n));
+        let mut offsets: Vec<usize> = (0..running_in).step_by(self.step_running_in).collect();
+        offsets.extend((running_in..distance).step_by(self.step));
+        offsets
+    }
+
+    /// The running-in distance in whole pixels.
+    pub fn running_in_pixels(&self, n: usize) -> usize {
+        (self.running_in * n as f64).round() as usize
+    }
+
+    fn distance_pixels(&self, n: usize) -> usize {
+        (self.distance * n as f64).round() as usize
+    }
+
+    /// Checks the schedule on an `n`-pixel grid: steps below the grid size, and at least two steps
+    /// after running-in, the fewest a wear rate can be fitted to.
+    pub fn check_grid(&self, n: usize) -> Result<()> {
+        for (field, step) in [("step_running_in", self.step_running_in), ("step", self.step)] {
+            if step >= n {
+                return Err(Error::param(
+                    field,
+                    format!("{step} pixels must be below the grid size {n}"),
+                ));
+            }
+        }
+        let fitted = (self.running_in_pixels(n)..self.distance_pixels(n))
+            .step_by(self.step)
+            .count();
+        if fitted < 2 {
+            return Err(Error::param(
+                "distance",
+                format!(
+                    "{} − running_in {} leaves {fitted} step(s) of {} px on the {n}-pixel grid after running-in; the \
+                     wear rate is a line fitted to at least two: raise `distance`, lower `running_in` or `step`, or \
+                     refine `grid`",
+                    self.distance, self.running_in, self.step
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Whether the surface files a run names must exist when it is read: for a run about to be
+/// computed they must; a finished study's stored runs are read back without them (its results are
+/// collected without the surfaces).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SurfaceFiles {
+    MustExist,
+    Recorded,
 }
 
 /// A validated run file.
@@ -205,18 +264,18 @@ impl RunConfig {
     /// Parses run-file text; relative surface paths are resolved against `base`.
     pub fn from_toml(text: &str, base: &Path) -> Result<Self> {
         let raw: RawRun = toml::from_str(text).map_err(|e| Error::run_file(one_line(&e.to_string())))?;
-        Self::from_raw(raw, base)
+        Self::from_raw(raw, base, SurfaceFiles::MustExist)
     }
 
     /// A run described by a parsed TOML table (a study's job), without a round trip through text.
-    pub fn from_table(table: toml::Table, base: &Path) -> Result<Self> {
+    pub fn from_table(table: toml::Table, base: &Path, files: SurfaceFiles) -> Result<Self> {
         let raw: RawRun = toml::Value::Table(table)
             .try_into()
             .map_err(|e| Error::run_file(one_line(&e.to_string())))?;
-        Self::from_raw(raw, base)
+        Self::from_raw(raw, base, files)
     }
 
-    fn from_raw(raw: RawRun, base: &Path) -> Result<Self> {
+    fn from_raw(raw: RawRun, base: &Path, files: SurfaceFiles) -> Result<Self> {
         let s = raw.surface;
         let surfaces = match (&s.top, &s.bottom) {
             (Some(top), Some(bottom)) => {
@@ -240,7 +299,7 @@ impl RunConfig {
                 positive("length", length)?;
                 let (top, bottom) = (base.join(top), base.join(bottom));
                 for p in [&top, &bottom] {
-                    if !p.is_file() {
+                    if files == SurfaceFiles::MustExist && !p.is_file() {
                         return Err(Error::file(
                             p,
                             "surface file not found (paths are relative to the run file)",
@@ -312,6 +371,14 @@ impl RunConfig {
                 )?)
             }
         };
+        if let Some(sl) = &sliding {
+            let length = match &surfaces {
+                SurfaceSource::Generated { length, .. } | SurfaceSource::Files { length, .. } => *length,
+            };
+            for &load in &sl.loads {
+                crate::check::load(load, length * length, material.flow_pressure())?;
+            }
+        }
         Ok(Self {
             units: raw.units,
             surfaces,
@@ -332,6 +399,7 @@ impl RunConfig {
                 spectrum,
                 seed,
             } => {
+                crate::check::memory("generating the surface pair", *grid, crate::check::SURFACE_ARRAYS)?;
                 let (top_seed, bottom_seed) = pair_seeds(*seed);
                 let (top, bottom) = rayon::join(
                     || Surface::generate(*grid, *length, spectrum, top_seed),
@@ -351,6 +419,39 @@ impl RunConfig {
                 Ok((t, b))
             }
         }
+    }
+
+    /// Grid size N: the generated grid, or that of the top surface file (read from its header).
+    pub fn grid(&self) -> Result<usize> {
+        match &self.surfaces {
+            SurfaceSource::Generated { grid, .. } => Ok(*grid),
+            SurfaceSource::Files { top, length, .. } => match crate::io::npy_shape(top, "a height map")? {
+                (rows, cols) if rows == cols && crate::check::grid(rows).is_ok() => Ok(rows),
+                // Reading the file says precisely what is wrong with it.
+                _ => Surface::read_npy(top, *length).map(|s| s.n()),
+            },
+        }
+    }
+
+    /// What makes this run under-resolved before it starts: a shortest wavelength λ_l of fewer than
+    /// four pixels (the paper uses 16, appendix A). One sentence each.
+    pub fn warnings(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        if let SurfaceSource::Generated {
+            grid, length, spectrum, ..
+        } = &self.surfaces
+        {
+            let pixels = spectrum.lambda_lower / (length / *grid as f64);
+            if pixels < crate::check::RESOLVED_PIXELS {
+                out.push(format!(
+                    "λ_l = {:.4e} is {pixels:.1} pixels, under {}: the shortest wavelength of the roughness is not \
+                     resolved (the paper uses 16 pixels); refine `grid` or raise `lambda_lower`",
+                    spectrum.lambda_lower,
+                    crate::check::RESOLVED_PIXELS
+                ));
+            }
+        }
+        out
     }
 
     /// Side length L of the surfaces, in the run's length unit.
@@ -480,6 +581,41 @@ loads = [1e-3]
         assert_eq!(c.sliding.as_ref().unwrap().step_running_in, 4);
         let (t, b) = c.surfaces().unwrap();
         assert_ne!(t, b);
+    }
+
+    fn schedule(distance: f64, running_in: f64, step: usize) -> SlidingConfig {
+        SlidingConfig {
+            loads: vec![1e-3],
+            distance,
+            running_in,
+            step_running_in: 4,
+            step,
+        }
+    }
+
+    #[test]
+    fn paper_schedule_has_1280_offsets_at_4096_and_160_at_512() {
+        let cfg = schedule(0.5, 0.25, 1);
+        let s = cfg.offsets(4096);
+        assert_eq!(s.len(), 1280);
+        assert_eq!(&s[..3], &[0, 4, 8]);
+        assert_eq!(s[255], 1020);
+        assert_eq!(s[256], 1024);
+        assert_eq!(*s.last().unwrap(), 2047);
+        assert_eq!(cfg.offsets(512).len(), 160);
+    }
+
+    #[test]
+    fn a_schedule_needs_two_steps_after_running_in() {
+        assert!(schedule(0.5, 0.25, 1).check_grid(64).is_ok());
+        // 64 px: running-in 16 px, distance 17 px → one fitted step.
+        let e = schedule(0.27, 0.25, 1).check_grid(64).unwrap_err().to_string();
+        assert!(e.contains("`distance`") && e.contains("1 step"), "{e}");
+        assert!(schedule(0.5, 0.25, 64)
+            .check_grid(64)
+            .unwrap_err()
+            .to_string()
+            .contains("`step`"));
     }
 
     #[test]

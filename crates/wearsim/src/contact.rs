@@ -335,6 +335,7 @@ impl ContactSolver {
         check_grid(n)?;
         positive("length", length)?;
         positive("effective_modulus", effective_modulus)?;
+        crate::check::memory("the contact solver", n, 8.0)?;
         let nn = (n * n) as f64;
         // û = 2 p̂ / (E* |k|), |k| = 2π|q|/L; the q = 0 mode is the rigid-body position, set by the load.
         let kernel = radial_kernel(n, |qx, qy| {

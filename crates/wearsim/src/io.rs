@@ -65,6 +65,136 @@ pub fn read_text(path: &Path) -> Result<String> {
     std::fs::read_to_string(path).map_err(|e| Error::io(path, e))
 }
 
+/// A command's output folder, written as a whole: files go into a temporary sibling folder, which
+/// replaces the output folder in one step on [`OutputDir::commit`], so a command's outputs appear
+/// together or not at all and never mix with an earlier run's. Made before any work, so that a
+/// folder that cannot be written is found before the computation; dropped without a commit, it
+/// removes its temporary folder.
+#[derive(Debug)]
+pub struct OutputDir {
+    target: std::path::PathBuf,
+    staging: std::path::PathBuf,
+    committed: bool,
+}
+
+/// The marker file that says which command wrote a folder.
+const MARKER: &str = ".wearsim.json";
+
+impl OutputDir {
+    /// Prepares to write the outputs of `command` into `target`. An existing `target` must be a
+    /// folder that is empty or holds an earlier run of the same command (which the new outputs
+    /// replace whole); another command's results, or files wearsim did not write, are refused unless
+    /// `overwrite` is set.
+    pub fn begin(target: &Path, command: &str, overwrite: bool) -> Result<Self> {
+        if target.exists() && !target.is_dir() {
+            return Err(Error::file(target, "exists and is not a folder; give another --out"));
+        }
+        if target.is_dir() && !overwrite {
+            let mut entries = std::fs::read_dir(target).map_err(|e| Error::io(target, e))?;
+            if entries.next().is_some() {
+                let marker = std::fs::read_to_string(target.join(MARKER)).ok();
+                let writer = marker
+                    .as_deref()
+                    .and_then(|t| serde_json::from_str::<serde_json::Value>(t).ok())
+                    .and_then(|v| v.get("command").and_then(|c| c.as_str()).map(String::from));
+                match writer {
+                    Some(c) if c == command => {}
+                    Some(c) => {
+                        return Err(Error::file(
+                            target,
+                            format!(
+                                "holds the results of `wearsim {c}`; give another --out, or --overwrite to replace \
+                                 them with those of `wearsim {command}`"
+                            ),
+                        ))
+                    }
+                    None => return Err(Error::file(
+                        target,
+                        "holds files that wearsim did not write; give another --out, or --overwrite to replace the \
+                             folder",
+                    )),
+                }
+            }
+        }
+        let parent = parent_or_dot(target);
+        std::fs::create_dir_all(parent).map_err(|e| Error::io(parent, e))?;
+        let staging = temporary_sibling(target)?;
+        std::fs::create_dir(&staging).map_err(|e| Error::io(&staging, e))?;
+        let dir = Self {
+            target: target.to_path_buf(),
+            staging,
+            committed: false,
+        };
+        let provenance = serde_json::json!({"command": command, "software": format!("wearsim {}", crate::VERSION)});
+        write_json(&dir.join(MARKER), &provenance)?;
+        Ok(dir)
+    }
+
+    /// Where a file of the outputs is written (inside the temporary folder until the commit).
+    pub fn join(&self, name: &str) -> std::path::PathBuf {
+        self.staging.join(name)
+    }
+
+    /// The folder the outputs will have once committed.
+    pub fn target(&self) -> &Path {
+        &self.target
+    }
+
+    /// Puts the outputs in place: the temporary folder replaces `target` (an earlier folder there is
+    /// moved aside first and removed after).
+    pub fn commit(mut self) -> Result<()> {
+        let aside = if self.target.exists() {
+            let aside = temporary_sibling(&self.target)?;
+            std::fs::rename(&self.target, &aside).map_err(|e| Error::io(&self.target, e))?;
+            Some(aside)
+        } else {
+            None
+        };
+        if let Err(e) = std::fs::rename(&self.staging, &self.target) {
+            if let Some(aside) = &aside {
+                let _ = std::fs::rename(aside, &self.target);
+            }
+            return Err(Error::io(&self.target, e));
+        }
+        self.committed = true;
+        if let Some(aside) = aside {
+            let _ = std::fs::remove_dir_all(aside);
+        }
+        Ok(())
+    }
+}
+
+impl Drop for OutputDir {
+    fn drop(&mut self) {
+        if !self.committed {
+            let _ = std::fs::remove_dir_all(&self.staging);
+        }
+    }
+}
+
+/// Writes several files so that they appear together: each into a temporary sibling, then all
+/// renamed into place (a failed write leaves none of them changed).
+pub fn write_texts_together(files: &[(&Path, &str)]) -> Result<()> {
+    let mut written: Vec<(std::path::PathBuf, &Path)> = Vec::new();
+    let result = (|| -> Result<()> {
+        for (path, text) in files {
+            let tmp = temporary_sibling(path)?;
+            written.push((tmp.clone(), path));
+            write_text(&tmp, text)?;
+        }
+        for (tmp, path) in &written {
+            std::fs::rename(tmp, path).map_err(|e| Error::io(path, e))?;
+        }
+        Ok(())
+    })();
+    if result.is_err() {
+        for (tmp, _) in &written {
+            let _ = std::fs::remove_file(tmp);
+        }
+    }
+    result
+}
+
 /// Element types of `.npy` files that wearsim reads.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum NpyType {
@@ -208,9 +338,9 @@ fn parse_npy_header(bytes: &[u8]) -> std::result::Result<NpyHeader, String> {
     })
 }
 
-/// Reads a 2D `.npy` array of one of the `accepted` element types. The header's promise is checked
-/// against the file's size before any data is read; `what` names the array in messages.
-pub fn read_npy_2d(path: &Path, accepted: &[NpyType], what: &str) -> Result<Npy2> {
+/// Opens a `.npy` file and parses its header: the open file (positioned after the header), its size
+/// and the header.
+fn open_npy(path: &Path) -> Result<(std::fs::File, u64, NpyHeader)> {
     let mut file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
     let size = file.metadata().map_err(|e| Error::io(path, e))?.len();
     let mut head = vec![0u8; 12];
@@ -230,6 +360,33 @@ pub fn read_npy_2d(path: &Path, accepted: &[NpyType], what: &str) -> Result<Npy2
     head.resize(header_len.max(got), 0);
     read_up_to(&mut file, &mut head[got..]).map_err(|e| Error::io(path, e))?;
     let h = parse_npy_header(&head).map_err(|m| Error::file(path, m))?;
+    // The data follows the header; a file shorter than the header was refused above.
+    use std::io::Seek;
+    file.seek(std::io::SeekFrom::Start(h.data_offset as u64))
+        .map_err(|e| Error::io(path, e))?;
+    Ok((file, size, h))
+}
+
+/// The shape of a 2D `.npy` array, read from its header alone; `what` names the array in messages.
+pub fn npy_shape(path: &Path, what: &str) -> Result<(usize, usize)> {
+    let (_, _, h) = open_npy(path)?;
+    match h.shape[..] {
+        [rows, cols] => Ok((rows, cols)),
+        _ => Err(Error::file(
+            path,
+            format!(
+                "{what} must be a 2D array; this one has shape {:?} ({} dimensions)",
+                h.shape,
+                h.shape.len()
+            ),
+        )),
+    }
+}
+
+/// Reads a 2D `.npy` array of one of the `accepted` element types. The header's promise is checked
+/// against the file's size before any data is read; `what` names the array in messages.
+pub fn read_npy_2d(path: &Path, accepted: &[NpyType], what: &str) -> Result<Npy2> {
+    let (mut file, size, h) = open_npy(path)?;
     if h.shape.len() != 2 {
         return Err(Error::file(
             path,
@@ -335,6 +492,47 @@ mod tests {
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
         write_text(&path, "whole").unwrap();
         assert_eq!(std::fs::read_to_string(&path).unwrap(), "whole");
+    }
+
+    #[test]
+    fn an_output_folder_appears_whole_and_refuses_another_commands_results() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out");
+        let first = OutputDir::begin(&out, "slide", false).unwrap();
+        write_text(&first.join("summary.json"), "{}").unwrap();
+        write_text(&first.join("series.csv"), "a\n").unwrap();
+        assert!(!out.exists(), "nothing appears before the commit");
+        first.commit().unwrap();
+        assert!(out.join("series.csv").is_file());
+        // The same command replaces the folder whole: no file of the earlier run survives.
+        let again = OutputDir::begin(&out, "slide", false).unwrap();
+        write_text(&again.join("summary.json"), "{\"new\": 1}").unwrap();
+        again.commit().unwrap();
+        assert!(!out.join("series.csv").exists());
+        // Another command is refused without --overwrite, and the folder is left alone.
+        let e = OutputDir::begin(&out, "contact", false).unwrap_err().to_string();
+        assert!(e.contains("wearsim slide") && e.contains("--overwrite"), "{e}");
+        // A run that fails before its commit leaves no trace.
+        let failed = OutputDir::begin(&out, "slide", false).unwrap();
+        write_text(&failed.join("series.csv"), "half").unwrap();
+        drop(failed);
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+        assert_eq!(
+            std::fs::read_to_string(out.join("summary.json")).unwrap(),
+            "{\"new\": 1}"
+        );
+        // A file in the way is refused before any work.
+        let file = dir.path().join("file");
+        std::fs::write(&file, "x").unwrap();
+        assert!(OutputDir::begin(&file, "slide", true)
+            .unwrap_err()
+            .to_string()
+            .contains("not a folder"));
+        std::fs::write(dir.path().join("mine.txt"), "x").unwrap();
+        assert!(OutputDir::begin(dir.path(), "slide", false)
+            .unwrap_err()
+            .to_string()
+            .contains("did not write"));
     }
 
     #[test]

@@ -52,6 +52,62 @@ impl Provenance {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Units
+
+/// The unit of a quantity (a result field, a series or table column, an input) in a unit system:
+/// reduced units are multiples of E and L; SI units are Pa, m, N and J/m². Dimensionless numbers and
+/// counts have "" (counts) or "1" (ratios). Column suffixes `_mean`, `_std`, `_min`, `_max` and the
+/// `surface.`/`material.`/`contact.` prefixes are looked through.
+pub fn unit_of(units: Units, quantity: &str) -> &'static str {
+    let mut q = quantity.rsplit('.').next().unwrap_or(quantity);
+    for suffix in ["_mean", "_std", "_min", "_max"] {
+        q = q.strip_suffix(suffix).unwrap_or(q);
+    }
+    let si = units == Units::Si;
+    let pick = |reduced: &'static str, si_unit: &'static str| if si { si_unit } else { reduced };
+    match q {
+        "load" => pick("E L²", "N"),
+        "fracture_energy" | "fracture_energies" => pick("E L", "J/m²"),
+        "flow_pressure" | "effective_modulus" | "youngs_modulus" | "shear_strength" | "mean_pressure" => {
+            pick("E", "Pa")
+        }
+        "critical_diameter"
+        | "s"
+        | "length"
+        | "lambda_lower"
+        | "lambda_upper"
+        | "rms_height"
+        | "approach"
+        | "memory_decay_length"
+        | "pixel_size" => pick("L", "m"),
+        "wear_rate" | "wear_rate_estimate" | "static_wear_rate" => pick("L²", "m²"),
+        "volume" | "initial_volume" => pick("L³", "m³"),
+        "particle_rate" => pick("1/L", "1/m"),
+        "contact_area" => "1 (fraction of L²)",
+        "wear_coefficient"
+        | "static_wear_coefficient"
+        | "wear_rate_r2"
+        | "memory_decay_r2"
+        | "poisson_ratio"
+        | "geometry_factor"
+        | "hurst"
+        | "tolerance"
+        | "residual" => "1",
+        _ => "",
+    }
+}
+
+/// The units of the given columns (those with one), for a table's companion file or a summary.
+pub fn units_map<'a>(units: Units, columns: impl IntoIterator<Item = &'a str>) -> BTreeMap<String, String> {
+    columns
+        .into_iter()
+        .map(|c| (c.to_string(), unit_of(units, c)))
+        .filter(|(_, u)| !u.is_empty())
+        .map(|(c, u)| (c, u.to_string()))
+        .collect()
+}
+
+// ---------------------------------------------------------------------------------------------
 // Tables
 
 /// One cell of a table.
@@ -158,7 +214,8 @@ impl Table {
 
 /// One row of a sliding run's series (`series.csv` of `wearsim slide`, the DataFrame of the Python
 /// `slide`): one step of one load for one fracture energy. The first nine columns are the paper's
-/// record per step (§3); `iterations` and `residual` are the contact solver's.
+/// record per step (§3), then the memory of the initial contact and the static model at this step;
+/// `iterations` and `residual` are the contact solver's.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
 pub struct SeriesRow {
     /// Normal load F_N.
@@ -179,6 +236,12 @@ pub struct SeriesRow {
     pub n_shrunk: i64,
     /// V: wear volume so far, s = 0 included.
     pub volume: f64,
+    /// Junctions descending from a junction present at s = 0 (the memory of the initial contact,
+    /// paper §3).
+    pub initial_junctions: usize,
+    /// Static model on this step's contact map: k_static and W_static/ω (paper §2).
+    pub static_wear_coefficient: f64,
+    pub static_wear_rate: f64,
     /// Contact solver iterations of this step.
     pub iterations: usize,
     /// Contact solver residual of this step.
@@ -202,6 +265,9 @@ pub fn series_rows(runs: &[LoadRun]) -> Vec<SeriesRow> {
                     n_formed: sw.n_formed,
                     n_shrunk: sw.n_shrunk(),
                     volume: sw.volume,
+                    initial_junctions: st.initial_junctions,
+                    static_wear_coefficient: st.statics[e].wear_coefficient,
+                    static_wear_rate: st.statics[e].wear_rate_over_omega,
                     iterations: st.iterations,
                     residual: st.residual,
                 });
@@ -228,6 +294,8 @@ pub struct SlidingInputs<'a> {
     pub solver: SolverOptions,
     pub connectivity: u8,
     pub sliding: &'a SlidingConfig,
+    /// Warnings about the inputs (e.g. λ_l of a few pixels), reported with the results'.
+    pub warnings: Vec<String>,
 }
 
 impl<'a> SlidingInputs<'a> {
@@ -241,8 +309,18 @@ impl<'a> SlidingInputs<'a> {
             solver: config.solver,
             connectivity: config.connectivity,
             sliding,
+            warnings: config.warnings(),
         }
     }
+}
+
+/// Every warning of a sliding run: about its inputs, d* against the pixel size, and each load's
+/// results.
+pub fn run_warnings(inputs: &SlidingInputs, pixel_size: f64, runs: &[LoadRun]) -> Vec<String> {
+    let mut all = inputs.warnings.clone();
+    all.extend(crate::sliding::resolution_warnings(inputs.material, pixel_size));
+    all.extend(runs.iter().flat_map(|r| r.warnings.iter().cloned()));
+    all
 }
 
 fn surface_source(source: &SurfaceSource) -> Value {
@@ -265,7 +343,13 @@ free, max(0,-(g+c)) on non-contact, max(0,g+c) on plastic pixels) divided by std
 
 /// `summary.json` of a sliding run: provenance, inputs, derived quantities, solver statistics and
 /// the results per load and fracture energy, with the conventions they follow.
-pub fn sliding_summary(inputs: &SlidingInputs, runs: &[LoadRun], seconds: f64, steps_per_load: usize) -> Value {
+pub fn sliding_summary(
+    inputs: &SlidingInputs,
+    runs: &[LoadRun],
+    pixel_size: f64,
+    seconds: f64,
+    steps_per_load: usize,
+) -> Value {
     let m = inputs.material;
     let results: Vec<Value> = runs
         .iter()
@@ -308,9 +392,13 @@ pub fn sliding_summary(inputs: &SlidingInputs, runs: &[LoadRun], seconds: f64, s
         "solver": {"tolerance": inputs.solver.tolerance(), "residual_definition": RESIDUAL_DEFINITION, "per_load": solver},
         "steps_per_load": steps_per_load,
         "fit": "least-squares lines of V and N*₊ against s over the steps with s ≥ running_in·L",
-        "static_wear_rate_convention": "W_static/ω = k_static Σ A_i at s = 0",
+        "static_wear_rate_convention": "W_static/ω = k_static Σ A_i; static_wear_coefficient and static_wear_rate at s = 0, *_mean and *_std over every offset of the run",
         "wear_rate_estimate_convention": "ω d*³ dN*₊/ds with ω = π/6",
+        "memory_convention": "initial_junctions: junctions descending by step-to-step pixel overlap from a junction present at s = 0; memory_decay_length ℓ from a least-squares fit of ln N₀ = ln N₀(0) − s/ℓ",
         "results": results,
+        "units_of_results": units_map(inputs.units, columns::<WearResult>().iter().map(String::as_str).chain(["load", "flow_pressure", "effective_modulus"])),
+        "units_of_series": units_map(inputs.units, columns::<SeriesRow>().iter().map(String::as_str)),
+        "warnings": run_warnings(inputs, pixel_size, runs),
         "seconds": seconds,
     })
 }
@@ -467,10 +555,13 @@ pub struct JobResult {
     pub flow_pressure: f64,
     pub effective_modulus: f64,
     pub results: Vec<WearResult>,
-    /// Per step: s, junctions, contact area; per fracture energy: n_critical, n_formed, volume.
+    /// Per step: s, junctions, contact area, memory; per fracture energy: n_critical, n_formed,
+    /// volume and the static model.
     pub steps: Vec<StepRow>,
     pub total_iterations: usize,
     pub seconds: f64,
+    /// What makes a result of this job under-resolved or undefined.
+    pub warnings: Vec<String>,
 }
 
 /// One step of a job file.
@@ -479,9 +570,11 @@ pub struct StepRow {
     pub s: f64,
     pub junctions: usize,
     pub contact_area: f64,
+    pub initial_junctions: usize,
     pub n_critical: Vec<usize>,
     pub n_formed: Vec<usize>,
     pub volume: Vec<f64>,
+    pub static_wear_coefficient: Vec<f64>,
 }
 
 impl From<&StepRecord> for StepRow {
@@ -490,6 +583,8 @@ impl From<&StepRecord> for StepRow {
             s: r.s,
             junctions: r.junctions,
             contact_area: r.contact_area,
+            initial_junctions: r.initial_junctions,
+            static_wear_coefficient: r.statics.iter().map(|w| w.wear_coefficient).collect(),
             n_critical: r.wear.iter().map(|w| w.n_critical).collect(),
             n_formed: r.wear.iter().map(|w| w.n_formed).collect(),
             volume: r.wear.iter().map(|w| w.volume).collect(),
@@ -521,6 +616,9 @@ pub struct TidyRow {
     #[serde(flatten)]
     pub result: WearResult,
     pub flow_pressure: f64,
+    /// The job's warnings that concern this row (its fracture energy, or all of them), joined by
+    /// "; "; empty when the result is well resolved.
+    pub warnings: String,
 }
 
 impl TidyRow {
@@ -529,13 +627,24 @@ impl TidyRow {
         result
             .results
             .iter()
-            .map(|w| TidyRow {
-                job: result.index,
-                material: result.material.clone(),
-                inputs: result.inputs.clone(),
-                load: result.load,
-                result: w.clone(),
-                flow_pressure: result.flow_pressure,
+            .map(|w| {
+                // A warning that names a fracture energy belongs to that row only.
+                let tag = format!("𝒢 = {:.4e}", w.fracture_energy);
+                let mine: Vec<&str> = result
+                    .warnings
+                    .iter()
+                    .filter(|m| m.contains(&tag) || !m.contains("𝒢 = "))
+                    .map(String::as_str)
+                    .collect();
+                TidyRow {
+                    job: result.index,
+                    material: result.material.clone(),
+                    inputs: result.inputs.clone(),
+                    load: result.load,
+                    result: w.clone(),
+                    flow_pressure: result.flow_pressure,
+                    warnings: mine.join("; "),
+                }
             })
             .collect()
     }
@@ -552,15 +661,18 @@ fn result_columns() -> Vec<String> {
     c
 }
 
+/// Columns that neither identify a setting nor are averaged: the job index, the seed, the warnings.
+const NOT_A_SETTING: [&str; 3] = ["job", "surface.seed", "warnings"];
+
 /// The aggregated table of a tidy table: one row per setting (every column but the job index, the
 /// seed and the results), with the number of surface pairs and the mean, min and max over them of
-/// every result column. Rows keep the order in which settings first appear; undefined results
-/// (empty cells) are left out of the statistics.
+/// every result column, and the number of surface pairs with a warning. Rows keep the order in which
+/// settings first appear; undefined results (empty cells) are left out of the statistics.
 pub fn aggregate(tidy: &Table) -> Table {
     let values = result_columns();
     let value_index: Vec<usize> = values.iter().filter_map(|c| tidy.column(c)).collect();
     let key_index: Vec<usize> = (0..tidy.columns.len())
-        .filter(|i| !value_index.contains(i) && !["job", "surface.seed"].contains(&tidy.columns[*i].as_str()))
+        .filter(|i| !value_index.contains(i) && !NOT_A_SETTING.contains(&tidy.columns[*i].as_str()))
         .collect();
     let mut order: BTreeMap<Vec<String>, usize> = BTreeMap::new();
     let mut groups: Vec<(Vec<Cell>, Vec<&Vec<Cell>>)> = Vec::new();
@@ -573,8 +685,10 @@ pub fn aggregate(tidy: &Table) -> Table {
         });
         groups[g].1.push(row);
     }
+    let warnings = tidy.column("warnings");
     let mut columns: Vec<String> = key_index.iter().map(|&i| tidy.columns[i].clone()).collect();
     columns.push("surface_pairs".into());
+    columns.push("pairs_with_warnings".into());
     for &i in &value_index {
         let c = &tidy.columns[i];
         columns.extend([format!("{c}_mean"), format!("{c}_min"), format!("{c}_max")]);
@@ -584,6 +698,8 @@ pub fn aggregate(tidy: &Table) -> Table {
         .map(|(key, members)| {
             let mut line = key;
             line.push(Cell::Int(members.len() as i64));
+            let warned = warnings.map_or(0, |w| members.iter().filter(|m| !m[w].text().is_empty()).count());
+            line.push(Cell::Int(warned as i64));
             for &i in &value_index {
                 let v: Vec<f64> = members.iter().map(|m| m[i].number()).filter(|x| !x.is_nan()).collect();
                 if v.is_empty() {
@@ -601,12 +717,24 @@ pub fn aggregate(tidy: &Table) -> Table {
     Table { columns, rows }
 }
 
-/// Writes `results.csv` (tidy) and `results_aggregated.csv` into `dir`; returns their row counts.
+/// Writes `results.csv` (tidy), `results_aggregated.csv` and `results.units.json` (the unit of every
+/// column that has one) into `dir`, together (a failure leaves the earlier files); returns the row
+/// counts of the two tables.
 pub fn write_results_tables(dir: &std::path::Path, rows: &[TidyRow]) -> Result<(usize, usize)> {
     let tidy = Table::of(rows);
     let aggregated = aggregate(&tidy);
-    crate::io::write_text(&dir.join("results.csv"), &tidy.to_csv())?;
-    crate::io::write_text(&dir.join("results_aggregated.csv"), &aggregated.to_csv())?;
+    let units = rows.first().map_or(Units::Reduced, |r| r.inputs.units);
+    let unit_map = units_map(
+        units,
+        tidy.columns.iter().chain(&aggregated.columns).map(String::as_str),
+    );
+    let units_text = serde_json::to_string_pretty(&json!({"units": units, "columns": unit_map})).expect("plain data");
+    let (tidy_csv, aggregated_csv) = (tidy.to_csv(), aggregated.to_csv());
+    crate::io::write_texts_together(&[
+        (&dir.join("results.csv"), &tidy_csv),
+        (&dir.join("results_aggregated.csv"), &aggregated_csv),
+        (&dir.join("results.units.json"), &units_text),
+    ])?;
     Ok((tidy.rows.len(), aggregated.rows.len()))
 }
 
@@ -642,6 +770,9 @@ mod tests {
                 "n_formed",
                 "n_shrunk",
                 "volume",
+                "initial_junctions",
+                "static_wear_coefficient",
+                "static_wear_rate",
                 "iterations",
                 "residual"
             ]
@@ -649,7 +780,7 @@ mod tests {
         let tidy = columns::<TidyRow>();
         assert_eq!(&tidy[..3], ["job", "material", "units"]);
         assert!(tidy.contains(&"surface.seed".to_string()) && tidy.contains(&"wear_rate".to_string()));
-        assert_eq!(tidy.last().map(String::as_str), Some("flow_pressure"));
+        assert_eq!(tidy.last().map(String::as_str), Some("warnings"));
     }
 
     #[test]
@@ -678,7 +809,7 @@ mod tests {
 
     #[test]
     fn aggregation_groups_over_seeds_and_skips_undefined_results() {
-        let row = |job: usize, seed: u64, wear_rate: f64| TidyRow {
+        let row = |job: usize, seed: u64, wear_rate: Option<f64>| TidyRow {
             job,
             material: "m".into(),
             inputs: InputRecord {
@@ -691,12 +822,20 @@ mod tests {
                 ..WearResult::default()
             },
             flow_pressure: 0.05,
+            warnings: if wear_rate.is_none() {
+                "no particle".into()
+            } else {
+                String::new()
+            },
         };
-        let tidy = Table::of(&[row(0, 1, 1.0), row(1, 2, 3.0), row(2, 3, f64::NAN)]);
+        let tidy = Table::of(&[row(0, 1, Some(1.0)), row(1, 2, Some(3.0)), row(2, 3, None)]);
         let agg = aggregate(&tidy);
         assert_eq!(agg.rows.len(), 1);
         let at = |name: &str| agg.rows[0][agg.column(name).unwrap()].clone();
-        assert_eq!(at("surface_pairs"), Cell::Int(3));
+        assert_eq!(
+            (at("surface_pairs"), at("pairs_with_warnings")),
+            (Cell::Int(3), Cell::Int(1))
+        );
         assert_eq!(
             (at("wear_rate_mean"), at("wear_rate_min"), at("wear_rate_max")),
             (Cell::Float(2.0), Cell::Float(1.0), Cell::Float(3.0))

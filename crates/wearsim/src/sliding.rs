@@ -11,17 +11,11 @@ use crate::error::{Error, Interrupt, Result};
 use crate::junctions::JunctionLabeller;
 use crate::material::Material;
 use crate::surface::{composite_heights, Surface};
-use crate::wear::{static_wear, SlidingBookkeeping, StaticWear, StepWear};
+use crate::wear::{static_wear, InitialContactMemory, SlidingBookkeeping, StaticWear, StepWear};
 
-/// Sliding offsets in pixels (paper §3): from 0 in steps of `step_running_in` while below the
-/// running-in distance, then from the running-in distance in steps of `step` while below the total
-/// distance (the end point excluded). Distances are rounded to whole pixels.
+/// Sliding offsets in pixels (paper §3): see [`SlidingConfig::offsets`].
 pub fn schedule(n: usize, sliding: &SlidingConfig) -> Vec<usize> {
-    let running_in = (sliding.running_in * n as f64).round() as usize;
-    let distance = (sliding.distance * n as f64).round() as usize;
-    let mut offsets: Vec<usize> = (0..running_in).step_by(sliding.step_running_in).collect();
-    offsets.extend((running_in..distance).step_by(sliding.step));
-    offsets
+    sliding.offsets(n)
 }
 
 /// One step of one load: the contact statistics and, per fracture energy, the wear record.
@@ -35,51 +29,104 @@ pub struct StepRecord {
     pub junctions: usize,
     /// Real contact area as a fraction of the apparent area.
     pub contact_area: f64,
+    /// Junctions of this step that descend from a junction present at s = 0 (paper §3's memory of
+    /// the initial contact).
+    pub initial_junctions: usize,
     /// Solver iterations of this step.
     pub iterations: usize,
     /// Solver residual of this step.
     pub residual: f64,
     /// Wear record per fracture energy, in the material's order.
     pub wear: Vec<StepWear>,
+    /// Static model on this step's contact map per fracture energy (paper §2).
+    pub statics: Vec<StaticWear>,
 }
 
-/// Least-squares slope of y against x, and its coefficient of determination R².
-pub fn line_fit(x: &[f64], y: &[f64]) -> (f64, f64) {
-    let m = x.len() as f64;
-    if x.len() < 2 {
-        return (f64::NAN, f64::NAN);
+/// A least-squares line y = slope·x + intercept and its coefficient of determination R² (absent
+/// when y does not vary, where R² is undefined).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LineFit {
+    pub slope: f64,
+    pub intercept: f64,
+    pub r2: Option<f64>,
+}
+
+/// Least-squares line through (x, y); `None` with fewer than two points or x without spread.
+pub fn line_fit(x: &[f64], y: &[f64]) -> Option<LineFit> {
+    if x.len() < 2 || x.len() != y.len() {
+        return None;
     }
+    let m = x.len() as f64;
     let (mx, my) = (x.iter().sum::<f64>() / m, y.iter().sum::<f64>() / m);
     let sxx: f64 = x.iter().map(|a| (a - mx) * (a - mx)).sum();
     let sxy: f64 = x.iter().zip(y).map(|(a, b)| (a - mx) * (b - my)).sum();
     let syy: f64 = y.iter().map(|b| (b - my) * (b - my)).sum();
+    if sxx.is_nan() || sxx <= 0.0 {
+        return None;
+    }
     let slope = sxy / sxx;
     let ss_res = syy - slope * sxy;
-    let r2 = if syy > 0.0 { 1.0 - ss_res / syy } else { 1.0 };
-    (slope, r2)
+    let r2 = (syy > 0.0).then(|| 1.0 - ss_res / syy);
+    Some(LineFit {
+        slope,
+        intercept: my - slope * mx,
+        r2,
+    })
 }
 
-/// Results per load and fracture energy (paper §3–4); also the record stored in study job files.
+/// Mean and (population) standard deviation.
+fn mean_std(values: impl Iterator<Item = f64> + Clone) -> (f64, f64) {
+    let n = values.clone().count().max(1) as f64;
+    let mean = values.clone().sum::<f64>() / n;
+    let var = values.map(|v| (v - mean) * (v - mean)).sum::<f64>() / n;
+    (mean, var.sqrt())
+}
+
+/// A finite number, or nothing.
+fn finite(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+/// Results per load and fracture energy (paper §3–4 and appendices B, C); also the record stored in
+/// study job files. Fitted quantities are absent (`null` in JSON, an empty cell in CSV) where they
+/// are undefined; the run's `warnings` say why.
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct WearResult {
     pub fracture_energy: f64,
     pub critical_diameter: f64,
     /// W = dV/ds fitted after running-in (volume per sliding distance).
-    pub wear_rate: f64,
-    /// R² of the wear-rate fit.
-    pub wear_rate_r2: f64,
-    /// k = W p̃ / F_N (Archard).
-    pub wear_coefficient: f64,
+    pub wear_rate: Option<f64>,
+    /// R² of the wear-rate fit; absent where V does not change after running-in (no particle).
+    pub wear_rate_r2: Option<f64>,
+    /// k = W p̃ / F_N (Archard, paper Eq. 2).
+    pub wear_coefficient: Option<f64>,
     /// dN*₊/ds fitted after running-in (particles per sliding distance).
-    pub particle_rate: f64,
-    /// Check value ω d*³ dN*₊/ds with ω = π/6 (the paper finds it slightly below W).
-    pub wear_rate_estimate: f64,
+    pub particle_rate: Option<f64>,
+    /// Paper Eq. 5, ω d*³ dN*₊/ds with ω = π/6 (the paper finds it slightly below W, appendix B).
+    pub wear_rate_estimate: Option<f64>,
+    /// Particles formed after running-in (N*₊ at the end minus at the start of the fit window).
+    pub particles_in_fit: usize,
     /// V₀, the volume counted at s = 0.
     pub initial_volume: f64,
-    /// Static model at s = 0: k_static.
+    /// Static model at s = 0: k_static = Σ_{A_i ≥ A*} A_i / Σ A_i.
     pub static_wear_coefficient: f64,
     /// Static model at s = 0: W_static/ω = k_static Σ A_i.
     pub static_wear_rate: f64,
+    /// Static model over every offset of the run (paper §2): mean and standard deviation of k_static.
+    pub static_wear_coefficient_mean: f64,
+    pub static_wear_coefficient_std: f64,
+    /// Static model over every offset: mean and standard deviation of W_static/ω.
+    pub static_wear_rate_mean: f64,
+    pub static_wear_rate_std: f64,
+    /// Mean number of junctions N over the fit window (paper appendix C).
+    pub junctions_mean: f64,
+    /// Mean number of junctions at least d* across, N*, over the fit window (paper appendix C).
+    pub critical_junctions_mean: f64,
+    /// Decay length ℓ of the memory of the initial contact, N₀(s) ≈ N₀(0) e^(−s/ℓ) (paper §3), fitted
+    /// to ln N₀ over the steps where N₀ > 0; absent when it does not decay.
+    pub memory_decay_length: Option<f64>,
+    /// R² of that fit (in ln N₀).
+    pub memory_decay_r2: Option<f64>,
 }
 
 /// Time spent per part of the sliding loop, in seconds.
@@ -100,6 +147,8 @@ pub struct LoadRun {
     pub total_iterations: usize,
     pub max_iterations: usize,
     pub timing: Timing,
+    /// What makes a result of this load under-resolved or undefined, one sentence each.
+    pub warnings: Vec<String>,
 }
 
 /// Everything a sliding run needs besides the surfaces.
@@ -143,6 +192,27 @@ pub struct StepView<'a> {
     pub bookkeeping: &'a [SlidingBookkeeping],
 }
 
+/// Fewest particles after running-in for a wear rate worth a number without a warning.
+pub const FEW_PARTICLES: usize = 10;
+
+/// Warnings about d* in pixels: a critical diameter of a few pixels is not resolved.
+pub fn resolution_warnings(material: &Material, pixel_size: f64) -> Vec<String> {
+    material
+        .fracture_energies
+        .iter()
+        .zip(material.critical_diameters())
+        .filter(|(_, d)| d / pixel_size < crate::check::RESOLVED_PIXELS)
+        .map(|(g, d)| {
+            format!(
+                "d* = {d:.4e} for 𝒢 = {g:.4e} is {:.1} pixels, under {}: junctions of the critical size \
+                 are not resolved and the wear results follow the grid; refine `grid`",
+                d / pixel_size,
+                crate::check::RESOLVED_PIXELS
+            )
+        })
+        .collect()
+}
+
 /// Runs the sliding model for every load of `setup.sliding`. `observe` is called after every step
 /// (progress bars, animations); it sees the step but cannot change the run.
 pub fn run_sliding(
@@ -158,17 +228,13 @@ pub fn run_sliding(
             "top and bottom surfaces must share grid and side length",
         ));
     }
+    crate::check::memory("a sliding run", n, crate::check::SLIDING_ARRAYS)?;
     let length = top.length();
     let area = length * length;
     let dx = top.pixel_size();
     let pm = setup.material.flow_pressure();
     for &load in &setup.sliding.loads {
-        if load / area >= pm {
-            return Err(Error::InfeasibleLoad {
-                mean_pressure: load / area,
-                flow_pressure: pm,
-            });
-        }
+        crate::check::load(load, area, pm)?;
     }
     if setup.material.fracture_energies.is_empty() {
         return Err(Error::param(
@@ -176,25 +242,9 @@ pub fn run_sliding(
             "the material has none; give at least one 𝒢 to count wear",
         ));
     }
-    for (field, step) in [
-        ("step_running_in", setup.sliding.step_running_in),
-        ("step", setup.sliding.step),
-    ] {
-        if step >= n {
-            return Err(Error::param(
-                field,
-                format!("{step} pixels must be below the grid size {n}"),
-            ));
-        }
-    }
-    let offsets = schedule(n, setup.sliding);
-    if offsets.len() < 2 {
-        return Err(Error::param(
-            "distance",
-            "the schedule holds fewer than two offsets; raise `distance` or refine `grid`",
-        ));
-    }
-    let running_in = (setup.sliding.running_in * n as f64).round() as usize;
+    setup.sliding.check_grid(n)?;
+    let offsets = setup.sliding.offsets(n);
+    let running_in = setup.sliding.running_in_pixels(n);
     let diameters = setup.material.critical_diameters();
     let total_steps = offsets.len() * setup.sliding.loads.len();
     let mut solver = ContactSolver::new(n, length, setup.effective_modulus)?
@@ -209,7 +259,7 @@ pub fn run_sliding(
     let mut done = 0;
     for (load_index, &load) in setup.sliding.loads.iter().enumerate() {
         let mut books: Vec<SlidingBookkeeping> = diameters.iter().map(|&d| SlidingBookkeeping::new(d)).collect();
-        let mut statics: Vec<StaticWear> = Vec::new();
+        let mut memory = InitialContactMemory::default();
         let mut steps = Vec::with_capacity(offsets.len());
         let mut timing = Timing::default();
         pressure.iter_mut().for_each(|p| *p = 0.0); // cold start at s = 0 of every load
@@ -222,13 +272,12 @@ pub fn run_sliding(
             let count = labeller.label(|k| pressure[k] > 0.0);
             labeller.junctions_into(dx, &mut junctions);
             let t2 = Instant::now();
-            if offset == 0 {
-                statics = diameters.iter().map(|&d| static_wear(&junctions, d)).collect();
-            }
+            let statics: Vec<StaticWear> = diameters.iter().map(|&d| static_wear(&junctions, d)).collect();
             let wear: Vec<StepWear> = books
                 .iter_mut()
                 .map(|b| b.step(&labeller, &junctions, &mut scratch))
                 .collect();
+            let initial_junctions = memory.step(&labeller, &mut scratch);
             let t3 = Instant::now();
             timing.solve += (t1 - t0).as_secs_f64();
             timing.labelling += (t2 - t1).as_secs_f64();
@@ -238,9 +287,11 @@ pub fn run_sliding(
                 s: offset as f64 * dx,
                 junctions: count,
                 contact_area: info.contact_pixels as f64 / (n * n) as f64,
+                initial_junctions,
                 iterations: info.iterations,
                 residual: info.residual,
                 wear,
+                statics,
             });
             done += 1;
             observe(&StepView {
@@ -252,30 +303,7 @@ pub fn run_sliding(
                 bookkeeping: &books,
             });
         }
-        let fitted: Vec<&StepRecord> = steps.iter().filter(|r| r.offset >= running_in).collect();
-        let s: Vec<f64> = fitted.iter().map(|r| r.s).collect();
-        let results = diameters
-            .iter()
-            .enumerate()
-            .map(|(e, &d)| {
-                let v: Vec<f64> = fitted.iter().map(|r| r.wear[e].volume).collect();
-                let nf: Vec<f64> = fitted.iter().map(|r| r.wear[e].n_formed as f64).collect();
-                let (wear_rate, wear_rate_r2) = line_fit(&s, &v);
-                let (particle_rate, _) = line_fit(&s, &nf);
-                WearResult {
-                    fracture_energy: setup.material.fracture_energies[e],
-                    critical_diameter: d,
-                    wear_rate,
-                    wear_rate_r2,
-                    wear_coefficient: wear_rate * pm / load,
-                    particle_rate,
-                    wear_rate_estimate: std::f64::consts::PI / 6.0 * d.powi(3) * particle_rate,
-                    initial_volume: steps[0].wear[e].volume,
-                    static_wear_coefficient: statics[e].wear_coefficient,
-                    static_wear_rate: statics[e].wear_rate_over_omega,
-                }
-            })
-            .collect();
+        let (results, warnings) = results_of_load(setup, load, pm, &steps, running_in);
         runs.push(LoadRun {
             load,
             total_iterations: steps.iter().map(|r| r.iterations).sum(),
@@ -283,9 +311,99 @@ pub fn run_sliding(
             steps,
             results,
             timing,
+            warnings,
         });
     }
     Ok(runs)
+}
+
+/// The fitted results of one load per fracture energy (paper §3 and appendices B, C), and the
+/// warnings about them.
+fn results_of_load(
+    setup: &SlidingSetup,
+    load: f64,
+    pm: f64,
+    steps: &[StepRecord],
+    running_in: usize,
+) -> (Vec<WearResult>, Vec<String>) {
+    let fitted: Vec<&StepRecord> = steps.iter().filter(|r| r.offset >= running_in).collect();
+    let s: Vec<f64> = fitted.iter().map(|r| r.s).collect();
+    let mut warnings = Vec::new();
+    // Memory of the initial contact: ln N₀ against s over the steps where N₀ > 0.
+    let decaying: Vec<&StepRecord> = steps.iter().filter(|r| r.initial_junctions > 0).collect();
+    let memory = line_fit(
+        &decaying.iter().map(|r| r.s).collect::<Vec<_>>(),
+        &decaying
+            .iter()
+            .map(|r| (r.initial_junctions as f64).ln())
+            .collect::<Vec<_>>(),
+    );
+    let (memory_decay_length, memory_decay_r2) = match memory {
+        Some(f) if f.slope < 0.0 => (finite(-1.0 / f.slope), f.r2),
+        _ => (None, None),
+    };
+    let (junctions_mean, _) = mean_std(fitted.iter().map(|r| r.junctions as f64));
+    let results = setup
+        .material
+        .critical_diameters()
+        .into_iter()
+        .enumerate()
+        .map(|(e, d)| {
+            let g = setup.material.fracture_energies[e];
+            let v: Vec<f64> = fitted.iter().map(|r| r.wear[e].volume).collect();
+            let nf: Vec<f64> = fitted.iter().map(|r| r.wear[e].n_formed as f64).collect();
+            let wear_fit = line_fit(&s, &v);
+            let particle_fit = line_fit(&s, &nf);
+            let wear_rate = wear_fit.and_then(|f| finite(f.slope));
+            let particle_rate = particle_fit.and_then(|f| finite(f.slope));
+            let particles_in_fit = match (fitted.first(), fitted.last()) {
+                (Some(a), Some(b)) => b.wear[e].n_formed - a.wear[e].n_formed,
+                _ => 0,
+            };
+            let wear_rate_r2 = wear_fit.and_then(|f| f.r2);
+            let context = format!("F_N = {load:.4e}, 𝒢 = {g:.4e} (d* = {d:.4e})");
+            if particles_in_fit == 0 {
+                warnings.push(format!(
+                    "{context}: no particle formed after running-in, so W = 0 and its fit (R²) is undefined; no junction \
+                     grows to d* in this box at this load"
+                ));
+            } else if particles_in_fit < FEW_PARTICLES {
+                warnings.push(format!(
+                    "{context}: only {particles_in_fit} particles formed after running-in (fewer than {FEW_PARTICLES}); W \
+                     rests on a handful of events"
+                ));
+            }
+            if let Some(r2) = wear_rate_r2.filter(|r2| *r2 < 0.8) {
+                warnings.push(format!("{context}: the wear-rate fit is poor (R² = {r2:.3} < 0.8); V(s) is not linear"));
+            }
+            let (k_mean, k_std) = mean_std(steps.iter().map(|r| r.statics[e].wear_coefficient));
+            let (w_mean, w_std) = mean_std(steps.iter().map(|r| r.statics[e].wear_rate_over_omega));
+            let (critical_junctions_mean, _) = mean_std(fitted.iter().map(|r| r.wear[e].n_critical as f64));
+            WearResult {
+                fracture_energy: g,
+                critical_diameter: d,
+                wear_rate,
+                wear_rate_r2,
+                wear_coefficient: wear_rate.and_then(|w| finite(w * pm / load)),
+                particle_rate,
+                wear_rate_estimate: particle_rate
+                    .and_then(|rate| finite(std::f64::consts::PI / 6.0 * d.powi(3) * rate)),
+                particles_in_fit,
+                initial_volume: steps[0].wear[e].volume,
+                static_wear_coefficient: steps[0].statics[e].wear_coefficient,
+                static_wear_rate: steps[0].statics[e].wear_rate_over_omega,
+                static_wear_coefficient_mean: k_mean,
+                static_wear_coefficient_std: k_std,
+                static_wear_rate_mean: w_mean,
+                static_wear_rate_std: w_std,
+                junctions_mean,
+                critical_junctions_mean,
+                memory_decay_length,
+                memory_decay_r2,
+            }
+        })
+        .collect();
+    (results, warnings)
 }
 
 #[cfg(test)]
@@ -293,28 +411,15 @@ mod tests {
     use super::*;
 
     #[test]
-    fn paper_schedule_has_1280_offsets_at_4096_and_160_at_512() {
-        let cfg = SlidingConfig {
-            loads: vec![1e-3],
-            distance: 0.5,
-            running_in: 0.25,
-            step_running_in: 4,
-            step: 1,
-        };
-        let s = schedule(4096, &cfg);
-        assert_eq!(s.len(), 1280);
-        assert_eq!(&s[..3], &[0, 4, 8]);
-        assert_eq!(s[255], 1020);
-        assert_eq!(s[256], 1024);
-        assert_eq!(*s.last().unwrap(), 2047);
-        assert_eq!(schedule(512, &cfg).len(), 160);
-    }
-
-    #[test]
-    fn line_fit_is_exact_on_a_line() {
+    fn line_fit_is_exact_on_a_line_and_undefined_without_spread() {
         let x = [0.0, 1.0, 2.0, 3.0];
-        let y = [1.0, 3.0, 5.0, 7.0];
-        let (slope, r2) = line_fit(&x, &y);
-        assert!((slope - 2.0).abs() < 1e-14 && (r2 - 1.0).abs() < 1e-14);
+        let f = line_fit(&x, &[1.0, 3.0, 5.0, 7.0]).unwrap();
+        assert!((f.slope - 2.0).abs() < 1e-14 && (f.r2.unwrap() - 1.0).abs() < 1e-14);
+        assert!((f.intercept - 1.0).abs() < 1e-14);
+        // Constant y: slope 0, R² undefined (not 1).
+        let flat = line_fit(&x, &[2.0; 4]).unwrap();
+        assert_eq!((flat.slope, flat.r2), (0.0, None));
+        assert!(line_fit(&[1.0], &[1.0]).is_none());
+        assert!(line_fit(&[1.0, 1.0], &[1.0, 2.0]).is_none());
     }
 }

@@ -91,7 +91,7 @@ impl SpectrumParams {
             return Err(Error::param(
                 "lambda_lower",
                 format!(
-                    "{} is below two pixels ({}); refine `grid` or raise `lambda_lower`",
+                    "{:e} is below two pixels ({:e}); refine `grid` or raise `lambda_lower`",
                     self.lambda_lower,
                     2.0 * dx
                 ),
@@ -101,13 +101,46 @@ impl SpectrumParams {
             return Err(Error::param(
                 "lambda_upper",
                 format!(
-                    "{} must lie between `lambda_lower` ({}) and the side length ({length})",
+                    "{:e} must lie between `lambda_lower` ({:e}) and the side length ({length:e})",
                     self.lambda_upper, self.lambda_lower
+                ),
+            ));
+        }
+        if !band_has_modes(n, length / self.lambda_upper, length / self.lambda_lower) {
+            return Err(Error::param(
+                "lambda_upper",
+                format!(
+                    "the band of wavelengths [{}, {}] holds no Fourier mode of the {n}-pixel grid of side {length} (the \
+                     wavenumbers L/λ between {:.4} and {:.4} include no lattice point), so the surface would be flat; \
+                     widen the band between `lambda_lower` and `lambda_upper`",
+                    self.lambda_lower,
+                    self.lambda_upper,
+                    length / self.lambda_upper,
+                    length / self.lambda_lower
                 ),
             ));
         }
         Ok(())
     }
+}
+
+/// Whether some non-zero wavenumber (q_x, q_y) of an `n`-pixel grid has q_lo ≤ |q| ≤ q_hi (with the
+/// tolerance of the generator).
+fn band_has_modes(n: usize, q_lo: f64, q_hi: f64) -> bool {
+    let (lo, hi) = (q_lo * (1.0 - 1e-12), q_hi * (1.0 + 1e-12));
+    let half = (n / 2) as f64;
+    (0..=n / 2).any(|qx| {
+        let qx = qx as f64;
+        let rest = lo * lo - qx * qx;
+        let mut qy = if rest <= 0.0 { 0.0 } else { rest.sqrt().ceil() };
+        if qx == 0.0 && qy == 0.0 {
+            qy = 1.0;
+        }
+        while qy > 0.0 && qx * qx + (qy - 1.0) * (qy - 1.0) >= lo * lo && !(qx == 0.0 && qy == 1.0) {
+            qy -= 1.0;
+        }
+        qy <= half && (qx * qx + qy * qy).sqrt() <= hi
+    })
 }
 
 /// Seeds of the top and bottom surfaces derived from one user seed (SplitMix64 steps), so that the
@@ -153,7 +186,14 @@ impl Surface {
                 ),
             });
         }
-        Ok(Self { n, length, heights })
+        let s = Self { n, length, heights };
+        if !s.rms_height().is_finite() {
+            return Err(Error::InvalidSurface {
+                name: name.into(),
+                message: "the heights are so large that their statistics overflow; check the file's height unit".into(),
+            });
+        }
+        Ok(s)
     }
 
     /// Generates a periodic self-affine surface with isotropic PSD Φ(q) ∝ |q|^(−2(1+H)) for
@@ -208,6 +248,16 @@ impl Surface {
         }
         let mut s = Self { n, length, heights };
         s.rescale(params.rms_height);
+        // Heights and their statistics (squares) must stay in the floating-point range.
+        if s.heights.iter().any(|h| !h.is_finite()) || !s.rms_height().is_finite() {
+            return Err(Error::param(
+                "rms_height",
+                format!(
+                    "{} makes the heights overflow the floating-point range; give a physical value",
+                    params.rms_height
+                ),
+            ));
+        }
         Ok(s)
     }
 
@@ -387,6 +437,42 @@ mod tests {
                 assert!(c < 1e-25, "q = {q}: {c}");
             }
         }
+    }
+
+    #[test]
+    fn an_empty_band_or_an_overflowing_height_is_refused() {
+        let empty = SpectrumParams {
+            lambda_lower: 0.3,
+            lambda_upper: 0.31,
+            ..params()
+        };
+        let e = empty.validate(64, 1.0).unwrap_err().to_string();
+        assert!(e.contains("no Fourier mode"), "{e}");
+        // A narrow band around an integer wavenumber is fine: |q| = 3.
+        assert!(SpectrumParams {
+            lambda_lower: 1.0 / 3.0,
+            lambda_upper: 0.34,
+            ..params()
+        }
+        .validate(64, 1.0)
+        .is_ok());
+        // Only a diagonal mode: |q| = √2 ≈ 1.414.
+        assert!(SpectrumParams {
+            lambda_lower: 1.0 / 1.42,
+            lambda_upper: 1.0 / 1.41,
+            ..params()
+        }
+        .validate(64, 1.0)
+        .is_ok());
+        let huge = SpectrumParams {
+            rms_height: 1e300,
+            ..params()
+        };
+        let e = match Surface::generate(64, 1.0, &huge, 1) {
+            Ok(_) => panic!("rms_height = 1e300 was accepted"),
+            Err(e) => e.to_string(),
+        };
+        assert!(e.contains("rms_height"), "{e}");
     }
 
     #[test]

@@ -101,20 +101,7 @@ impl SlidingBookkeeping {
     /// Advances by one step on the labelled contact map. `scratch` is an N² flag buffer, all false on
     /// entry and on exit, shared between the bookkeepings of a run.
     pub fn step(&mut self, labeller: &JunctionLabeller, junctions: &[Junction], scratch: &mut [bool]) -> StepWear {
-        let labels = labeller.labels();
-        for &k in &self.blocked {
-            scratch[k as usize] = true;
-        }
-        self.overlap.clear();
-        self.overlap.resize(junctions.len(), false);
-        for &k in labeller.contact_pixels() {
-            if scratch[k as usize] {
-                self.overlap[labels[k as usize] as usize] = true;
-            }
-        }
-        for &k in &self.blocked {
-            scratch[k as usize] = false;
-        }
+        mark_overlapping(labeller, &self.blocked, scratch, &mut self.overlap);
         let mut n_critical = 0;
         self.states.clear();
         for (j, overlap) in junctions.iter().zip(self.overlap.iter_mut()) {
@@ -136,19 +123,73 @@ impl SlidingBookkeeping {
             }
             // From here on `overlap` means "formed or disabled", the state the next step sees.
         }
-        self.blocked.clear();
-        for &k in labeller.contact_pixels() {
-            let l = labels[k as usize];
-            debug_assert_ne!(l, NO_JUNCTION);
-            if self.overlap[l as usize] {
-                self.blocked.push(k);
-            }
-        }
+        flagged_pixels(labeller, &self.overlap, &mut self.blocked);
         StepWear {
             n_critical,
             n_formed: self.n_formed,
             volume: self.volume,
         }
+    }
+}
+
+/// Marks, in `overlap` (one flag per junction of `labeller`), the junctions that share a pixel with
+/// `pixels` (a previous step's pixels). `scratch` is an N² flag buffer, all false on entry and exit.
+fn mark_overlapping(labeller: &JunctionLabeller, pixels: &[u32], scratch: &mut [bool], overlap: &mut Vec<bool>) {
+    let labels = labeller.labels();
+    for &k in pixels {
+        scratch[k as usize] = true;
+    }
+    overlap.clear();
+    overlap.resize(labeller.sizes().len(), false);
+    for &k in labeller.contact_pixels() {
+        if scratch[k as usize] {
+            overlap[labels[k as usize] as usize] = true;
+        }
+    }
+    for &k in pixels {
+        scratch[k as usize] = false;
+    }
+}
+
+/// The pixels of the junctions whose flag is set, for the next step's overlap test.
+fn flagged_pixels(labeller: &JunctionLabeller, flags: &[bool], out: &mut Vec<u32>) {
+    let labels = labeller.labels();
+    out.clear();
+    for &k in labeller.contact_pixels() {
+        let l = labels[k as usize];
+        debug_assert_ne!(l, NO_JUNCTION);
+        if flags[l as usize] {
+            out.push(k);
+        }
+    }
+}
+
+/// The memory of the initial contact (paper §3): how many junctions of the current step descend from
+/// a junction present at s = 0, following junctions from step to step by shared pixels as the
+/// sliding bookkeeping does. The paper finds this number to decay exponentially with s.
+#[derive(Debug, Clone, Default)]
+pub struct InitialContactMemory {
+    /// Pixels of the previous step's junctions that descend from s = 0.
+    descendants: Vec<u32>,
+    /// Per-junction scratch: descends from s = 0.
+    flags: Vec<bool>,
+    started: bool,
+}
+
+impl InitialContactMemory {
+    /// Advances by one step; the first step is s = 0, whose junctions all count. Returns the number
+    /// of junctions of this step that descend from s = 0. `scratch` as for
+    /// [`SlidingBookkeeping::step`].
+    pub fn step(&mut self, labeller: &JunctionLabeller, scratch: &mut [bool]) -> usize {
+        if self.started {
+            mark_overlapping(labeller, &self.descendants, scratch, &mut self.flags);
+        } else {
+            self.flags.clear();
+            self.flags.resize(labeller.sizes().len(), true);
+            self.started = true;
+        }
+        flagged_pixels(labeller, &self.flags, &mut self.descendants);
+        self.flags.iter().filter(|&&f| f).count()
     }
 }
 
@@ -249,6 +290,31 @@ mod tests {
     fn a_junction_across_the_periodic_edge_is_one_particle() {
         let recs = run(&[&["#..#", "....", "....", "#..#"]], 3.0);
         assert_record(recs[0], 1, 1, v(4));
+    }
+
+    #[test]
+    fn the_memory_of_the_initial_contact_follows_junctions_by_overlap() {
+        let maps: [&[&str]; 4] = [
+            &["##....", "##....", "......", "....#.", "......", "......"], // two junctions at s = 0
+            &[".##...", "......", "......", "......", "......", "#....."], // the first moved on; a new one
+            &["..####", "......", "......", "......", "......", "#....."], // the first merged with a new one
+            &["......", "......", "......", ".#....", "......", "......"], // every old contact gone
+        ];
+        let n = 6;
+        let mut labeller = JunctionLabeller::new(n, 4);
+        let mut memory = InitialContactMemory::default();
+        let mut scratch = vec![false; n * n];
+        let counts: Vec<usize> = maps
+            .iter()
+            .map(|rows| {
+                let flat: Vec<bool> = rows.iter().flat_map(|r| r.chars().map(|c| c == '#')).collect();
+                labeller.label(|k| flat[k]);
+                let c = memory.step(&labeller, &mut scratch);
+                assert!(scratch.iter().all(|&b| !b));
+                c
+            })
+            .collect();
+        assert_eq!(counts, vec![2, 1, 1, 0]);
     }
 
     #[test]

@@ -71,9 +71,35 @@ fn bookkeeping_invariants_and_initial_volume() {
                 last = (w.n_formed, w.volume);
             }
             let res = &r.results[e];
-            assert!(res.wear_rate >= 0.0 && res.wear_coefficient >= 0.0);
-            assert!((res.wear_coefficient - res.wear_rate * material.flow_pressure() / r.load).abs() < 1e-15);
+            let (w, k) = (res.wear_rate.unwrap(), res.wear_coefficient.unwrap());
+            assert!(w >= 0.0 && k >= 0.0);
+            assert!((k - w * material.flow_pressure() / r.load).abs() < 1e-15);
+            // The static model over offsets: s = 0 is the first step's, the mean lies within the steps'.
+            let ks: Vec<f64> = r.steps.iter().map(|st| st.statics[e].wear_coefficient).collect();
+            assert_eq!(res.static_wear_coefficient, ks[0]);
+            let (lo, hi) = ks
+                .iter()
+                .fold((f64::INFINITY, 0.0f64), |(a, b), &k| (a.min(k), b.max(k)));
+            assert!(lo <= res.static_wear_coefficient_mean && res.static_wear_coefficient_mean <= hi);
+            assert!(res.static_wear_coefficient_std >= 0.0 && res.static_wear_coefficient_std <= hi - lo);
+            // Appendix C counts are means over the fit window.
+            let window: Vec<&wearsim::sliding::StepRecord> = r.steps.iter().filter(|st| st.s >= 0.25 - 1e-12).collect();
+            let n_star = window.iter().map(|st| st.wear[e].n_critical as f64).sum::<f64>() / window.len() as f64;
+            assert!((res.critical_junctions_mean - n_star).abs() < 1e-12);
+            assert!(res.junctions_mean >= res.critical_junctions_mean);
+            // Particles in the fit window and the check value of Eq. 5.
+            assert_eq!(
+                res.particles_in_fit,
+                window.last().unwrap().wear[e].n_formed - window[0].wear[e].n_formed
+            );
+            let d = res.critical_diameter;
+            let eq5 = std::f64::consts::PI / 6.0 * d.powi(3) * res.particle_rate.unwrap();
+            assert!((res.wear_rate_estimate.unwrap() - eq5).abs() <= 1e-12 * eq5.abs().max(1e-300));
         }
+        // The memory of the initial contact starts at every junction of s = 0 and never exceeds N.
+        assert_eq!(r.steps[0].initial_junctions, r.steps[0].junctions);
+        assert!(r.steps.iter().all(|st| st.initial_junctions <= st.junctions));
+        assert!(r.steps.last().unwrap().initial_junctions < r.steps[0].initial_junctions);
         // V₀ from an independent solve and labelling at s = 0.
         let mut solver = ContactSolver::new(n, 1.0, material.effective_modulus(ModulusConvention::HalfSpace)).unwrap();
         let mut h = vec![0.0; n * n];

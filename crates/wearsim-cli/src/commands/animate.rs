@@ -5,7 +5,7 @@
 
 use std::path::PathBuf;
 
-use anyhow::{anyhow, Result};
+use anyhow::{anyhow, Context, Result};
 use plotters::prelude::*;
 use wearsim::junctions::NO_JUNCTION;
 use wearsim::sliding::{run_sliding, SlidingSetup};
@@ -27,7 +27,7 @@ pub struct Args {
     /// Which of the run's fracture energies sets d* for the colours (0 = first).
     #[arg(long, default_value_t = 0)]
     energy_index: usize,
-    /// Frame delay in milliseconds.
+    /// Frame delay in milliseconds (GIF stores hundredths of a second: 10 … 655350).
     #[arg(long, default_value_t = 80)]
     delay: u32,
 }
@@ -57,6 +57,11 @@ pub fn run(args: &Args) -> Result<()> {
     if out.extension().and_then(|e| e.to_str()) != Some("gif") {
         anyhow::bail!("invalid `--out {}`: the animation is a .gif file", out.display());
     }
+    if !(10..=655_350).contains(&delay_ms) {
+        anyhow::bail!(
+            "invalid `--delay {delay_ms}`: a GIF frame lasts 10 ms to 655350 ms (it is stored in hundredths of a second)"
+        );
+    }
     let (top, bottom) = config.surfaces()?;
     let n = top.n();
     let scale = (512 / n).max(1) as u32; // frames of at least 512 px where the grid is smaller
@@ -66,14 +71,14 @@ pub fn run(args: &Args) -> Result<()> {
     let d_star = config
         .material
         .critical_diameter(config.material.fracture_energies[energy_index]);
-    let tmp = out.with_extension("tmp.gif");
+    let tmp = wearsim::io::temporary_sibling(out)?;
     let length_unit = config.units.length_unit();
     let mut frame_error: Option<anyhow::Error> = None;
     {
         let root = BitMapBackend::gif(&tmp, (side, side + 40), delay_ms)
             .map_err(|e| anyhow!("cannot write {}: {e}", tmp.display()))?
             .into_drawing_area();
-        run_sliding(&top, &bottom, &setup, |view| {
+        let ran = run_sliding(&top, &bottom, &setup, |view| {
             if frame_error.is_some() {
                 return;
             }
@@ -127,13 +132,16 @@ pub fn run(args: &Args) -> Result<()> {
             if let Err(e) = draw() {
                 frame_error = Some(e);
             }
-        })?;
+        });
+        if let Err(e) = ran {
+            frame_error = Some(e.into());
+        }
     }
     if let Some(e) = frame_error {
         let _ = std::fs::remove_file(&tmp);
         return Err(e);
     }
-    std::fs::rename(&tmp, out)?;
+    std::fs::rename(&tmp, out).with_context(|| format!("cannot write {}", out.display()))?;
     println!("wrote {}", out.display());
     Ok(())
 }

@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use serde_json::json;
 use wearsim::fft::{radial_kernel, FftPlan};
 use wearsim::surface::pair_seeds;
@@ -37,8 +37,23 @@ pub fn peak_memory_mib() -> Option<f64> {
     Some(kb / 1024.0)
 }
 
+/// A grid size the benchmark can run: at least 64 pixels (the paper's λ_l = 16 px and λ_u up to
+/// 256 px), a valid grid, within this machine's memory.
+fn check_size(n: usize) -> Result<()> {
+    if n < 64 {
+        anyhow::bail!(
+            "invalid grid size {n} for the benchmark: its surfaces have the paper's λ_l = 16 pixels and λ_u up to 256 \
+             pixels, which needs grids of at least 64 pixels"
+        );
+    }
+    wearsim::check::grid(n)?;
+    wearsim::check::memory("the benchmark", n, wearsim::check::SLIDING_ARRAYS)?;
+    Ok(())
+}
+
 /// The benchmark's surface pair (seed 1): paper roughness on an N² grid of side 1.
 fn paper_pair(n: usize) -> Result<(Surface, Surface)> {
+    check_size(n)?;
     let spectrum = SpectrumParams::paper_roughness(n, 1.0);
     let (s1, s2) = pair_seeds(1);
     Ok((
@@ -48,6 +63,9 @@ fn paper_pair(n: usize) -> Result<(Surface, Surface)> {
 }
 
 pub fn run(args: &Args) -> Result<()> {
+    for &n in &args.sizes {
+        check_size(n).with_context(|| format!("--sizes {n}"))?;
+    }
     let threads = rayon::current_num_threads();
     println!(
         "wearsim {} bench, {threads} threads; paper roughness, τ̃ = 0.010 E, F_N = 1e-3 E L²",
@@ -153,6 +171,10 @@ pub struct SlideArgs {
 }
 
 pub fn run_slide(args: &SlideArgs) -> Result<()> {
+    check_size(args.n).context("--n")?;
+    if args.warm_n > 0 {
+        check_size(args.warm_n).context("--warm-n")?;
+    }
     use wearsim::config::SlidingConfig;
     use wearsim::sliding::{run_sliding, schedule, SlidingSetup};
     let threads = rayon::current_num_threads();

@@ -3,11 +3,9 @@
 use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
-use wearsim::io::{read_npy_2d, write_json, write_npy_i64, NpyType};
+use wearsim::io::{read_npy_2d, write_json, write_npy_i64, NpyType, OutputDir};
 use wearsim::junctions::{JunctionLabeller, NO_JUNCTION};
 use wearsim::output::junctions_summary;
-
-use super::create_dir;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -17,15 +15,18 @@ pub struct Args {
     /// 4 or 8.
     #[arg(long, default_value_t = 4)]
     connectivity: u8,
-    /// Output folder (created if missing).
+    /// Output folder (created if missing; an earlier `junctions` there is replaced whole).
     #[arg(long)]
     out: PathBuf,
+    /// Replace the output folder even when it holds another command's results or other files.
+    #[arg(long)]
+    overwrite: bool,
 }
 
 /// Labels the junctions of a contact map and writes `labels.npy` (int64, −1 outside contact) and
 /// `junctions.json` (pixel count per junction).
 pub fn run(args: &Args) -> Result<()> {
-    let (map, connectivity, out) = (&args.map, args.connectivity, &args.out);
+    let (map, connectivity) = (&args.map, args.connectivity);
     wearsim::check::connectivity(connectivity).context("--connectivity")?;
     let accepted = [
         NpyType::Bool,
@@ -53,6 +54,14 @@ pub fn run(args: &Args) -> Result<()> {
             k % cols
         );
     }
+    let out = OutputDir::begin(&args.out, "junctions", args.overwrite)?;
+    if rows > wearsim::check::MAX_GRID {
+        bail!(
+            "{}: a {rows}² map is above the largest grid, {}",
+            map.display(),
+            wearsim::check::MAX_GRID
+        );
+    }
     let mut labeller = JunctionLabeller::new(rows, connectivity);
     let count = labeller.label(|k| array.values[k] > 0.0);
     let labels: Vec<i64> = labeller
@@ -60,12 +69,12 @@ pub fn run(args: &Args) -> Result<()> {
         .iter()
         .map(|&l| if l == NO_JUNCTION { -1 } else { l as i64 })
         .collect();
-    create_dir(out)?;
     write_npy_i64(&out.join("labels.npy"), rows, rows, &labels)?;
     write_json(
         &out.join("junctions.json"),
         &junctions_summary(connectivity, labeller.sizes()),
     )?;
-    println!("{count} junctions; wrote {}", out.display());
+    out.commit()?;
+    println!("{count} junctions; wrote {}", args.out.display());
     Ok(())
 }

@@ -18,8 +18,3 @@ use wearsim::config::RunConfig;
 pub fn load_run(run: &Path) -> Result<RunConfig> {
     RunConfig::from_path(run).with_context(|| format!("run file {}", run.display()))
 }
-
-/// Creates an output folder (and its parents).
-pub fn create_dir(out: &Path) -> Result<()> {
-    std::fs::create_dir_all(out).with_context(|| format!("cannot create output folder {}", out.display()))
-}

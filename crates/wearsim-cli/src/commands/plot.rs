@@ -222,13 +222,13 @@ impl Severity {
             };
             let m = &job.run.material;
             let p_n = r.load / (job.run.length() * job.run.length());
-            for w in r.results.iter().filter(|w| w.wear_rate > 0.0) {
+            for (w, wear_rate) in r
+                .results
+                .iter()
+                .filter_map(|w| w.wear_rate.filter(|x| *x > 0.0).map(|x| (w, x)))
+            {
                 let k_ic = (w.fracture_energy * m.youngs_modulus / (1.0 - m.poisson_ratio * m.poisson_ratio)).sqrt();
-                points.push((
-                    job.material.clone(),
-                    p_n * spectrum.rms_height.sqrt() / k_ic,
-                    w.wear_rate,
-                ));
+                points.push((job.material.clone(), p_n * spectrum.rms_height.sqrt() / k_ic, wear_rate));
             }
         }
         if points.len() < 2 {
@@ -236,9 +236,8 @@ impl Severity {
         }
         let xs: Vec<f64> = points.iter().map(|p| p.1.ln()).collect();
         let ys: Vec<f64> = points.iter().map(|p| p.2.ln()).collect();
-        let (n_exp, _) = wearsim::sliding::line_fit(&xs, &ys);
-        let m = xs.len() as f64;
-        let alpha = ((ys.iter().sum::<f64>() - n_exp * xs.iter().sum::<f64>()) / m).exp();
+        let fit = wearsim::sliding::line_fit(&xs, &ys)?;
+        let (n_exp, alpha) = (fit.slope, fit.intercept.exp());
         Some(Self {
             points,
             alpha,
@@ -403,14 +402,18 @@ impl Figure for SeriesFigure<'_> {
                         fit.iter().map(|p| p.0).sum::<f64>() / m,
                         fit.iter().map(|p| p.1).sum::<f64>() / m,
                     );
-                    let b = my - w.wear_rate * mx;
+                    let Some(wear_rate) = w.wear_rate else { continue };
+                    let b = my - wear_rate * mx;
                     chart
                         .draw_series(LineSeries::new(
-                            [(0.0, b), (s_max, b + w.wear_rate * s_max)],
+                            [(0.0, b), (s_max, b + wear_rate * s_max)],
                             BLACK.stroke_width(1),
                         ))
                         .map_err(drawing)?
-                        .label(format!("fit: W = {:.3e} (R² = {:.3})", w.wear_rate, w.wear_rate_r2))
+                        .label(format!(
+                            "fit: W = {wear_rate:.3e} (R² = {})",
+                            w.wear_rate_r2.map_or("undefined".into(), |r2| format!("{r2:.3}"))
+                        ))
                         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(1)));
                 }
             }
@@ -424,8 +427,8 @@ pub fn run(args: &Args) -> Result<()> {
     let (study, results) = load_results(dir).with_context(|| format!("study folder {}", dir.display()))?;
     let first = study.jobs.first().ok_or_else(|| anyhow!("the study has no jobs"))?;
     let (load_unit, length) = units_of(first);
-    let out = dir.join("figures");
-    std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
+    let figures = wearsim::io::OutputDir::begin(&dir.join("figures"), "study plot", false)?;
+    let out = figures.join("");
     let curves = curves(&study.jobs, &results);
     let area_unit = format!("{length}²");
     let panel = |quantity: Quantity, y_label: String, log_y: bool| LoadPanel {
@@ -454,8 +457,16 @@ pub fn run(args: &Args) -> Result<()> {
         "fig4_sliding_wear",
         (1500, 600),
         &Panels(vec![
-            panel(|w| w.wear_rate, format!("sliding wear rate W ({area_unit})"), true),
-            panel(|w| w.wear_coefficient, "wear coefficient k = W p̃ / F_N".into(), true),
+            panel(
+                |w| w.wear_rate.unwrap_or(f64::NAN),
+                format!("sliding wear rate W ({area_unit})"),
+                true,
+            ),
+            panel(
+                |w| w.wear_coefficient.unwrap_or(f64::NAN),
+                "wear coefficient k = W p̃ / F_N".into(),
+                true,
+            ),
         ]),
     )?;
     save(
@@ -463,7 +474,7 @@ pub fn run(args: &Args) -> Result<()> {
         "fig5_particle_rate",
         (800, 600),
         &Panels(vec![panel(
-            |w| w.particle_rate,
+            |w| w.particle_rate.unwrap_or(f64::NAN),
             format!("particle rate dN*₊/ds (1/{length})"),
             true,
         )]),
@@ -477,7 +488,11 @@ pub fn run(args: &Args) -> Result<()> {
     }
     // Kim et al. (1986): rolling wear coefficients 6e-7 … 1.5e-3 (paper §4.3, Fig. 6). k is
     // dimensionless, so the comparison is drawn for studies in any units.
-    let mut kim = panel(|w| w.wear_coefficient, "wear coefficient k".into(), true);
+    let mut kim = panel(
+        |w| w.wear_coefficient.unwrap_or(f64::NAN),
+        "wear coefficient k".into(),
+        true,
+    );
     kim.band = Some((6e-7, 1.5e-3, "Kim et al. 1986, rolling experiments"));
     save(&out, "fig6_kim_comparison", (900, 600), &Panels(vec![kim]))?;
     // Series of one representative job: the first surface pair, the middle load, the first material.
@@ -511,6 +526,7 @@ pub fn run(args: &Args) -> Result<()> {
             counts: true,
         },
     )?;
-    println!("wrote figures to {}", out.display());
+    figures.commit()?;
+    println!("wrote figures to {}", dir.join("figures").display());
     Ok(())
 }

@@ -4,7 +4,7 @@ use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
-use wearsim::study::{collect as collect_study, expand, prepare_folder, run_jobs, shard};
+use wearsim::study::{collect as collect_study, expand, prepare_folder, run_jobs, shard, workers_for_memory};
 
 #[derive(clap::Args)]
 pub struct RunArgs {
@@ -43,18 +43,42 @@ fn resolve_shard(arg: Option<&str>) -> Result<(usize, usize)> {
             .with_context(|| format!("invalid `--shard {a}`: write K/N, e.g. 2/8"))?;
         return parse(k, n).with_context(|| format!("invalid `--shard {a}`"));
     }
-    if let (Ok(id), Ok(count)) = (
-        std::env::var("SLURM_ARRAY_TASK_ID"),
-        std::env::var("SLURM_ARRAY_TASK_COUNT"),
-    ) {
-        let min: usize = std::env::var("SLURM_ARRAY_TASK_MIN")
-            .ok()
-            .and_then(|m| m.parse().ok())
-            .unwrap_or(0);
-        let id: usize = id.parse().context("SLURM_ARRAY_TASK_ID is not a number")?;
-        return parse(&(id - min.min(id) + 1).to_string(), &count).context("Slurm job array");
+    if let Ok(id) = std::env::var("SLURM_ARRAY_TASK_ID") {
+        return slurm_shard(&id, |name| std::env::var(name).ok());
     }
     Ok((1, 1))
+}
+
+/// The shard of a Slurm job-array task: its position among the array's evenly spaced task IDs
+/// (`--array=1-320`, `--array=0-99:4`), from SLURM_ARRAY_TASK_ID/MIN/STEP/COUNT. An array whose IDs
+/// are not evenly spaced (`--array=3,7,9`) cannot say the position; the shard must then be given.
+fn slurm_shard(id: &str, var: impl Fn(&str) -> Option<String>) -> Result<(usize, usize)> {
+    let number = |name: &str, value: Option<String>| -> Result<usize> {
+        let value = value.with_context(|| format!("{name} is not set inside this Slurm job array"))?;
+        value
+            .trim()
+            .parse()
+            .with_context(|| format!("{name} = {value:?} is not a whole number"))
+    };
+    let id = number("SLURM_ARRAY_TASK_ID", Some(id.to_string()))?;
+    let count = number("SLURM_ARRAY_TASK_COUNT", var("SLURM_ARRAY_TASK_COUNT"))?;
+    let min = number("SLURM_ARRAY_TASK_MIN", var("SLURM_ARRAY_TASK_MIN")).unwrap_or(0);
+    let max = number("SLURM_ARRAY_TASK_MAX", var("SLURM_ARRAY_TASK_MAX")).ok();
+    let step = number("SLURM_ARRAY_TASK_STEP", var("SLURM_ARRAY_TASK_STEP"))
+        .unwrap_or(1)
+        .max(1);
+    let offset = id
+        .checked_sub(min)
+        .with_context(|| format!("SLURM_ARRAY_TASK_ID {id} is below SLURM_ARRAY_TASK_MIN {min}"))?;
+    let evenly = offset % step == 0 && offset / step < count && max.is_none_or(|max| min + (count - 1) * step == max);
+    if !evenly {
+        bail!(
+            "Slurm job array: task {id} of an array of {count} tasks from {min} to {} (step {step}) is not at an evenly \
+             spaced position, so its shard is unknown; use a range such as --array=1-{count} or give --shard K/{count}",
+            max.map_or("?".into(), |m| m.to_string())
+        );
+    }
+    Ok((offset / step + 1, count))
 }
 
 pub fn run(args: &RunArgs) -> Result<()> {
@@ -66,9 +90,13 @@ pub fn run(args: &RunArgs) -> Result<()> {
         .unwrap_or(Path::new("."));
     let study = expand(&text, base).with_context(|| format!("study file {}", study_path.display()))?;
     let (k, n) = resolve_shard(shard_arg)?;
-    prepare_folder(out, &study, base)?;
     let jobs = shard(&study.jobs, k, n);
-    let workers = workers.unwrap_or_else(rayon::current_num_threads);
+    let requested = workers.unwrap_or_else(rayon::current_num_threads);
+    let (workers, note) = workers_for_memory(&jobs, requested)?;
+    if let Some(note) = note {
+        eprintln!("note: {note}");
+    }
+    prepare_folder(out, &study, base)?;
     eprintln!(
         "study {}: {} jobs, shard {k}/{n} holds {}; {workers} workers",
         study.hash,
@@ -82,20 +110,39 @@ pub fn run(args: &RunArgs) -> Result<()> {
         );
         b
     });
-    let (computed, skipped) = run_jobs(out, &jobs, workers, &Default::default(), |done, total| match &bar {
+    let outcome = run_jobs(out, &jobs, workers, &Default::default(), |done, total| match &bar {
         Some(b) => {
             b.set_length(total as u64);
             b.set_position(done as u64);
         }
         None => eprintln!("job {done}/{total} done"),
-    })?;
+    });
     if let Some(b) = bar {
         b.finish_and_clear();
     }
+    let summary = outcome?;
+    for why in &summary.recomputed {
+        eprintln!("warning: recomputed a job whose file could not be read: {why}");
+    }
     println!(
-        "computed {computed} jobs, skipped {skipped} already done; results in {}",
+        "computed {} jobs, skipped {} already done; results in {}",
+        summary.computed,
+        summary.skipped,
         out.join("jobs").display()
     );
+    if !summary.claimed_elsewhere.is_empty() {
+        println!(
+            "{} jobs are being computed by another run on this folder (jobs {}); run `wearsim study collect` once it \
+             has finished",
+            summary.claimed_elsewhere.len(),
+            summary
+                .claimed_elsewhere
+                .iter()
+                .map(|i| i.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
     Ok(())
 }
 
@@ -108,4 +155,41 @@ pub fn collect(args: &CollectArgs) -> Result<()> {
         dir.join("results_aggregated.csv").display()
     );
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::slurm_shard;
+
+    fn env(vars: &'static [(&'static str, &'static str)]) -> impl Fn(&str) -> Option<String> {
+        move |name| vars.iter().find(|(k, _)| *k == name).map(|(_, v)| v.to_string())
+    }
+
+    #[test]
+    fn slurm_arrays_with_a_step_give_the_position_and_lists_are_refused() {
+        let plain = env(&[
+            ("SLURM_ARRAY_TASK_COUNT", "320"),
+            ("SLURM_ARRAY_TASK_MIN", "1"),
+            ("SLURM_ARRAY_TASK_MAX", "320"),
+        ]);
+        assert_eq!(slurm_shard("1", &plain).unwrap(), (1, 320));
+        assert_eq!(slurm_shard("320", &plain).unwrap(), (320, 320));
+        // --array=1-320:2 → 160 tasks 1, 3, …, 319.
+        let stepped = env(&[
+            ("SLURM_ARRAY_TASK_COUNT", "160"),
+            ("SLURM_ARRAY_TASK_MIN", "1"),
+            ("SLURM_ARRAY_TASK_MAX", "319"),
+            ("SLURM_ARRAY_TASK_STEP", "2"),
+        ]);
+        assert_eq!(slurm_shard("3", &stepped).unwrap(), (2, 160));
+        assert_eq!(slurm_shard("319", &stepped).unwrap(), (160, 160));
+        // --array=3,7,9: not evenly spaced.
+        let list = env(&[
+            ("SLURM_ARRAY_TASK_COUNT", "3"),
+            ("SLURM_ARRAY_TASK_MIN", "3"),
+            ("SLURM_ARRAY_TASK_MAX", "9"),
+        ]);
+        let e = slurm_shard("7", &list).unwrap_err().to_string();
+        assert!(e.contains("--shard K/3"), "{e}");
+    }
 }

@@ -5,14 +5,14 @@ use std::path::Path;
 
 use crate::error::{Error, Result};
 use crate::output::{write_results_tables, JobResult, TidyRow};
-use crate::study::expand::{expand, Study};
+use crate::study::expand::{expand_stored, Study};
 use crate::study::store::{job_path, read_result, stored_study};
 
 /// Reads a study folder: the stored study, expanded, and every job's result in job order. Fails
 /// naming the missing jobs when the study is unfinished.
 pub fn load_results(dir: &Path) -> Result<(Study, Vec<JobResult>)> {
     let (text, base) = stored_study(dir)?;
-    let study = expand(&text, &base)?;
+    let study = expand_stored(&text, &base)?;
     let missing: Vec<usize> = study
         .jobs
         .iter()

@@ -6,7 +6,7 @@ use std::path::Path;
 
 use toml::{Table, Value};
 
-use crate::config::{InputRecord, RunConfig};
+use crate::config::{InputRecord, RunConfig, SurfaceFiles, SurfaceSource};
 use crate::error::{Error, Result};
 use crate::output::JobResult;
 
@@ -54,16 +54,21 @@ impl Job {
 #[derive(Debug, Clone)]
 pub struct Study {
     pub jobs: Vec<Job>,
-    /// FNV-1a hash of the parsed study (comments and layout do not count).
+    /// FNV-1a hash of the parsed study (comments and layout do not count) and of the contents of
+    /// the surface files it names, so that a changed surface makes it another study.
     pub hash: String,
     /// The study file's canonical TOML.
     pub canonical: String,
 }
 
 fn fnv1a(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
-        (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
-    })
+    fnv1a_continue(0xcbf2_9ce4_8422_2325u64, bytes)
+}
+
+fn fnv1a_continue(hash: u64, bytes: &[u8]) -> u64 {
+    bytes
+        .iter()
+        .fold(hash, |h, &b| (h ^ b as u64).wrapping_mul(0x0100_0000_01b3))
 }
 
 /// Cartesian product of the list-valued keys of `table` (except `keep_lists`): every combination as
@@ -139,7 +144,12 @@ fn materials(table: &Table) -> Result<Vec<MaterialChoice>> {
             let mut t = section(table, "material")?;
             let name = match t.remove("name") {
                 Some(Value::String(s)) => s,
-                _ => "material".to_string(),
+                None => "material".to_string(),
+                Some(other) => {
+                    return Err(Error::run_file(format!(
+                        "[material] `name` must be a string, not {other}"
+                    )))
+                }
             };
             for (m, v) in product(&t, "material", &["fracture_energies"]) {
                 materials.push((name.clone(), m, v, Table::new()));
@@ -157,8 +167,38 @@ fn section(table: &Table, name: &str) -> Result<Table> {
     }
 }
 
-/// Expands a study file's text; relative surface paths resolve against `base`.
+/// Expands a study file's text; relative surface paths resolve against `base`, and surface files
+/// must exist (their contents enter the study's hash).
 pub fn expand(text: &str, base: &Path) -> Result<Study> {
+    let mut study = expand_with(text, base, SurfaceFiles::MustExist)?;
+    let mut files: Vec<&Path> = Vec::new();
+    for job in &study.jobs {
+        if let SurfaceSource::Files { top, bottom, .. } = &job.run.surfaces {
+            for p in [top, bottom] {
+                if !files.contains(&p.as_path()) {
+                    files.push(p);
+                }
+            }
+        }
+    }
+    if !files.is_empty() {
+        let mut hash = u64::from_str_radix(&study.hash, 16).unwrap_or(0);
+        for file in files {
+            let bytes = std::fs::read(file).map_err(|e| Error::io(file, e))?;
+            hash = fnv1a_continue(hash, &bytes);
+        }
+        study.hash = format!("{hash:016x}");
+    }
+    Ok(study)
+}
+
+/// Expands the study stored in a study folder, whose surface files need not be where they were
+/// (the folder keeps the study's hash; its results are read without recomputing anything).
+pub fn expand_stored(text: &str, base: &Path) -> Result<Study> {
+    expand_with(text, base, SurfaceFiles::Recorded)
+}
+
+fn expand_with(text: &str, base: &Path, files: SurfaceFiles) -> Result<Study> {
     let table: Table = text
         .parse::<Table>()
         .map_err(|e| Error::run_file(e.to_string().trim_end().replace('\n', " ")))?;
@@ -202,7 +242,7 @@ pub fn expand(text: &str, base: &Path) -> Result<Study> {
                     sl.insert("loads".into(), Value::Array(vec![load.clone()]));
                     run.insert("sliding".into(), Value::Table(sl));
                     let index = jobs.len();
-                    let config = RunConfig::from_table(run, base)
+                    let config = RunConfig::from_table(run, base, files)
                         .map_err(|e| Error::run_file(format!("study job {index} ({name}): {e}")))?;
                     let mut varying = sv.clone();
                     varying.extend(mv.clone());
@@ -217,7 +257,41 @@ pub fn expand(text: &str, base: &Path) -> Result<Study> {
             }
         }
     }
+    if jobs.is_empty() {
+        let empty: Vec<String> = find_empty_lists(&table);
+        return Err(Error::run_file(format!(
+            "the study expands to no jobs: {} empty; give at least one value",
+            if empty.is_empty() {
+                "a list is".to_string()
+            } else {
+                format!("{} is", empty.join(", "))
+            }
+        )));
+    }
     Ok(Study { jobs, hash, canonical })
+}
+
+/// The keys (`section.key`) whose value is an empty list.
+fn find_empty_lists(table: &Table) -> Vec<String> {
+    let mut out = Vec::new();
+    for (section, value) in table {
+        let tables: Vec<&Table> = match value {
+            Value::Table(t) => vec![t],
+            Value::Array(items) => items.iter().filter_map(|i| i.as_table()).collect(),
+            _ => vec![],
+        };
+        if matches!(value, Value::Array(items) if items.is_empty()) {
+            out.push(format!("`{section}`"));
+        }
+        for t in tables {
+            for (key, v) in t {
+                if matches!(v, Value::Array(items) if items.is_empty()) {
+                    out.push(format!("`{section}.{key}`"));
+                }
+            }
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -281,6 +355,39 @@ loads = [5e-4, 1e-3]
             .iter()
             .filter(|j| j.material == "soft")
             .all(|j| !j.varying.contains_key("surface.rms_height")));
+    }
+
+    #[test]
+    fn a_study_without_jobs_or_with_a_bad_name_is_an_error() {
+        let e = expand(&STUDY.replace("seed = [1, 2, 3]", "seed = []"), Path::new("."))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("no jobs") && e.contains("surface.seed"), "{e}");
+        let single = "[surface]\ngrid = 64\nlambda_lower = 0.125\nlambda_upper = 0.25\nrms_height = 0.005\n[material]\n\
+                      name = 5\nyoungs_modulus = 1.0\npoisson_ratio = 0.3\nshear_strength = 0.01\n[sliding]\nloads = [1e-3]\n";
+        let e = expand(single, Path::new(".")).unwrap_err().to_string();
+        assert!(e.contains("`name` must be a string"), "{e}");
+    }
+
+    #[test]
+    fn the_hash_covers_the_surface_files() {
+        let dir = tempfile::tempdir().unwrap();
+        let write = |name: &str, v: f64| {
+            let h: Vec<f64> = (0..256).map(|k| v * (k as f64 * 0.1).sin()).collect();
+            crate::io::write_npy_f64(&dir.path().join(name), 16, 16, &h).unwrap();
+        };
+        write("top.npy", 1e-3);
+        write("bottom.npy", 2e-3);
+        let text = "[surface]\ntop = \"top.npy\"\nbottom = \"bottom.npy\"\nlength = 1.0\n[material]\nyoungs_modulus = 1.0\n\
+                    poisson_ratio = 0.3\nshear_strength = 0.01\nfracture_energies = [1e-6]\n[sliding]\nloads = [1e-3]\n";
+        let before = expand(text, dir.path()).unwrap().hash;
+        write("top.npy", 1.5e-3);
+        let after = expand(text, dir.path()).unwrap().hash;
+        assert_ne!(before, after);
+        // A stored study is read back without its surfaces.
+        std::fs::remove_file(dir.path().join("top.npy")).unwrap();
+        assert!(expand(text, dir.path()).is_err());
+        assert_eq!(expand_stored(text, dir.path()).unwrap().jobs.len(), 1);
     }
 
     #[test]

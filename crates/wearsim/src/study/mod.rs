@@ -16,6 +16,6 @@ pub mod run;
 pub mod store;
 
 pub use collect::{collect, load_results};
-pub use expand::{expand, Job, Study};
-pub use run::{run_job, run_jobs, shard};
-pub use store::{job_path, prepare_folder, write_result};
+pub use expand::{expand, expand_stored, Job, Study};
+pub use run::{run_job, run_jobs, shard, workers_for_memory, RunSummary};
+pub use store::{job_path, prepare_folder, stored_result, write_result, Stored};

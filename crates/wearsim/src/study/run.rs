@@ -1,7 +1,7 @@
 //! Running a study's jobs: each job a sliding run on its own surfaces, several jobs at once sharing
 //! the threads, finished jobs skipped.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
@@ -9,7 +9,7 @@ use crate::error::{Error, Interrupt, Result};
 use crate::output::{JobResult, Provenance, StepRow};
 use crate::sliding::{run_sliding, SlidingSetup};
 use crate::study::expand::Job;
-use crate::study::store::{job_path, read_result, write_result};
+use crate::study::store::{stored_result, write_result, Claim, Stored, CLAIM_REFRESH};
 
 /// Runs one job; a raised `interrupt` stops it with [`Error::Interrupted`].
 pub fn run_job(job: &Job, interrupt: &Interrupt) -> Result<JobResult> {
@@ -36,6 +36,12 @@ pub fn run_job(job: &Job, interrupt: &Interrupt) -> Result<JobResult> {
         steps: r.steps.iter().map(StepRow::from).collect(),
         total_iterations: r.total_iterations,
         seconds: start.elapsed().as_secs_f64(),
+        warnings: {
+            let mut w = run.warnings();
+            w.extend(crate::sliding::resolution_warnings(&run.material, top.pixel_size()));
+            w.extend(r.warnings);
+            w
+        },
     })
 }
 
@@ -44,75 +50,168 @@ pub fn shard(jobs: &[Job], k: usize, count: usize) -> Vec<&Job> {
     jobs.iter().filter(|j| j.index % count == k - 1).collect()
 }
 
+/// What a run of a study's jobs did.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct RunSummary {
+    /// Jobs computed by this run.
+    pub computed: usize,
+    /// Jobs whose result file was there already.
+    pub skipped: usize,
+    /// Jobs another live run was computing (their claim files said so).
+    pub claimed_elsewhere: Vec<usize>,
+    /// Job files that could not be read and were computed again, with the reason.
+    pub recomputed: Vec<String>,
+}
+
 /// Runs the given jobs with `workers` jobs at once, the threads of the current rayon pool shared
 /// between them (one worker: every thread on each job, for large grids; as many workers as threads:
-/// one thread per job, for many small jobs), skipping jobs whose file exists. `progress(done, total)`
-/// is called after each job. A raised `interrupt` stops the jobs under way (finished job files stay,
-/// so a later run resumes) and returns [`Error::Interrupted`]. Returns (computed, skipped).
+/// one thread per job, for many small jobs). A job whose file exists is skipped; one that another
+/// run has claimed is left to it; every other is claimed, computed, written and released, so runs
+/// sharing a folder compute each job once. A failing job does not stop the others: the finished
+/// ones are written and [`Error::JobsFailed`] names the failed ones, which a new run retries.
+/// `progress(done, total)` is called after each job. A raised `interrupt` stops the jobs under way
+/// (finished job files stay, so a later run resumes) and returns [`Error::Interrupted`].
 pub fn run_jobs(
     dir: &Path,
     jobs: &[&Job],
     workers: usize,
     interrupt: &Interrupt,
     progress: impl Fn(usize, usize) + Sync,
-) -> Result<(usize, usize)> {
-    // A finished job is skipped only once its file is confirmed to be this job's.
+) -> Result<RunSummary> {
+    let mut summary = RunSummary::default();
     let mut pending: Vec<&Job> = Vec::new();
     for &job in jobs {
-        if job_path(dir, job.index).is_file() {
-            read_result(job, dir)?;
-        } else {
-            pending.push(job);
+        match stored_result(job, dir)? {
+            Stored::Done(_) => summary.skipped += 1,
+            Stored::Missing => pending.push(job),
+            Stored::Unreadable(why) => {
+                summary.recomputed.push(why);
+                pending.push(job);
+            }
         }
     }
-    let skipped = jobs.len() - pending.len();
     let next = AtomicUsize::new(0);
     let done = AtomicUsize::new(0);
-    let first_error: Mutex<Option<Error>> = Mutex::new(None);
+    let failed: Mutex<Vec<Error>> = Mutex::new(Vec::new());
+    let elsewhere: Mutex<Vec<usize>> = Mutex::new(Vec::new());
+    let held: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+    let stop = std::sync::atomic::AtomicBool::new(false);
     let workers = workers.clamp(1, pending.len().max(1));
     let threads_per_worker = (rayon::current_num_threads() / workers).max(1);
-    std::thread::scope(|scope| {
-        for _ in 0..workers {
-            scope.spawn(|| {
-                let pool = rayon::ThreadPoolBuilder::new()
-                    .num_threads(threads_per_worker)
-                    .build()
-                    .expect("a worker's thread pool");
-                loop {
-                    if first_error.lock().map(|e| e.is_some()).unwrap_or(true) {
-                        return;
-                    }
-                    let i = next.fetch_add(1, Ordering::SeqCst);
-                    let Some(job) = pending.get(i) else { return };
-                    let outcome = pool
-                        .install(|| run_job(job, interrupt))
-                        .and_then(|result| write_result(dir, &result));
-                    match outcome {
-                        Ok(()) => progress(done.fetch_add(1, Ordering::SeqCst) + 1, pending.len()),
-                        Err(e) => {
-                            let e = match e {
-                                Error::Interrupted => e,
-                                e => Error::Job {
-                                    index: job.index,
-                                    material: job.material.clone(),
-                                    load: job.load(),
-                                    source: Box::new(e),
-                                },
-                            };
-                            if let Ok(mut slot) = first_error.lock() {
-                                slot.get_or_insert(e);
-                            }
-                            return;
+    let lock_error = || Error::param("study", "a worker of the study runner panicked");
+    std::thread::scope(|scope| -> Result<()> {
+        // Keeps this run's claims alive for other runs sharing the folder.
+        scope.spawn(|| {
+            let mut since = std::time::Instant::now();
+            while !stop.load(Ordering::Relaxed) {
+                std::thread::sleep(std::time::Duration::from_millis(200));
+                if since.elapsed() >= CLAIM_REFRESH {
+                    if let Ok(paths) = held.lock() {
+                        for p in paths.iter() {
+                            refresh_claim(p);
                         }
                     }
+                    since = std::time::Instant::now();
                 }
-            });
+            }
+        });
+        let handles: Vec<_> = (0..workers)
+            .map(|_| {
+                scope.spawn(|| -> Result<()> {
+                    let pool = rayon::ThreadPoolBuilder::new()
+                        .num_threads(threads_per_worker)
+                        .build()
+                        .map_err(|e| Error::param("threads", format!("cannot start a worker's threads: {e}")))?;
+                    loop {
+                        interrupt.check()?;
+                        let i = next.fetch_add(1, Ordering::SeqCst);
+                        let Some(job) = pending.get(i) else { return Ok(()) };
+                        let Some(claim) = Claim::take(dir, job.index)? else {
+                            elsewhere.lock().map_err(|_| lock_error())?.push(job.index);
+                            continue;
+                        };
+                        // Another run may have finished the job between our look and our claim.
+                        if matches!(stored_result(job, dir)?, Stored::Done(_)) {
+                            continue;
+                        }
+                        held.lock().map_err(|_| lock_error())?.push(claim.path().to_path_buf());
+                        let outcome = pool
+                            .install(|| run_job(job, interrupt))
+                            .and_then(|r| write_result(dir, &r));
+                        held.lock().map_err(|_| lock_error())?.retain(|p| p != claim.path());
+                        drop(claim);
+                        match outcome {
+                            Ok(()) => progress(done.fetch_add(1, Ordering::SeqCst) + 1, pending.len()),
+                            Err(Error::Interrupted) => return Err(Error::Interrupted),
+                            Err(e) => failed.lock().map_err(|_| lock_error())?.push(Error::Job {
+                                index: job.index,
+                                material: job.material.clone(),
+                                load: job.load(),
+                                source: Box::new(e),
+                            }),
+                        }
+                    }
+                })
+            })
+            .collect();
+        let mut first: Result<()> = Ok(());
+        for h in handles {
+            let r = h.join().unwrap_or_else(|_| Err(lock_error()));
+            if first.is_ok() {
+                first = r;
+            }
         }
-    });
-    if let Some(e) = first_error.into_inner().ok().flatten() {
-        return Err(e);
+        stop.store(true, Ordering::Relaxed);
+        first
+    })?;
+    summary.computed = done.into_inner();
+    summary.claimed_elsewhere = elsewhere.into_inner().map_err(|_| lock_error())?;
+    summary.claimed_elsewhere.sort_unstable();
+    let mut failed = failed.into_inner().map_err(|_| lock_error())?;
+    if !failed.is_empty() {
+        failed.sort_by_key(|e| if let Error::Job { index, .. } = e { *index } else { 0 });
+        return Err(Error::JobsFailed {
+            failed,
+            total: jobs.len(),
+        });
     }
-    Ok((done.into_inner(), skipped))
+    Ok(summary)
+}
+
+/// How many of `jobs` can run at once in this machine's memory: `workers`, or fewer with a note saying
+/// so; an error (before anything is written) when not even one job fits.
+pub fn workers_for_memory(jobs: &[&Job], workers: usize) -> Result<(usize, Option<String>)> {
+    let mut largest = 0;
+    for job in jobs {
+        largest = largest.max(job.run.grid()?);
+    }
+    if largest == 0 {
+        return Ok((workers, None));
+    }
+    crate::check::grid(largest)?;
+    crate::check::memory("one job of this study", largest, crate::check::SLIDING_ARRAYS)?;
+    let per_job = crate::check::SLIDING_ARRAYS * 8.0 * (largest as f64).powi(2);
+    match crate::check::available_memory() {
+        Some(have) if per_job * workers as f64 > have as f64 => {
+            let fit = ((have as f64 / per_job) as usize).max(1);
+            Ok((
+                fit,
+                Some(format!(
+                    "{workers} jobs of {largest}² pixels at once would not fit in the {:.1} GiB of memory available; \
+                     running {fit} at a time",
+                    have as f64 / (1u64 << 30) as f64
+                )),
+            ))
+        }
+        _ => Ok((workers, None)),
+    }
+}
+
+/// Refreshes a claim file's modification time.
+fn refresh_claim(path: &Path) {
+    if let Ok(f) = std::fs::OpenOptions::new().append(true).open(path) {
+        let _ = f.set_modified(std::time::SystemTime::now());
+    }
 }
 
 #[cfg(test)]

@@ -1,0 +1,69 @@
+"""Reliability from Python: a failing study job raises the kind of its cause once the others are
+saved; under-resolved or undefined results warn; absurd thread counts are capped; odd material
+names survive the tables."""
+
+import warnings
+
+import pytest
+import wearsim
+
+STUDY = """
+[surface]
+grid = 64
+lambda_lower = 0.125
+lambda_upper = 0.25
+rms_height = 0.005
+seed = [1, 2]
+[[materials]]
+name = "steel, \\"hard\\""
+youngs_modulus = 1.0
+poisson_ratio = 0.3
+shear_strength = 0.01
+fracture_energies = [0.5e-6]
+[contact]
+max_iterations = {max_iterations}
+[sliding]
+loads = [5e-4, 1e-3]
+distance = 0.25
+running_in = 0.125
+"""
+
+
+def test_a_study_job_that_does_not_converge_raises_not_converged_after_the_others_finish(tmp_path):
+    path = tmp_path / "study.toml"
+    path.write_text(STUDY.format(max_iterations="[1, 20000]"))
+    out = tmp_path / "out"
+    with pytest.raises(wearsim.NotConvergedError, match="4 of 8 jobs failed"):
+        wearsim.study.run(path, out=out)
+    assert len(list((out / "jobs").glob("job-*.json"))) == 4
+
+
+def test_odd_material_names_keep_the_tables_whole(tmp_path):
+    path = tmp_path / "study.toml"
+    path.write_text(STUDY.format(max_iterations="20000"))
+    tidy = wearsim.study.run(path, out=tmp_path / "out")
+    assert len(tidy) == 4 and (tidy["material"] == 'steel, "hard"').all()
+    _, aggregated = wearsim.study.collect(tmp_path / "out")
+    assert (aggregated["surface_pairs"] == 2).all()
+
+
+def test_undefined_and_under_resolved_results_warn():
+    top, bottom = wearsim.generate_pair(64, lambda_lower=0.125, lambda_upper=0.25, rms_height=0.005, seed=1)
+    # d* far beyond the box: no particle forms after running-in.
+    material = wearsim.Material(1.0, 0.3, 0.01, [1e-2])
+    with pytest.warns(wearsim.ResolutionWarning, match="no particle formed"):
+        series, summary = wearsim.slide(top, bottom, material, [5e-4])
+    result = summary["results"][0]
+    assert result["wear_rate"] == 0.0 and result["wear_rate_r2"] is None
+    assert any("no particle formed" in w for w in summary["warnings"])
+
+
+def test_absurd_thread_counts_are_capped_and_zero_is_refused():
+    top, bottom = wearsim.generate_pair(64, lambda_lower=0.125, lambda_upper=0.25, rms_height=0.005, seed=1)
+    material = wearsim.Material(1.0, 0.3, 0.01, [0.5e-6])
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        wearsim.slide(top, bottom, material, [1e-3], threads=3000)
+    assert any("four per core" in str(w.message) for w in caught)
+    with pytest.raises(ValueError, match="threads"):
+        wearsim.slide(top, bottom, material, [1e-3], threads=0)
