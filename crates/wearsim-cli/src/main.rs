@@ -87,6 +87,7 @@ fn main() {
             std::process::exit(2);
         }
     }
+    commands::interrupt();
     let result = match cli.command {
         Command::Surface(args) => surface::run(&args),
         Command::Contact(args) => contact::run(&args),
@@ -100,8 +101,11 @@ fn main() {
         Command::BenchSlide(args) => bench::run_slide(&args),
     };
     if let Err(e) = result {
+        let interrupted = e
+            .chain()
+            .any(|c| matches!(c.downcast_ref::<wearsim::Error>(), Some(wearsim::Error::Interrupted)));
         eprintln!("error: {}", message(&e));
-        std::process::exit(1);
+        std::process::exit(if interrupted { 130 } else { 1 });
     }
 }
 

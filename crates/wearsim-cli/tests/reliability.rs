@@ -742,3 +742,78 @@ fn small_things_that_used_to_slip_through() {
         .unwrap();
     assert!(o.status.success() && stderr(&o).contains("shard 2/4"), "{}", stderr(&o));
 }
+
+#[test]
+fn ctrl_c_and_sigterm_stop_cleanly_and_the_study_resumes() {
+    let dir = tempfile::tempdir().unwrap();
+    let signal = |pid: u32, name: &str| {
+        assert!(Command::new("kill")
+            .args([&format!("-{name}"), &pid.to_string()])
+            .status()
+            .unwrap()
+            .success());
+    };
+    // A slide interrupted part-way: status 130, neither its folder nor a temporary one left.
+    let text = format!(
+        "{}[sliding]\nloads = [5e-4, 1e-3, 2e-3]\ndistance = 1.0\nrunning_in = 0.5\n",
+        GENERATED
+            .replace("grid = 64", "grid = 256")
+            .replace("lambda_lower = 0.0625", "lambda_lower = 0.03125")
+    );
+    let run_path = run_file(dir.path(), &text);
+    let out = dir.path().join("slide");
+    let child = wearsim()
+        .args(["slide", s(&run_path), "--out", s(&out)])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(700));
+    signal(child.id(), "INT");
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(130), "{}", stderr(&o));
+    let left: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
+        .collect();
+    assert!(!out.exists() && left.iter().all(|f| !f.starts_with('.')), "{left:?}");
+    // A study stopped by SIGTERM: finished job files stay, claims are released, a new run finishes.
+    let study = file(dir.path(), "study.toml", &STUDY.replace("grid = 64", "grid = 128"));
+    let reference = dir.path().join("reference");
+    assert!(study_run(&study, &reference, &["--jobs", "1"]).status.success());
+    let out = dir.path().join("study");
+    let child = wearsim()
+        .args(["study", "run", s(&study), "--out", s(&out), "--jobs", "1"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while std::fs::read_dir(out.join("jobs"))
+        .map(|d| {
+            d.filter(|e| e.as_ref().unwrap().file_name().to_string_lossy().ends_with(".json"))
+                .count()
+        })
+        .unwrap_or(0)
+        < 1
+    {
+        assert!(start.elapsed() < Duration::from_secs(60));
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    signal(child.id(), "TERM");
+    let o = child.wait_with_output().unwrap();
+    if o.status.code() == Some(130) {
+        let files: Vec<String> = std::fs::read_dir(out.join("jobs"))
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
+            .collect();
+        assert!(
+            files.iter().all(|f| f.ends_with(".json") && !f.starts_with('.')),
+            "{files:?}"
+        );
+    } else {
+        assert!(o.status.success(), "{}", stderr(&o)); // it finished before the signal arrived
+    }
+    assert!(study_run(&study, &out, &[]).status.success());
+    assert_eq!(collect_csv(&out), collect_csv(&reference));
+}

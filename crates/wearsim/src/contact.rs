@@ -36,6 +36,9 @@ use crate::fft::{radial_kernel, FftPlan};
 /// `tests/contact_validation.rs`).
 pub const DEFAULT_TOLERANCE: f64 = 1e-8;
 
+/// Smallest tolerance a solve in double precision can reach (round-off in 𝒦p is about 1e-16 of h).
+pub const MIN_TOLERANCE: f64 = 1e-15;
+
 /// Default iteration limit of one solve.
 pub const DEFAULT_MAX_ITERATIONS: usize = 20_000;
 
@@ -51,6 +54,14 @@ impl SolverOptions {
     pub fn new(tolerance: f64, max_iterations: usize) -> Result<Self> {
         if !(tolerance > 0.0 && tolerance < 1.0) {
             return Err(Error::param("tolerance", format!("{tolerance} must lie in (0, 1)")));
+        }
+        if tolerance < MIN_TOLERANCE {
+            return Err(Error::param(
+                "tolerance",
+                format!(
+                    "{tolerance:e} is below {MIN_TOLERANCE:e}, which double precision cannot reach; use e.g. 1e-10"
+                ),
+            ));
         }
         if max_iterations == 0 {
             return Err(Error::param("max_iterations", "must be at least 1"));
@@ -936,4 +947,27 @@ fn scale_to_load(pressure: &mut [f64], total: f64, pm: f64, min_len: usize, sums
         }
     });
     true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unreachable_or_meaningless_settings_are_refused() {
+        assert!(SolverOptions::new(1e-8, 100).is_ok());
+        for bad in [0.0, 1.0, f64::NAN, 5e-324, 1e-16] {
+            assert!(
+                SolverOptions::new(bad, 100)
+                    .unwrap_err()
+                    .to_string()
+                    .contains("`tolerance`"),
+                "{bad}"
+            );
+        }
+        assert!(SolverOptions::new(1e-8, 0)
+            .unwrap_err()
+            .to_string()
+            .contains("`max_iterations`"));
+    }
 }

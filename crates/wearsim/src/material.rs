@@ -76,13 +76,32 @@ impl Material {
             positive("fracture_energies", g)?;
         }
         positive("geometry_factor", geometry_factor)?;
-        Ok(Self {
+        let material = Self {
             youngs_modulus,
             poisson_ratio,
             shear_strength,
             fracture_energies,
             geometry_factor,
-        })
+        };
+        // The derived quantities must be usable numbers too (p_m = 3√3 τ̃, d* = 2 f 𝒢 μ / τ̃²).
+        if !material.flow_pressure().is_finite() {
+            return Err(Error::param(
+                "shear_strength",
+                format!("{shear_strength:e} gives an infinite flow pressure"),
+            ));
+        }
+        for (&g, d) in material.fracture_energies.iter().zip(material.critical_diameters()) {
+            if !d.is_normal() {
+                return Err(Error::param(
+                    "fracture_energies",
+                    format!(
+                        "𝒢 = {g:e} with τ̃ = {shear_strength:e} and E = {youngs_modulus:e} gives d* = {d:e}, not a usable \
+                         length; check the values and their units"
+                    ),
+                ));
+            }
+        }
+        Ok(material)
     }
 
     /// Shear modulus μ = E/(2(1+ν)).
@@ -148,5 +167,12 @@ mod tests {
         assert!(e.contains("poisson_ratio"), "{e}");
         let e = Material::new(1.0, 0.3, f64::NAN, vec![], 3.0).unwrap_err().to_string();
         assert!(e.contains("shear_strength"), "{e}");
+        // Derived quantities out of range: p_m overflows, d* underflows.
+        let e = Material::new(1.0, 0.3, 1e308, vec![], 3.0).unwrap_err().to_string();
+        assert!(e.contains("shear_strength") && e.contains("flow pressure"), "{e}");
+        let e = Material::new(5e-324, 0.3, 0.01, vec![0.5e-6], 3.0)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("fracture_energies") && e.contains("d*"), "{e}");
     }
 }

@@ -67,7 +67,8 @@ pub fn run(args: &Args) -> Result<()> {
     let scale = (512 / n).max(1) as u32; // frames of at least 512 px where the grid is smaller
     let step_px = (n / 512).max(1); // and at most about 1024 px where it is larger
     let side = (n / step_px) as u32 * scale;
-    let setup = SlidingSetup::from_run(&config, &sliding);
+    let mut setup = SlidingSetup::from_run(&config, &sliding);
+    setup.interrupt = super::interrupt().clone();
     let d_star = config
         .material
         .critical_diameter(config.material.fracture_energies[energy_index]);

@@ -74,7 +74,9 @@ pub fn run(args: &Args) -> Result<()> {
     };
     let out = OutputDir::begin(&args.out, "contact", args.overwrite)?;
     let (top, bottom) = config.surfaces()?;
-    let mut solver = ContactSolver::new(n, length, config.effective_modulus())?.with_options(config.solver);
+    let mut solver = ContactSolver::new(n, length, config.effective_modulus())?
+        .with_options(config.solver)
+        .with_interrupt(super::interrupt().clone());
     let mut heights = vec![0.0; n * n];
     composite_heights(&top, &bottom, shift, &mut heights);
     let mut pressure = vec![0.0; n * n];

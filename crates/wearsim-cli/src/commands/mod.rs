@@ -14,6 +14,19 @@ use std::path::Path;
 use anyhow::{Context, Result};
 use wearsim::config::RunConfig;
 
+/// The flag Ctrl-C and SIGTERM raise: the library stops at its next iteration, the command cleans up
+/// (temporary files, claims) and exits with status 130.
+pub fn interrupt() -> &'static wearsim::Interrupt {
+    static FLAG: std::sync::OnceLock<wearsim::Interrupt> = std::sync::OnceLock::new();
+    FLAG.get_or_init(|| {
+        let flag = wearsim::Interrupt::default();
+        let raised = flag.clone();
+        // Without a handler (e.g. one already installed) the signal keeps its default action.
+        let _ = ctrlc::set_handler(move || raised.request());
+        flag
+    })
+}
+
 /// Reads and validates a run file.
 pub fn load_run(run: &Path) -> Result<RunConfig> {
     RunConfig::from_path(run).with_context(|| format!("run file {}", run.display()))

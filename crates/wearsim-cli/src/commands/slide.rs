@@ -72,7 +72,8 @@ pub fn run(args: &Args) -> Result<()> {
         );
     }
     let steps_per_load = sliding.offsets(n).len();
-    let setup = SlidingSetup::from_run(&config, &sliding);
+    let mut setup = SlidingSetup::from_run(&config, &sliding);
+    setup.interrupt = super::interrupt().clone();
     let progress = Progress::new("slide", "steps", (steps_per_load * sliding.loads.len()) as u64);
     let start = Instant::now();
     let runs = run_sliding(&top, &bottom, &setup, |view| {

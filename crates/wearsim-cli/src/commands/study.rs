@@ -110,7 +110,7 @@ pub fn run(args: &RunArgs) -> Result<()> {
         );
         b
     });
-    let outcome = run_jobs(out, &jobs, workers, &Default::default(), |done, total| match &bar {
+    let outcome = run_jobs(out, &jobs, workers, super::interrupt(), |done, total| match &bar {
         Some(b) => {
             b.set_length(total as u64);
             b.set_position(done as u64);

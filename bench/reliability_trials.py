@@ -1,0 +1,306 @@
+"""Reliability trials of the `wearsim` CLI, as a user would meet them, counted for docs/reliability.md.
+
+Classes: bad inputs (every run-file and study-file field set to bad values, bad command-line
+arguments, broken .npy files), kill -9 of a study and resume, concurrent runs on one folder, a disk
+that fills up (a file-size limit), signals (SIGINT, SIGTERM), huge sizes. Each trial's outcome is
+classified: a clear error (exit 1 or 2, one line naming something), accepted (exit 0, consistent
+outputs), a panic (exit 101), an abort (134 or a signal), a hang (over the time limit), or data loss
+(outputs mixed, half-written, or a finished result lost).
+
+    cargo build --release -p wearsim-cli && python bench/reliability_trials.py [--quick]
+"""
+
+from __future__ import annotations
+
+import argparse
+import collections
+import json
+import os
+import random
+import signal
+import subprocess
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+WEARSIM = os.environ.get("WEARSIM_BIN", str(ROOT / "target" / "release" / "wearsim"))
+
+RUN = {
+    "surface": {
+        "grid": "64",
+        "length": "1.0",
+        "hurst": "0.7",
+        "lambda_lower": "0.0625",
+        "lambda_upper": "0.25",
+        "rms_height": "0.005",
+        "seed": "1",
+        "generation": '"random-phase"',
+    },
+    "material": {
+        "youngs_modulus": "1.0",
+        "poisson_ratio": "0.3",
+        "shear_strength": "0.01",
+        "fracture_energies": "[0.5e-6]",
+        "geometry_factor": "3.0",
+    },
+    "contact": {"modulus": '"half-space"', "tolerance": "1e-8", "max_iterations": "20000", "connectivity": "4"},
+    "sliding": {"loads": "[1e-3]", "distance": "0.5", "running_in": "0.25", "step_running_in": "4", "step": "1"},
+}
+BAD = [
+    "0",
+    "-1",
+    "1e308",
+    "5e-324",
+    "nan",
+    "inf",
+    "-inf",
+    '"text"',
+    "[]",
+    "[1, 2]",
+    "true",
+    "18446744073709551615",
+    "0.5",
+    "3",
+    "100000",
+]
+
+Outcome = collections.namedtuple("Outcome", "kind detail")
+
+
+def toml(run: dict, drop: tuple = (), extra: str = "") -> str:
+    lines = []
+    for section, keys in run.items():
+        lines.append(f"[{section}]")
+        lines += [f"{k} = {v}" for k, v in keys.items() if (section, k) != drop]
+    return "\n".join(lines) + "\n" + extra
+
+
+def classify(p: subprocess.CompletedProcess | None, out: Path | None = None) -> Outcome:
+    if p is None:
+        return Outcome("hang", "")
+    err = p.stderr.decode(errors="replace").strip()
+    if p.returncode == 0:
+        return Outcome("accepted", "")
+    if p.returncode == 101 or "panicked" in err:
+        return Outcome("panic", err[-300:])
+    if p.returncode < 0 or p.returncode in (134, 137, 139):
+        return Outcome("abort", f"status {p.returncode}: {err[-300:]}")
+    # The error line (command-line errors add a usage hint after it).
+    last = next((line for line in err.splitlines() if line.startswith("error:")), err.splitlines()[-1] if err else "")
+    clear = last.startswith("error:") and len(last) > 20 and "Os {" not in err and "panicked" not in err
+    if out is not None and out.exists() and not (out / ".wearsim.json").exists():
+        return Outcome("data loss", f"half-written {out}")
+    return Outcome("clear error" if clear else "unclear error", last)
+
+
+def run(args: list[str], timeout: float = 120, **kw) -> subprocess.CompletedProcess | None:
+    try:
+        return subprocess.run([WEARSIM, *args], capture_output=True, timeout=timeout, **kw)
+    except subprocess.TimeoutExpired:
+        return None
+
+
+def bad_inputs(tmp: Path, tally: dict, quick: bool) -> None:
+    commands = [["slide"], ["surface"]] if not quick else [["slide"]]
+    for section, keys in RUN.items():
+        for key in keys:
+            for value in BAD + ["<missing>"]:
+                mutated = json.loads(json.dumps(RUN))
+                drop = ()
+                if value == "<missing>":
+                    drop = (section, key)
+                else:
+                    mutated[section][key] = value
+                path = tmp / "run.toml"
+                path.write_text(toml(mutated, drop))
+                for command in commands:
+                    out = tmp / f"out-{section}-{key}"
+                    p = run([*command, str(path), "--out", str(out)], timeout=120)
+                    o = classify(p, out)
+                    tally[("bad run-file values", o.kind)].append(f"{section}.{key} = {value} ({command[0]}): {o.detail}")
+                    subprocess.run(["rm", "-rf", str(out)])
+    # Unknown keys and broken TOML.
+    path = tmp / "run.toml"
+    for text in [toml(RUN, extra="[extra]\nx = 1\n"), toml(RUN).replace("grid", "grdi"), "[surface\n", "", "x = "]:
+        path.write_text(text)
+        o = classify(run(["slide", str(path), "--out", str(tmp / "o")]))
+        tally[("bad run files", o.kind)].append(o.detail)
+    # Command-line arguments.
+    path.write_text(toml(RUN))
+    cases = [
+        ["contact", str(path), "--load", v, "--out", str(tmp / "c")] for v in ["0", "-1", "nan", "inf", "1", "x"]
+    ] + [
+        ["contact", str(path), "--load", "1e-3", "--offset", v, "--out", str(tmp / "c")]
+        for v in ["-1", "1e20", "nan", "1.0", "0.5001"]
+    ]
+    cases += [["--threads", v, "slide", str(path), "--out", str(tmp / "t")] for v in ["0", "3000", "-1", "x"]]
+    cases += [["junctions", str(path), "--connectivity", v, "--out", str(tmp / "j")] for v in ["0", "6", "300"]]
+    cases += [["bench", "--sizes", v] for v in ["16", "63", "100000", "0"]]
+    cases += [["animate", str(path), "--out", str(tmp / "a.gif"), "--delay", v] for v in ["0", "700000"]]
+    cases += [["study", "run", str(path), "--out", str(tmp / "s"), "--shard", v] for v in ["0/2", "3/2", "x", "1/0"]]
+    for args in cases:
+        o = classify(run(args, timeout=120))
+        tally[("bad arguments", o.kind)].append(f"{' '.join(args[:1] + args[-2:])}: {o.detail}")
+        for d in ["c", "t", "j", "s"]:
+            subprocess.run(["rm", "-rf", str(tmp / d)])
+    # Broken .npy surfaces (the fuzzing corpus).
+    for npy in sorted((ROOT / "crates/wearsim/tests/fuzz-corpus/npy").iterdir()):
+        text = toml({**RUN, "surface": {"top": f'"{npy}"', "bottom": f'"{npy}"', "length": "1.0"}})
+        path.write_text(text)
+        o = classify(run(["contact", str(path), "--load", "1e-3", "--out", str(tmp / "n")]))
+        tally[("broken .npy files", o.kind)].append(f"{npy.name}: {o.detail}")
+        subprocess.run(["rm", "-rf", str(tmp / "n")])
+
+
+STUDY = toml(RUN).replace('seed = 1', "seed = [1, 2, 3]").replace("loads = [1e-3]", "loads = [5e-4, 1e-3]")
+
+
+def results(folder: Path) -> str:
+    p = run(["study", "collect", str(folder)])
+    assert p is not None and p.returncode == 0, p and p.stderr
+    return (folder / "results.csv").read_text()
+
+
+def kills_and_concurrency(tmp: Path, tally: dict, trials: int) -> None:
+    study = tmp / "study.toml"
+    study.write_text(STUDY.replace("grid = 64", "grid = 128"))
+    reference = tmp / "reference"
+    run(["study", "run", str(study), "--out", str(reference)])
+    expected = results(reference)
+    rng = random.Random(1)
+    for t in range(trials):
+        out = tmp / f"killed{t}"
+        child = subprocess.Popen(
+            [WEARSIM, "study", "run", str(study), "--out", str(out)], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
+        )
+        time.sleep(rng.uniform(0.05, 1.0))
+        child.kill()
+        child.wait()
+        p = run(["study", "run", str(study), "--out", str(out)])
+        ok = p is not None and p.returncode == 0 and results(out) == expected
+        tally[("kill -9 during a study, then resume", "accepted" if ok else "data loss")].append(f"trial {t}")
+    for t in range(trials):
+        out = tmp / f"concurrent{t}"
+        children = [
+            subprocess.Popen(
+                [WEARSIM, "study", "run", str(study), "--out", str(out), "--jobs", "1"],
+                stdout=subprocess.PIPE,
+                stderr=subprocess.PIPE,
+            )
+            for _ in range(2)
+        ]
+        outs = [c.communicate() for c in children]
+        computed = sum(int(o[0].decode().split("computed ")[1].split()[0]) for o in outs if b"computed" in o[0])
+        jobs = len(list((reference / "jobs").glob("job-*.json")))
+        ok = all(c.returncode == 0 for c in children) and computed == jobs and results(out) == expected
+        tally[("two full runs on one folder at once", "accepted" if ok else "data loss")].append(f"trial {t}")
+    for t in range(max(1, trials // 2)):
+        out = tmp / f"shards{t}"
+        children = []
+        for k in range(1, 9):
+            time.sleep(rng.uniform(0.0, 0.05))
+            children.append(
+                subprocess.Popen(
+                    [WEARSIM, "study", "run", str(study), "--out", str(out), "--shard", f"{k}/8", "--jobs", "1"],
+                    stdout=subprocess.DEVNULL,
+                    stderr=subprocess.PIPE,
+                )
+            )
+        codes = [c.wait() for c in children]
+        ok = all(c == 0 for c in codes) and results(out) == expected
+        tally[("eight staggered shards on one folder", "accepted" if ok else "data loss")].append(f"trial {t}")
+
+
+def disk_full_and_signals(tmp: Path, tally: dict, trials: int) -> None:
+    path = tmp / "run.toml"
+    path.write_text(toml(RUN).replace("loads = [1e-3]", "loads = [5e-4, 1e-3]"))
+    for command, extra in [("surface", []), ("slide", []), ("contact", ["--load", "1e-3"])]:
+        out = tmp / f"full-{command}"
+        p = run([command, str(path), *extra, "--out", str(out)])
+        before = {f.name: f.read_bytes() for f in out.iterdir()}
+        for blocks in [1, 2, 8, 32]:
+            script = f"trap '' XFSZ; ulimit -f {blocks}; exec {WEARSIM} {command} {path} {' '.join(extra)} --out {out}"
+            p = subprocess.run(["sh", "-c", script], capture_output=True)
+            after = {f.name: f.read_bytes() for f in out.iterdir()}
+            hidden = [f for f in tmp.iterdir() if f.name.startswith(".")]
+            intact = after == before or (p.returncode == 0)
+            kind = "data loss" if not intact or hidden else ("clear error" if p.returncode else "accepted")
+            tally[("disk full (file-size limit)", kind)].append(f"{command}, {blocks} blocks")
+    big = tmp / "big.toml"
+    big.write_text(
+        toml(RUN)
+        .replace("grid = 64", "grid = 256")
+        .replace("lambda_lower = 0.0625", "lambda_lower = 0.03125")
+        .replace("loads = [1e-3]", "loads = [5e-4, 1e-3, 2e-3]")
+    )
+    for t in range(trials):
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            out = tmp / f"sig{t}"
+            child = subprocess.Popen(
+                [WEARSIM, "slide", str(big), "--out", str(out)], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE
+            )
+            time.sleep(0.2 + 0.3 * t)
+            child.send_signal(sig)
+            child.wait()
+            hidden = [f for f in tmp.iterdir() if f.name.startswith(".")]
+            clean = (child.returncode == 130 and not out.exists()) or child.returncode == 0
+            kind = "clear error" if clean and not hidden else "data loss"
+            tally[("SIGINT / SIGTERM during a slide", kind)].append(f"{sig.name} after {0.2 + 0.3 * t:.1f} s")
+            subprocess.run(["rm", "-rf", str(out)])
+
+
+def huge_sizes(tmp: Path, tally: dict) -> None:
+    path = tmp / "run.toml"
+    for grid in ["100000", "65536", "40000", "1000000000"]:
+        path.write_text(toml(RUN).replace("grid = 64", f"grid = {grid}"))
+        for command in ["slide", "surface", "contact"]:
+            extra = ["--load", "1e-3"] if command == "contact" else []
+            o = classify(run([command, str(path), *extra, "--out", str(tmp / "h")]))
+            tally[("huge sizes", o.kind)].append(f"{command} grid {grid}: {o.detail}")
+        study = tmp / "h.toml"
+        study.write_text(STUDY.replace("grid = 64", f"grid = {grid}"))
+        o = classify(run(["study", "run", str(study), "--out", str(tmp / "hs")]))
+        if (tmp / "hs").exists():
+            o = Outcome("data loss", "study folder made before the refusal")
+        tally[("huge sizes", o.kind)].append(f"study run grid {grid}: {o.detail}")
+    for sizes in ["100000", "65536"]:
+        o = classify(run(["bench", "--sizes", sizes]))
+        tally[("huge sizes", o.kind)].append(f"bench {sizes}: {o.detail}")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="fewer trials")
+    parser.add_argument("--verbose", action="store_true", help="list every trial")
+    args = parser.parse_args()
+    tally: dict = collections.defaultdict(list)
+    start = time.time()
+    with tempfile.TemporaryDirectory() as d:
+        tmp = Path(d)
+        bad_inputs(tmp, tally, args.quick)
+        kills_and_concurrency(tmp, tally, 3 if args.quick else 10)
+        disk_full_and_signals(tmp, tally, 2 if args.quick else 5)
+        huge_sizes(tmp, tally)
+    classes = sorted({c for c, _ in tally})
+    kinds = ["accepted", "clear error", "unclear error", "panic", "abort", "hang", "data loss"]
+    print(f"| class | trials | {' | '.join(kinds)} |")
+    print("|---|---|" + "---|" * len(kinds))
+    for c in classes:
+        counts = [len(tally[(c, k)]) for k in kinds]
+        print(f"| {c} | {sum(counts)} | {' | '.join(map(str, counts))} |")
+    totals = [sum(len(tally[(c, k)]) for c in classes) for k in kinds]
+    print(f"| **all** | {sum(totals)} | {' | '.join(map(str, totals))} |")
+    for k in ["unclear error", "panic", "abort", "hang", "data loss"]:
+        for c in classes:
+            for detail in tally[(c, k)]:
+                print(f"{k}: {c}: {detail}")
+    if args.verbose:
+        for (c, k), details in sorted(tally.items()):
+            for detail in details:
+                print(f"{c} / {k}: {detail}")
+    print(f"{time.time() - start:.0f} s")
+
+
+if __name__ == "__main__":
+    main()
