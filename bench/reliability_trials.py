@@ -118,7 +118,8 @@ def bad_inputs(tmp: Path, tally: dict, quick: bool) -> None:
                     out = tmp / f"out-{section}-{key}"
                     p = run([*command, str(path), "--out", str(out)], timeout=120)
                     o = classify(p, out)
-                    tally[("bad run-file values", o.kind)].append(f"{section}.{key} = {value} ({command[0]}): {o.detail}")
+                    what = f"{section}.{key} = {value} ({command[0]})"
+                    tally[("bad run-file values", o.kind)].append(f"{what}: {o.detail}")
                     subprocess.run(["rm", "-rf", str(out)])
     # Unknown keys and broken TOML.
     path = tmp / "run.toml"
@@ -153,7 +154,7 @@ def bad_inputs(tmp: Path, tally: dict, quick: bool) -> None:
         subprocess.run(["rm", "-rf", str(tmp / "n")])
 
 
-STUDY = toml(RUN).replace('seed = 1', "seed = [1, 2, 3]").replace("loads = [1e-3]", "loads = [5e-4, 1e-3]")
+STUDY = toml(RUN).replace("seed = 1", "seed = [1, 2, 3]").replace("loads = [1e-3]", "loads = [5e-4, 1e-3]")
 
 
 def results(folder: Path) -> str:
@@ -171,9 +172,8 @@ def kills_and_concurrency(tmp: Path, tally: dict, trials: int) -> None:
     rng = random.Random(1)
     for t in range(trials):
         out = tmp / f"killed{t}"
-        child = subprocess.Popen(
-            [WEARSIM, "study", "run", str(study), "--out", str(out)], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
-        )
+        quiet = {"stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL}
+        child = subprocess.Popen([WEARSIM, "study", "run", str(study), "--out", str(out)], **quiet)
         time.sleep(rng.uniform(0.05, 1.0))
         child.kill()
         child.wait()
