@@ -9,7 +9,8 @@ The data flow follows the paper, one module per step:
 - :mod:`wearsim.contact`: the saturated-pressure FFT contact solver;
 - :mod:`wearsim.junctions`: junctions (periodic connected components of the contact map);
 - :mod:`wearsim.wear`: the static model and the sliding model (pandas series, summary dict);
-- :mod:`wearsim.study`: study files, run locally or as Dask tasks, collected into tidy tables.
+- :mod:`wearsim.study`: study files, run locally or as Dask tasks, collected into tidy tables;
+- :mod:`wearsim.plot`: the paper's figures on matplotlib, from a study's tidy table.
 
 Units: every quantity is in the unit system of its inputs. In reduced units E = 1 and L = 1
 (pressures in E, lengths in L, loads in E·L², fracture energies in E·L); in SI, Pa, m, N and J/m².
@@ -17,7 +18,7 @@ Units: every quantity is in the unit system of its inputs. In reduced units E = 
 Long calls release the GIL and stop on Ctrl-C (KeyboardInterrupt).
 """
 
-from . import contact, junctions, study, surface, wear
+from . import contact, junctions, plot, study, surface, wear
 from ._wearsim import (
     DEFAULT_MAX_ITERATIONS,
     DEFAULT_TOLERANCE,
@@ -50,6 +51,7 @@ __all__ = [
     "junctions",
     "label_junctions",
     "load_run",
+    "plot",
     "radial_psd",
     "slide",
     "solve_contact",

@@ -92,3 +92,28 @@ def test_dask_local_cluster_equals_the_local_run(tmp_path, study_file):
     assert all((tmp_path / "dask" / "jobs" / n).stat().st_mtime_ns == t for n, t in before.items())
     # Six pending jobs, each a Dask task, spread over both worker processes.
     assert len(tasks) == 6 and len({t["worker"] for t in tasks}) == 2
+
+
+def test_figures_from_python_and_job_series(tmp_path, study_file):
+    pytest.importorskip("matplotlib", reason="matplotlib not installed")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    out = tmp_path / "out"
+    tidy = wearsim.study.run(study_file, out=out)
+    series = wearsim.study.job_series(out, 3)
+    assert set(series["fracture_energy"]) == {0.5e-6, 1e-6}
+    assert (series["n_shrunk"] == series["n_formed"] - series["n_critical"]).all()
+    assert series["initial_junctions"].iloc[0] == series["junctions"].iloc[0]
+    written = wearsim.plot.study_figures(out)
+    names = {p.stem for p in written}
+    for name in [
+        "fig2_static_model",
+        "fig3_wear_volume",
+        "fig4_sliding_wear",
+        "fig6_kim_comparison",
+        "memory_of_initial_contact",
+    ]:
+        assert name in names and (out / "figures-python" / f"{name}.png").stat().st_size > 1000
+    labels = [label for label, _ in wearsim.plot.curves(tidy)]
+    assert len(labels) == 4 and all(r"$\tilde{\tau}$ = " in label and r"$\mathcal{G}$ = " in label for label in labels)

@@ -158,8 +158,12 @@ fn shards_and_worker_counts_give_the_unsharded_results() {
         "fig4_sliding_wear",
         "fig5_particle_rate",
         "appB_particle_counts",
+        "appB_eq5_against_w",
+        "appC_junctions",
+        "appC_critical_junctions",
         "appF_contact_severity",
         "fig6_kim_comparison",
+        "memory_of_initial_contact",
     ] {
         for ext in ["png", "svg"] {
             let f = sharded.join("figures").join(format!("{name}.{ext}"));
@@ -169,6 +173,43 @@ fn shards_and_worker_counts_give_the_unsharded_results() {
                 f.display()
             );
         }
+    }
+    let findings = std::fs::read_to_string(sharded.join("figures/findings.md")).unwrap();
+    assert!(
+        findings.contains("static model") && findings.contains("| finding (paper) |"),
+        "{findings}"
+    );
+    // A chosen job's series, a chosen set of figures; the folder is replaced whole.
+    let o = wearsim()
+        .args([
+            "study",
+            "plot",
+            sharded.to_str().unwrap(),
+            "--job",
+            "5",
+            "--figures",
+            "fig3,memory",
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let names: Vec<String> = std::fs::read_dir(sharded.join("figures"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
+        .filter(|n| !n.starts_with('.'))
+        .collect();
+    assert_eq!(names.len(), 5, "{names:?}");
+    assert!(String::from_utf8_lossy(&o.stdout).contains("series of job 5"));
+    for bad in [&["--job", "999"][..], &["--figures", "fig9"][..]] {
+        let o = wearsim()
+            .args(["study", "plot", sharded.to_str().unwrap()])
+            .args(bad)
+            .output()
+            .unwrap();
+        assert!(
+            !o.status.success() && String::from_utf8_lossy(&o.stderr).contains(bad[0]),
+            "{bad:?}"
+        );
     }
     // A Slurm job array picks its shard from the environment.
     let slurm = dir.path().join("slurm");

@@ -488,6 +488,10 @@ impl RunConfig {
             modulus: self.modulus,
             tolerance: self.solver.tolerance(),
             connectivity: self.connectivity,
+            distance: self.sliding.as_ref().map(|s| s.distance),
+            running_in: self.sliding.as_ref().map(|s| s.running_in),
+            step_running_in: self.sliding.as_ref().map(|s| s.step_running_in),
+            step: self.sliding.as_ref().map(|s| s.step),
         };
         match &self.surfaces {
             SurfaceSource::Generated {
@@ -547,6 +551,14 @@ pub struct InputRecord {
     pub tolerance: f64,
     #[serde(rename = "contact.connectivity")]
     pub connectivity: u8,
+    #[serde(rename = "sliding.distance")]
+    pub distance: Option<f64>,
+    #[serde(rename = "sliding.running_in")]
+    pub running_in: Option<f64>,
+    #[serde(rename = "sliding.step_running_in")]
+    pub step_running_in: Option<usize>,
+    #[serde(rename = "sliding.step")]
+    pub step: Option<usize>,
 }
 
 #[cfg(test)]

@@ -193,6 +193,33 @@ impl Table {
         self.columns.iter().position(|c| c == name)
     }
 
+    /// A table read back from CSV text: empty cells are [`Cell::Empty`], whole numbers
+    /// [`Cell::Int`], other numbers [`Cell::Float`], the rest text.
+    pub fn from_csv(text: &str) -> std::result::Result<Self, csv::Error> {
+        let mut reader = csv::Reader::from_reader(text.as_bytes());
+        let columns: Vec<String> = reader.headers()?.iter().map(String::from).collect();
+        let mut rows = Vec::new();
+        for record in reader.records() {
+            rows.push(
+                record?
+                    .iter()
+                    .map(|t| {
+                        if t.is_empty() {
+                            Cell::Empty
+                        } else if let Ok(i) = t.parse::<i64>() {
+                            Cell::Int(i)
+                        } else if let Ok(f) = t.parse::<f64>() {
+                            Cell::Float(f)
+                        } else {
+                            Cell::Text(t.to_string())
+                        }
+                    })
+                    .collect(),
+            );
+        }
+        Ok(Self { columns, rows })
+    }
+
     /// The table as CSV (RFC 4180 quoting: text with commas, quotes or newlines stays one field).
     pub fn to_csv(&self) -> String {
         let mut w = csv::Writer::from_writer(Vec::new());
@@ -542,10 +569,18 @@ pub fn junctions_summary(connectivity: u8, pixels: &[usize]) -> Value {
 // ---------------------------------------------------------------------------------------------
 // Studies
 
+/// The format of the job files this version writes; raised whenever what identifies a job or what
+/// a job file holds changes.
+pub const JOB_FORMAT: u32 = 2;
+
 /// What a study's job file holds: which job it is (checked when the file is read back, so that a
 /// file can never be attributed to another job), and its results.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct JobResult {
+    /// The job-file format ([`JOB_FORMAT`]); files of another format come from another version of
+    /// wearsim and are not mixed with this one's.
+    #[serde(default)]
+    pub format: u32,
     pub provenance: Provenance,
     pub index: usize,
     pub material: String,

@@ -9,11 +9,16 @@ fn shipped_study_files_expand() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../studies");
     let expected = [
         ("quick.toml", 24),
+        ("paper-window.toml", 30),
         ("paper-reduced.toml", 320),
+        ("running-in-step.toml", 18),
         ("kim1986.toml", 20),
-        ("appendix-discretization.toml", 24),
-        ("appendix-area.toml", 36),
+        ("appendix-discretization.toml", 40),
+        ("appendix-discretization-reduced.toml", 18),
+        ("appendix-area.toml", 60),
+        ("appendix-area-reduced.toml", 24),
         ("appendix-lambda-h.toml", 36),
+        ("appendix-lambda-h-reduced.toml", 24),
     ];
     for (file, jobs) in expected {
         let text = std::fs::read_to_string(dir.join(file)).unwrap();

@@ -1,532 +1,908 @@
-//! `wearsim study plot DIR`: figures of a finished study, as PNG and SVG, in the layout of the paper
-//! (Brink, Frérot & Molinari 2021): static wear rate and k against F_N (Fig. 2), V(s) with its fitted
-//! line and the running-in region (Fig. 3), sliding wear rate and k against F_N with min–max bars over
-//! surface pairs (Fig. 4), dN*₊/ds against F_N (Fig. 5), N*₊, N*, N*₋ against s (appendix B), the
-//! contact-severity fit (appendix F) and k against Kim et al.'s experiments (Fig. 6).
+//! `wearsim study plot DIR`: the figures of a finished study, as PNG and SVG in `DIR/figures`, in the
+//! layout of the paper (Brink, Frérot & Molinari 2021), and the paper's findings checked on the study
+//! (`findings.md`, also printed):
+//!
+//! | name | figure |
+//! |---|---|
+//! | `fig2` | static model over every offset: W_static/ω and k_static against F_N (paper Fig. 2) |
+//! | `fig3` | V(s) of one job with the fitted lines and the running-in region (Fig. 3) |
+//! | `fig4` | sliding W and k against F_N, min–max bars over surface pairs (Fig. 4a–b) |
+//! | `fig4c` | W, k and dN*₊/ds for settings of (nearly) equal d* (Figs. 4c, 5c) |
+//! | `fig5` | dN*₊/ds against F_N (Fig. 5) |
+//! | `fig6` | k against F_N per material beside Kim et al.'s experimental range (Fig. 6) |
+//! | `appB` | N*₊, N*, N*₋ against s of one job (appendix B, Fig. B.9a) |
+//! | `appB-eq5` | Eq. 5, ω d*³ dN*₊/ds, against the summed W (Fig. B.9b) |
+//! | `appC` | junctions N and critical junctions N* against F_N (appendix C) |
+//! | `appF` | the contact-severity fit W = α S_cⁿ with its R² (appendix F) |
+//! | `memory` | the memory of the initial contact N₀(s) of one job with its exponential fit (§3) |
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
-use anyhow::{anyhow, Context, Result};
+use anyhow::{anyhow, bail, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use wearsim::config::{SurfaceSource, Units};
-use wearsim::output::{JobResult, StepRow};
-use wearsim::sliding::WearResult;
+use wearsim::output::{JobResult, Table, TidyRow};
+use wearsim::sliding::{line_fit, WearResult};
+use wearsim::study::findings::{findings, markdown};
 use wearsim::study::{load_results, Job};
 
-use crate::figures::{drawing, legend, log_range, save, Figure, FONT};
+use crate::figures::{color, layout, legend, number, pretty, save, Axis, Entry, Figure, Marker, Panel, Swatch};
+
+/// Every figure, in the order drawn.
+const FIGURES: [&str; 11] = [
+    "fig2", "fig3", "fig4", "fig4c", "fig5", "fig6", "appB", "appB-eq5", "appC", "appF", "memory",
+];
 
 #[derive(clap::Args)]
 pub struct Args {
     /// Study folder.
     dir: PathBuf,
+    /// The job whose series fig3, appB and memory show (its index, as in results.csv; default: the
+    /// job that formed the most particles after running-in).
+    #[arg(long)]
+    job: Option<usize>,
+    /// Figures to draw, comma-separated (default: all): fig2, fig3, fig4, fig4c, fig5, fig6, appB,
+    /// appB-eq5, appC, appF, memory.
+    #[arg(long, value_delimiter = ',')]
+    figures: Option<Vec<String>>,
 }
 
-/// Units of a study's axes: (load, length).
-fn units_of(job: &Job) -> (&'static str, &'static str) {
-    match job.run.units {
-        Units::Reduced => ("E L²", "L"),
-        Units::Si => ("N", "m"),
+/// The unit names of a study's axes.
+#[derive(Debug, Clone, Copy)]
+struct Units2 {
+    si: bool,
+}
+
+impl Units2 {
+    fn load(self) -> &'static str {
+        if self.si {
+            "N"
+        } else {
+            "E L²"
+        }
+    }
+    fn length(self) -> &'static str {
+        if self.si {
+            "m"
+        } else {
+            "L"
+        }
+    }
+    fn area(self) -> &'static str {
+        if self.si {
+            "m²"
+        } else {
+            "L²"
+        }
+    }
+    fn volume(self) -> &'static str {
+        if self.si {
+            "m³"
+        } else {
+            "L³"
+        }
+    }
+    /// A length for legends (µm in SI).
+    fn show_length(self, v: f64) -> String {
+        if self.si {
+            format!("{} µm", number(v * 1e6))
+        } else {
+            format!("{} L", number(v))
+        }
+    }
+    fn show_stress(self, v: f64) -> String {
+        if self.si {
+            format!("{} GPa", number(v / 1e9))
+        } else {
+            format!("{} E", number(v))
+        }
+    }
+    fn show_energy(self, v: f64) -> String {
+        if self.si {
+            format!("{} J/m²", number(v))
+        } else {
+            format!("{} E L", pretty(v))
+        }
     }
 }
 
-/// A quantity drawn against load, read off one result.
-type Quantity = fn(&WearResult) -> f64;
-
-/// One curve against load: a material (and its varying inputs) and one fracture energy; per load,
-/// the results over surface pairs.
-struct Curve {
-    label: String,
-    points: BTreeMap<u64, (f64, Vec<WearResult>)>, // load bits → (load, results per pair)
+/// How a varying input is named in legends.
+fn input_label(key: &str, value: &toml::Value, units: Units2) -> String {
+    let num = value.as_float().or(value.as_integer().map(|i| i as f64));
+    let name = key.rsplit('.').next().unwrap_or(key);
+    match (name, num) {
+        ("shear_strength", Some(v)) => format!("τ = {}", units.show_stress(v)),
+        ("youngs_modulus", Some(v)) => format!("E = {}", units.show_stress(v)),
+        ("rms_height", Some(v)) => format!("h_rms = {}", units.show_length(v)),
+        ("lambda_lower", Some(v)) => format!("λ_l = {}", units.show_length(v)),
+        ("lambda_upper", Some(v)) => format!("λ_u = {}", units.show_length(v)),
+        ("length", Some(v)) => format!("box {}", units.show_length(v)),
+        ("grid", Some(v)) => format!("{v}² px"),
+        ("step_running_in", Some(v)) => format!("running-in step {v} px"),
+        (_, Some(v)) => format!("{name} = {}", number(v)),
+        (_, None) => format!("{name} = {value}"),
+    }
 }
 
+/// One curve against load: a setting (material and varying inputs but the seed) and one fracture
+/// energy; per load, the results over surface pairs.
+struct Curve {
+    label: String,
+    material: usize,
+    energy: usize,
+    critical_diameter: f64,
+    shear_strength: f64,
+    fracture_energy: f64,
+    points: BTreeMap<u64, (f64, Vec<WearResult>)>,
+}
+
+type Quantity = fn(&WearResult) -> Option<f64>;
+
 impl Curve {
-    /// Per load: (load, mean, min, max) of `quantity` over the surface pairs.
-    fn stats(&self, quantity: Quantity) -> Vec<(f64, f64, f64, f64)> {
+    /// Per load: (load, mean, min, max) of a quantity over the surface pairs where it is defined.
+    fn stats(&self, q: Quantity) -> Vec<(f64, f64, f64, f64)> {
         self.points
             .values()
-            .map(|(load, results)| {
-                let v: Vec<f64> = results.iter().map(quantity).collect();
-                let mean = v.iter().sum::<f64>() / v.len() as f64;
-                let min = v.iter().copied().fold(f64::INFINITY, f64::min);
-                let max = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-                (*load, mean, min, max)
+            .filter_map(|(load, results)| {
+                let v: Vec<f64> = results.iter().filter_map(q).filter(|x| x.is_finite()).collect();
+                (!v.is_empty()).then(|| {
+                    let mean = v.iter().sum::<f64>() / v.len() as f64;
+                    let min = v.iter().copied().fold(f64::INFINITY, f64::min);
+                    let max = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                    (*load, mean, min, max)
+                })
             })
             .collect()
     }
 }
 
-fn curves(jobs: &[Job], results: &[JobResult]) -> Vec<Curve> {
-    let mut out: Vec<Curve> = Vec::new();
-    let mut index: BTreeMap<String, usize> = BTreeMap::new();
-    for (job, r) in jobs.iter().zip(results) {
-        let (_, length) = units_of(job);
-        let inputs: Vec<String> = job
-            .varying
-            .iter()
-            .filter(|(k, _)| k.as_str() != "surface.seed")
-            .map(|(k, v)| format!("{}={}", k.rsplit('.').next().unwrap_or(k), v))
-            .collect();
-        for w in &r.results {
-            let d = match job.run.units {
-                Units::Reduced => format!("d* = {:.4} {length}", w.critical_diameter),
-                Units::Si => format!("d* = {:.2} µm", w.critical_diameter * 1e6),
-            };
-            let label = format!("{} {} G={:.3e}, {d}", job.material, inputs.join(" "), w.fracture_energy);
-            let i = *index.entry(label.clone()).or_insert_with(|| {
-                out.push(Curve {
-                    label: label.clone(),
-                    points: BTreeMap::new(),
-                });
-                out.len() - 1
+/// A study loaded for plotting.
+struct Data {
+    jobs: Vec<Job>,
+    results: Vec<JobResult>,
+    units: Units2,
+    curves: Vec<Curve>,
+    /// Material names, in order of appearance.
+    materials: Vec<String>,
+}
+
+impl Data {
+    fn new(jobs: Vec<Job>, results: Vec<JobResult>) -> Result<Self> {
+        let first = jobs.first().ok_or_else(|| anyhow!("the study has no jobs"))?;
+        let units = Units2 {
+            si: first.run.units == Units::Si,
+        };
+        let mut materials: Vec<String> = Vec::new();
+        let mut curves: Vec<Curve> = Vec::new();
+        let mut index: BTreeMap<String, usize> = BTreeMap::new();
+        for (job, r) in jobs.iter().zip(&results) {
+            let m = materials.iter().position(|x| *x == job.material).unwrap_or_else(|| {
+                materials.push(job.material.clone());
+                materials.len() - 1
             });
-            out[i]
-                .points
-                .entry(r.load.to_bits())
-                .or_insert((r.load, Vec::new()))
-                .1
-                .push(w.clone());
-        }
-    }
-    out
-}
-
-/// One panel against load: mean over surface pairs with min–max bars, one series per curve.
-struct LoadPanel<'a> {
-    curves: &'a [Curve],
-    quantity: Quantity,
-    y_label: String,
-    load_unit: &'a str,
-    log_y: bool,
-    /// A shaded range of y with its legend label (Kim et al.'s experiments).
-    band: Option<(f64, f64, &'a str)>,
-}
-
-impl LoadPanel<'_> {
-    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()> {
-        let all: Vec<(f64, f64, f64, f64)> = self.curves.iter().flat_map(|c| c.stats(self.quantity)).collect();
-        let (x0, x1) = log_range(all.iter().map(|p| p.0)).unwrap_or((1e-4, 1e-2));
-        let mut builder = ChartBuilder::on(area);
-        builder
-            .margin(12)
-            .x_label_area_size(45)
-            .y_label_area_size(75)
-            .caption(&self.y_label, (FONT, 16).into_font());
-        let x_desc = format!("normal load F_N ({})", self.load_unit);
-        if self.log_y {
-            let band_values = self.band.iter().flat_map(|b| [b.0, b.1]);
-            let (y0, y1) =
-                log_range(all.iter().flat_map(|p| [p.1, p.2, p.3]).chain(band_values)).unwrap_or((1e-6, 1.0));
-            let mut chart = builder
-                .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
-                .map_err(drawing)?;
-            chart
-                .configure_mesh()
-                .x_desc(x_desc)
-                .y_desc(&self.y_label)
-                .y_label_formatter(&|y| format!("{y:.1e}"))
-                .label_style((FONT, 13))
-                .draw()
-                .map_err(drawing)?;
-            if let Some((lo, hi, label)) = self.band {
-                let fill = RGBColor(200, 220, 240).mix(0.6);
-                chart
-                    .draw_series(std::iter::once(Rectangle::new([(x0, lo), (x1, hi)], fill.filled())))
-                    .map_err(drawing)?
-                    .label(label.to_string())
-                    .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 18, y + 5)], fill.filled()));
+            let mut parts: Vec<String> = Vec::new();
+            if job.material != "material" {
+                parts.push(job.material.clone());
             }
-            self.draw_series(&mut chart)
-        } else {
-            let y1 = all.iter().map(|p| p.3).fold(0.0f64, f64::max).max(1e-12) * 1.1;
-            let mut chart = builder
-                .build_cartesian_2d((x0..x1).log_scale(), 0.0..y1)
-                .map_err(drawing)?;
-            chart
-                .configure_mesh()
-                .x_desc(x_desc)
-                .y_desc(&self.y_label)
-                .label_style((FONT, 13))
-                .draw()
-                .map_err(drawing)?;
-            self.draw_series(&mut chart)
-        }
-    }
-
-    fn draw_series<'a, DB: DrawingBackend + 'a, X, Y>(
-        &self,
-        chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
-    ) -> Result<()>
-    where
-        X: Ranged<ValueType = f64>,
-        Y: Ranged<ValueType = f64>,
-    {
-        for (i, c) in self.curves.iter().enumerate() {
-            let color = Palette99::pick(i).to_rgba();
-            let pts: Vec<(f64, f64, f64, f64)> = c
-                .stats(self.quantity)
-                .into_iter()
-                .filter(|p| !self.log_y || p.1 > 0.0)
-                .collect();
-            chart
-                .draw_series(LineSeries::new(pts.iter().map(|p| (p.0, p.1)), color.stroke_width(2)))
-                .map_err(drawing)?
-                .label(c.label.clone())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
-            chart
-                .draw_series(pts.iter().map(|p| Circle::new((p.0, p.1), 3, color.filled())))
-                .map_err(drawing)?;
-            // Min–max over surface pairs.
-            chart
-                .draw_series(
-                    pts.iter()
-                        .filter(|p| !self.log_y || p.2 > 0.0)
-                        .map(|p| PathElement::new(vec![(p.0, p.2), (p.0, p.3)], color.stroke_width(1))),
-                )
-                .map_err(drawing)?;
-        }
-        legend(chart, SeriesLabelPosition::UpperLeft)
-    }
-}
-
-/// Panels side by side.
-struct Panels<'a>(Vec<LoadPanel<'a>>);
-
-impl Figure for Panels<'_> {
-    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()> {
-        let areas = area.split_evenly((1, self.0.len()));
-        for (panel, area) in self.0.iter().zip(&areas) {
-            panel.draw(area)?;
-        }
-        Ok(())
-    }
-}
-
-/// Contact severity (paper appendix F): points (material, S_c, W) and the fit W = α S_cⁿ.
-struct Severity {
-    points: Vec<(String, f64, f64)>,
-    alpha: f64,
-    n_exp: f64,
-    length: &'static str,
-}
-
-impl Severity {
-    /// S_c = p_N √h_rms / K_Ic with p_N = F_N/L² and K_Ic = √(𝒢 E/(1 − ν²)) for every job and
-    /// fracture energy with W > 0, and the least-squares fit of ln W against ln S_c.
-    fn of(jobs: &[Job], results: &[JobResult]) -> Option<Self> {
-        let mut points: Vec<(String, f64, f64)> = Vec::new();
-        for (job, r) in jobs.iter().zip(results) {
-            let SurfaceSource::Generated { spectrum, .. } = &job.run.surfaces else {
-                continue;
-            };
-            let m = &job.run.material;
-            let p_n = r.load / (job.run.length() * job.run.length());
-            for (w, wear_rate) in r
-                .results
-                .iter()
-                .filter_map(|w| w.wear_rate.filter(|x| *x > 0.0).map(|x| (w, x)))
-            {
-                let k_ic = (w.fracture_energy * m.youngs_modulus / (1.0 - m.poisson_ratio * m.poisson_ratio)).sqrt();
-                points.push((job.material.clone(), p_n * spectrum.rms_height.sqrt() / k_ic, wear_rate));
+            parts.extend(
+                job.varying
+                    .iter()
+                    .filter(|(k, _)| k.as_str() != "surface.seed")
+                    .map(|(k, v)| input_label(k, v, units)),
+            );
+            for (e, w) in r.results.iter().enumerate() {
+                let label = format!(
+                    "{}{}G = {} (d* = {})",
+                    parts.join(", "),
+                    if parts.is_empty() { "" } else { ", " },
+                    units.show_energy(w.fracture_energy),
+                    units.show_length(w.critical_diameter)
+                );
+                let i = *index.entry(label.clone()).or_insert_with(|| {
+                    curves.push(Curve {
+                        label: label.clone(),
+                        material: m,
+                        energy: e,
+                        critical_diameter: w.critical_diameter,
+                        shear_strength: job.run.material.shear_strength,
+                        fracture_energy: w.fracture_energy,
+                        points: BTreeMap::new(),
+                    });
+                    curves.len() - 1
+                });
+                curves[i]
+                    .points
+                    .entry(r.load.to_bits())
+                    .or_insert((r.load, Vec::new()))
+                    .1
+                    .push(w.clone());
             }
         }
-        if points.len() < 2 {
-            return None;
-        }
-        let xs: Vec<f64> = points.iter().map(|p| p.1.ln()).collect();
-        let ys: Vec<f64> = points.iter().map(|p| p.2.ln()).collect();
-        let fit = wearsim::sliding::line_fit(&xs, &ys)?;
-        let (n_exp, alpha) = (fit.slope, fit.intercept.exp());
-        Some(Self {
-            points,
-            alpha,
-            n_exp,
-            length: units_of(&jobs[0]).1,
+        Ok(Self {
+            jobs,
+            results,
+            units,
+            curves,
+            materials,
         })
     }
-}
 
-impl Figure for Severity {
-    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()> {
-        let (alpha, n_exp, length) = (self.alpha, self.n_exp, self.length);
-        let (x0, x1) = log_range(self.points.iter().map(|p| p.1)).unwrap_or((1e-3, 1.0));
-        let (y0, y1) = log_range(self.points.iter().map(|p| p.2)).unwrap_or((1e-6, 1.0));
-        let mut chart = ChartBuilder::on(area)
-            .margin(12)
-            .x_label_area_size(45)
-            .y_label_area_size(80)
-            .caption(
-                format!("contact severity: W = α S_cⁿ, α = {alpha:.3e} {length}², n = {n_exp:.3}"),
-                (FONT, 15),
-            )
-            .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
-            .map_err(drawing)?;
-        chart
-            .configure_mesh()
-            .x_desc("S_c = p_N √h_rms / K_Ic")
-            .x_label_formatter(&|x| format!("{x:.2e}"))
-            .y_label_formatter(&|y| format!("{y:.1e}"))
-            .y_desc(format!("wear rate W ({length}²)"))
-            .label_style((FONT, 13))
-            .draw()
-            .map_err(drawing)?;
-        let mut names: Vec<&String> = self.points.iter().map(|p| &p.0).collect();
-        names.sort();
-        names.dedup();
-        for (i, name) in names.iter().enumerate() {
-            let color = Palette99::pick(i).to_rgba();
-            chart
-                .draw_series(
-                    self.points
-                        .iter()
-                        .filter(|p| &p.0 == *name)
-                        .map(|p| Circle::new((p.1, p.2), 3, color.filled())),
-                )
-                .map_err(drawing)?
-                .label(name.to_string())
-                .legend(move |(x, y)| Circle::new((x + 9, y), 3, color.filled()));
-        }
-        chart
-            .draw_series(LineSeries::new(
-                [(x0, alpha * x0.powf(n_exp)), (x1, alpha * x1.powf(n_exp))],
-                BLACK.stroke_width(1),
-            ))
-            .map_err(drawing)?
-            .label("fit")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(1)));
-        legend(&mut chart, SeriesLabelPosition::UpperLeft)
+    fn load_label(&self) -> String {
+        format!("normal load F_N ({})", self.units.load())
     }
 }
 
-/// A number read off one step of a job file.
-type StepValue = Box<dyn Fn(&StepRow) -> f64>;
+/// A figure of quantities against load, one panel each, with a shared legend.
+struct LoadFigure<'a> {
+    curves: Vec<&'a Curve>,
+    panels: Vec<(Quantity, String, bool)>,
+    x_label: String,
+    /// Shaded range of the last panel's y and its legend label (Kim et al.'s experiments).
+    band: Option<(f64, f64, &'static str)>,
+    /// Colour and marker by material instead of by curve, with these material names in the legend.
+    by_material: Option<&'a [String]>,
+    title: String,
+}
 
-/// Series of one job: V(s) with the fitted line (Fig. 3), or N*₊, N*, N*₋ (appendix B).
+impl LoadFigure<'_> {
+    fn style(&self, i: usize, c: &Curve) -> (RGBColor, Marker) {
+        if self.by_material.is_some() {
+            (color(c.material), Marker::nth(c.material))
+        } else {
+            (color(i), Marker::nth(c.material))
+        }
+    }
+}
+
+impl Figure for LoadFigure<'_> {
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()> {
+        let (panels, legend_area) = layout(area, self.panels.len());
+        for (p, (area, (q, label, log))) in self.panels.iter().enumerate().map(|(p, x)| (p, (&panels[p], x))) {
+            let stats: Vec<Vec<(f64, f64, f64, f64)>> = self.curves.iter().map(|c| c.stats(*q)).collect();
+            let xs = stats.iter().flatten().map(|s| s.0);
+            let band = if p + 1 == self.panels.len() { self.band } else { None };
+            let ys = stats
+                .iter()
+                .flatten()
+                .flat_map(|s| [s.1, s.2, s.3])
+                .chain(band.iter().flat_map(|b| [b.0, b.1]));
+            let x = Axis::spanning(&self.x_label, true, xs, (1e-4, 1e-2));
+            let y = Axis::spanning(label, *log, ys, (1e-6, 1.0));
+            let mut panel = Panel::new(area, if p == 0 { &self.title } else { "" }, x, y)?;
+            if let Some((lo, hi, _)) = band {
+                panel.band(lo, hi, RGBColor(86, 180, 233).mix(0.25))?;
+            }
+            for (i, (c, s)) in self.curves.iter().zip(&stats).enumerate() {
+                let (col, marker) = self.style(i, c);
+                let means: Vec<(f64, f64)> = s.iter().map(|p| (p.0, p.1)).collect();
+                panel.line(&means, col, false, 2)?;
+                panel.markers(&means, col, marker)?;
+                panel.bars(&s.iter().map(|p| (p.0, p.2, p.3)).collect::<Vec<_>>(), col)?;
+            }
+        }
+        let mut entries: Vec<Entry> = Vec::new();
+        if let Some(names) = self.by_material {
+            let mut seen = Vec::new();
+            for c in &self.curves {
+                if !seen.contains(&c.material) {
+                    seen.push(c.material);
+                    let (col, marker) = self.style(0, c);
+                    let name = names.get(c.material).cloned().unwrap_or_default();
+                    entries.push(Entry {
+                        label: name,
+                        color: col,
+                        swatch: Swatch::LineMarker(marker),
+                    });
+                }
+            }
+        } else {
+            for (i, c) in self.curves.iter().enumerate() {
+                let (col, marker) = self.style(i, c);
+                entries.push(Entry {
+                    label: c.label.clone(),
+                    color: col,
+                    swatch: Swatch::LineMarker(marker),
+                });
+            }
+        }
+        if let Some((_, _, label)) = self.band {
+            entries.push(Entry {
+                label: label.into(),
+                color: RGBColor(86, 180, 233),
+                swatch: Swatch::Band,
+            });
+        }
+        legend(&legend_area, "mean over surface pairs; bars: min–max", &entries)
+    }
+}
+
+/// The series of one job against s: V(s) (Fig. 3), the particle counts (appendix B) or the memory of
+/// the initial contact (§3).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum SeriesKind {
+    Volume,
+    Counts,
+    Memory,
+}
+
 struct SeriesFigure<'a> {
     job: &'a Job,
     result: &'a JobResult,
-    counts: bool,
+    kind: SeriesKind,
+    units: Units2,
 }
 
 impl Figure for SeriesFigure<'_> {
     fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()> {
-        let (job, r, counts) = (self.job, self.result, self.counts);
-        let (_, length) = units_of(job);
+        let (job, r, u) = (self.job, self.result, self.units);
         let sliding = job
             .run
             .sliding
             .as_ref()
             .ok_or_else(|| anyhow!("job without [sliding]"))?;
         let running_in = sliding.running_in * job.run.length();
-        let s_max = r.steps.last().map(|s| s.s).unwrap_or(1.0).max(1e-300);
-        let n_e = r.results.len();
-        let y_max = r
-            .steps
-            .iter()
-            .flat_map(|s| (0..n_e).map(move |e| if counts { s.n_formed[e] as f64 } else { s.volume[e] }))
-            .fold(0.0f64, f64::max)
-            .max(1e-300)
-            * 1.1;
-        let caption = if counts {
-            "particles: N*₊ (formed), N* (critical now), N*₋ = N*₊ − N*"
-        } else {
-            "wear volume V(s)"
-        };
-        let mut chart = ChartBuilder::on(area)
-            .margin(12)
-            .x_label_area_size(45)
-            .y_label_area_size(80)
-            .caption(format!("{caption}; F_N = {:.3e}, job {}", r.load, r.index), (FONT, 15))
-            .build_cartesian_2d(0.0..s_max * 1.02, 0.0..y_max)
-            .map_err(drawing)?;
-        chart
-            .configure_mesh()
-            .x_desc(format!("sliding distance s ({length})"))
-            .y_desc(if counts {
-                "count".to_string()
+        let s: Vec<f64> = r.steps.iter().map(|st| st.s).collect();
+        let seed = job
+            .inputs()
+            .seed
+            .map_or(String::new(), |s| format!(", surface pair {s}"));
+        let who = format!(
+            "job {}{}{seed}, τ = {}, F_N = {} {}",
+            r.index,
+            if job.material == "material" {
+                String::new()
             } else {
-                format!("V ({length}³)")
-            })
-            .label_style((FONT, 13))
-            .draw()
-            .map_err(drawing)?;
-        // Running-in region.
-        chart
-            .draw_series(std::iter::once(Rectangle::new(
-                [(0.0, 0.0), (running_in, y_max)],
-                RGBColor(230, 230, 230).filled(),
-            )))
-            .map_err(drawing)?
-            .label("running-in")
-            .legend(|(x, y)| Rectangle::new([(x, y - 5), (x + 18, y + 5)], RGBColor(230, 230, 230).filled()));
-        for (e, w) in r.results.iter().enumerate() {
-            let color = Palette99::pick(e).to_rgba();
-            let d = format!("d* = {:.3e} {length}", w.critical_diameter);
-            if counts {
-                let styles: [(&str, StepValue); 3] = [
-                    ("N*₊", Box::new(move |s| s.n_formed[e] as f64)),
-                    ("N*", Box::new(move |s| s.n_critical[e] as f64)),
-                    ("N*₋", Box::new(move |s| s.n_formed[e] as f64 - s.n_critical[e] as f64)),
-                ];
-                for (k, (name, f)) in styles.iter().enumerate() {
-                    let c = color.mix(1.0 - 0.3 * k as f64);
-                    chart
-                        .draw_series(LineSeries::new(
-                            r.steps.iter().map(|s| (s.s, f(s))),
-                            c.stroke_width(2 - (k as u32).min(1)),
-                        ))
-                        .map_err(drawing)?
-                        .label(format!("{name}, {d}"))
-                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(2)));
+                format!(" ({})", job.material)
+            },
+            u.show_stress(job.run.material.shear_strength),
+            number(r.load),
+            u.load()
+        );
+        let (panels, legend_area) = layout(area, 1);
+        let x_label = format!("sliding distance s ({})", u.length());
+        let mut entries = Vec::new();
+        match self.kind {
+            SeriesKind::Volume => {
+                let x = Axis::spanning(&x_label, false, s.iter().copied(), (0.0, 1.0));
+                let ys = r.steps.iter().flat_map(|st| st.volume.iter().copied());
+                let y = Axis::spanning(format!("wear volume V ({})", u.volume()), false, ys, (0.0, 1.0));
+                let mut panel = Panel::new(&panels[0], &format!("wear volume V(s) — {who}"), x, y)?;
+                panel.x_band(0.0, running_in, RGBColor(200, 200, 200).mix(0.35))?;
+                entries.push(Entry {
+                    label: "running-in (not fitted)".into(),
+                    color: RGBColor(200, 200, 200),
+                    swatch: Swatch::Band,
+                });
+                for (e, w) in r.results.iter().enumerate() {
+                    let col = color(e);
+                    let v: Vec<(f64, f64)> = r.steps.iter().map(|st| (st.s, st.volume[e])).collect();
+                    panel.line(&v, col, false, 2)?;
+                    entries.push(Entry {
+                        label: format!(
+                            "V, G = {} (d* = {})",
+                            u.show_energy(w.fracture_energy),
+                            u.show_length(w.critical_diameter)
+                        ),
+                        color: col,
+                        swatch: Swatch::Line { dashed: false },
+                    });
+                    // The fitted line W·s + b over s ≥ running-in, as in the results.
+                    let fit: Vec<(f64, f64)> = v.iter().copied().filter(|p| p.0 >= running_in - 1e-12).collect();
+                    let xs: Vec<f64> = fit.iter().map(|p| p.0).collect();
+                    let ys: Vec<f64> = fit.iter().map(|p| p.1).collect();
+                    if let Some(f) = line_fit(&xs, &ys) {
+                        let s_max = *s.last().unwrap_or(&1.0);
+                        panel.line(
+                            &[(0.0, f.intercept), (s_max, f.intercept + f.slope * s_max)],
+                            col,
+                            true,
+                            1,
+                        )?;
+                        entries.push(Entry {
+                            label: format!(
+                                "fit: W = {} {}, R² = {}",
+                                number(f.slope),
+                                u.area(),
+                                w.wear_rate_r2
+                                    .map_or("undefined (no particle)".into(), |x| format!("{x:.3}"))
+                            ),
+                            color: col,
+                            swatch: Swatch::Line { dashed: true },
+                        });
+                    }
                 }
-            } else {
-                chart
-                    .draw_series(LineSeries::new(
-                        r.steps.iter().map(|s| (s.s, s.volume[e])),
-                        color.stroke_width(2),
-                    ))
-                    .map_err(drawing)?
-                    .label(format!("V, {d}"))
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
-                // Fitted line W·s + b over s ≥ running-in (least squares, as in the results).
-                let fit: Vec<(f64, f64)> = r
-                    .steps
-                    .iter()
-                    .filter(|s| s.s >= running_in - 1e-12)
-                    .map(|s| (s.s, s.volume[e]))
-                    .collect();
-                if fit.len() >= 2 {
-                    let m = fit.len() as f64;
-                    let (mx, my) = (
-                        fit.iter().map(|p| p.0).sum::<f64>() / m,
-                        fit.iter().map(|p| p.1).sum::<f64>() / m,
-                    );
-                    let Some(wear_rate) = w.wear_rate else { continue };
-                    let b = my - wear_rate * mx;
-                    chart
-                        .draw_series(LineSeries::new(
-                            [(0.0, b), (s_max, b + wear_rate * s_max)],
-                            BLACK.stroke_width(1),
-                        ))
-                        .map_err(drawing)?
-                        .label(format!(
-                            "fit: W = {wear_rate:.3e} (R² = {})",
-                            w.wear_rate_r2.map_or("undefined".into(), |r2| format!("{r2:.3}"))
-                        ))
-                        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(1)));
+            }
+            SeriesKind::Counts => {
+                let x = Axis::spanning(&x_label, false, s.iter().copied(), (0.0, 1.0));
+                let ys = r.steps.iter().flat_map(|st| st.n_formed.iter().map(|&n| n as f64));
+                let y = Axis::spanning("number of junctions", false, ys, (0.0, 1.0));
+                let mut panel = Panel::new(
+                    &panels[0],
+                    &format!("particles formed N*₊, critical junctions N*, N*₋ = N*₊ − N* — {who}"),
+                    x,
+                    y,
+                )?;
+                for (e, w) in r.results.iter().enumerate() {
+                    let col = color(e);
+                    let d = format!("d* = {}", u.show_length(w.critical_diameter));
+                    let formed: Vec<(f64, f64)> = r.steps.iter().map(|st| (st.s, st.n_formed[e] as f64)).collect();
+                    let critical: Vec<(f64, f64)> = r.steps.iter().map(|st| (st.s, st.n_critical[e] as f64)).collect();
+                    let shrunk: Vec<(f64, f64)> = r
+                        .steps
+                        .iter()
+                        .map(|st| (st.s, st.n_formed[e] as f64 - st.n_critical[e] as f64))
+                        .collect();
+                    panel.line(&formed, col, false, 2)?;
+                    panel.line(&critical, col, true, 2)?;
+                    panel.line(&shrunk, col, false, 1)?;
+                    entries.push(Entry {
+                        label: format!("N*₊ (particles formed), {d}"),
+                        color: col,
+                        swatch: Swatch::Line { dashed: false },
+                    });
+                    entries.push(Entry {
+                        label: format!("N* (junctions ≥ d* now), {d}"),
+                        color: col,
+                        swatch: Swatch::Line { dashed: true },
+                    });
+                    entries.push(Entry {
+                        label: format!("N*₋ = N*₊ − N* (thin), {d}"),
+                        color: col,
+                        swatch: Swatch::Line { dashed: false },
+                    });
+                }
+            }
+            SeriesKind::Memory => {
+                let n0: Vec<(f64, f64)> = r.steps.iter().map(|st| (st.s, st.initial_junctions as f64)).collect();
+                let x = Axis::spanning(&x_label, false, s.iter().copied(), (0.0, 1.0));
+                let y = Axis::spanning(
+                    "junctions descending from s = 0, N₀",
+                    true,
+                    n0.iter().map(|p| p.1),
+                    (0.5, 10.0),
+                );
+                let mut panel = Panel::new(&panels[0], &format!("memory of the initial contact — {who}"), x, y)?;
+                panel.line(&n0, color(0), false, 2)?;
+                entries.push(Entry {
+                    label: "N₀(s)".into(),
+                    color: color(0),
+                    swatch: Swatch::Line { dashed: false },
+                });
+                let live: Vec<&(f64, f64)> = n0.iter().filter(|p| p.1 > 0.0).collect();
+                let xs: Vec<f64> = live.iter().map(|p| p.0).collect();
+                let ys: Vec<f64> = live.iter().map(|p| p.1.ln()).collect();
+                if let Some(f) = line_fit(&xs, &ys).filter(|f| f.slope < 0.0) {
+                    let curve: Vec<(f64, f64)> = s.iter().map(|&x| (x, (f.intercept + f.slope * x).exp())).collect();
+                    panel.line(&curve, color(1), true, 2)?;
+                    entries.push(Entry {
+                        label: format!(
+                            "fit N₀(0) e^(−s/ℓ): ℓ = {} {}, R² = {}",
+                            number(-1.0 / f.slope),
+                            u.length(),
+                            f.r2.map_or("undefined".into(), |x| format!("{x:.3}"))
+                        ),
+                        color: color(1),
+                        swatch: Swatch::Line { dashed: true },
+                    });
                 }
             }
         }
-        legend(&mut chart, SeriesLabelPosition::LowerRight)
+        legend(&legend_area, "", &entries)
+    }
+}
+
+/// Eq. 5 against the summed wear rate (appendix B, Fig. B.9b): one point per setting and load.
+struct Eq5Figure<'a> {
+    curves: Vec<&'a Curve>,
+    units: Units2,
+}
+
+impl Figure for Eq5Figure<'_> {
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()> {
+        let points: Vec<Vec<(f64, f64)>> = self
+            .curves
+            .iter()
+            .map(|c| {
+                let w = c.stats(|r| r.wear_rate);
+                let e = c.stats(|r| r.wear_rate_estimate);
+                w.iter()
+                    .zip(&e)
+                    .map(|(a, b)| (a.1, b.1))
+                    .filter(|p| p.0 > 0.0 && p.1 > 0.0)
+                    .collect()
+            })
+            .collect();
+        let all: Vec<f64> = points.iter().flatten().flat_map(|p| [p.0, p.1]).collect();
+        let (panels, legend_area) = layout(area, 1);
+        let unit = self.units.area();
+        let x = Axis::spanning(
+            format!("wear rate W, summed particle volumes ({unit})"),
+            true,
+            all.iter().copied(),
+            (1e-6, 1e-3),
+        );
+        let y = Axis::spanning(
+            format!("Eq. 5: ω d*³ dN*₊/ds ({unit})"),
+            true,
+            all.iter().copied(),
+            (1e-6, 1e-3),
+        );
+        let (lo, hi) = (x.lo.min(y.lo), x.hi.max(y.hi));
+        let mut panel = Panel::new(
+            &panels[0],
+            "Eq. 5 against the summed wear rate (mean over surface pairs)",
+            x,
+            y,
+        )?;
+        panel.line(&[(lo, lo), (hi, hi)], RGBColor(120, 120, 120), true, 1)?;
+        let mut entries = vec![Entry {
+            label: "Eq. 5 = W".into(),
+            color: RGBColor(120, 120, 120),
+            swatch: Swatch::Line { dashed: true },
+        }];
+        for (i, (c, pts)) in self.curves.iter().zip(&points).enumerate() {
+            panel.markers(pts, color(i), Marker::nth(c.material))?;
+            entries.push(Entry {
+                label: c.label.clone(),
+                color: color(i),
+                swatch: Swatch::Marker(Marker::nth(c.material)),
+            });
+        }
+        legend(&legend_area, "", &entries)
+    }
+}
+
+/// Contact severity (paper appendix F): points (material, S_c, W) and the fit W = α S_cⁿ.
+struct Severity {
+    points: Vec<(usize, String, f64, f64)>,
+    alpha: f64,
+    n_exp: f64,
+    r2: Option<f64>,
+    units: Units2,
+}
+
+impl Severity {
+    /// S_c = p_N √h_rms / K_Ic with p_N = F_N/L² and K_Ic = √(𝒢 E/(1 − ν²)) for every job and
+    /// fracture energy with W > 0, and the least-squares fit of ln W against ln S_c.
+    fn of(data: &Data) -> Option<Self> {
+        let mut points = Vec::new();
+        let mut names: Vec<String> = Vec::new();
+        for (job, r) in data.jobs.iter().zip(&data.results) {
+            let SurfaceSource::Generated { spectrum, .. } = &job.run.surfaces else {
+                continue;
+            };
+            let m = &job.run.material;
+            let p_n = r.load / (job.run.length() * job.run.length());
+            let i = names.iter().position(|n| *n == job.material).unwrap_or_else(|| {
+                names.push(job.material.clone());
+                names.len() - 1
+            });
+            for w in &r.results {
+                let Some(wear_rate) = w.wear_rate.filter(|x| *x > 0.0) else {
+                    continue;
+                };
+                let k_ic = (w.fracture_energy * m.youngs_modulus / (1.0 - m.poisson_ratio * m.poisson_ratio)).sqrt();
+                points.push((
+                    i,
+                    job.material.clone(),
+                    p_n * spectrum.rms_height.sqrt() / k_ic,
+                    wear_rate,
+                ));
+            }
+        }
+        let xs: Vec<f64> = points.iter().map(|p| p.2.ln()).collect();
+        let ys: Vec<f64> = points.iter().map(|p| p.3.ln()).collect();
+        let fit = line_fit(&xs, &ys)?;
+        Some(Self {
+            points,
+            alpha: fit.intercept.exp(),
+            n_exp: fit.slope,
+            r2: fit.r2,
+            units: data.units,
+        })
+    }
+}
+
+impl Figure for Severity {
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()> {
+        let (panels, legend_area) = layout(area, 1);
+        let x = Axis::spanning(
+            "contact severity S_c = p_N √h_rms / K_Ic",
+            true,
+            self.points.iter().map(|p| p.2),
+            (1e-3, 1.0),
+        );
+        let y = Axis::spanning(
+            format!("wear rate W ({})", self.units.area()),
+            true,
+            self.points.iter().map(|p| p.3),
+            (1e-6, 1.0),
+        );
+        let (x0, x1) = (x.lo, x.hi);
+        let r2 = self.r2.map_or("undefined".into(), |r| format!("{r:.3}"));
+        let title = format!(
+            "W = α S_cⁿ: α = {} {}, n = {:.3}, R² = {r2}",
+            number(self.alpha),
+            self.units.area(),
+            self.n_exp
+        );
+        let mut panel = Panel::new(&panels[0], &title, x, y)?;
+        let mut entries = Vec::new();
+        let mut seen = Vec::new();
+        for p in &self.points {
+            panel.markers(&[(p.2, p.3)], color(p.0), Marker::nth(p.0))?;
+            if !seen.contains(&p.0) {
+                seen.push(p.0);
+                entries.push(Entry {
+                    label: p.1.clone(),
+                    color: color(p.0),
+                    swatch: Swatch::Marker(Marker::nth(p.0)),
+                });
+            }
+        }
+        let line = [
+            (x0, self.alpha * x0.powf(self.n_exp)),
+            (x1, self.alpha * x1.powf(self.n_exp)),
+        ];
+        panel.line(&line, BLACK, true, 1)?;
+        entries.push(Entry {
+            label: format!("least-squares fit (log–log), R² = {r2}"),
+            color: BLACK,
+            swatch: Swatch::Line { dashed: true },
+        });
+        legend(&legend_area, "", &entries)
+    }
+}
+
+/// Groups of curves of (nearly) equal d* (within 15 %) and different τ̃ or 𝒢, for Figs. 4c/5c.
+fn equal_d_star(curves: &[Curve]) -> Vec<Vec<&Curve>> {
+    let mut sorted: Vec<&Curve> = curves.iter().collect();
+    sorted.sort_by(|a, b| a.critical_diameter.total_cmp(&b.critical_diameter));
+    let mut groups: Vec<Vec<&Curve>> = Vec::new();
+    for c in sorted {
+        match groups.last_mut() {
+            Some(g) if c.critical_diameter <= 1.15 * g[0].critical_diameter => g.push(c),
+            _ => groups.push(vec![c]),
+        }
+    }
+    groups
+        .into_iter()
+        .filter(|g| {
+            g.len() >= 2
+                && g.iter()
+                    .any(|c| c.shear_strength != g[0].shear_strength || c.fracture_energy != g[0].fracture_energy)
+        })
+        .collect()
+}
+
+/// The job whose series are drawn: the one asked for, or the one that formed the most particles
+/// after running-in.
+fn series_job(data: &Data, asked: Option<usize>) -> Result<(&Job, &JobResult)> {
+    match asked {
+        Some(i) => data
+            .jobs
+            .iter()
+            .zip(&data.results)
+            .find(|(j, _)| j.index == i)
+            .ok_or_else(|| {
+                anyhow!(
+                    "invalid `--job {i}`: the study has jobs 0 … {}",
+                    data.jobs.len().saturating_sub(1)
+                )
+            }),
+        None => data
+            .jobs
+            .iter()
+            .zip(&data.results)
+            .max_by_key(|(_, r)| r.results.iter().map(|w| w.particles_in_fit).max().unwrap_or(0))
+            .ok_or_else(|| anyhow!("the study has no jobs")),
     }
 }
 
 pub fn run(args: &Args) -> Result<()> {
     let dir = &args.dir;
-    let (study, results) = load_results(dir).with_context(|| format!("study folder {}", dir.display()))?;
-    let first = study.jobs.first().ok_or_else(|| anyhow!("the study has no jobs"))?;
-    let (load_unit, length) = units_of(first);
+    let wanted: Vec<String> = args
+        .figures
+        .clone()
+        .unwrap_or_else(|| FIGURES.iter().map(|s| s.to_string()).collect());
+    for w in &wanted {
+        if !FIGURES.contains(&w.as_str()) {
+            bail!("invalid `--figures {w}`: the figures are {}", FIGURES.join(", "));
+        }
+    }
+    let wants = |name: &str| wanted.iter().any(|w| w == name);
+    let (study, results) = load_results(dir)?;
+    let data = Data::new(study.jobs, results)?;
+    let series = series_job(&data, args.job)?;
     let figures = wearsim::io::OutputDir::begin(&dir.join("figures"), "study plot", false)?;
     let out = figures.join("");
-    let curves = curves(&study.jobs, &results);
-    let area_unit = format!("{length}²");
-    let panel = |quantity: Quantity, y_label: String, log_y: bool| LoadPanel {
-        curves: &curves,
-        quantity,
-        y_label,
-        load_unit,
-        log_y,
+    let (u, curves) = (data.units, &data.curves);
+    let all: Vec<&Curve> = curves.iter().collect();
+    let area = u.area();
+    let by_load = |panels: Vec<(Quantity, String, bool)>, title: &str| LoadFigure {
+        curves: all.clone(),
+        panels,
+        x_label: data.load_label(),
         band: None,
+        by_material: None,
+        title: title.into(),
     };
-    save(
-        &out,
-        "fig2_static_model",
-        (1500, 600),
-        &Panels(vec![
-            panel(
-                |w| w.static_wear_rate,
-                format!("static wear rate W/ω ({area_unit})"),
-                true,
-            ),
-            panel(|w| w.static_wear_coefficient, "static wear coefficient k".into(), false),
-        ]),
-    )?;
-    save(
-        &out,
-        "fig4_sliding_wear",
-        (1500, 600),
-        &Panels(vec![
-            panel(
-                |w| w.wear_rate.unwrap_or(f64::NAN),
-                format!("sliding wear rate W ({area_unit})"),
-                true,
-            ),
-            panel(
-                |w| w.wear_coefficient.unwrap_or(f64::NAN),
-                "wear coefficient k = W p̃ / F_N".into(),
-                true,
-            ),
-        ]),
-    )?;
-    save(
-        &out,
-        "fig5_particle_rate",
-        (800, 600),
-        &Panels(vec![panel(
-            |w| w.particle_rate.unwrap_or(f64::NAN),
-            format!("particle rate dN*₊/ds (1/{length})"),
-            true,
-        )]),
-    )?;
-    if let Some(severity) = Severity::of(&study.jobs, &results) {
-        save(&out, "appF_contact_severity", (900, 600), &severity)?;
-        println!(
-            "contact severity fit: W = α S_cⁿ with α = {:.4e} {length}², n = {:.3}",
-            severity.alpha, severity.n_exp
+    let wide = (1700, 640);
+    if wants("fig2") {
+        let fig = by_load(
+            vec![
+                (
+                    |w| Some(w.static_wear_rate_mean),
+                    format!("static wear rate W_static/ω ({area})"),
+                    true,
+                ),
+                (
+                    |w| Some(w.static_wear_coefficient_mean),
+                    "static wear coefficient k_static".into(),
+                    false,
+                ),
+            ],
+            "static model, mean over every offset of the sliding run",
         );
+        save(&out, "fig2_static_model", wide, &fig)?;
     }
-    // Kim et al. (1986): rolling wear coefficients 6e-7 … 1.5e-3 (paper §4.3, Fig. 6). k is
-    // dimensionless, so the comparison is drawn for studies in any units.
-    let mut kim = panel(
-        |w| w.wear_coefficient.unwrap_or(f64::NAN),
-        "wear coefficient k".into(),
-        true,
+    if wants("fig4") {
+        let fig = by_load(
+            vec![
+                (|w| w.wear_rate, format!("sliding wear rate W = dV/ds ({area})"), true),
+                (|w| w.wear_coefficient, "wear coefficient k = W p_m / F_N".into(), true),
+            ],
+            "sliding model",
+        );
+        save(&out, "fig4_sliding_wear", wide, &fig)?;
+    }
+    if wants("fig5") {
+        let fig = by_load(
+            vec![(
+                |w| w.particle_rate,
+                format!("particle rate dN*₊/ds (1/{})", u.length()),
+                true,
+            )],
+            "wear particles emitted per sliding distance",
+        );
+        save(&out, "fig5_particle_rate", (1150, 640), &fig)?;
+    }
+    if wants("fig4c") {
+        let groups = equal_d_star(curves);
+        if groups.is_empty() {
+            println!("fig4c: no two settings of the study have d* within 15 % with different τ̃ or 𝒢; not drawn");
+        }
+        for (g, group) in groups.iter().enumerate() {
+            let fig = LoadFigure {
+                curves: group.clone(),
+                panels: vec![
+                    (|w| w.wear_rate, format!("W ({area})"), true),
+                    (|w| w.wear_coefficient, "k = W p_m / F_N".into(), true),
+                    (|w| w.particle_rate, format!("dN*₊/ds (1/{})", u.length()), true),
+                ],
+                x_label: data.load_label(),
+                band: None,
+                by_material: None,
+                title: format!(
+                    "settings of nearly equal d* ≈ {}",
+                    u.show_length(group[0].critical_diameter)
+                ),
+            };
+            let name = if groups.len() == 1 {
+                "fig4c_constant_d_star".to_string()
+            } else {
+                format!("fig4c_constant_d_star_{}", g + 1)
+            };
+            save(&out, &name, (2100, 640), &fig)?;
+        }
+    }
+    if wants("fig6") {
+        // Kim et al. (1986): rolling wear coefficients 6e-7 … 1.5e-3 (paper §4.3, Fig. 6c). k is
+        // dimensionless, so the comparison is drawn for studies in any units.
+        let fig = LoadFigure {
+            curves: all.clone(),
+            panels: vec![(|w| w.wear_coefficient, "wear coefficient k".into(), true)],
+            x_label: data.load_label(),
+            band: Some((
+                6e-7,
+                1.5e-3,
+                "Kim et al. 1986, rolling experiments: k = 6×10⁻⁷ … 1.5×10⁻³",
+            )),
+            // One colour and marker per material where the study has several (Kim et al.'s ceramics).
+            by_material: (data.materials.len() > 1).then_some(&data.materials[..]),
+            title: "simulated sliding k per material against the experimental range".into(),
+        };
+        save(&out, "fig6_kim_comparison", (1150, 640), &fig)?;
+    }
+    if wants("appC") {
+        let first_energy: Vec<&Curve> = curves.iter().filter(|c| c.energy == 0).collect();
+        let fig = LoadFigure {
+            curves: first_energy,
+            panels: vec![(
+                |w| Some(w.junctions_mean),
+                "junctions N (mean after running-in)".into(),
+                true,
+            )],
+            x_label: data.load_label(),
+            band: None,
+            by_material: None,
+            title: "number of junctions".into(),
+        };
+        let critical = by_load(
+            vec![(
+                |w| Some(w.critical_junctions_mean),
+                "junctions ≥ d*, N* (mean after running-in)".into(),
+                true,
+            )],
+            "number of critical junctions",
+        );
+        save(&out, "appC_junctions", (1150, 640), &fig)?;
+        save(&out, "appC_critical_junctions", (1150, 640), &critical)?;
+    }
+    if wants("appB-eq5") {
+        save(
+            &out,
+            "appB_eq5_against_w",
+            (1150, 640),
+            &Eq5Figure {
+                curves: all.clone(),
+                units: u,
+            },
+        )?;
+    }
+    if wants("appF") {
+        match Severity::of(&data) {
+            Some(severity) => {
+                save(&out, "appF_contact_severity", (1150, 640), &severity)?;
+                println!(
+                    "contact severity fit: W = α S_cⁿ with α = {} {area}, n = {:.3}, R² = {}",
+                    number(severity.alpha),
+                    severity.n_exp,
+                    severity.r2.map_or("undefined".into(), |r| format!("{r:.3}"))
+                );
+            }
+            None => println!("appF: fewer than two jobs with W > 0 on generated surfaces; not drawn"),
+        }
+    }
+    let (job, result) = series;
+    for (name, file, kind) in [
+        ("fig3", "fig3_wear_volume", SeriesKind::Volume),
+        ("appB", "appB_particle_counts", SeriesKind::Counts),
+        ("memory", "memory_of_initial_contact", SeriesKind::Memory),
+    ] {
+        if wants(name) {
+            save(
+                &out,
+                file,
+                (1400, 640),
+                &SeriesFigure {
+                    job,
+                    result,
+                    kind,
+                    units: u,
+                },
+            )?;
+        }
+    }
+    // The paper's findings on this study.
+    let rows: Vec<TidyRow> = data.results.iter().flat_map(TidyRow::of_job).collect();
+    let found = findings(&Table::of(&rows));
+    let text = format!(
+        "# The paper's findings on this study\n\nBrink, Frérot & Molinari (2021); `wearsim study plot` on {}.\n\n{}",
+        dir.display(),
+        markdown(&found)
     );
-    kim.band = Some((6e-7, 1.5e-3, "Kim et al. 1986, rolling experiments"));
-    save(&out, "fig6_kim_comparison", (900, 600), &Panels(vec![kim]))?;
-    // Series of one representative job: the first surface pair, the middle load, the first material.
-    let mut loads: Vec<f64> = results.iter().map(|r| r.load).collect();
-    loads.sort_by(f64::total_cmp);
-    loads.dedup();
-    let mid = loads[loads.len() / 2];
-    let (job, result) = study
-        .jobs
-        .iter()
-        .zip(&results)
-        .find(|(_, r)| r.load == mid)
-        .ok_or_else(|| anyhow!("no job at the middle load"))?;
-    save(
-        &out,
-        "fig3_wear_volume",
-        (900, 600),
-        &SeriesFigure {
-            job,
-            result,
-            counts: false,
-        },
-    )?;
-    save(
-        &out,
-        "appB_particle_counts",
-        (900, 600),
-        &SeriesFigure {
-            job,
-            result,
-            counts: true,
-        },
-    )?;
+    wearsim::io::write_text(&figures.join("findings.md"), &text)?;
     figures.commit()?;
-    println!("wrote figures to {}", dir.join("figures").display());
+    for f in &found {
+        println!("{:<18} {}: {}", f.verdict.name(), f.key, f.observed);
+    }
+    println!(
+        "wrote figures and findings.md to {} (series of job {})",
+        dir.join("figures").display(),
+        result.index
+    );
     Ok(())
 }

@@ -148,7 +148,7 @@ pub fn run(args: &RunArgs) -> Result<()> {
 
 pub fn collect(args: &CollectArgs) -> Result<()> {
     let dir = &args.dir;
-    let (rows, groups) = collect_study(dir).with_context(|| format!("study folder {}", dir.display()))?;
+    let (rows, groups) = collect_study(dir)?;
     println!(
         "wrote {} ({rows} rows) and {} ({groups} rows)",
         dir.join("results.csv").display(),

@@ -224,12 +224,15 @@ fn expand_with(text: &str, base: &Path, files: SurfaceFiles) -> Result<Study> {
             ))
         }
     };
+    // Schedule settings may be lists too (e.g. `step_running_in`); `loads` are the innermost axis.
+    let schedules = product(&sliding, "sliding", &["loads"]);
     let mut jobs = Vec::new();
     for (name, material, mv, overrides) in &materials {
         let mut surface_table = base_surface.clone();
         surface_table.extend(overrides.clone());
         for (surface, sv) in &product(&surface_table, "surface", &[]) {
-            for (contact, cv) in &contacts {
+            for ((contact, cv), (schedule, schv)) in contacts.iter().flat_map(|c| schedules.iter().map(move |s| (c, s)))
+            {
                 for load in &loads {
                     let mut run = Table::new();
                     if let Some(u) = table.get("units") {
@@ -238,7 +241,7 @@ fn expand_with(text: &str, base: &Path, files: SurfaceFiles) -> Result<Study> {
                     run.insert("surface".into(), Value::Table(surface.clone()));
                     run.insert("material".into(), Value::Table(material.clone()));
                     run.insert("contact".into(), Value::Table(contact.clone()));
-                    let mut sl = sliding.clone();
+                    let mut sl = schedule.clone();
                     sl.insert("loads".into(), Value::Array(vec![load.clone()]));
                     run.insert("sliding".into(), Value::Table(sl));
                     let index = jobs.len();
@@ -247,6 +250,7 @@ fn expand_with(text: &str, base: &Path, files: SurfaceFiles) -> Result<Study> {
                     let mut varying = sv.clone();
                     varying.extend(mv.clone());
                     varying.extend(cv.clone());
+                    varying.extend(schv.clone());
                     jobs.push(Job {
                         index,
                         material: name.clone(),
@@ -336,6 +340,19 @@ loads = [5e-4, 1e-3]
             s.hash,
             expand(&STUDY.replace("0.012", "0.011"), Path::new(".")).unwrap().hash
         );
+    }
+
+    #[test]
+    fn schedule_settings_may_be_study_axes() {
+        let s = expand(
+            &STUDY.replace("loads = [5e-4, 1e-3]", "loads = [5e-4, 1e-3]\nstep_running_in = [1, 4]"),
+            Path::new("."),
+        )
+        .unwrap();
+        assert_eq!(s.jobs.len(), 36);
+        assert!(s.jobs.iter().all(|j| j.varying.contains_key("sliding.step_running_in")));
+        let steps: Vec<usize> = s.jobs.iter().map(|j| j.inputs().step_running_in.unwrap()).collect();
+        assert_eq!(steps.iter().filter(|&&k| k == 1).count(), 18);
     }
 
     #[test]

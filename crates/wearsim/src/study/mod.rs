@@ -8,10 +8,12 @@
 //!   atomically, checked when read back;
 //! - [`run`]: runs pending jobs, several at once, resumably (a killed study resumes where it
 //!   stopped);
-//! - [`collect`]: job files → the tidy table and its aggregate over surface pairs.
+//! - [`collect`]: job files → the tidy table and its aggregate over surface pairs;
+//! - [`findings`]: the paper's qualitative findings checked on a tidy table.
 
 pub mod collect;
 pub mod expand;
+pub mod findings;
 pub mod run;
 pub mod store;
 

@@ -25,6 +25,7 @@ pub fn run_job(job: &Job, interrupt: &Interrupt) -> Result<JobResult> {
     let mut runs = run_sliding(&top, &bottom, &setup, |_| {})?;
     let r = runs.pop().ok_or_else(|| Error::param("loads", "job without a load"))?;
     Ok(JobResult {
+        format: crate::output::JOB_FORMAT,
         provenance: Provenance::current(),
         index: job.index,
         material: job.material.clone(),

@@ -53,6 +53,19 @@ pub fn stored_result(job: &Job, dir: &Path) -> Result<Stored> {
         }
         Err(e) => return Err(e),
     };
+    if r.format != crate::output::JOB_FORMAT {
+        return Err(Error::StudyFolder {
+            dir: dir.into(),
+            message: format!(
+                "{} was written by another version of wearsim ({}, job-file format {}; this one writes format {}); \
+                 finish the study with that version, or start a new --out folder with this one",
+                path.display(),
+                r.provenance.software,
+                r.format,
+                crate::output::JOB_FORMAT
+            ),
+        });
+    }
     if !job.is_result_of(&r) {
         return Err(Error::file(
             &path,
