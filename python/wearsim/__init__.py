@@ -3,7 +3,8 @@ J. Mech. Phys. Solids 147 (2021) 104238, for NumPy users.
 
 The data flow follows the paper, one module per step:
 
-- :mod:`wearsim.surface`: periodic self-affine surfaces (NumPy arrays) and their statistics;
+- :mod:`wearsim.surface`: periodic self-affine surfaces (NumPy arrays), measured height maps read
+  and prepared, and their statistics and fitted self-affine parameters;
 - :class:`Material`: elastic and adhesive-wear properties, flow pressure p_m = 3√3 τ̃ and
   critical diameter d*;
 - :mod:`wearsim.contact`: the saturated-pressure FFT contact solver;
@@ -29,7 +30,17 @@ from ._wearsim import (
 )
 from .contact import ContactResult, ContactSolver, solve_contact
 from .junctions import Junctions, label_junctions
-from .surface import composite_heights, generate_pair, generate_surface, radial_psd, surface_statistics
+from .surface import (
+    composite_heights,
+    fit_surface,
+    generate_pair,
+    generate_surface,
+    periodicity,
+    preprocess_surface,
+    radial_psd,
+    read_surface,
+    surface_statistics,
+)
 from .wear import ResolutionWarning, RunFile, load_run, slide, static_wear
 
 __all__ = [
@@ -46,13 +57,17 @@ __all__ = [
     "__version__",
     "composite_heights",
     "contact",
+    "fit_surface",
     "generate_pair",
     "generate_surface",
     "junctions",
     "label_junctions",
     "load_run",
+    "periodicity",
     "plot",
+    "preprocess_surface",
     "radial_psd",
+    "read_surface",
     "slide",
     "solve_contact",
     "static_wear",

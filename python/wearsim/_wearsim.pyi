@@ -2,7 +2,7 @@
 of the `wearsim` package; this layer takes contiguous float64 arrays."""
 
 from pathlib import Path
-from typing import Any, Callable, Dict, List, Optional, Tuple, final
+from typing import Any, Callable, Dict, List, Optional, Tuple, Union, final
 
 import numpy as np
 import numpy.typing as npt
@@ -20,10 +20,15 @@ __all__ = [
     "__version__",
     "collect_study",
     "composite_heights",
+    "fit_surface",
     "generate_surface",
     "label_junctions",
+    "metres_per",
     "pair_seeds",
+    "periodicity",
+    "preprocess_surface",
     "radial_psd",
+    "read_surface",
     "slide",
     "static_wear_model",
     "surface_statistics",
@@ -40,7 +45,7 @@ class NotConvergedError(WearsimError): ...
 _F64Array = npt.NDArray[np.float64]
 
 def generate_surface(
-    grid: int,
+    grid: Union[int, Tuple[int, int]],
     length: float,
     hurst: float,
     lambda_lower: float,
@@ -53,6 +58,19 @@ def pair_seeds(seed: int) -> Tuple[int, int]: ...
 def surface_statistics(heights: _F64Array, length: float) -> Dict[str, float]: ...
 def radial_psd(heights: _F64Array, length: float) -> Tuple[_F64Array, _F64Array]: ...
 def composite_heights(top: _F64Array, bottom: _F64Array, offset: int) -> _F64Array: ...
+def metres_per(unit: str) -> float: ...
+def read_surface(
+    path: str,
+    length: Optional[float] = None,
+    length_y: Optional[float] = None,
+    height_scale: float = 1.0,
+    lateral_scale: float = 1.0,
+    detrend: str = "none",
+    taper: float = 0.0,
+) -> Tuple[_F64Array, float, List[str], List[str]]: ...
+def preprocess_surface(heights: _F64Array, detrend: str = "plane", taper: float = 0.0) -> _F64Array: ...
+def periodicity(heights: _F64Array) -> Tuple[float, float]: ...
+def fit_surface(heights: _F64Array, length: float) -> Dict[str, Any]: ...
 def label_junctions(
     contact: npt.NDArray[np.bool_], connectivity: int = 4
 ) -> Tuple[npt.NDArray[np.int64], npt.NDArray[np.uint64]]: ...
@@ -118,10 +136,15 @@ class Material:
 @final
 class ContactSolver:
     def __new__(
-        cls, grid: int, length: float, effective_modulus: float, tolerance: float = ..., max_iterations: int = ...
+        cls,
+        grid: Union[int, Tuple[int, int]],
+        length: float,
+        effective_modulus: float,
+        tolerance: float = ...,
+        max_iterations: int = ...,
     ) -> ContactSolver: ...
     @property
-    def grid(self) -> int: ...
+    def shape(self) -> Tuple[int, int]: ...
     @property
     def length(self) -> float: ...
     @property

@@ -1,14 +1,15 @@
 """The saturated-pressure contact solver (paper §2 and appendix A).
 
 Contact of a rigid surface of heights h with a periodic elastic half-space of effective modulus
-E*, pressure bounded by the flow pressure p_m (0 ≤ p ≤ p_m), mean pressure F_N/L². Solved by a
-bound-constrained conjugate gradient on FFT boundary elements; exact zeros outside the contact.
+E*, pressure bounded by the flow pressure p_m (0 ≤ p ≤ p_m), mean pressure F_N/(Lx Ly). Solved by
+a bound-constrained conjugate gradient on FFT boundary elements; exact zeros outside the contact.
+Grids are Nx × Ny square pixels; ``length`` is the side Lx along the first axis.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Optional
+from typing import Optional, Tuple, Union
 
 import numpy as np
 
@@ -23,7 +24,7 @@ class ContactResult:
     ``pressure`` is in the unit of E (reduced: E; SI: Pa); ``approach`` and lengths in the unit of L.
     """
 
-    #: Contact pressure p, (N, N) float64, exactly 0 outside the contact.
+    #: Contact pressure p, (Nx, Ny) float64, exactly 0 outside the contact.
     pressure: np.ndarray
     #: Conjugate-gradient iterations.
     iterations: int
@@ -38,16 +39,16 @@ class ContactResult:
     #: Pixels in contact (p > 0) and at the flow pressure (p = p_m).
     contact_pixels: int
     plastic_pixels: int
-    #: Real contact area as a fraction of the apparent area L².
+    #: Real contact area as a fraction of the apparent area Lx Ly.
     contact_area: float
-    #: Mean pressure F_N/L².
+    #: Mean pressure F_N/(Lx Ly).
     mean_pressure: float
     #: Wall-clock seconds of the solve.
     seconds: float
 
     @property
     def contact(self) -> np.ndarray:
-        """Contact map, (N, N) bool: p > 0."""
+        """Contact map, (Nx, Ny) bool: p > 0."""
         return self.pressure > 0.0
 
 
@@ -55,13 +56,14 @@ class ContactSolver:
     """FFT contact solver for one grid. Plans and buffers are made once: reuse one solver for many
     solves on the same grid (e.g. the steps of a slide, warm-started from the previous pressure).
 
-    ``length`` is the side L of the periodic square (length unit), ``effective_modulus`` E* (unit of
-    pressure; see :meth:`wearsim.Material.effective_modulus`).
+    ``grid`` is N (an N × N grid) or (Nx, Ny); ``length`` the side Lx along x of the periodic box
+    (length unit; pixels are square, so Ly = Lx Ny/Nx); ``effective_modulus`` E* (unit of pressure;
+    see :meth:`wearsim.Material.effective_modulus`).
     """
 
     def __init__(
         self,
-        grid: int,
+        grid: Union[int, Tuple[int, int]],
         length: float,
         effective_modulus: float,
         *,
@@ -70,8 +72,8 @@ class ContactSolver:
     ) -> None:
         self._solver = _wearsim.ContactSolver(grid, length, effective_modulus, tolerance, max_iterations)
 
-    grid = property(lambda self: self._solver.grid, doc="Grid size N.")
-    length = property(lambda self: self._solver.length, doc="Side length L.")
+    shape = property(lambda self: self._solver.shape, doc="Grid (Nx, Ny).")
+    length = property(lambda self: self._solver.length, doc="Side length Lx along x.")
     effective_modulus = property(lambda self: self._solver.effective_modulus, doc="E*.")
     tolerance = property(lambda self: self._solver.tolerance, doc="Tolerance on the residual.")
 
@@ -88,7 +90,7 @@ class ContactSolver:
         ``flow_pressure`` (``inf``: elastic). ``initial_pressure`` warm-starts the solve (e.g. the
         previous step's pressure); without it the solve starts from a uniform pressure.
 
-        Raises ``ValueError`` for bad input (NaN heights, a load at or above p_m·L², …) and
+        Raises ``ValueError`` for bad input (NaN heights, a load at or above p_m Lx Ly, …) and
         :class:`wearsim.NotConvergedError` when the iteration limit is reached.
         """
         p0 = None if initial_pressure is None else _float_grid("initial_pressure", initial_pressure)
@@ -115,6 +117,10 @@ def solve_contact(
     :class:`ContactSolver`."""
     heights = _float_grid("heights", heights)
     solver = ContactSolver(
-        heights.shape[0], length, effective_modulus, tolerance=tolerance, max_iterations=max_iterations
+        (heights.shape[0], heights.shape[1]),
+        length,
+        effective_modulus,
+        tolerance=tolerance,
+        max_iterations=max_iterations,
     )
     return solver.solve(heights, load, flow_pressure=flow_pressure, initial_pressure=initial_pressure)

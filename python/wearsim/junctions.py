@@ -14,7 +14,7 @@ from . import _wearsim
 class Junctions:
     """Labelled junctions of one contact map. Areas and diameters in the unit of ``pixel_size``."""
 
-    #: Junction index of every pixel, (N, N) int64, −1 outside the contact. Junctions are numbered
+    #: Junction index of every pixel, (Nx, Ny) int64, −1 outside the contact. Junctions are numbered
     #: in the row-major order of their first pixel.
     labels: np.ndarray
     #: Pixel count of every junction.

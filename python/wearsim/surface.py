@@ -1,13 +1,18 @@
-"""Periodic self-affine rough surfaces (paper §4.1) as NumPy arrays, and their statistics.
+"""Rough surfaces as NumPy arrays: periodic self-affine surfaces (paper §4.1), measured height
+maps read and prepared, and the self-affine parameters fitted to either.
 
-Arrays are ``(N, N)`` float64, ``h[i, j]`` with i along the sliding direction x; lengths in the unit
-of ``length`` (L in reduced units, m in SI).
+Arrays are ``(Nx, Ny)`` float64 with square pixels, ``h[i, j]`` with i along the sliding direction
+x; ``length`` is the side Lx along x, in the unit of lengths (L in reduced units, m in SI).
+Functions that take heights also take a SurfaceTopography topography object (its
+``heights()`` and ``physical_sizes``), so every instrument format SurfaceTopography reads works.
 """
 
 from __future__ import annotations
 
 import functools
-from typing import Dict, Literal, Tuple
+import os
+import warnings
+from typing import Any, Dict, Literal, Optional, Tuple, Union
 
 import numpy as np
 
@@ -16,16 +21,41 @@ from . import _wearsim
 Generation = Literal["random-phase", "filtered-noise"]
 
 
-def _float_grid(name: str, a: np.ndarray) -> np.ndarray:
-    """A 2-D field (heights, pressure) as a contiguous float64 array, for the extension module."""
+GridSize = Union[int, Tuple[int, int]]
+Detrend = Literal["none", "mean", "plane", "curvature"]
+
+
+def _float_grid(name: str, a: Any) -> np.ndarray:
+    """A 2-D field (heights, pressure; any array-like) as a contiguous float64 array, for the
+    extension module."""
     a = np.ascontiguousarray(a, dtype=np.float64)
     if a.ndim != 2:
         raise ValueError(f"invalid `{name}`: a 2-D array is needed, got {a.ndim} dimensions")
     return a
 
 
+def _is_topography(obj: Any) -> bool:
+    """Whether ``obj`` looks like a SurfaceTopography topography (heights() and physical_sizes)."""
+    return callable(getattr(obj, "heights", None)) and hasattr(obj, "physical_sizes")
+
+
+def as_heights(name: str, surface: Any, length: Optional[float] = None) -> Tuple[np.ndarray, float]:
+    """``(heights, length)`` of an array-like with its side ``length`` (default 1), or of a
+    SurfaceTopography topography, whose ``physical_sizes`` give the side (in its own unit; pass
+    ``length`` to override it)."""
+    if _is_topography(surface):
+        heights = _float_grid(name, surface.heights())
+        sizes = surface.physical_sizes
+        if length is None:
+            if sizes is None:
+                raise ValueError(f"invalid `{name}`: the topography has no physical size; pass `length`")
+            length = float(sizes[0])
+        return heights, float(length)
+    return _float_grid(name, surface), 1.0 if length is None else float(length)
+
+
 def generate_surface(
-    grid: int,
+    grid: GridSize,
     *,
     length: float = 1.0,
     hurst: float = 0.7,
@@ -35,7 +65,8 @@ def generate_surface(
     seed: int = 0,
     generation: Generation = "random-phase",
 ) -> np.ndarray:
-    """One periodic self-affine surface of ``grid``² pixels over a square of side ``length``.
+    """One periodic self-affine surface of ``grid`` pixels (N for N × N, or (Nx, Ny)) with side
+    ``length`` along x and square pixels.
 
     Power spectrum ∝ q^(−2(1+H)) between the wavelengths ``lambda_upper`` (roll-off below it) and
     ``lambda_lower`` (cut-off), scaled to exactly ``rms_height``; lengths in the unit of ``length``.
@@ -45,7 +76,7 @@ def generate_surface(
 
 
 def generate_pair(
-    grid: int,
+    grid: GridSize,
     *,
     length: float = 1.0,
     hurst: float = 0.7,
@@ -71,16 +102,78 @@ def generate_pair(
     return make(seed=top_seed), make(seed=bottom_seed)
 
 
-def surface_statistics(heights: np.ndarray, length: float = 1.0) -> Dict[str, float]:
+def surface_statistics(heights: Any, length: Optional[float] = None) -> Dict[str, float]:
     """RMS height (unit of the heights) and RMS slope (dimensionless, spectral) of a periodic
-    surface of side ``length``, with its grid and pixel size."""
-    return _wearsim.surface_statistics(_float_grid("heights", heights), length)
+    surface of side ``length`` along x (default 1, or a topography's size), with its grid (pixels
+    along x and y) and pixel size."""
+    h, lx = as_heights("heights", heights, length)
+    return _wearsim.surface_statistics(h, lx)
 
 
-def radial_psd(heights: np.ndarray, length: float = 1.0) -> Tuple[np.ndarray, np.ndarray]:
+def radial_psd(heights: Any, length: Optional[float] = None) -> Tuple[np.ndarray, np.ndarray]:
     """Radially averaged power spectral density: (q, C(q)), q the wavenumber in cycles per
-    ``length`` (q = L/λ), C in height² (as ``wearsim surface`` writes it)."""
-    return _wearsim.radial_psd(_float_grid("heights", heights), length)
+    ``length`` along x (q = Lx/λ), C in height² (as ``wearsim surface`` writes it)."""
+    h, lx = as_heights("heights", heights, length)
+    return _wearsim.radial_psd(h, lx)
+
+
+def read_surface(
+    path: Union[str, "os.PathLike[str]"],
+    *,
+    length: Union[None, float, Tuple[float, float]] = None,
+    height_unit: Optional[str] = None,
+    lateral_unit: Optional[str] = None,
+    detrend: Detrend = "none",
+    taper: float = 0.0,
+) -> Tuple[np.ndarray, float]:
+    """Reads a height map as a run file's ``top``/``bottom`` is read: ``.npy``, ``.npz``, a text or
+    CSV matrix, or x y z columns on a regular grid. Returns ``(heights, length)``, length the side
+    along x.
+
+    ``length``: the physical size, Lx or (Lx, Ly), in the unit of the result; column files state it
+    themselves. ``height_unit`` (m, mm, um, nm, pm, A) converts the heights to metres, and
+    ``lateral_unit`` (default ``height_unit``) the coordinates of a column file. Odd sides lose their
+    last row or column. ``detrend`` removes the mean, the plane or a quadratic; ``taper`` brings a
+    fraction of each side smoothly to the mean (see :func:`preprocess_surface`). A surface far from
+    periodic draws a warning (see :func:`periodicity`).
+    """
+    lx, ly = (length if isinstance(length, tuple) else (length, None)) if length is not None else (None, None)
+    height_scale = 1.0 if height_unit is None else _wearsim.metres_per(height_unit)
+    lateral = lateral_unit if lateral_unit is not None else height_unit
+    lateral_scale = 1.0 if lateral is None else _wearsim.metres_per(lateral)
+    heights, lx_read, _notes, warned = _wearsim.read_surface(
+        os.fspath(path), lx, ly, height_scale, lateral_scale, detrend, taper
+    )
+    for w in warned:
+        warnings.warn(w, stacklevel=2)
+    return heights, lx_read
+
+
+def preprocess_surface(heights: Any, *, detrend: Detrend = "plane", taper: float = 0.0) -> np.ndarray:
+    """A levelled copy of a measured height map: ``detrend`` removes the mean, the least-squares
+    plane (tilt) or quadratic (tilt and form); ``taper`` (a fraction of each side, 0 to 1) applies a
+    Tukey window that brings the borders smoothly to the mean, so that the periodic contact solution
+    sees no ridge at the border, at the cost of flattening that strip."""
+    h, _ = as_heights("heights", heights)
+    return _wearsim.preprocess_surface(h, detrend, taper)
+
+
+def periodicity(heights: Any) -> Tuple[float, float]:
+    """How far a height map is from periodic: the RMS jump across the border along x and along y,
+    each divided by the RMS step between neighbouring pixels inside (about 1 when periodic; above 3,
+    ``wearsim`` warns)."""
+    h, _ = as_heights("heights", heights)
+    return _wearsim.periodicity(h)
+
+
+def fit_surface(heights: Any, length: Optional[float] = None) -> Dict[str, float]:
+    """Self-affine parameters of a surface from its radially averaged PSD: ``hurst`` H (from the
+    power-law slope −2(1+H)), ``lambda_lower`` and ``lambda_upper`` (where the power law ends at
+    short and long wavelengths), ``rms_height``, with ``r2`` of the log–log fit and the number of
+    ``shells`` it used. Pass them to :func:`generate_pair` to get periodic surfaces with the
+    measured statistics (the paper's model assumes periodic self-affine surfaces)."""
+    h, lx = as_heights("heights", heights, length)
+    return _wearsim.fit_surface(h, lx)
 
 
 def composite_heights(top: np.ndarray, bottom: np.ndarray, offset: int = 0) -> np.ndarray:

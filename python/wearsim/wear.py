@@ -21,7 +21,7 @@ import pandas as pd
 from . import _wearsim
 from ._progress import ProgressArg, callback
 from .junctions import Junctions
-from .surface import _float_grid
+from .surface import as_heights
 
 #: Columns of the series, in order: those of ``series.csv`` (defined once, in the library).
 SERIES_COLUMNS = list(_wearsim.SERIES_COLUMNS)
@@ -52,12 +52,12 @@ def _warn(summary: Dict[str, Any]) -> None:
 
 
 def slide(
-    top: np.ndarray,
-    bottom: np.ndarray,
+    top: Any,
+    bottom: Any,
     material: _wearsim.Material,
     loads: Sequence[float],
     *,
-    length: float = 1.0,
+    length: Optional[float] = None,
     modulus: str = "half-space",
     tolerance: float = _wearsim.DEFAULT_TOLERANCE,
     max_iterations: int = _wearsim.DEFAULT_MAX_ITERATIONS,
@@ -69,24 +69,27 @@ def slide(
     threads: Optional[int] = None,
     progress: ProgressArg = None,
 ) -> Tuple[pd.DataFrame, Dict[str, Any]]:
-    """Slides ``top`` over ``bottom`` (heights, length unit; side ``length``) along x and runs the
-    sliding wear model for every normal load in ``loads`` (F_N, pressure × length²) and every
-    fracture energy of ``material``.
+    """Slides ``top`` over ``bottom`` along x and runs the sliding wear model for every normal load in
+    ``loads`` (F_N, pressure × length²) and every fracture energy of ``material``. ``top`` and
+    ``bottom`` are height arrays (length unit) of one shape (Nx, Ny) with side ``length`` along x
+    (default 1), or SurfaceTopography topographies, whose physical size gives ``length``.
 
     Schedule (paper §3): offsets from 0 in steps of ``step_running_in`` pixels up to the running-in
-    distance ``running_in``·L, then in steps of ``step`` pixels up to ``distance``·L; each step is a
+    distance ``running_in``·Lx, then in steps of ``step`` pixels up to ``distance``·Lx; each step is a
     contact solve warm-started from the previous one. ``modulus``: "half-space" (E* = E/(1−ν²)) or
     "composite" (E* = E/(2(1−ν²))). ``threads`` runs on that many threads (default: all).
     ``progress``: True prints steps done on stderr; a callable gets ``(steps done, total)``.
 
     Returns ``(series, summary)``: series with the columns :data:`SERIES_COLUMNS` (s in the length
-    unit, volume in length³, contact_area as a fraction of L²), summary as described in the module
+    unit, volume in length³, contact_area as a fraction of Lx Ly), summary as described in the module
     documentation.
     """
+    top_heights, lx = as_heights("top", top, length)
+    bottom_heights, _ = as_heights("bottom", bottom, lx)
     columns, summary = _wearsim.slide(
-        _float_grid("top", top),
-        _float_grid("bottom", bottom),
-        float(length),
+        top_heights,
+        bottom_heights,
+        lx,
         material,
         [float(f) for f in loads],
         modulus,

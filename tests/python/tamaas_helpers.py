@@ -4,9 +4,11 @@ import numpy as np
 import tamaas as tm
 
 
-def tamaas_model(n):
-    """A 2-D periodic tamaas model of side 1 on n² points, E = 1, ν = 0.3 (wearsim's half-space)."""
-    model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [1.0, 1.0], [n, n])
+def tamaas_model(n, ny=None, length_y=1.0):
+    """A 2-D periodic tamaas model of side 1 (× ``length_y``) on n × n (× ``ny``) points, E = 1,
+    ν = 0.3 (wearsim's half-space)."""
+    ny = n if ny is None else ny
+    model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [1.0, length_y], [n, ny])
     model.E = 1.0
     model.nu = 0.3
     return model
@@ -14,11 +16,11 @@ def tamaas_model(n):
 
 def tamaas_labels(contact, diagonal):
     """Pixel → cluster map from tamaas's periodic FloodFill (its -1/N indices unwrapped), −1 outside."""
-    n = contact.shape[0]
+    nx, ny = contact.shape
     labels = -np.ones(contact.shape, dtype=np.int64)
     for c, cluster in enumerate(tm.FloodFill.getClusters(contact, diagonal)):
         for i, j in cluster.points:
-            labels[i % n, j % n] = c
+            labels[i % nx, j % ny] = c
     return labels
 
 

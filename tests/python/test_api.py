@@ -168,7 +168,13 @@ def test_slide_equals_the_cli(tmp_path, run_file, wearsim_bin):
             lambda: wearsim.generate_surface(64, lambda_lower=0.01, lambda_upper=0.25, rms_height=0.005),
             "invalid `lambda_lower`",
         ),
-        (lambda: wearsim.solve_contact(np.zeros((32, 16)), 1e-3, effective_modulus=1.0), "must be square"),
+        (lambda: wearsim.solve_contact(np.zeros((32, 15)), 1e-3, effective_modulus=1.0), "(along y)"),
+        (
+            lambda: wearsim.slide(
+                np.zeros((32, 16)), np.zeros((32, 32)), wearsim.Material(1, 0.3, 0.01, [1e-6]), [1e-3]
+            ),
+            "shape 32×32 differs from the top's 32×16",
+        ),
         (
             lambda: wearsim.solve_contact(np.zeros((32, 32)), 0.1, effective_modulus=1.0, flow_pressure=0.05),
             "load cannot be carried",

@@ -134,9 +134,16 @@ fn bad_surface_files_are_one_line_errors() {
     let e = contact_fails(dir.path(), &read, "1e-3");
     assert!(e.contains("top.npy") && e.contains("NaN"), "{e}");
 
+    // Rectangular surfaces are fine, but the two must share the grid.
     write_npy(&dir.path().join("top.npy"), &[16, 32], &vec![0.0; 512]);
     let e = contact_fails(dir.path(), &read, "1e-3");
-    assert!(e.contains("top.npy") && e.contains("square"), "{e}");
+    assert!(
+        e.contains("bottom.npy") && e.contains("16 × 32") && e.contains("differs"),
+        "{e}"
+    );
+    // Length = [Lx, Ly] must give square pixels.
+    let e = contact_fails(dir.path(), &read.replace("length = 1.0", "length = [1.0, 1.0]"), "1e-3");
+    assert!(e.contains("top.npy") && e.contains("square pixels"), "{e}");
 
     write_npy(&dir.path().join("top.npy"), &[0, 0], &[]);
     let e = contact_fails(dir.path(), &read, "1e-3");

@@ -11,7 +11,7 @@ use wearsim::wear::static_wear;
 use wearsim::{Interrupt, Material, ModulusConvention, SolverOptions};
 
 use crate::error::{interruptible, to_py};
-use crate::{json_to_py, square, square_of, to_array, Pair};
+use crate::{field, field_of, json_to_py, to_array, GridSize, Pair};
 
 /// Elastic and adhesive-wear properties of the (identical) materials of both surfaces.
 ///
@@ -108,21 +108,30 @@ pub struct PyContactSolver {
 impl PyContactSolver {
     #[new]
     #[pyo3(signature = (grid, length, effective_modulus, tolerance = wearsim::contact::DEFAULT_TOLERANCE, max_iterations = wearsim::contact::DEFAULT_MAX_ITERATIONS))]
-    fn new(grid: usize, length: f64, effective_modulus: f64, tolerance: f64, max_iterations: usize) -> PyResult<Self> {
+    fn new(
+        grid: GridSize,
+        length: f64,
+        effective_modulus: f64,
+        tolerance: f64,
+        max_iterations: usize,
+    ) -> PyResult<Self> {
         let options = SolverOptions::new(tolerance, max_iterations).map_err(to_py)?;
-        let inner = wearsim::ContactSolver::new(grid, length, effective_modulus)
+        let inner = wearsim::ContactSolver::new(grid.grid(length)?, effective_modulus)
             .map_err(to_py)?
             .with_options(options);
         Ok(Self { inner })
     }
 
+    /// (Nx, Ny).
     #[getter]
-    fn grid(&self) -> usize {
-        self.inner.n()
+    fn shape(&self) -> (usize, usize) {
+        let g = self.inner.grid();
+        (g.nx(), g.ny())
     }
+    /// Side along x, Lx.
     #[getter]
     fn length(&self) -> f64 {
-        self.inner.length()
+        self.inner.grid().length_x()
     }
     #[getter]
     fn effective_modulus(&self) -> f64 {
@@ -147,13 +156,13 @@ impl PyContactSolver {
         flow_pressure: f64,
         initial_pressure: Option<PyReadonlyArray2<'py, f64>>,
     ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyAny>)> {
-        let n = self.inner.n();
-        let h = square_of("heights", &heights, n, "solver")?;
+        let shape = self.shape();
+        let h = field_of("heights", &heights, shape, "solver")?;
         let mut pressure = match initial_pressure {
-            None => vec![0.0; n * n],
-            Some(p0) => square_of("initial_pressure", &p0, n, "solver")?,
+            None => vec![0.0; shape.0 * shape.1],
+            Some(p0) => field_of("initial_pressure", &p0, shape, "solver")?,
         };
-        let area = self.inner.length() * self.inner.length();
+        let area = self.inner.grid().area();
         let solver = &mut self.inner;
         let start = Instant::now();
         let info = interruptible(py, None, |interrupt| {
@@ -163,7 +172,7 @@ impl PyContactSolver {
             r
         })?;
         let d = json_to_py(py, &ContactRecord::new(&info, &pressure, start.elapsed().as_secs_f64()))?;
-        Ok((to_array(py, n, pressure), d))
+        Ok((to_array(py, shape, pressure), d))
     }
 
     /// Displacement 𝒦p of a pressure field (zero mean).
@@ -172,12 +181,12 @@ impl PyContactSolver {
         py: Python<'py>,
         pressure: PyReadonlyArray2<'py, f64>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let n = self.inner.n();
-        let p = square_of("pressure", &pressure, n, "solver")?;
-        let mut out = vec![0.0; n * n];
+        let shape = self.shape();
+        let p = field_of("pressure", &pressure, shape, "solver")?;
+        let mut out = vec![0.0; shape.0 * shape.1];
         let solver = &mut self.inner;
         py.detach(|| solver.apply_influence(&p, &mut out));
-        Ok(to_array(py, n, out))
+        Ok(to_array(py, shape, out))
     }
 }
 
@@ -190,9 +199,14 @@ fn label_junctions<'py>(
     connectivity: u8,
 ) -> Pair<'py, PyArray2<i64>, PyArray1<u64>> {
     wearsim::check::connectivity(connectivity).map_err(to_py)?;
-    let (n, flags) = square("contact", &contact)?;
+    let ((rows, cols), flags) = field("contact", &contact)?;
+    if rows.saturating_mul(cols) >= u32::MAX as usize {
+        return Err(pyo3::exceptions::PyValueError::new_err(format!(
+            "invalid `contact`: {rows}×{cols} pixels are more than 32-bit junction labels can index"
+        )));
+    }
     let (labels, sizes) = py.detach(|| {
-        let mut labeller = JunctionLabeller::new(n, connectivity);
+        let mut labeller = JunctionLabeller::new(rows, cols, connectivity);
         labeller.label(|k| flags[k]);
         let labels: Vec<i64> = labeller
             .labels()
@@ -202,7 +216,7 @@ fn label_junctions<'py>(
         let sizes: Vec<u64> = labeller.sizes().iter().map(|&s| s as u64).collect();
         (labels, sizes)
     });
-    Ok((to_array(py, n, labels), sizes.into_pyarray(py)))
+    Ok((to_array(py, (rows, cols), labels), sizes.into_pyarray(py)))
 }
 
 /// Static model (paper §2, Frérot et al. 2018) on the junction pixel counts of one contact map.

@@ -1,7 +1,8 @@
 //! `wearsim._wearsim`: the Python extension module. A thin layer over the `wearsim` library: arrays
 //! in and out as NumPy arrays, library errors as Python exceptions carrying the library's message
 //! (`error`), long calls run with the GIL released on a worker thread while the calling thread
-//! watches for Ctrl-C. One module per concept: `surface`, `contact` (material, solver, junctions),
+//! watches for Ctrl-C. One module per concept: `surface`, `topography` (measured height maps),
+//! `contact` (material, solver, junctions),
 //! `sliding`, `study`. The public Python API, with docstrings and units, is the pure-Python package
 //! `wearsim` around this module.
 
@@ -17,36 +18,60 @@ mod error;
 mod sliding;
 mod study;
 mod surface;
+mod topography;
 
 /// Two arrays returned together (a surface pair, labels and sizes, a spectrum).
 type Pair<'py, A, B> = PyResult<(Bound<'py, A>, Bound<'py, B>)>;
 
-/// A square array as (N, values), or a ValueError naming `field`.
-fn square<T: numpy::Element + Copy>(field: &str, a: &PyReadonlyArray2<'_, T>) -> PyResult<(usize, Vec<T>)> {
+/// A grid size from Python: `N` (square) or `(Nx, Ny)`.
+#[derive(FromPyObject, Clone, Copy)]
+enum GridSize {
+    Square(usize),
+    Sides((usize, usize)),
+}
+
+impl GridSize {
+    fn sides(self) -> (usize, usize) {
+        match self {
+            GridSize::Square(n) => (n, n),
+            GridSize::Sides(s) => s,
+        }
+    }
+
+    /// The grid of these sides whose side along x is `length_x`.
+    fn grid(self, length_x: f64) -> PyResult<wearsim::Grid> {
+        let (nx, ny) = self.sides();
+        wearsim::Grid::new(nx, ny, length_x).map_err(error::to_py)
+    }
+}
+
+/// A non-empty 2-D array as ((rows, cols), values), or a ValueError naming `field`.
+fn field<T: numpy::Element + Copy>(name: &str, a: &PyReadonlyArray2<'_, T>) -> PyResult<((usize, usize), Vec<T>)> {
     let shape = a.shape();
-    if shape[0] != shape[1] || shape[0] == 0 {
+    if shape[0] == 0 || shape[1] == 0 {
         return Err(PyValueError::new_err(format!(
-            "invalid `{field}`: array is {}×{}; it must be square and non-empty",
+            "invalid `{name}`: the array is empty ({}×{})",
             shape[0], shape[1]
         )));
     }
-    Ok((shape[0], a.as_array().iter().copied().collect()))
+    Ok(((shape[0], shape[1]), a.as_array().iter().copied().collect()))
 }
 
-/// [`square`] for an array that must be `n × n` (the grid of a solver or of another array).
-fn square_of(field: &str, a: &PyReadonlyArray2<'_, f64>, n: usize, of: &str) -> PyResult<Vec<f64>> {
-    let (m, values) = square(field, a)?;
-    if m != n {
+/// [`field`] for an array that must have `shape` (the grid of a solver or of another array).
+fn field_of(name: &str, a: &PyReadonlyArray2<'_, f64>, shape: (usize, usize), of: &str) -> PyResult<Vec<f64>> {
+    let (s, values) = field(name, a)?;
+    if s != shape {
         return Err(PyValueError::new_err(format!(
-            "invalid `{field}`: grid {m}² differs from the {of}'s {n}²"
+            "invalid `{name}`: shape {}×{} differs from the {of}'s {}×{}",
+            s.0, s.1, shape.0, shape.1
         )));
     }
     Ok(values)
 }
 
-fn to_array<'py, T: numpy::Element>(py: Python<'py>, n: usize, values: Vec<T>) -> Bound<'py, PyArray2<T>> {
-    Array2::from_shape_vec((n, n), values)
-        .expect("N² values")
+fn to_array<'py, T: numpy::Element>(py: Python<'py>, shape: (usize, usize), values: Vec<T>) -> Bound<'py, PyArray2<T>> {
+    Array2::from_shape_vec(shape, values)
+        .expect("rows × cols values")
         .into_pyarray(py)
 }
 
@@ -98,6 +123,7 @@ fn _wearsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("WearsimError", m.py().get_type::<error::WearsimError>())?;
     m.add("NotConvergedError", m.py().get_type::<error::NotConvergedError>())?;
     surface::register(m)?;
+    topography::register(m)?;
     contact::register(m)?;
     sliding::register(m)?;
     study::register(m)?;

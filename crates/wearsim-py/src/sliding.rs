@@ -46,7 +46,7 @@ fn slide<'py>(
     progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
     let (t, b) = surface_pair(&top, &bottom, length)?;
-    let n = t.n();
+    let n = t.nx();
     let solver = SolverOptions::new(tolerance, max_iterations).map_err(to_py)?;
     wearsim::check::connectivity(connectivity).map_err(to_py)?;
     let convention: ModulusConvention = modulus.parse().map_err(to_py)?;
@@ -66,7 +66,11 @@ fn slide<'py>(
     let seconds = start.elapsed().as_secs_f64();
     let inputs = SlidingInputs {
         units: Default::default(),
-        surfaces: serde_json::json!({"source": "arrays", "grid": n, "length": length}),
+        surfaces: serde_json::json!({
+            "source": "arrays",
+            "grid": if t.grid().is_square() { serde_json::json!(n) } else { serde_json::json!([n, t.ny()]) },
+            "length": if t.grid().is_square() { serde_json::json!(length) } else { serde_json::json!([length, t.grid().length_y()]) },
+        }),
         material: &material.inner,
         modulus: convention,
         solver,
@@ -141,9 +145,10 @@ impl PyRunFile {
     fn surfaces<'py>(&self, py: Python<'py>) -> Pair<'py, PyArray2<f64>, PyArray2<f64>> {
         let config = &self.config;
         let (t, b) = interruptible(py, None, |_| config.surfaces())?;
+        let shape = (t.nx(), t.ny());
         Ok((
-            to_array(py, t.n(), t.heights().to_vec()),
-            to_array(py, b.n(), b.heights().to_vec()),
+            to_array(py, shape, t.into_heights()),
+            to_array(py, shape, b.into_heights()),
         ))
     }
 
@@ -163,21 +168,18 @@ impl PyRunFile {
             )));
         };
         let start = Instant::now();
-        let (runs, n, pixel_size) = interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, steps| {
-            let (top, bottom) = config.surfaces()?;
-            let mut setup = SlidingSetup::from_run(config, sliding);
-            setup.interrupt = interrupt.clone();
-            let runs = run_sliding(&top, &bottom, &setup, |view| steps.set(view.done, view.total))?;
-            Ok((runs, top.n(), top.pixel_size()))
-        })?;
+        let (runs, n, pixel_size, warnings) =
+            interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, steps| {
+                let pair = config.surface_pair()?;
+                let mut setup = SlidingSetup::from_run(config, sliding);
+                setup.interrupt = interrupt.clone();
+                let runs = run_sliding(&pair.top, &pair.bottom, &setup, |view| steps.set(view.done, view.total))?;
+                Ok((runs, pair.top.nx(), pair.top.pixel_size(), pair.warnings))
+            })?;
         let seconds = start.elapsed().as_secs_f64();
-        let summary = sliding_summary(
-            &SlidingInputs::of_run(config, sliding),
-            &runs,
-            pixel_size,
-            seconds,
-            schedule(n, sliding).len(),
-        );
+        let mut inputs = SlidingInputs::of_run(config, sliding);
+        inputs.warnings.extend(warnings);
+        let summary = sliding_summary(&inputs, &runs, pixel_size, seconds, schedule(n, sliding).len());
         Ok((series_columns(py, &runs)?, json_to_py(py, &summary)?))
     }
 }

@@ -7,14 +7,14 @@ use wearsim::output::SurfaceStatistics;
 use wearsim::{Generation, SpectrumParams, Surface};
 
 use crate::error::{interruptible, to_py};
-use crate::{json_to_py, square, square_of, to_array, Pair};
+use crate::{field, field_of, json_to_py, to_array, GridSize, Pair};
 
 #[pyfunction]
 #[pyo3(signature = (grid, length, hurst, lambda_lower, lambda_upper, rms_height, seed, generation = "random-phase"))]
 #[allow(clippy::too_many_arguments)] // the keyword arguments of the Python function, one each
 fn generate_surface<'py>(
     py: Python<'py>,
-    grid: usize,
+    grid: GridSize,
     length: f64,
     hurst: f64,
     lambda_lower: f64,
@@ -31,9 +31,10 @@ fn generate_surface<'py>(
         rms_height,
         generation,
     };
-    params.validate(grid, length).map_err(to_py)?;
-    let surface = interruptible(py, None, |_| Surface::generate(grid, length, &params, seed))?;
-    Ok(to_array(py, grid, surface.heights().to_vec()))
+    let grid = grid.grid(length)?;
+    params.validate(&grid).map_err(to_py)?;
+    let surface = interruptible(py, None, |_| Surface::generate(grid, &params, seed))?;
+    Ok(to_array(py, (grid.nx(), grid.ny()), surface.into_heights()))
 }
 
 #[pyfunction]
@@ -41,10 +42,10 @@ fn pair_seeds(seed: u64) -> (u64, u64) {
     wearsim::surface::pair_seeds(seed)
 }
 
-/// A checked surface from an array.
-pub fn surface_from(field: &str, heights: &PyReadonlyArray2<'_, f64>, length: f64) -> PyResult<Surface> {
-    let (n, values) = square(field, heights)?;
-    Surface::new(field, n, length, values).map_err(to_py)
+/// A checked surface from an array whose side along x (the first axis) is `length`.
+pub fn surface_from(name: &str, heights: &PyReadonlyArray2<'_, f64>, length: f64) -> PyResult<Surface> {
+    let ((rows, cols), values) = field(name, heights)?;
+    Surface::from_array(name, rows, cols, length, values).map_err(to_py)
 }
 
 /// The top and bottom surfaces of a slide, on one grid.
@@ -54,8 +55,8 @@ pub fn surface_pair(
     length: f64,
 ) -> PyResult<(Surface, Surface)> {
     let t = surface_from("top", top, length)?;
-    let values = square_of("bottom", bottom, t.n(), "top")?;
-    let b = Surface::new("bottom", t.n(), length, values).map_err(to_py)?;
+    let values = field_of("bottom", bottom, (t.nx(), t.ny()), "top")?;
+    let b = Surface::new("bottom", t.grid(), values).map_err(to_py)?;
     Ok((t, b))
 }
 
@@ -92,10 +93,9 @@ fn composite_heights<'py>(
     offset: usize,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let (t, b) = surface_pair(&top, &bottom, 1.0)?;
-    let n = t.n();
-    let mut out = vec![0.0; n * n];
+    let mut out = vec![0.0; t.grid().pixels()];
     wearsim::composite_heights(&t, &b, offset, &mut out);
-    Ok(to_array(py, n, out))
+    Ok(to_array(py, (t.nx(), t.ny()), out))
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

@@ -82,18 +82,18 @@ pub fn available_memory() -> Option<u64> {
     Some(kib * 1024)
 }
 
-/// Refuses work that needs `arrays` arrays of N² doubles on an `n`-pixel grid when that is more
+/// Refuses work that needs `arrays` arrays of Nx·Ny doubles on an `nx × ny` grid when that is more
 /// than the machine can give, before anything is allocated (an allocation that fails aborts the
 /// process). `what` names the work in the message.
-pub fn memory(what: &str, n: usize, arrays: f64) -> Result<()> {
-    let need = arrays * 8.0 * (n as f64) * (n as f64);
+pub fn memory(what: &str, nx: usize, ny: usize, arrays: f64) -> Result<()> {
+    let need = arrays * 8.0 * (nx as f64) * (ny as f64);
     let gib = |b: f64| b / (1u64 << 30) as f64;
     match available_memory() {
         Some(have) if need > have as f64 => Err(Error::param(
             "grid",
             format!(
-                "{what} on {n}² pixels needs about {:.1} GiB of memory ({arrays} arrays of N² doubles) and this machine \
-                 has {:.1} GiB available; lower `grid` or run on a larger machine",
+                "{what} on {nx}×{ny} pixels needs about {:.1} GiB of memory ({arrays} arrays of Nx·Ny doubles) and this \
+                 machine has {:.1} GiB available; lower `grid` or run on a larger machine",
                 gib(need),
                 gib(have as f64)
             ),
@@ -151,12 +151,12 @@ mod tests {
     #[test]
     fn work_beyond_the_machine_is_refused_and_threads_are_capped() {
         if available_memory().is_some() {
-            let e = memory("a sliding run", 100_000, SLIDING_ARRAYS)
+            let e = memory("a sliding run", 100_000, 100_000, SLIDING_ARRAYS)
                 .unwrap_err()
                 .to_string();
             assert!(e.contains("GiB") && e.contains("`grid`"), "{e}");
         }
-        assert!(memory("a sliding run", 64, SLIDING_ARRAYS).is_ok());
+        assert!(memory("a sliding run", 64, 32, SLIDING_ARRAYS).is_ok());
         assert!(threads(0).is_err());
         assert_eq!(threads(1).unwrap(), (1, None));
         let (t, warning) = threads(1_000_000).unwrap();

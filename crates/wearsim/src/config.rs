@@ -8,9 +8,11 @@ use serde::Deserialize;
 use crate::check::{connectivity as check_connectivity, positive};
 use crate::contact::SolverOptions;
 use crate::error::{Error, Result};
+use crate::grid::Grid;
 use crate::io::{parent_or_dot, read_text};
 use crate::material::{Material, ModulusConvention};
 use crate::surface::{pair_seeds, Generation, SpectrumParams, Surface};
+use crate::topography::{metres_per, Detrend, FileSurface, Preprocess};
 
 /// Unit system of a run file: reduced (E = 1, L = 1 by convention) or SI (Pa, m, J/m², N).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
@@ -43,11 +45,19 @@ struct RawRun {
     sliding: Option<RawSliding>,
 }
 
+/// A value per side: one for both (`grid = 512`) or `[x, y]` (`grid = [1024, 512]`).
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(untagged, expecting = "one number, or two as [along x, along y]")]
+enum PerSide<T> {
+    Both(T),
+    Each([T; 2]),
+}
+
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawSurface {
-    grid: Option<usize>,
-    length: Option<f64>,
+    grid: Option<PerSide<usize>>,
+    length: Option<PerSide<f64>>,
     hurst: Option<f64>,
     lambda_lower: Option<f64>,
     lambda_upper: Option<f64>,
@@ -56,6 +66,10 @@ struct RawSurface {
     generation: Option<Generation>,
     top: Option<PathBuf>,
     bottom: Option<PathBuf>,
+    height_unit: Option<String>,
+    lateral_unit: Option<String>,
+    detrend: Option<Detrend>,
+    taper: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -89,18 +103,91 @@ struct RawSliding {
 }
 
 /// Where the two surfaces come from.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-#[serde(tag = "source", rename_all = "lowercase")]
+#[derive(Debug, Clone, PartialEq)]
 pub enum SurfaceSource {
     /// Generated from spectral parameters and one seed (top and bottom seeds derived from it).
     Generated {
-        grid: usize,
-        length: f64,
+        grid: Grid,
         spectrum: SpectrumParams,
         seed: u64,
     },
-    /// Read from `.npy` files (paths resolved against the run file's folder).
-    Files { top: PathBuf, bottom: PathBuf, length: f64 },
+    /// Read from height-map files (paths resolved against the run file's folder), in any format
+    /// [`crate::topography::read`] knows.
+    Files {
+        top: PathBuf,
+        bottom: PathBuf,
+        /// Side along x in the run's length unit (given, or from the file's coordinates).
+        length: f64,
+        /// Side along y, when the run file gives it.
+        length_y: Option<f64>,
+        /// The file's height unit and x y coordinate unit as written in the run file.
+        height_unit: Option<String>,
+        lateral_unit: Option<String>,
+        preprocess: Preprocess,
+    },
+}
+
+/// One value for a square grid, `[x, y]` for a rectangular one (as a run file writes it).
+fn per_side<T: serde::Serialize + PartialEq>(x: T, y: T) -> serde_json::Value {
+    if x == y {
+        serde_json::json!(x)
+    } else {
+        serde_json::json!([x, y])
+    }
+}
+
+impl serde::Serialize for SurfaceSource {
+    /// As a run file writes it: `grid` and `length` one value when square, `[x, y]` otherwise.
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut map = serializer.serialize_map(None)?;
+        match self {
+            SurfaceSource::Generated { grid, spectrum, seed } => {
+                map.serialize_entry("source", "generated")?;
+                map.serialize_entry("grid", &per_side(grid.nx(), grid.ny()))?;
+                map.serialize_entry("length", &per_side(grid.length_x(), grid.length_y()))?;
+                map.serialize_entry("spectrum", spectrum)?;
+                map.serialize_entry("seed", seed)?;
+            }
+            SurfaceSource::Files {
+                top,
+                bottom,
+                length,
+                length_y,
+                height_unit,
+                lateral_unit,
+                preprocess,
+            } => {
+                map.serialize_entry("source", "files")?;
+                map.serialize_entry("top", top)?;
+                map.serialize_entry("bottom", bottom)?;
+                match length_y {
+                    Some(ly) => map.serialize_entry("length", &[length, ly])?,
+                    None => map.serialize_entry("length", length)?,
+                }
+                if let Some(u) = height_unit {
+                    map.serialize_entry("height_unit", u)?;
+                }
+                if let Some(u) = lateral_unit {
+                    map.serialize_entry("lateral_unit", u)?;
+                }
+                if *preprocess != Preprocess::default() {
+                    map.serialize_entry("detrend", preprocess.detrend.name())?;
+                    map.serialize_entry("taper", &preprocess.taper)?;
+                }
+            }
+        }
+        map.end()
+    }
+}
+
+/// The two surfaces of a run, with notes on how files were read and warnings about them.
+#[derive(Debug, Clone)]
+pub struct SurfacePair {
+    pub top: Surface,
+    pub bottom: Surface,
+    pub notes: Vec<String>,
+    pub warnings: Vec<String>,
 }
 
 /// The sliding schedule (paper §3); distances as fractions of L, steps in pixels.
@@ -239,6 +326,23 @@ pub struct RunConfig {
     pub sliding: Option<SlidingConfig>,
 }
 
+/// Factor from the unit of a file's x y coordinates (`lateral_unit`, else `height_unit`) to the
+/// run's length unit: metres in SI runs, none in reduced runs.
+fn lateral_scale(units: Units, lateral_unit: &Option<String>, height_unit: &Option<String>) -> Result<f64> {
+    match (units, lateral_unit.as_ref().or(height_unit.as_ref())) {
+        (Units::Si, Some(u)) => metres_per("lateral_unit", u),
+        _ => Ok(1.0),
+    }
+}
+
+fn missing_length() -> Error {
+    missing(
+        "length",
+        "give the physical size of the height maps, length = Lx or [Lx, Ly] along their first and second axes (only \
+         x y z column files state it themselves)",
+    )
+}
+
 fn missing(field: &str, hint: &str) -> Error {
     Error::run_file(format!("[surface] `{field}` is missing; {hint}"))
 }
@@ -278,41 +382,25 @@ impl RunConfig {
     fn from_raw(raw: RawRun, base: &Path, files: SurfaceFiles) -> Result<Self> {
         let s = raw.surface;
         let surfaces = match (&s.top, &s.bottom) {
-            (Some(top), Some(bottom)) => {
+            (Some(top), Some(bottom)) => Self::files_source(&s, raw.units, base.join(top), base.join(bottom), files)?,
+            (None, None) => {
                 for (field, value) in [
-                    ("grid", s.grid.is_some()),
-                    ("hurst", s.hurst.is_some()),
-                    ("lambda_lower", s.lambda_lower.is_some()),
-                    ("lambda_upper", s.lambda_upper.is_some()),
-                    ("rms_height", s.rms_height.is_some()),
-                    ("seed", s.seed.is_some()),
+                    ("height_unit", s.height_unit.is_some()),
+                    ("lateral_unit", s.lateral_unit.is_some()),
+                    ("detrend", s.detrend.is_some()),
+                    ("taper", s.taper.is_some()),
                 ] {
                     if value {
                         return Err(Error::run_file(format!(
-                            "[surface] `{field}` has no meaning when `top` and `bottom` are read from files; remove it"
+                            "[surface] `{field}` applies to surfaces read from files (`top` and `bottom`); remove it"
                         )));
                     }
                 }
-                let length = s
-                    .length
-                    .ok_or_else(|| missing("length", "give the physical side length of the files"))?;
-                positive("length", length)?;
-                let (top, bottom) = (base.join(top), base.join(bottom));
-                for p in [&top, &bottom] {
-                    if files == SurfaceFiles::MustExist && !p.is_file() {
-                        return Err(Error::file(
-                            p,
-                            "surface file not found (paths are relative to the run file)",
-                        ));
-                    }
-                }
-                SurfaceSource::Files { top, bottom, length }
-            }
-            (None, None) => {
-                let grid = s
-                    .grid
-                    .ok_or_else(|| missing("grid", "give the number of pixels per side, e.g. 512"))?;
-                let length = s.length.unwrap_or(1.0);
+                let grid = Self::generated_grid(
+                    s.grid
+                        .ok_or_else(|| missing("grid", "give the number of pixels per side, e.g. 512"))?,
+                    s.length.unwrap_or(PerSide::Both(1.0)),
+                )?;
                 let spectrum = SpectrumParams {
                     hurst: s.hurst.unwrap_or(0.7),
                     lambda_lower: s
@@ -324,10 +412,9 @@ impl RunConfig {
                     rms_height: s.rms_height.ok_or_else(|| missing("rms_height", "e.g. 0.005·length"))?,
                     generation: s.generation.unwrap_or_default(),
                 };
-                spectrum.validate(grid, length)?;
+                spectrum.validate(&grid)?;
                 SurfaceSource::Generated {
                     grid,
-                    length,
                     spectrum,
                     seed: s.seed.unwrap_or(0),
                 }
@@ -358,7 +445,7 @@ impl RunConfig {
             None => None,
             Some(sl) => {
                 let grid = match &surfaces {
-                    SurfaceSource::Generated { grid, .. } => Some(*grid),
+                    SurfaceSource::Generated { grid, .. } => Some(grid.nx()),
                     SurfaceSource::Files { .. } => None,
                 };
                 Some(SlidingConfig::new(
@@ -371,12 +458,20 @@ impl RunConfig {
                 )?)
             }
         };
-        if let Some(sl) = &sliding {
-            let length = match &surfaces {
-                SurfaceSource::Generated { length, .. } | SurfaceSource::Files { length, .. } => *length,
-            };
+        // The apparent area, where the run file fixes it (a file's y side may come from its shape,
+        // checked when the run starts).
+        let area = match &surfaces {
+            SurfaceSource::Generated { grid, .. } => Some(grid.area()),
+            SurfaceSource::Files {
+                length,
+                length_y: Some(ly),
+                ..
+            } => Some(length * ly),
+            SurfaceSource::Files { .. } => None,
+        };
+        if let (Some(sl), Some(area)) = (&sliding, area) {
             for &load in &sl.loads {
-                crate::check::load(load, length * length, material.flow_pressure())?;
+                crate::check::load(load, area, material.flow_pressure())?;
             }
         }
         Ok(Self {
@@ -390,46 +485,198 @@ impl RunConfig {
         })
     }
 
-    /// The top and bottom surfaces: generated (seeds derived from the run's seed) or read.
-    pub fn surfaces(&self) -> Result<(Surface, Surface)> {
-        match &self.surfaces {
-            SurfaceSource::Generated {
-                grid,
-                length,
-                spectrum,
-                seed,
-            } => {
-                crate::check::memory("generating the surface pair", *grid, crate::check::SURFACE_ARRAYS)?;
-                let (top_seed, bottom_seed) = pair_seeds(*seed);
-                let (top, bottom) = rayon::join(
-                    || Surface::generate(*grid, *length, spectrum, top_seed),
-                    || Surface::generate(*grid, *length, spectrum, bottom_seed),
-                );
-                Ok((top?, bottom?))
-            }
-            SurfaceSource::Files { top, bottom, length } => {
-                let t = Surface::read_npy(top, *length)?;
-                let b = Surface::read_npy(bottom, *length)?;
-                if t.n() != b.n() {
-                    return Err(Error::InvalidSurface {
-                        name: bottom.display().to_string(),
-                        message: format!("grid {}² differs from the top surface's {}²", b.n(), t.n()),
-                    });
+    /// The grid of generated surfaces: `grid = N` with `length = L` (square) or `[Lx, Ly]` (Ny from
+    /// square pixels), or `grid = [Nx, Ny]` with `length = Lx` or `[Lx, Ly]`.
+    fn generated_grid(grid: PerSide<usize>, length: PerSide<f64>) -> Result<Grid> {
+        match (grid, length) {
+            (PerSide::Both(n), PerSide::Both(l)) => Grid::square(n, l),
+            (PerSide::Each([nx, ny]), PerSide::Both(lx)) => Grid::new(nx, ny, lx),
+            (PerSide::Each([nx, ny]), PerSide::Each([lx, ly])) => Grid::with_lengths(nx, ny, lx, ly),
+            (PerSide::Both(nx), PerSide::Each([lx, ly])) => {
+                positive("length", lx)?;
+                positive("length", ly)?;
+                let ny = nx as f64 * ly / lx;
+                if (ny - ny.round()).abs() > 1e-9 * ny {
+                    return Err(Error::param(
+                        "grid",
+                        format!(
+                            "{nx} pixels along x over length = [{lx}, {ly}] gives {ny} pixels along y, not a whole number; \
+                             give grid = [Nx, Ny] with Lx/Nx = Ly/Ny"
+                        ),
+                    ));
                 }
-                Ok((t, b))
+                Grid::with_lengths(nx, ny.round() as usize, lx, ly)
             }
         }
     }
 
-    /// Grid size N: the generated grid, or that of the top surface file (read from its header).
-    pub fn grid(&self) -> Result<usize> {
+    /// The source of surfaces read from files: units converted to the run's, the size resolved
+    /// (from `length`, or the coordinates of a column file when the files exist).
+    fn files_source(
+        s: &RawSurface,
+        units: Units,
+        top: PathBuf,
+        bottom: PathBuf,
+        files: SurfaceFiles,
+    ) -> Result<SurfaceSource> {
+        for (field, value) in [
+            ("grid", s.grid.is_some()),
+            ("hurst", s.hurst.is_some()),
+            ("lambda_lower", s.lambda_lower.is_some()),
+            ("lambda_upper", s.lambda_upper.is_some()),
+            ("rms_height", s.rms_height.is_some()),
+            ("seed", s.seed.is_some()),
+            ("generation", s.generation.is_some()),
+        ] {
+            if value {
+                return Err(Error::run_file(format!(
+                    "[surface] `{field}` has no meaning when `top` and `bottom` are read from files; remove it"
+                )));
+            }
+        }
+        for (field, unit) in [("height_unit", &s.height_unit), ("lateral_unit", &s.lateral_unit)] {
+            if let Some(u) = unit {
+                metres_per(field, u)?;
+                if units != Units::Si {
+                    return Err(Error::run_file(format!(
+                        "[surface] `{field}` = \"{u}\" converts the file to metres, which needs units = \"si\"; in \
+                         reduced units give the heights in the unit of `length` and remove `{field}`"
+                    )));
+                }
+            }
+        }
+        let preprocess = Preprocess {
+            detrend: s.detrend.unwrap_or_default(),
+            taper: s.taper.unwrap_or(0.0),
+        };
+        preprocess.validate()?;
+        for p in [&top, &bottom] {
+            if files == SurfaceFiles::MustExist && !p.is_file() {
+                return Err(Error::file(
+                    p,
+                    "surface file not found (paths are relative to the run file)",
+                ));
+            }
+        }
+        let (length, length_y) = match s.length {
+            Some(PerSide::Both(l)) => (l, None),
+            Some(PerSide::Each([lx, ly])) => {
+                positive("length", ly)?;
+                (lx, Some(ly))
+            }
+            // A column file states its size in its coordinates (a stored run whose files are gone
+            // cannot be asked).
+            None if top.is_file() => match crate::topography::file_span(&top)? {
+                Some((x, _)) => (x * lateral_scale(units, &s.lateral_unit, &s.height_unit)?, None),
+                None => return Err(missing_length()),
+            },
+            None => return Err(missing_length()),
+        };
+        positive("length", length)?;
+        Ok(SurfaceSource::Files {
+            top,
+            bottom,
+            length,
+            length_y,
+            height_unit: s.height_unit.clone(),
+            lateral_unit: s.lateral_unit.clone(),
+            preprocess,
+        })
+    }
+
+    /// The top and bottom surfaces: generated (seeds derived from the run's seed) or read.
+    pub fn surfaces(&self) -> Result<(Surface, Surface)> {
+        self.surface_pair().map(|p| (p.top, p.bottom))
+    }
+
+    /// The top and bottom surfaces with notes on how files were read and prepared, and warnings
+    /// about them (a measured surface far from periodic).
+    pub fn surface_pair(&self) -> Result<SurfacePair> {
+        match &self.surfaces {
+            SurfaceSource::Generated { grid, spectrum, seed } => {
+                crate::check::memory(
+                    "generating the surface pair",
+                    grid.nx(),
+                    grid.ny(),
+                    crate::check::SURFACE_ARRAYS,
+                )?;
+                let (top_seed, bottom_seed) = pair_seeds(*seed);
+                let (top, bottom) = rayon::join(
+                    || Surface::generate(*grid, spectrum, top_seed),
+                    || Surface::generate(*grid, spectrum, bottom_seed),
+                );
+                Ok(SurfacePair {
+                    top: top?,
+                    bottom: bottom?,
+                    notes: Vec::new(),
+                    warnings: Vec::new(),
+                })
+            }
+            SurfaceSource::Files { top, bottom, .. } => {
+                let how = self.file_surface()?;
+                let t = crate::topography::load(top, &how)?;
+                let b = crate::topography::load(bottom, &how)?;
+                if t.surface.grid() != b.surface.grid() {
+                    let (tg, bg) = (t.surface.grid(), b.surface.grid());
+                    return Err(Error::InvalidSurface {
+                        name: bottom.display().to_string(),
+                        message: format!(
+                            "its grid, {} × {} pixels of {:e}, differs from the top surface's, {} × {} pixels of {:e}",
+                            bg.nx(),
+                            bg.ny(),
+                            bg.pixel_size(),
+                            tg.nx(),
+                            tg.ny(),
+                            tg.pixel_size()
+                        ),
+                    });
+                }
+                let notes = t.notes.into_iter().chain(b.notes).collect();
+                let warnings = t.warnings.into_iter().chain(b.warnings).collect();
+                Ok(SurfacePair {
+                    top: t.surface,
+                    bottom: b.surface,
+                    notes,
+                    warnings,
+                })
+            }
+        }
+    }
+
+    /// How the run's surface files are read (units and preparation); an error for generated surfaces.
+    fn file_surface(&self) -> Result<FileSurface> {
+        let SurfaceSource::Files {
+            length,
+            length_y,
+            height_unit,
+            lateral_unit,
+            preprocess,
+            ..
+        } = &self.surfaces
+        else {
+            return Err(Error::run_file(
+                "[surface] the surfaces are generated, not read from files",
+            ));
+        };
+        let height_scale = match (self.units, height_unit) {
+            (Units::Si, Some(u)) => metres_per("height_unit", u)?,
+            _ => 1.0,
+        };
+        Ok(FileSurface {
+            height_scale,
+            lateral_scale: lateral_scale(self.units, lateral_unit, height_unit)?,
+            length_x: Some(*length),
+            length_y: *length_y,
+            preprocess: *preprocess,
+        })
+    }
+
+    /// The grid of the run: the generated one, or that of the top surface file (from its `.npy`
+    /// header, or by reading a text file), after cropping to even sides.
+    pub fn grid(&self) -> Result<Grid> {
         match &self.surfaces {
             SurfaceSource::Generated { grid, .. } => Ok(*grid),
-            SurfaceSource::Files { top, length, .. } => match crate::io::npy_shape(top, "a height map")? {
-                (rows, cols) if rows == cols && crate::check::grid(rows).is_ok() => Ok(rows),
-                // Reading the file says precisely what is wrong with it.
-                _ => Surface::read_npy(top, *length).map(|s| s.n()),
-            },
+            SurfaceSource::Files { top, .. } => crate::topography::probe_grid(top, &self.file_surface()?),
         }
     }
 
@@ -437,11 +684,8 @@ impl RunConfig {
     /// four pixels (the paper uses 16, appendix A). One sentence each.
     pub fn warnings(&self) -> Vec<String> {
         let mut out = Vec::new();
-        if let SurfaceSource::Generated {
-            grid, length, spectrum, ..
-        } = &self.surfaces
-        {
-            let pixels = spectrum.lambda_lower / (length / *grid as f64);
+        if let SurfaceSource::Generated { grid, spectrum, .. } = &self.surfaces {
+            let pixels = spectrum.lambda_lower / grid.pixel_size();
             if pixels < crate::check::RESOLVED_PIXELS {
                 out.push(format!(
                     "λ_l = {:.4e} is {pixels:.1} pixels, under {}: the shortest wavelength of the roughness is not \
@@ -454,10 +698,13 @@ impl RunConfig {
         out
     }
 
-    /// Side length L of the surfaces, in the run's length unit.
+    /// Side length Lx along the sliding direction, in the run's length unit: the generated grid's,
+    /// or as given for files (a file cropped to even sides is one pixel shorter; see
+    /// [`RunConfig::grid`]).
     pub fn length(&self) -> f64 {
         match &self.surfaces {
-            SurfaceSource::Generated { length, .. } | SurfaceSource::Files { length, .. } => *length,
+            SurfaceSource::Generated { grid, .. } => grid.length_x(),
+            SurfaceSource::Files { length, .. } => *length,
         }
     }
 
@@ -473,7 +720,9 @@ impl RunConfig {
         let mut record = InputRecord {
             units: self.units,
             grid: None,
+            grid_y: None,
             length: self.length(),
+            length_y: None,
             hurst: None,
             lambda_lower: None,
             lambda_upper: None,
@@ -481,6 +730,9 @@ impl RunConfig {
             seed: None,
             top: None,
             bottom: None,
+            height_unit: None,
+            detrend: None,
+            taper: None,
             youngs_modulus: m.youngs_modulus,
             poisson_ratio: m.poisson_ratio,
             shear_strength: m.shear_strength,
@@ -494,19 +746,34 @@ impl RunConfig {
             step: self.sliding.as_ref().map(|s| s.step),
         };
         match &self.surfaces {
-            SurfaceSource::Generated {
-                grid, spectrum, seed, ..
-            } => {
-                record.grid = Some(*grid);
+            SurfaceSource::Generated { grid, spectrum, seed } => {
+                record.grid = Some(grid.nx());
+                if !grid.is_square() {
+                    record.grid_y = Some(grid.ny());
+                    record.length_y = Some(grid.length_y());
+                }
                 record.hurst = Some(spectrum.hurst);
                 record.lambda_lower = Some(spectrum.lambda_lower);
                 record.lambda_upper = Some(spectrum.lambda_upper);
                 record.rms_height = Some(spectrum.rms_height);
                 record.seed = Some(*seed);
             }
-            SurfaceSource::Files { top, bottom, .. } => {
+            SurfaceSource::Files {
+                top,
+                bottom,
+                length_y,
+                height_unit,
+                preprocess,
+                ..
+            } => {
                 record.top = Some(top.display().to_string());
                 record.bottom = Some(bottom.display().to_string());
+                record.length_y = *length_y;
+                record.height_unit = height_unit.clone();
+                if *preprocess != Preprocess::default() {
+                    record.detrend = Some(preprocess.detrend.name().to_string());
+                    record.taper = Some(preprocess.taper);
+                }
             }
         }
         record
@@ -521,8 +788,14 @@ pub struct InputRecord {
     pub units: Units,
     #[serde(rename = "surface.grid")]
     pub grid: Option<usize>,
+    /// Pixels along y, on rectangular grids only (square runs leave it empty).
+    #[serde(rename = "surface.grid_y", default)]
+    pub grid_y: Option<usize>,
     #[serde(rename = "surface.length")]
     pub length: f64,
+    /// Side along y, on rectangular grids only.
+    #[serde(rename = "surface.length_y", default)]
+    pub length_y: Option<f64>,
     #[serde(rename = "surface.hurst")]
     pub hurst: Option<f64>,
     #[serde(rename = "surface.lambda_lower")]
@@ -537,6 +810,12 @@ pub struct InputRecord {
     pub top: Option<String>,
     #[serde(rename = "surface.bottom")]
     pub bottom: Option<String>,
+    #[serde(rename = "surface.height_unit", default)]
+    pub height_unit: Option<String>,
+    #[serde(rename = "surface.detrend", default)]
+    pub detrend: Option<String>,
+    #[serde(rename = "surface.taper", default)]
+    pub taper: Option<f64>,
     #[serde(rename = "material.youngs_modulus")]
     pub youngs_modulus: f64,
     #[serde(rename = "material.poisson_ratio")]

@@ -27,9 +27,10 @@ use std::f64::consts::PI;
 
 use rayon::prelude::*;
 
-use crate::check::{grid as check_grid, positive};
+use crate::check::positive;
 use crate::error::{Error, Interrupt, Result};
 use crate::fft::{radial_kernel, FftPlan};
+use crate::grid::Grid;
 
 /// Default convergence tolerance on the residual (see the module documentation). A hundredfold
 /// tighter tolerance changes no contact pixel on the paper-roughness problems (validated in
@@ -292,8 +293,7 @@ impl Stats {
 /// FFT contact solver for one grid: plans, the influence kernel and all N² work buffers are made
 /// once here and reused by every solve (a sliding run makes one solver).
 pub struct ContactSolver {
-    n: usize,
-    length: f64,
+    grid: Grid,
     effective_modulus: f64,
     plan: FftPlan,
     /// Fourier multiplier of 𝒦 (1/N² folded in), transposed half-spectrum layout.
@@ -341,15 +341,17 @@ struct SolveState {
 }
 
 impl ContactSolver {
-    /// Solver for an `n × n` periodic grid of side `length` on a half-space of effective modulus E*.
-    pub fn new(n: usize, length: f64, effective_modulus: f64) -> Result<Self> {
-        check_grid(n)?;
-        positive("length", length)?;
+    /// Solver for a periodic grid (Nx × Ny square pixels) on a half-space of effective modulus E*.
+    pub fn new(grid: Grid, effective_modulus: f64) -> Result<Self> {
         positive("effective_modulus", effective_modulus)?;
-        crate::check::memory("the contact solver", n, 8.0)?;
-        let nn = (n * n) as f64;
-        // û = 2 p̂ / (E* |k|), |k| = 2π|q|/L; the q = 0 mode is the rigid-body position, set by the load.
-        let kernel = radial_kernel(n, |qx, qy| {
+        let (nx, ny) = (grid.nx(), grid.ny());
+        crate::check::memory("the contact solver", nx, ny, 8.0)?;
+        let nn = (nx * ny) as f64;
+        let (length, aspect) = (grid.length_x(), grid.aspect());
+        // û = 2 p̂ / (E* |k|), |k| = 2π|q|/Lx with q = (q_x, q_y Lx/Ly) in units of 2π/Lx; the q = 0
+        // mode is the rigid-body position, set by the load.
+        let kernel = radial_kernel(nx, ny, |qx, qy| {
+            let qy = qy * aspect;
             let q = (qx * qx + qy * qy).sqrt();
             if q == 0.0 {
                 0.0
@@ -358,38 +360,32 @@ impl ContactSolver {
             }
         });
         let mut self_influence = 0.0;
-        for (qy, row) in kernel.chunks(n).enumerate() {
-            let w = if qy == 0 || qy == n / 2 { 1.0 } else { 2.0 };
+        for (qy, row) in kernel.chunks(nx).enumerate() {
+            let w = if qy == 0 || qy == ny / 2 { 1.0 } else { 2.0 };
             self_influence += w * row.iter().sum::<f64>();
         }
         Ok(Self {
-            n,
-            length,
+            grid,
             effective_modulus,
-            plan: FftPlan::new(n),
+            plan: FftPlan::new(nx, ny),
             kernel,
             self_influence,
-            u: vec![0.0; n * n],
-            t: vec![0.0; n * n],
-            r: vec![0.0; n * n],
-            p_old: vec![0.0; n * n],
-            u_alt: vec![0.0; n * n],
-            stats: vec![Stats::default(); n],
-            sums: vec![[0.0; 2]; n],
-            row_partials: vec![0.0; n],
+            u: vec![0.0; nx * ny],
+            t: vec![0.0; nx * ny],
+            r: vec![0.0; nx * ny],
+            p_old: vec![0.0; nx * ny],
+            u_alt: vec![0.0; nx * ny],
+            stats: vec![Stats::default(); nx],
+            sums: vec![[0.0; 2]; nx],
+            row_partials: vec![0.0; nx],
             options: SolverOptions::default(),
             interrupt: Interrupt::default(),
         })
     }
 
-    /// Grid size N.
-    pub fn n(&self) -> usize {
-        self.n
-    }
-
-    /// Side length L.
-    pub fn length(&self) -> f64 {
-        self.length
+    /// The grid.
+    pub fn grid(&self) -> Grid {
+        self.grid
     }
 
     /// Effective modulus E*.
@@ -490,10 +486,10 @@ impl ContactSolver {
         flow_pressure: f64,
         pressure: &mut [f64],
     ) -> Result<SolveState> {
-        let n = self.n;
-        let nn = n * n;
+        let (nx, n) = (self.grid.nx(), self.grid.ny());
+        let nn = nx * n;
         if heights.len() != nn || pressure.len() != nn {
-            return Err(Error::param("heights", format!("arrays must hold {n}×{n} values")));
+            return Err(Error::param("heights", format!("arrays must hold {nx}×{n} values")));
         }
         positive("load", mean_pressure)?;
         if flow_pressure.is_nan() || flow_pressure <= 0.0 {
@@ -538,7 +534,7 @@ impl ContactSolver {
         let scale = if h_std > 0.0 {
             h_std
         } else {
-            mean_pressure * self.length / self.effective_modulus
+            mean_pressure * self.grid.length_x() / self.effective_modulus
         };
         let min_len = (8192 / n).max(1);
 
@@ -573,7 +569,7 @@ impl ContactSolver {
     /// (clipped to the bounds, releasing bound pixels whose gap points inwards), shortened until the
     /// objective descends when it left the CG line.
     fn iterate(&mut self, state: &mut SolveState, heights: &[f64], pressure: &mut [f64], mean: f64) {
-        let n = self.n;
+        let n = self.grid.ny();
         let (pm, total, min_len) = (state.pm, state.total, state.min_len);
         state.iterations += 1;
 
@@ -737,7 +733,7 @@ impl ContactSolver {
     /// row as the inverse transform writes u (one pass over the arrays fewer than computing them
     /// after the convolution).
     fn displacement_and_stats(&mut self, heights: &[f64], pressure: &[f64], reference: f64, pm: f64) -> Stats {
-        let n = self.n;
+        let n = self.grid.ny();
         self.plan.convolve_with(
             pressure,
             |_, _| {},
@@ -769,7 +765,7 @@ impl ContactSolver {
         pm: f64,
         min_len: usize,
     ) -> (f64, f64) {
-        let n = self.n;
+        let n = self.grid.ny();
         self.sums
             .par_iter_mut()
             .with_min_len(min_len)
@@ -812,7 +808,7 @@ impl ContactSolver {
         pm: f64,
         min_len: usize,
     ) -> (Stats, f64, bool, bool) {
-        let n = self.n;
+        let n = self.grid.ny();
         let cg_step = shift.is_finite();
         let results = &mut self.stats;
         let mut totals = std::mem::take(&mut self.row_partials);

@@ -87,43 +87,54 @@ unsafe impl<T: Send> Sync for SharedMut<T> {}
 
 /// FFT plans and the transposed half-spectrum buffer for one N×N grid.
 pub struct FftPlan {
-    n: usize,
+    nx: usize,
+    ny: usize,
     stride: usize,
     r2c: Arc<dyn RealToComplex<f64>>,
     c2r: Arc<dyn ComplexToReal<f64>>,
     col_forward: Arc<dyn Fft<f64>>,
     col_inverse: Arc<dyn Fft<f64>>,
-    /// Transposed half spectrum: `spectrum[qy * stride + qx]`, `qy ∈ 0..=N/2`, `qx ∈ 0..N`.
+    /// Transposed half spectrum: `spectrum[qy * stride + qx]`, `qy ∈ 0..=Ny/2`, `qx ∈ 0..Nx`.
     spectrum: Vec<C64>,
 }
 
 impl FftPlan {
-    /// Plans the transforms for an `n × n` grid (`n ≥ 2`, even).
-    pub fn new(n: usize) -> Self {
-        assert!(n >= 2 && n & 1 == 0, "FFT grid size must be even and at least 2");
+    /// Plans the transforms for an `nx × ny` grid (`nx` rows along x, `ny` values along y; both
+    /// even and at least 2).
+    pub fn new(nx: usize, ny: usize) -> Self {
+        assert!(
+            nx >= 2 && nx & 1 == 0 && ny >= 2 && ny & 1 == 0,
+            "FFT grid sizes must be even and at least 2"
+        );
         let mut real = RealFftPlanner::<f64>::new();
         let mut complex = FftPlanner::<f64>::new();
-        let stride = n + 4;
-        let half = n / 2 + 1;
+        let stride = nx + 4;
+        let half = ny / 2 + 1;
         Self {
-            n,
+            nx,
+            ny,
             stride,
-            r2c: real.plan_fft_forward(n),
-            c2r: real.plan_fft_inverse(n),
-            col_forward: complex.plan_fft_forward(n),
-            col_inverse: complex.plan_fft_inverse(n),
+            r2c: real.plan_fft_forward(ny),
+            c2r: real.plan_fft_inverse(ny),
+            col_forward: complex.plan_fft_forward(nx),
+            col_inverse: complex.plan_fft_inverse(nx),
             spectrum: vec![C64::new(0.0, 0.0); half * stride],
         }
     }
 
-    /// Grid size N.
-    pub fn n(&self) -> usize {
-        self.n
+    /// Grid size along x, Nx (the number of rows).
+    pub fn nx(&self) -> usize {
+        self.nx
     }
 
-    /// Number of stored `q_y` rows, `N/2 + 1`.
+    /// Grid size along y, Ny (the length of a row).
+    pub fn ny(&self) -> usize {
+        self.ny
+    }
+
+    /// Number of stored `q_y` rows, `Ny/2 + 1`.
     pub fn half(&self) -> usize {
-        self.n / 2 + 1
+        self.ny / 2 + 1
     }
 
     /// Read access to the transposed half spectrum after [`FftPlan::forward`]: element `(qx, qy)` is
@@ -142,7 +153,7 @@ impl FftPlan {
         self.stride
     }
 
-    /// Unnormalised forward transform of `input` (N² values, row-major) into the spectrum buffer
+    /// Unnormalised forward transform of `input` (Nx·Ny values, row-major) into the spectrum buffer
     /// (row FFTs with the transpose fused in, then column FFTs).
     pub fn forward(&mut self, input: &[f64]) {
         self.row_forward(input, |_, _| {});
@@ -150,8 +161,8 @@ impl FftPlan {
         self.column_pass(&*fft);
     }
 
-    /// Unnormalised inverse transform of the spectrum buffer into `output` (N² values). The buffer is
-    /// consumed. Divide by N² for the inverse of [`FftPlan::forward`].
+    /// Unnormalised inverse transform of the spectrum buffer into `output` (Nx·Ny values). The buffer
+    /// is consumed. Divide by Nx·Ny for the inverse of [`FftPlan::forward`].
     pub fn inverse(&mut self, output: &mut [f64]) {
         let fft = Arc::clone(&self.col_inverse);
         self.column_pass(&*fft);
@@ -160,7 +171,7 @@ impl FftPlan {
 
     /// `fft` applied in place to every (transposed) spectrum row.
     fn column_pass(&mut self, fft: &dyn Fft<f64>) {
-        let n = self.n;
+        let n = self.nx;
         let scratch_len = fft.get_inplace_scratch_len();
         self.spectrum.par_chunks_mut(self.stride).for_each(|row| {
             with_work(0, 0, scratch_len, |_, _, scratch| {
@@ -170,8 +181,8 @@ impl FftPlan {
     }
 
     /// `output = IFFT(kernel · FFT(input))`, the periodic convolution by a real, even kernel given
-    /// in the transposed half-spectrum layout without padding (`kernel[qy * N + qx]`), with the
-    /// 1/N² normalisation folded in. `input` and `output` may not alias.
+    /// in the transposed half-spectrum layout without padding (`kernel[qy * Nx + qx]`), with the
+    /// 1/(Nx·Ny) normalisation folded in. `input` and `output` may not alias.
     pub fn convolve(&mut self, input: &[f64], kernel: &[f64], output: &mut [f64]) {
         self.convolve_with(input, |_, _| {}, kernel, output, |_, _| (), None);
     }
@@ -189,9 +200,13 @@ impl FftPlan {
         post: impl Fn(usize, &[f64]) -> R + Sync,
         partials: Option<&mut [R]>,
     ) {
-        assert_eq!(kernel.len(), self.half() * self.n, "kernel must hold (N/2+1)·N values");
+        assert_eq!(
+            kernel.len(),
+            self.half() * self.nx,
+            "kernel must hold (Ny/2+1)·Nx values"
+        );
         self.row_forward(input, pre);
-        let n = self.n;
+        let n = self.nx;
         let stride = self.stride;
         let fwd = &self.col_forward;
         let inv = &self.col_inverse;
@@ -214,8 +229,8 @@ impl FftPlan {
 
     /// Real-to-complex FFT of every row of `input`, written transposed into the spectrum buffer.
     fn row_forward(&mut self, input: &[f64], pre: impl Fn(usize, &mut [f64]) + Sync) {
-        let n = self.n;
-        assert_eq!(input.len(), n * n, "input must hold N² values");
+        let n = self.ny;
+        assert_eq!(input.len(), self.nx * n, "input must hold Nx·Ny values");
         let half = self.half();
         let stride = self.stride;
         let r2c = &self.r2c;
@@ -251,10 +266,10 @@ impl FftPlan {
         post: impl Fn(usize, &[f64]) -> R + Sync,
         partials: Option<&mut [R]>,
     ) {
-        let n = self.n;
-        assert_eq!(output.len(), n * n, "output must hold N² values");
+        let n = self.ny;
+        assert_eq!(output.len(), self.nx * n, "output must hold Nx·Ny values");
         let partials = partials.map(|p| {
-            assert_eq!(p.len(), n, "one partial per row");
+            assert_eq!(p.len(), self.nx, "one partial per row");
             SharedMut(p.as_mut_ptr())
         });
         let half = self.half();
@@ -282,7 +297,7 @@ impl FftPlan {
                         .expect("buffer sizes match the plan");
                     let value = post(i0 + r, out);
                     if let Some(p) = partials {
-                        // SAFETY: row i0 + r < n belongs to this block alone; the slot holds an
+                        // SAFETY: row i0 + r < Nx belongs to this block alone; the slot holds an
                         // initialised R, dropped by the assignment.
                         unsafe { *p.get().add(i0 + r) = value };
                     }
@@ -303,13 +318,13 @@ pub fn wavenumber(k: usize, n: usize) -> f64 {
 }
 
 /// Builds a kernel in the layout [`FftPlan::convolve`] expects from a function of the integer
-/// wavenumbers `(qx, qy)` (in units of 2π/L).
-pub fn radial_kernel(n: usize, f: impl Fn(f64, f64) -> f64 + Sync) -> Vec<f64> {
-    let half = n / 2 + 1;
-    let mut k = vec![0.0; half * n];
-    k.par_chunks_mut(n).enumerate().for_each(|(qy, row)| {
+/// wavenumbers `(qx, qy)` (in units of 2π/Lx and 2π/Ly) of an `nx × ny` grid.
+pub fn radial_kernel(nx: usize, ny: usize, f: impl Fn(f64, f64) -> f64 + Sync) -> Vec<f64> {
+    let half = ny / 2 + 1;
+    let mut k = vec![0.0; half * nx];
+    k.par_chunks_mut(nx).enumerate().for_each(|(qy, row)| {
         for (qx, v) in row.iter_mut().enumerate() {
-            *v = f(wavenumber(qx, n), qy as f64);
+            *v = f(wavenumber(qx, nx), qy as f64);
         }
     });
     k
@@ -319,86 +334,87 @@ pub fn radial_kernel(n: usize, f: impl Fn(f64, f64) -> f64 + Sync) -> Vec<f64> {
 mod tests {
     use super::*;
 
-    /// Naive O(N⁴) periodic convolution with a kernel given in Fourier space.
-    fn naive_convolve(a: &[f64], n: usize, kernel: impl Fn(f64, f64) -> f64) -> Vec<f64> {
+    /// Naive O((NxNy)²) periodic convolution with a kernel given in Fourier space.
+    fn naive_convolve(a: &[f64], nx: usize, ny: usize, kernel: impl Fn(f64, f64) -> f64) -> Vec<f64> {
         use std::f64::consts::PI;
-        let mut out = vec![0.0; n * n];
-        // Direct DFT, multiply, inverse DFT.
-        let mut spec = vec![C64::new(0.0, 0.0); n * n];
-        for kx in 0..n {
-            for ky in 0..n {
+        let mut out = vec![0.0; nx * ny];
+        let mut spec = vec![C64::new(0.0, 0.0); nx * ny];
+        for kx in 0..nx {
+            for ky in 0..ny {
                 let mut s = C64::new(0.0, 0.0);
-                for i in 0..n {
-                    for j in 0..n {
-                        let ph = -2.0 * PI * ((kx * i + ky * j) as f64) / n as f64;
-                        s += a[i * n + j] * C64::new(ph.cos(), ph.sin());
+                for i in 0..nx {
+                    for j in 0..ny {
+                        let ph = -2.0 * PI * ((kx * i) as f64 / nx as f64 + (ky * j) as f64 / ny as f64);
+                        s += a[i * ny + j] * C64::new(ph.cos(), ph.sin());
                     }
                 }
-                spec[kx * n + ky] = s * kernel(wavenumber(kx, n), wavenumber(ky, n).abs());
+                spec[kx * ny + ky] = s * kernel(wavenumber(kx, nx), wavenumber(ky, ny).abs());
             }
         }
-        for i in 0..n {
-            for j in 0..n {
+        for i in 0..nx {
+            for j in 0..ny {
                 let mut s = C64::new(0.0, 0.0);
-                for kx in 0..n {
-                    for ky in 0..n {
-                        let ph = 2.0 * PI * ((kx * i + ky * j) as f64) / n as f64;
-                        s += spec[kx * n + ky] * C64::new(ph.cos(), ph.sin());
+                for kx in 0..nx {
+                    for ky in 0..ny {
+                        let ph = 2.0 * PI * ((kx * i) as f64 / nx as f64 + (ky * j) as f64 / ny as f64);
+                        s += spec[kx * ny + ky] * C64::new(ph.cos(), ph.sin());
                     }
                 }
-                out[i * n + j] = s.re / (n * n) as f64;
+                out[i * ny + j] = s.re / (nx * ny) as f64;
             }
         }
         out
     }
 
     #[test]
-    fn convolution_matches_naive_dft() {
-        for n in [4usize, 8, 12, 34] {
-            let a: Vec<f64> = (0..n * n).map(|k| ((k * 7919) % 101) as f64 / 101.0 - 0.3).collect();
+    fn convolution_matches_naive_dft_on_square_and_rectangular_grids() {
+        for (nx, ny) in [(4usize, 4usize), (8, 8), (12, 12), (34, 34), (8, 20), (22, 6)] {
+            let a: Vec<f64> = (0..nx * ny).map(|k| ((k * 7919) % 101) as f64 / 101.0 - 0.3).collect();
             let f = |qx: f64, qy: f64| 1.0 / (1.0 + qx * qx + 2.0 * qy * qy);
-            let nn = (n * n) as f64;
-            let kernel = radial_kernel(n, |qx, qy| f(qx, qy) / nn);
-            let mut plan = FftPlan::new(n);
-            let mut out = vec![0.0; n * n];
+            let nn = (nx * ny) as f64;
+            let kernel = radial_kernel(nx, ny, |qx, qy| f(qx, qy) / nn);
+            let mut plan = FftPlan::new(nx, ny);
+            let mut out = vec![0.0; nx * ny];
             plan.convolve(&a, &kernel, &mut out);
-            let expected = naive_convolve(&a, n, f);
+            let expected = naive_convolve(&a, nx, ny, f);
             for (x, y) in out.iter().zip(&expected) {
-                assert!((x - y).abs() < 1e-12, "n = {n}: {x} vs {y}");
+                assert!((x - y).abs() < 1e-12, "{nx}×{ny}: {x} vs {y}");
             }
         }
     }
 
     #[test]
-    fn forward_then_inverse_is_identity_times_n2() {
-        let n = 40;
-        let a: Vec<f64> = (0..n * n).map(|k| (k as f64 * 0.37).sin()).collect();
-        let mut plan = FftPlan::new(n);
-        plan.forward(&a);
-        // DC bin is the plain sum.
-        let sum: f64 = a.iter().sum();
-        assert!((plan.spectrum()[0].re - sum).abs() < 1e-9);
-        let mut back = vec![0.0; n * n];
-        plan.inverse(&mut back);
-        for (x, y) in a.iter().zip(&back) {
-            assert!((x - y / (n * n) as f64).abs() < 1e-12);
+    fn forward_then_inverse_is_identity_times_the_grid() {
+        for (nx, ny) in [(40usize, 40usize), (24, 40)] {
+            let a: Vec<f64> = (0..nx * ny).map(|k| (k as f64 * 0.37).sin()).collect();
+            let mut plan = FftPlan::new(nx, ny);
+            plan.forward(&a);
+            // DC bin is the plain sum.
+            let sum: f64 = a.iter().sum();
+            assert!((plan.spectrum()[0].re - sum).abs() < 1e-9);
+            let mut back = vec![0.0; nx * ny];
+            plan.inverse(&mut back);
+            for (x, y) in a.iter().zip(&back) {
+                assert!((x - y / (nx * ny) as f64).abs() < 1e-12);
+            }
         }
     }
 
     #[test]
     fn results_do_not_depend_on_thread_count() {
-        let n = 64;
-        let a: Vec<f64> = (0..n * n).map(|k| ((k * 31) % 17) as f64).collect();
-        let kernel = radial_kernel(n, |qx, qy| (qx * qx + qy * qy).sqrt());
-        let run = |threads: usize| {
-            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-            pool.install(|| {
-                let mut plan = FftPlan::new(n);
-                let mut out = vec![0.0; n * n];
-                plan.convolve(&a, &kernel, &mut out);
-                out
-            })
-        };
-        assert_eq!(run(1), run(3));
+        for (nx, ny) in [(64usize, 64usize), (48, 80)] {
+            let a: Vec<f64> = (0..nx * ny).map(|k| ((k * 31) % 17) as f64).collect();
+            let kernel = radial_kernel(nx, ny, |qx, qy| (qx * qx + qy * qy).sqrt());
+            let run = |threads: usize| {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                pool.install(|| {
+                    let mut plan = FftPlan::new(nx, ny);
+                    let mut out = vec![0.0; nx * ny];
+                    plan.convolve(&a, &kernel, &mut out);
+                    out
+                })
+            };
+            assert_eq!(run(1), run(3));
+        }
     }
 }

@@ -343,8 +343,15 @@ fn parse_npy_header(bytes: &[u8]) -> std::result::Result<NpyHeader, String> {
 fn open_npy(path: &Path) -> Result<(std::fs::File, u64, NpyHeader)> {
     let mut file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
     let size = file.metadata().map_err(|e| Error::io(path, e))?.len();
+    let h = read_npy_header(&mut file, size, path)?;
+    Ok((file, size, h))
+}
+
+/// Reads and parses a `.npy` header from `reader` (a stream of `size` bytes in all), leaving it at
+/// the first data byte; `path` names the source in messages.
+fn read_npy_header(reader: &mut impl Read, size: u64, path: &Path) -> Result<NpyHeader> {
     let mut head = vec![0u8; 12];
-    let got = read_up_to(&mut file, &mut head).map_err(|e| Error::io(path, e))?;
+    let got = read_up_to(reader, &mut head).map_err(|e| Error::io(path, e))?;
     head.truncate(got);
     let header_len = match head.get(6) {
         Some(1) if got >= 10 => 10 + u16::from_le_bytes([head[8], head[9]]) as usize,
@@ -358,13 +365,10 @@ fn open_npy(path: &Path) -> Result<(std::fs::File, u64, NpyHeader)> {
         ));
     }
     head.resize(header_len.max(got), 0);
-    read_up_to(&mut file, &mut head[got..]).map_err(|e| Error::io(path, e))?;
-    let h = parse_npy_header(&head).map_err(|m| Error::file(path, m))?;
-    // The data follows the header; a file shorter than the header was refused above.
-    use std::io::Seek;
-    file.seek(std::io::SeekFrom::Start(h.data_offset as u64))
-        .map_err(|e| Error::io(path, e))?;
-    Ok((file, size, h))
+    read_up_to(reader, &mut head[got..]).map_err(|e| Error::io(path, e))?;
+    // The header is exactly `header_len` bytes (its length field included), so the reader now
+    // stands at the data; a stream shorter than the header was refused above.
+    parse_npy_header(&head).map_err(|m| Error::file(path, m))
 }
 
 /// The shape of a 2D `.npy` array, read from its header alone; `what` names the array in messages.
@@ -387,6 +391,30 @@ pub fn npy_shape(path: &Path, what: &str) -> Result<(usize, usize)> {
 /// against the file's size before any data is read; `what` names the array in messages.
 pub fn read_npy_2d(path: &Path, accepted: &[NpyType], what: &str) -> Result<Npy2> {
     let (mut file, size, h) = open_npy(path)?;
+    read_npy_data(&mut file, size, h, path, accepted, what)
+}
+
+/// [`read_npy_2d`] from a stream of `size` bytes (an array inside an `.npz` archive); `path` names
+/// the source in messages.
+pub fn read_npy_2d_from(
+    reader: &mut impl Read,
+    size: u64,
+    path: &Path,
+    accepted: &[NpyType],
+    what: &str,
+) -> Result<Npy2> {
+    let h = read_npy_header(reader, size, path)?;
+    read_npy_data(reader, size, h, path, accepted, what)
+}
+
+fn read_npy_data(
+    file: &mut impl Read,
+    size: u64,
+    h: NpyHeader,
+    path: &Path,
+    accepted: &[NpyType],
+    what: &str,
+) -> Result<Npy2> {
     if h.shape.len() != 2 {
         return Err(Error::file(
             path,
@@ -423,7 +451,7 @@ pub fn read_npy_2d(path: &Path, accepted: &[NpyType], what: &str) -> Result<Npy2
     }
     let bytes = bytes.expect("checked above");
     let mut data = vec![0u8; bytes];
-    let got = read_up_to(&mut file, &mut data).map_err(|e| Error::io(path, e))?;
+    let got = read_up_to(file, &mut data).map_err(|e| Error::io(path, e))?;
     if got != bytes {
         return Err(Error::file(path, "the .npy data is cut short"));
     }

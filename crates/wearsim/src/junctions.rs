@@ -36,10 +36,11 @@ impl Junction {
     }
 }
 
-/// Periodic connected-component labelling of contact maps on an N×N grid.
+/// Periodic connected-component labelling of contact maps on an Nx × Ny grid (row-major, i along x).
 #[derive(Debug, Clone)]
 pub struct JunctionLabeller {
-    n: usize,
+    nx: usize,
+    ny: usize,
     connectivity: u8,
     /// Junction index of every pixel (`NO_JUNCTION` outside the contact), row-major.
     labels: Vec<u32>,
@@ -52,15 +53,19 @@ pub struct JunctionLabeller {
 }
 
 impl JunctionLabeller {
-    /// Labeller for an `n × n` grid with 4- or 8-connectivity.
-    pub fn new(n: usize, connectivity: u8) -> Self {
+    /// Labeller for an `nx × ny` grid with 4- or 8-connectivity.
+    pub fn new(nx: usize, ny: usize, connectivity: u8) -> Self {
         assert!(connectivity == 4 || connectivity == 8, "connectivity must be 4 or 8");
-        assert!(n * n < u32::MAX as usize, "grid too large for 32-bit labels");
+        assert!(
+            nx.saturating_mul(ny) < u32::MAX as usize,
+            "grid too large for 32-bit labels"
+        );
         Self {
-            n,
+            nx,
+            ny,
             connectivity,
-            labels: vec![NO_JUNCTION; n * n],
-            parent: vec![0; n * n],
+            labels: vec![NO_JUNCTION; nx * ny],
+            parent: vec![0; nx * ny],
             contact: Vec::new(),
             sizes: Vec::new(),
         }
@@ -85,12 +90,12 @@ impl JunctionLabeller {
         }
     }
 
-    /// Labels the contact map `in_contact` (N² flags, row-major). Junction indices are numbered in
+    /// Labels the contact map `in_contact` (Nx·Ny flags, row-major). Junction indices are numbered in
     /// the row-major order of each junction's first pixel. Returns the number of junctions.
     pub fn label(&mut self, in_contact: impl Fn(usize) -> bool) -> usize {
-        let n = self.n;
+        let (nx, n) = (self.nx, self.ny);
         self.contact.clear();
-        for k in 0..n * n {
+        for k in 0..nx * n {
             if in_contact(k) {
                 self.contact.push(k as u32);
                 self.parent[k] = k as u32;
@@ -104,7 +109,7 @@ impl JunctionLabeller {
         let diagonal = self.connectivity == 8;
         for &k in &self.contact {
             let (i, j) = (k as usize / n, k as usize % n);
-            let up = ((i + n - 1) % n) * n;
+            let up = ((i + nx - 1) % nx) * n;
             let left = i * n + (j + n - 1) % n;
             if labels[left] != NO_JUNCTION {
                 Self::union(parent, k, left as u32);
@@ -141,9 +146,14 @@ impl JunctionLabeller {
         self.sizes.len()
     }
 
-    /// Grid size N.
-    pub fn n(&self) -> usize {
-        self.n
+    /// Pixels along x (rows).
+    pub fn nx(&self) -> usize {
+        self.nx
+    }
+
+    /// Pixels along y (the length of a row).
+    pub fn ny(&self) -> usize {
+        self.ny
     }
 
     /// Junction index per pixel after [`JunctionLabeller::label`] (`NO_JUNCTION` outside contact).
@@ -181,8 +191,8 @@ mod tests {
     use super::*;
     use proptest::prelude::*;
 
-    fn label_map(map: &[bool], n: usize, c: u8) -> (usize, Vec<u32>) {
-        let mut l = JunctionLabeller::new(n, c);
+    fn label_map(map: &[bool], nx: usize, ny: usize, c: u8) -> (usize, Vec<u32>) {
+        let mut l = JunctionLabeller::new(nx, ny, c);
         let count = l.label(|k| map[k]);
         (count, l.labels().to_vec())
     }
@@ -204,12 +214,19 @@ mod tests {
         for k in [0, 7, 56, 63] {
             map[k] = true; // the four corners touch through both periodic edges
         }
-        assert_eq!(label_map(&map, n, 4).0, 1);
+        assert_eq!(label_map(&map, n, n, 4).0, 1);
         let mut diag = vec![false; n * n];
         diag[0] = true;
         diag[n * n - 1] = true; // diagonal neighbours across the corner
-        assert_eq!(label_map(&diag, n, 4).0, 2);
-        assert_eq!(label_map(&diag, n, 8).0, 1);
+        assert_eq!(label_map(&diag, n, n, 4).0, 2);
+        assert_eq!(label_map(&diag, n, n, 8).0, 1);
+        // 4 × 6: a row of contact wraps along y, a column along x.
+        let (nx, ny) = (4, 6);
+        let mut rect = vec![false; nx * ny];
+        for k in [0, 5, 18, 19] {
+            rect[k] = true; // (0,0)–(0,5) touch across y, (3,0)–(0,0) across x, (3,1) beside (3,0)
+        }
+        assert_eq!(label_map(&rect, nx, ny, 4).0, 1);
     }
 
     #[test]
@@ -220,11 +237,12 @@ mod tests {
         assert!((j.volume - std::f64::consts::PI * j.diameter.powi(3) / 6.0).abs() < 1e-18);
     }
 
-    fn maps() -> impl Strategy<Value = (usize, Vec<bool>)> {
-        (3usize..12).prop_flat_map(|n| {
+    fn maps() -> impl Strategy<Value = (usize, usize, Vec<bool>)> {
+        (3usize..12, 3usize..12).prop_flat_map(|(nx, ny)| {
             (
-                Just(n),
-                proptest::collection::vec(proptest::bool::weighted(0.45), n * n),
+                Just(nx),
+                Just(ny),
+                proptest::collection::vec(proptest::bool::weighted(0.45), nx * ny),
             )
         })
     }
@@ -232,33 +250,37 @@ mod tests {
     proptest! {
         #[test]
         fn labels_are_invariant_under_periodic_translation_and_transposition(
-            (n, map) in maps(), di in 0usize..12, dj in 0usize..12, c in prop_oneof![Just(4u8), Just(8u8)]
+            (nx, ny, map) in maps(), di in 0usize..12, dj in 0usize..12, c in prop_oneof![Just(4u8), Just(8u8)]
         ) {
-            let (count, labels) = label_map(&map, n, c);
+            let nn = nx * ny;
+            let (count, labels) = label_map(&map, nx, ny, c);
             // Translate the map, label, translate the labels back.
-            let shifted: Vec<bool> = (0..n * n).map(|k| map[((k / n + di) % n) * n + (k % n + dj) % n]).collect();
-            let (count_s, labels_s) = label_map(&shifted, n, c);
-            let back: Vec<u32> = (0..n * n).map(|k| labels_s[((k / n + n - di % n) % n) * n + (k % n + n - dj % n) % n]).collect();
+            let shifted: Vec<bool> = (0..nn).map(|k| map[((k / ny + di) % nx) * ny + (k % ny + dj) % ny]).collect();
+            let (count_s, labels_s) = label_map(&shifted, nx, ny, c);
+            let back: Vec<u32> =
+                (0..nn).map(|k| labels_s[((k / ny + nx - di % nx) % nx) * ny + (k % ny + ny - dj % ny) % ny]).collect();
             prop_assert_eq!(count, count_s);
             prop_assert!(same_partition(&labels, &back));
-            let transposed: Vec<bool> = (0..n * n).map(|k| map[(k % n) * n + k / n]).collect();
-            let (count_t, labels_t) = label_map(&transposed, n, c);
-            let back_t: Vec<u32> = (0..n * n).map(|k| labels_t[(k % n) * n + k / n]).collect();
+            // The transposed map is ny × nx: element (j, i) = map(i, j).
+            let transposed: Vec<bool> = (0..nn).map(|k| map[(k % nx) * ny + k / nx]).collect();
+            let (count_t, labels_t) = label_map(&transposed, ny, nx, c);
+            let back_t: Vec<u32> = (0..nn).map(|k| labels_t[(k % ny) * nx + k / ny]).collect();
             prop_assert_eq!(count, count_t);
             prop_assert!(same_partition(&labels, &back_t));
         }
 
         #[test]
-        fn total_area_is_conserved_and_neighbours_share_labels((n, map) in maps(), c in prop_oneof![Just(4u8), Just(8u8)]) {
-            let mut l = JunctionLabeller::new(n, c);
+        fn total_area_is_conserved_and_neighbours_share_labels((nx, ny, map) in maps(), c in prop_oneof![Just(4u8), Just(8u8)]) {
+            let mut l = JunctionLabeller::new(nx, ny, c);
             l.label(|k| map[k]);
             prop_assert_eq!(l.sizes().iter().sum::<usize>(), map.iter().filter(|&&b| b).count());
             let labels = l.labels();
-            for k in 0..n * n {
+            for k in 0..nx * ny {
                 if !map[k] { continue; }
-                let (i, j) = (k / n, k % n);
-                let mut nb = vec![((i + 1) % n) * n + j, i * n + (j + 1) % n];
-                if c == 8 { nb.push(((i + 1) % n) * n + (j + 1) % n); nb.push(((i + 1) % n) * n + (j + n - 1) % n); }
+                let (i, j) = (k / ny, k % ny);
+                let down = ((i + 1) % nx) * ny;
+                let mut nb = vec![down + j, i * ny + (j + 1) % ny];
+                if c == 8 { nb.push(down + (j + 1) % ny); nb.push(down + (j + ny - 1) % ny); }
                 for m in nb {
                     if map[m] { prop_assert_eq!(labels[k], labels[m]); }
                 }

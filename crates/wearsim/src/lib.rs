@@ -6,9 +6,10 @@
 //!
 //! Data flows one way, one module per step, each module using only those listed before it:
 //!
-//! - [`error`], [`check`] (the rules every input obeys), [`io`] (atomic files, `.npy`) and [`fft`]:
-//!   the leaves;
-//! - [`material`] and [`surface`]: parameters and height fields;
+//! - [`error`], [`check`] (the rules every input obeys), [`io`] (atomic files, `.npy`), [`fft`],
+//!   [`stats`] (least-squares lines) and [`grid`] (Nx × Ny square pixels): the leaves;
+//! - [`material`] and [`surface`]: parameters and height fields; [`topography`]: measured height
+//!   maps read, prepared and fitted with self-affine parameters;
 //! - [`contact`]: the saturated-pressure FFT boundary-element solver;
 //! - [`junctions`] and [`wear`]: junctions of a contact map and the wear bookkeeping;
 //! - [`config`]: run files turned into validated inputs;
@@ -23,17 +24,21 @@ pub mod config;
 pub mod contact;
 pub mod error;
 pub mod fft;
+pub mod grid;
 pub mod io;
 pub mod junctions;
 pub mod material;
 pub mod output;
 pub mod sliding;
+pub mod stats;
 pub mod study;
 pub mod surface;
+pub mod topography;
 pub mod wear;
 
 pub use contact::{ContactSolver, SolveInfo, SolverOptions, Termination};
 pub use error::{Error, Interrupt, Result};
+pub use grid::Grid;
 pub use material::{Material, ModulusConvention};
 pub use surface::{composite_heights, Generation, SpectrumParams, Surface};
 

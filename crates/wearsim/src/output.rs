@@ -517,8 +517,12 @@ pub fn contact_summary(
 /// returns them.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SurfaceStatistics {
+    /// Pixels along x (the sliding direction) and along y.
     pub grid: usize,
+    pub grid_y: usize,
+    /// Sides along x and y.
     pub length: f64,
+    pub length_y: f64,
     pub pixel_size: f64,
     pub rms_height: f64,
     pub rms_slope: f64,
@@ -527,15 +531,17 @@ pub struct SurfaceStatistics {
 }
 
 /// How the radially averaged PSD is defined.
-pub const PSD_CONVENTION: &str = "psd[q] = mean over the shell |q| ∈ [m−½, m+½) of |ĥ(q)|²/N⁴ (variance per \
-Fourier mode, length²); q in units of 2π/L";
+pub const PSD_CONVENTION: &str = "psd[q] = mean over the shell |q| ∈ [m−½, m+½) of |ĥ(q)|²/(Nx·Ny)² (variance \
+per Fourier mode, length²); q in units of 2π/Lx";
 
 impl SurfaceStatistics {
     /// The statistics of `s`.
     pub fn of(s: &Surface) -> Self {
         Self {
-            grid: s.n(),
+            grid: s.nx(),
+            grid_y: s.ny(),
             length: s.length(),
+            length_y: s.grid().length_y(),
             pixel_size: s.pixel_size(),
             rms_height: s.rms_height(),
             rms_slope: s.rms_slope(),

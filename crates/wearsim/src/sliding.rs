@@ -8,14 +8,16 @@ use std::time::Instant;
 use crate::config::{RunConfig, SlidingConfig};
 use crate::contact::{ContactSolver, SolverOptions};
 use crate::error::{Error, Interrupt, Result};
+use crate::grid::Grid;
 use crate::junctions::JunctionLabeller;
 use crate::material::Material;
+use crate::stats::{line_fit, mean_std};
 use crate::surface::{composite_heights, Surface};
 use crate::wear::{static_wear, InitialContactMemory, SlidingBookkeeping, StaticWear, StepWear};
 
-/// Sliding offsets in pixels (paper §3): see [`SlidingConfig::offsets`].
-pub fn schedule(n: usize, sliding: &SlidingConfig) -> Vec<usize> {
-    sliding.offsets(n)
+/// Sliding offsets in pixels along x (paper §3): see [`SlidingConfig::offsets`].
+pub fn schedule(nx: usize, sliding: &SlidingConfig) -> Vec<usize> {
+    sliding.offsets(nx)
 }
 
 /// One step of one load: the contact statistics and, per fracture energy, the wear record.
@@ -40,46 +42,6 @@ pub struct StepRecord {
     pub wear: Vec<StepWear>,
     /// Static model on this step's contact map per fracture energy (paper §2).
     pub statics: Vec<StaticWear>,
-}
-
-/// A least-squares line y = slope·x + intercept and its coefficient of determination R² (absent
-/// when y does not vary, where R² is undefined).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct LineFit {
-    pub slope: f64,
-    pub intercept: f64,
-    pub r2: Option<f64>,
-}
-
-/// Least-squares line through (x, y); `None` with fewer than two points or x without spread.
-pub fn line_fit(x: &[f64], y: &[f64]) -> Option<LineFit> {
-    if x.len() < 2 || x.len() != y.len() {
-        return None;
-    }
-    let m = x.len() as f64;
-    let (mx, my) = (x.iter().sum::<f64>() / m, y.iter().sum::<f64>() / m);
-    let sxx: f64 = x.iter().map(|a| (a - mx) * (a - mx)).sum();
-    let sxy: f64 = x.iter().zip(y).map(|(a, b)| (a - mx) * (b - my)).sum();
-    let syy: f64 = y.iter().map(|b| (b - my) * (b - my)).sum();
-    if sxx.is_nan() || sxx <= 0.0 {
-        return None;
-    }
-    let slope = sxy / sxx;
-    let ss_res = syy - slope * sxy;
-    let r2 = (syy > 0.0).then(|| 1.0 - ss_res / syy);
-    Some(LineFit {
-        slope,
-        intercept: my - slope * mx,
-        r2,
-    })
-}
-
-/// Mean and (population) standard deviation.
-fn mean_std(values: impl Iterator<Item = f64> + Clone) -> (f64, f64) {
-    let n = values.clone().count().max(1) as f64;
-    let mean = values.clone().sum::<f64>() / n;
-    let var = values.map(|v| (v - mean) * (v - mean)).sum::<f64>() / n;
-    (mean, var.sqrt())
 }
 
 /// A finite number, or nothing.
@@ -221,17 +183,24 @@ pub fn run_sliding(
     setup: &SlidingSetup,
     mut observe: impl FnMut(&StepView),
 ) -> Result<Vec<LoadRun>> {
-    let n = top.n();
-    if bottom.n() != n || (bottom.length() - top.length()).abs() > 1e-12 * top.length() {
+    let grid: Grid = top.grid();
+    let (nx, ny) = (grid.nx(), grid.ny());
+    if bottom.nx() != nx || bottom.ny() != ny || (bottom.length() - top.length()).abs() > 1e-12 * top.length() {
         return Err(Error::param(
             "surface",
-            "top and bottom surfaces must share grid and side length",
+            format!(
+                "top ({nx}×{ny} pixels, side {}) and bottom ({}×{} pixels, side {}) surfaces must share grid and side \
+                 length",
+                top.length(),
+                bottom.nx(),
+                bottom.ny(),
+                bottom.length()
+            ),
         ));
     }
-    crate::check::memory("a sliding run", n, crate::check::SLIDING_ARRAYS)?;
-    let length = top.length();
-    let area = length * length;
-    let dx = top.pixel_size();
+    crate::check::memory("a sliding run", nx, ny, crate::check::SLIDING_ARRAYS)?;
+    let area = grid.area();
+    let dx = grid.pixel_size();
     let pm = setup.material.flow_pressure();
     for &load in &setup.sliding.loads {
         crate::check::load(load, area, pm)?;
@@ -242,18 +211,18 @@ pub fn run_sliding(
             "the material has none; give at least one 𝒢 to count wear",
         ));
     }
-    setup.sliding.check_grid(n)?;
-    let offsets = setup.sliding.offsets(n);
-    let running_in = setup.sliding.running_in_pixels(n);
+    setup.sliding.check_grid(nx)?;
+    let offsets = setup.sliding.offsets(nx);
+    let running_in = setup.sliding.running_in_pixels(nx);
     let diameters = setup.material.critical_diameters();
     let total_steps = offsets.len() * setup.sliding.loads.len();
-    let mut solver = ContactSolver::new(n, length, setup.effective_modulus)?
+    let mut solver = ContactSolver::new(grid, setup.effective_modulus)?
         .with_options(setup.solver)
         .with_interrupt(setup.interrupt.clone());
-    let mut labeller = JunctionLabeller::new(n, setup.connectivity);
-    let mut heights = vec![0.0; n * n];
-    let mut pressure = vec![0.0; n * n];
-    let mut scratch = vec![false; n * n];
+    let mut labeller = JunctionLabeller::new(nx, ny, setup.connectivity);
+    let mut heights = vec![0.0; nx * ny];
+    let mut pressure = vec![0.0; nx * ny];
+    let mut scratch = vec![false; nx * ny];
     let mut junctions = Vec::new();
     let mut runs = Vec::new();
     let mut done = 0;
@@ -286,7 +255,7 @@ pub fn run_sliding(
                 offset,
                 s: offset as f64 * dx,
                 junctions: count,
-                contact_area: info.contact_pixels as f64 / (n * n) as f64,
+                contact_area: info.contact_pixels as f64 / grid.pixels() as f64,
                 initial_junctions,
                 iterations: info.iterations,
                 residual: info.residual,
@@ -404,22 +373,4 @@ fn results_of_load(
         })
         .collect();
     (results, warnings)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn line_fit_is_exact_on_a_line_and_undefined_without_spread() {
-        let x = [0.0, 1.0, 2.0, 3.0];
-        let f = line_fit(&x, &[1.0, 3.0, 5.0, 7.0]).unwrap();
-        assert!((f.slope - 2.0).abs() < 1e-14 && (f.r2.unwrap() - 1.0).abs() < 1e-14);
-        assert!((f.intercept - 1.0).abs() < 1e-14);
-        // Constant y: slope 0, R² undefined (not 1).
-        let flat = line_fit(&x, &[2.0; 4]).unwrap();
-        assert_eq!((flat.slope, flat.r2), (0.0, None));
-        assert!(line_fit(&[1.0], &[1.0]).is_none());
-        assert!(line_fit(&[1.0, 1.0], &[1.0, 2.0]).is_none());
-    }
 }

@@ -8,16 +8,17 @@ use rand_chacha::ChaCha20Rng;
 use rand_distr::StandardNormal;
 use rayon::prelude::*;
 
-use crate::check::{grid as check_grid, positive};
+use crate::check::positive;
 use crate::error::{Error, Result};
 use crate::fft::{radial_kernel, wavenumber, FftPlan, C64};
+use crate::grid::Grid;
 use crate::io::{read_npy_2d, write_npy_f64, NpyType};
 
-/// A periodic height field on an N×N grid of side `length`; `heights[i * n + j]`, i along x.
+/// A periodic height field on an Nx × Ny grid of square pixels; `heights[i * ny + j]`, i along x
+/// (the sliding direction).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Surface {
-    n: usize,
-    length: f64,
+    grid: Grid,
     heights: Vec<f64>,
 }
 
@@ -77,16 +78,16 @@ impl SpectrumParams {
         }
     }
 
-    /// Checks the parameters against a grid of `n` pixels over `length`.
-    pub fn validate(&self, n: usize, length: f64) -> Result<()> {
-        check_grid(n)?;
-        positive("length", length)?;
+    /// Checks the parameters against a grid: H in (0, 1], λ_l at least two pixels, λ_l < λ_u ≤ the
+    /// longer side, and at least one Fourier mode of the grid in the band.
+    pub fn validate(&self, grid: &Grid) -> Result<()> {
         if !(self.hurst > 0.0 && self.hurst <= 1.0) {
             return Err(Error::param("hurst", format!("{} must lie in (0, 1]", self.hurst)));
         }
         positive("rms_height", self.rms_height)?;
         positive("lambda_lower", self.lambda_lower)?;
-        let dx = length / n as f64;
+        let dx = grid.pixel_size();
+        let length = grid.length_x().max(grid.length_y());
         if self.lambda_lower < 2.0 * dx * (1.0 - 1e-12) {
             return Err(Error::param(
                 "lambda_lower",
@@ -106,17 +107,20 @@ impl SpectrumParams {
                 ),
             ));
         }
-        if !band_has_modes(n, length / self.lambda_upper, length / self.lambda_lower) {
+        let lx = grid.length_x();
+        if !band_has_modes(grid, lx / self.lambda_upper, lx / self.lambda_lower) {
             return Err(Error::param(
                 "lambda_upper",
                 format!(
-                    "the band of wavelengths [{}, {}] holds no Fourier mode of the {n}-pixel grid of side {length} (the \
-                     wavenumbers L/λ between {:.4} and {:.4} include no lattice point), so the surface would be flat; \
+                    "the band of wavelengths [{}, {}] holds no Fourier mode of the {} × {} grid of side {lx} (the \
+                     wavenumbers Lx/λ between {:.4} and {:.4} include no lattice point), so the surface would be flat; \
                      widen the band between `lambda_lower` and `lambda_upper`",
                     self.lambda_lower,
                     self.lambda_upper,
-                    length / self.lambda_upper,
-                    length / self.lambda_lower
+                    grid.nx(),
+                    grid.ny(),
+                    lx / self.lambda_upper,
+                    lx / self.lambda_lower
                 ),
             ));
         }
@@ -124,22 +128,17 @@ impl SpectrumParams {
     }
 }
 
-/// Whether some non-zero wavenumber (q_x, q_y) of an `n`-pixel grid has q_lo ≤ |q| ≤ q_hi (with the
-/// tolerance of the generator).
-fn band_has_modes(n: usize, q_lo: f64, q_hi: f64) -> bool {
+/// Whether some non-zero wavenumber of the grid has q_lo ≤ |q| ≤ q_hi (|q| in units of 2π/Lx, with
+/// the tolerance of the generator).
+fn band_has_modes(grid: &Grid, q_lo: f64, q_hi: f64) -> bool {
     let (lo, hi) = (q_lo * (1.0 - 1e-12), q_hi * (1.0 + 1e-12));
-    let half = (n / 2) as f64;
-    (0..=n / 2).any(|qx| {
+    let r = grid.aspect();
+    (0..=grid.nx() / 2).any(|qx| {
         let qx = qx as f64;
-        let rest = lo * lo - qx * qx;
-        let mut qy = if rest <= 0.0 { 0.0 } else { rest.sqrt().ceil() };
-        if qx == 0.0 && qy == 0.0 {
-            qy = 1.0;
-        }
-        while qy > 0.0 && qx * qx + (qy - 1.0) * (qy - 1.0) >= lo * lo && !(qx == 0.0 && qy == 1.0) {
-            qy -= 1.0;
-        }
-        qy <= half && (qx * qx + qy * qy).sqrt() <= hi
+        (0..=grid.ny() / 2).any(|qy| {
+            let q = (qx * qx + (qy as f64 * r) * (qy as f64 * r)).sqrt();
+            q > 0.0 && q >= lo && q <= hi
+        })
     })
 }
 
@@ -156,37 +155,33 @@ pub fn pair_seeds(seed: u64) -> (u64, u64) {
 }
 
 impl Surface {
-    /// Wraps a height field after checking it: square, at least 16², even side, all finite.
-    pub fn new(name: &str, n: usize, length: f64, heights: Vec<f64>) -> Result<Self> {
+    /// Wraps a height field after checking it: Nx·Ny finite values on a valid grid.
+    pub fn new(name: &str, grid: Grid, heights: Vec<f64>) -> Result<Self> {
+        let (nx, ny) = (grid.nx(), grid.ny());
         if heights.is_empty() {
             return Err(Error::InvalidSurface {
                 name: name.into(),
                 message: "the height array is empty".into(),
             });
         }
-        if heights.len() != n * n {
+        if heights.len() != nx * ny {
             return Err(Error::InvalidSurface {
                 name: name.into(),
-                message: format!("{} values do not fill a {n}×{n} grid", heights.len()),
+                message: format!("{} values do not fill a {nx}×{ny} grid", heights.len()),
             });
         }
-        check_grid(n).map_err(|e| Error::InvalidSurface {
-            name: name.into(),
-            message: e.to_string(),
-        })?;
-        positive("length", length)?;
         if let Some(k) = heights.iter().position(|h| !h.is_finite()) {
             return Err(Error::InvalidSurface {
                 name: name.into(),
                 message: format!(
                     "height at index ({}, {}) is {}; fill or crop non-finite pixels before use",
-                    k / n,
-                    k % n,
+                    k / ny,
+                    k % ny,
                     heights[k]
                 ),
             });
         }
-        let s = Self { n, length, heights };
+        let s = Self { grid, heights };
         if !s.rms_height().is_finite() {
             return Err(Error::InvalidSurface {
                 name: name.into(),
@@ -196,16 +191,39 @@ impl Surface {
         Ok(s)
     }
 
+    /// Wraps a height field of `rows × cols` values read from somewhere (a file, an array): the grid
+    /// is checked with its errors reported as errors of the surface `name`.
+    pub fn from_array(name: &str, rows: usize, cols: usize, length_x: f64, heights: Vec<f64>) -> Result<Self> {
+        if heights.is_empty() || rows == 0 || cols == 0 {
+            return Err(Error::InvalidSurface {
+                name: name.into(),
+                message: "the height array is empty".into(),
+            });
+        }
+        let grid = Grid::new(rows, cols, length_x).map_err(|e| match e {
+            Error::InvalidParameter { field, message } if field == "grid" => Error::InvalidSurface {
+                name: name.into(),
+                message: format!("a {rows}×{cols} array: {message}"),
+            },
+            other => other,
+        })?;
+        Self::new(name, grid, heights)
+    }
+
     /// Generates a periodic self-affine surface with isotropic PSD Φ(q) ∝ |q|^(−2(1+H)) for
     /// q_u ≤ |q| ≤ q_l and zero elsewhere, zero mean and RMS height exactly `params.rms_height`.
     /// Bit-identical for a given seed whatever the thread count (random numbers are drawn
     /// sequentially; the FFTs are deterministic).
-    pub fn generate(n: usize, length: f64, params: &SpectrumParams, seed: u64) -> Result<Self> {
-        params.validate(n, length)?;
-        let q_lower = length / params.lambda_upper; // q_u: smallest wavenumber
+    pub fn generate(grid: Grid, params: &SpectrumParams, seed: u64) -> Result<Self> {
+        params.validate(&grid)?;
+        let (nx, ny) = (grid.nx(), grid.ny());
+        let length = grid.length_x();
+        let q_lower = length / params.lambda_upper; // q_u: smallest wavenumber, units of 2π/Lx
         let q_upper = length / params.lambda_lower; // q_l: largest wavenumber
         let exponent = -(1.0 + params.hurst); // √Φ ∝ |q|^−(1+H)
+        let r = grid.aspect(); // q_y in units of 2π/Lx
         let amplitude = move |qx: f64, qy: f64| {
+            let qy = qy * r;
             let q = (qx * qx + qy * qy).sqrt();
             if q >= q_lower * (1.0 - 1e-12) && q <= q_upper * (1.0 + 1e-12) && q > 0.0 {
                 q.powf(exponent)
@@ -214,39 +232,39 @@ impl Surface {
             }
         };
         let mut rng = ChaCha20Rng::seed_from_u64(seed);
-        let mut plan = FftPlan::new(n);
-        let mut heights = vec![0.0; n * n];
+        let mut plan = FftPlan::new(nx, ny);
+        let mut heights = vec![0.0; nx * ny];
         match params.generation {
             Generation::RandomPhase => {
                 let half = plan.half();
                 let stride = plan.row_stride();
                 let spec = plan.spectrum_mut();
                 for qy in 0..half {
-                    for qx in 0..n {
+                    for qx in 0..nx {
                         let phase = rng.gen::<f64>() * 2.0 * PI;
-                        let a = amplitude(wavenumber(qx, n), qy as f64);
+                        let a = amplitude(wavenumber(qx, nx), qy as f64);
                         spec[qy * stride + qx] = C64::from_polar(a, phase);
                     }
                 }
-                // Rows q_y = 0 and q_y = N/2 are their own conjugate partners: make them Hermitian in
+                // Rows q_y = 0 and q_y = Ny/2 are their own conjugate partners: make them Hermitian in
                 // q_x so that the heights are real.
-                for qy in [0, n / 2] {
-                    let row = &mut spec[qy * stride..qy * stride + n];
-                    for qx in n / 2 + 1..n {
-                        row[qx] = row[n - qx].conj();
+                for qy in [0, ny / 2] {
+                    let row = &mut spec[qy * stride..qy * stride + nx];
+                    for qx in nx / 2 + 1..nx {
+                        row[qx] = row[nx - qx].conj();
                     }
                     row[0].im = 0.0;
-                    row[n / 2].im = 0.0;
+                    row[nx / 2].im = 0.0;
                 }
                 plan.inverse(&mut heights);
             }
             Generation::FilteredNoise => {
-                let noise: Vec<f64> = (0..n * n).map(|_| rng.sample(StandardNormal)).collect();
-                let kernel = radial_kernel(n, amplitude);
+                let noise: Vec<f64> = (0..nx * ny).map(|_| rng.sample(StandardNormal)).collect();
+                let kernel = radial_kernel(nx, ny, amplitude);
                 plan.convolve(&noise, &kernel, &mut heights);
             }
         }
-        let mut s = Self { n, length, heights };
+        let mut s = Self { grid, heights };
         s.rescale(params.rms_height);
         // Heights and their statistics (squares) must stay in the floating-point range.
         if s.heights.iter().any(|h| !h.is_finite()) || !s.rms_height().is_finite() {
@@ -270,45 +288,52 @@ impl Surface {
         self.heights.par_iter_mut().for_each(|h| *h *= factor);
     }
 
-    /// Reads a square 2D `.npy` array of f64 or f32 heights (C or Fortran order).
-    pub fn read_npy(path: &Path, length: f64) -> Result<Self> {
+    /// Reads a 2D `.npy` array of f64 or f32 heights (C or Fortran order) whose side along x (the
+    /// first axis) is `length_x`.
+    pub fn read_npy(path: &Path, length_x: f64) -> Result<Self> {
         let name = path.display().to_string();
         let array = read_npy_2d(path, &[NpyType::Float64, NpyType::Float32], "a height map")?;
-        if array.rows != array.cols {
-            return Err(Error::InvalidSurface {
-                name,
-                message: format!(
-                    "array is {}×{}; a periodic surface must be square",
-                    array.rows, array.cols
-                ),
-            });
-        }
-        Self::new(&name, array.rows, length, array.values)
+        Self::from_array(&name, array.rows, array.cols, length_x, array.values)
     }
 
     /// Writes the heights as a float64 `.npy` array (atomically: temporary file, then rename).
     pub fn write_npy(&self, path: &Path) -> Result<()> {
-        write_npy_f64(path, self.n, self.n, &self.heights)
+        write_npy_f64(path, self.grid.nx(), self.grid.ny(), &self.heights)
     }
 
-    /// Grid size N.
-    pub fn n(&self) -> usize {
-        self.n
+    /// The grid.
+    pub fn grid(&self) -> Grid {
+        self.grid
     }
 
-    /// Side length L.
+    /// Pixels along x (the sliding direction).
+    pub fn nx(&self) -> usize {
+        self.grid.nx()
+    }
+
+    /// Pixels along y.
+    pub fn ny(&self) -> usize {
+        self.grid.ny()
+    }
+
+    /// Side length along x, Lx.
     pub fn length(&self) -> f64 {
-        self.length
+        self.grid.length_x()
     }
 
-    /// Pixel size Δx = L/N.
+    /// Pixel size Δx.
     pub fn pixel_size(&self) -> f64 {
-        self.length / self.n as f64
+        self.grid.pixel_size()
     }
 
     /// Heights, row-major, i along x.
     pub fn heights(&self) -> &[f64] {
         &self.heights
+    }
+
+    /// The heights, taken out.
+    pub fn into_heights(self) -> Vec<f64> {
+        self.heights
     }
 
     /// RMS height about the mean.
@@ -320,35 +345,39 @@ impl Surface {
 
     /// RMS slope √⟨|∇h|²⟩, computed spectrally (exact for the periodic band-limited field).
     pub fn rms_slope(&self) -> f64 {
-        let n = self.n;
-        let mut plan = FftPlan::new(n);
+        let (nx, ny) = (self.nx(), self.ny());
+        let mut plan = FftPlan::new(nx, ny);
         plan.forward(&self.heights);
-        let k0 = 2.0 * PI / self.length;
+        let k0 = 2.0 * PI / self.length();
+        let r = self.grid.aspect();
         let mut sum = 0.0;
         for_each_mode(&plan, |qx, qy, c, weight| {
+            let qy = qy * r;
             sum += weight * (qx * qx + qy * qy) * k0 * k0 * c.norm_sqr();
         });
-        (sum / ((n * n) as f64).powi(2)).sqrt()
+        (sum / ((nx * ny) as f64).powi(2)).sqrt()
     }
 
     /// Radially averaged power spectrum: for each integer wavenumber shell |q| ∈ [m − ½, m + ½)
-    /// (m ≥ 1, q in units of 2π/L), the mean variance per Fourier mode ⟨|ĥ(q)|²⟩/N⁴ (length²), so
-    /// that Σ over all modes equals h_rms². Returns `(q, psd)` pairs for non-empty shells.
+    /// (m ≥ 1, q in units of 2π/Lx), the mean variance per Fourier mode ⟨|ĥ(q)|²⟩/(NxNy)² (length²),
+    /// so that Σ over all modes equals h_rms². Returns `(q, psd)` pairs for non-empty shells.
     pub fn radial_psd(&self) -> Vec<(f64, f64)> {
-        let n = self.n;
-        let mut plan = FftPlan::new(n);
+        let (nx, ny) = (self.nx(), self.ny());
+        let mut plan = FftPlan::new(nx, ny);
         plan.forward(&self.heights);
-        let shells = n; // |q| ≤ N/√2 < N
+        let r = self.grid.aspect();
+        let shells = nx; // |q| ≤ Nx/√2 < Nx
         let mut sum = vec![0.0; shells];
         let mut count = vec![0.0; shells];
         for_each_mode(&plan, |qx, qy, c, weight| {
+            let qy = qy * r;
             let m = (qx * qx + qy * qy).sqrt().round() as usize;
             if m >= 1 && m < shells {
                 sum[m] += weight * c.norm_sqr();
                 count[m] += weight;
             }
         });
-        let n4 = ((n * n) as f64).powi(2);
+        let n4 = ((nx * ny) as f64).powi(2);
         (1..shells)
             .filter(|&m| count[m] > 0.0)
             .map(|m| (m as f64, sum[m] / count[m] / n4))
@@ -357,32 +386,32 @@ impl Surface {
 }
 
 /// Visits every mode of the half spectrum with its weight in the full spectrum (2 for the modes whose
-/// conjugate partner is not stored).
+/// conjugate partner is not stored); wavenumbers are integers in units of 2π/Lx and 2π/Ly.
 fn for_each_mode(plan: &FftPlan, mut f: impl FnMut(f64, f64, C64, f64)) {
-    let n = plan.n();
+    let (nx, ny) = (plan.nx(), plan.ny());
     let stride = plan.row_stride();
     let spec = plan.spectrum();
     for qy in 0..plan.half() {
-        let weight = if qy == 0 || qy == n / 2 { 1.0 } else { 2.0 };
-        for qx in 0..n {
-            f(wavenumber(qx, n), qy as f64, spec[qy * stride + qx], weight);
+        let weight = if qy == 0 || qy == ny / 2 { 1.0 } else { 2.0 };
+        for qx in 0..nx {
+            f(wavenumber(qx, nx), qy as f64, spec[qy * stride + qx], weight);
         }
     }
 }
 
 /// Composite height of Johnson's equivalent rigid surface at a sliding offset of `offset` pixels
 /// along x (paper §2): `bottom + np.roll(top, offset, axis=0)`, i.e.
-/// `h[i, j] = bottom[i, j] + top[(i − offset) mod N, j]`. Written into `out` (N² values).
+/// `h[i, j] = bottom[i, j] + top[(i − offset) mod Nx, j]`. Written into `out` (Nx·Ny values).
 pub fn composite_heights(top: &Surface, bottom: &Surface, offset: usize, out: &mut [f64]) {
-    let n = top.n();
-    assert_eq!(bottom.n(), n, "surfaces must share the grid");
+    let (nx, ny) = (top.nx(), top.ny());
+    assert!(bottom.nx() == nx && bottom.ny() == ny, "surfaces must share the grid");
     let (t, b) = (top.heights(), bottom.heights());
-    out.par_chunks_mut(n).enumerate().for_each(|(i, row)| {
-        let src = (i + n - offset % n) % n;
+    out.par_chunks_mut(ny).enumerate().for_each(|(i, row)| {
+        let src = (i + nx - offset % nx) % nx;
         for ((o, &bv), &tv) in row
             .iter_mut()
-            .zip(&b[i * n..(i + 1) * n])
-            .zip(&t[src * n..(src + 1) * n])
+            .zip(&b[i * ny..(i + 1) * ny])
+            .zip(&t[src * ny..(src + 1) * ny])
         {
             *o = bv + tv;
         }
@@ -403,13 +432,19 @@ mod tests {
         }
     }
 
+    fn square(n: usize) -> Grid {
+        Grid::square(n, 1.0).unwrap()
+    }
+
     #[test]
     fn exact_rms_and_zero_mean() {
         for generation in [Generation::RandomPhase, Generation::FilteredNoise] {
-            let s = Surface::generate(64, 1.0, &SpectrumParams { generation, ..params() }, 7).unwrap();
-            assert!((s.rms_height() - 0.005).abs() < 1e-15);
-            let mean: f64 = s.heights().iter().sum::<f64>() / 4096.0;
-            assert!(mean.abs() < 1e-15);
+            for grid in [square(64), Grid::new(64, 32, 1.0).unwrap()] {
+                let s = Surface::generate(grid, &SpectrumParams { generation, ..params() }, 7).unwrap();
+                assert!((s.rms_height() - 0.005).abs() < 1e-15);
+                let mean: f64 = s.heights().iter().sum::<f64>() / grid.pixels() as f64;
+                assert!(mean.abs() < 1e-15);
+            }
         }
     }
 
@@ -420,7 +455,7 @@ mod tests {
                 .num_threads(threads)
                 .build()
                 .unwrap()
-                .install(|| Surface::generate(128, 1.0, &params(), seed).unwrap())
+                .install(|| Surface::generate(square(128), &params(), seed).unwrap())
         };
         assert_eq!(gen(1, 3), gen(2, 3));
         assert_ne!(gen(1, 3), gen(1, 4));
@@ -430,13 +465,42 @@ mod tests {
 
     #[test]
     fn spectrum_is_band_limited() {
-        let s = Surface::generate(64, 1.0, &params(), 1).unwrap();
-        for (q, c) in s.radial_psd() {
-            // Shells entirely outside [4, 32] must be empty (up to round-off).
-            if q <= 3.0 || q >= 33.0 {
-                assert!(c < 1e-25, "q = {q}: {c}");
+        for grid in [square(64), Grid::new(64, 128, 1.0).unwrap()] {
+            let s = Surface::generate(grid, &params(), 1).unwrap();
+            for (q, c) in s.radial_psd() {
+                // Shells entirely outside [4, 32] must be empty (up to round-off).
+                if q <= 3.0 || q >= 33.0 {
+                    assert!(c < 1e-25, "q = {q}: {c}");
+                }
             }
         }
+    }
+
+    #[test]
+    fn a_rectangular_surface_is_isotropic() {
+        // 128 × 64 pixels, box 1 × 0.5: the RMS slope along x and along y agree statistically.
+        let grid = Grid::new(128, 64, 1.0).unwrap();
+        let s = Surface::generate(
+            grid,
+            &SpectrumParams {
+                lambda_lower: 1.0 / 16.0,
+                lambda_upper: 0.25,
+                ..params()
+            },
+            5,
+        )
+        .unwrap();
+        let h = s.heights();
+        let (mut gx, mut gy) = (0.0, 0.0);
+        for i in 0..128 {
+            for j in 0..64 {
+                let dx = h[((i + 1) % 128) * 64 + j] - h[i * 64 + j];
+                let dy = h[i * 64 + (j + 1) % 64] - h[i * 64 + j];
+                gx += dx * dx;
+                gy += dy * dy;
+            }
+        }
+        assert!((gx / gy - 1.0).abs() < 0.3, "slopes along x and y: {gx} vs {gy}");
     }
 
     #[test]
@@ -446,7 +510,7 @@ mod tests {
             lambda_upper: 0.31,
             ..params()
         };
-        let e = empty.validate(64, 1.0).unwrap_err().to_string();
+        let e = empty.validate(&square(64)).unwrap_err().to_string();
         assert!(e.contains("no Fourier mode"), "{e}");
         // A narrow band around an integer wavenumber is fine: |q| = 3.
         assert!(SpectrumParams {
@@ -454,7 +518,7 @@ mod tests {
             lambda_upper: 0.34,
             ..params()
         }
-        .validate(64, 1.0)
+        .validate(&square(64))
         .is_ok());
         // Only a diagonal mode: |q| = √2 ≈ 1.414.
         assert!(SpectrumParams {
@@ -462,13 +526,13 @@ mod tests {
             lambda_upper: 1.0 / 1.41,
             ..params()
         }
-        .validate(64, 1.0)
+        .validate(&square(64))
         .is_ok());
         let huge = SpectrumParams {
             rms_height: 1e300,
             ..params()
         };
-        let e = match Surface::generate(64, 1.0, &huge, 1) {
+        let e = match Surface::generate(square(64), &huge, 1) {
             Ok(_) => panic!("rms_height = 1e300 was accepted"),
             Err(e) => e.to_string(),
         };
@@ -479,9 +543,13 @@ mod tests {
     fn rejects_bad_heights() {
         let mut h = vec![0.0; 256];
         h[17] = f64::NAN;
-        let e = Surface::new("top", 16, 1.0, h).unwrap_err().to_string();
+        let e = Surface::new("top", square(16), h).unwrap_err().to_string();
         assert!(e.contains("(1, 1)") && e.contains("NaN"), "{e}");
-        assert!(Surface::new("top", 16, 1.0, vec![]).is_err());
-        assert!(Surface::new("top", 16, 1.0, vec![0.0; 255]).is_err());
+        assert!(Surface::new("top", square(16), vec![]).is_err());
+        assert!(Surface::new("top", square(16), vec![0.0; 255]).is_err());
+        let e = Surface::from_array("top", 16, 15, 1.0, vec![0.0; 240])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("top") && e.contains("16×15"), "{e}");
     }
 }

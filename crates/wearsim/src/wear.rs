@@ -203,7 +203,7 @@ mod tests {
         let n = maps[0].len();
         let dx = 1.0;
         let d_star = 2.0 * (critical_pixels / std::f64::consts::PI).sqrt();
-        let mut labeller = JunctionLabeller::new(n, 4);
+        let mut labeller = JunctionLabeller::new(n, n, 4);
         let mut book = SlidingBookkeeping::new(d_star);
         let mut scratch = vec![false; n * n];
         maps.iter()
@@ -301,7 +301,7 @@ mod tests {
             &["......", "......", "......", ".#....", "......", "......"], // every old contact gone
         ];
         let n = 6;
-        let mut labeller = JunctionLabeller::new(n, 4);
+        let mut labeller = JunctionLabeller::new(n, n, 4);
         let mut memory = InitialContactMemory::default();
         let mut scratch = vec![false; n * n];
         let counts: Vec<usize> = maps

@@ -14,8 +14,8 @@ const E_STAR: f64 = 1.0 / (1.0 - 0.09); // E = 1, ν = 0.3
 fn paper_pair(n: usize, seed: u64) -> Vec<f64> {
     let spectrum = SpectrumParams::paper_roughness(n, 1.0);
     let (a, b) = pair_seeds(seed);
-    let top = Surface::generate(n, 1.0, &spectrum, a).unwrap();
-    let bottom = Surface::generate(n, 1.0, &spectrum, b).unwrap();
+    let top = Surface::generate(wearsim::Grid::square(n, 1.0).unwrap(), &spectrum, a).unwrap();
+    let bottom = Surface::generate(wearsim::Grid::square(n, 1.0).unwrap(), &spectrum, b).unwrap();
     let mut h = vec![0.0; n * n];
     composite_heights(&top, &bottom, 0, &mut h);
     h
@@ -43,7 +43,7 @@ fn hertz_sphere_on_flat() {
             -(x * x + y * y) / (2.0 * radius)
         })
         .collect();
-    let mut solver = ContactSolver::new(n, 1.0, E_STAR).unwrap();
+    let mut solver = ContactSolver::new(wearsim::Grid::square(n, 1.0).unwrap(), E_STAR).unwrap();
     let mut p = vec![0.0; n * n];
     let info = solver.solve(&h, force, f64::INFINITY, &mut p).unwrap();
     let a_num = (info.contact_pixels as f64 * dx * dx / PI).sqrt();
@@ -70,7 +70,7 @@ fn westergaard_sinusoid_in_full_contact() {
         .collect();
     let p_star = PI * E_STAR * g0 / 1.0; // full-contact pressure amplitude, π E* g / λ
     let mean = 2.0 * p_star;
-    let mut solver = ContactSolver::new(n, 1.0, E_STAR)
+    let mut solver = ContactSolver::new(wearsim::Grid::square(n, 1.0).unwrap(), E_STAR)
         .unwrap()
         .with_options(SolverOptions::new(1e-12, 20_000).unwrap());
     let mut p = vec![0.0; n * n];
@@ -85,7 +85,7 @@ fn westergaard_sinusoid_in_full_contact() {
 fn large_flow_pressure_reproduces_the_elastic_solution() {
     let n = 128;
     let h = paper_pair(n, 2);
-    let mut solver = ContactSolver::new(n, 1.0, E_STAR).unwrap();
+    let mut solver = ContactSolver::new(wearsim::Grid::square(n, 1.0).unwrap(), E_STAR).unwrap();
     let mut elastic = vec![0.0; n * n];
     solver.solve(&h, 1e-3, f64::INFINITY, &mut elastic).unwrap();
     let p_max = elastic.iter().copied().fold(0.0, f64::max);
@@ -103,7 +103,7 @@ fn small_flow_pressure_tends_to_the_fully_plastic_limit() {
     let n = 128;
     let h = paper_pair(n, 3);
     let load = 1e-3;
-    let mut solver = ContactSolver::new(n, 1.0, E_STAR).unwrap();
+    let mut solver = ContactSolver::new(wearsim::Grid::square(n, 1.0).unwrap(), E_STAR).unwrap();
     let mut previous_gap = f64::INFINITY;
     for shear_strength in [0.01, 0.003, 0.001] {
         let pm = flow_pressure(shear_strength);
@@ -128,7 +128,7 @@ fn load_balance_and_optimality_hold_pixel_by_pixel() {
     let h = paper_pair(n, 4);
     let pm = flow_pressure(0.01);
     let load = 2e-3;
-    let mut solver = ContactSolver::new(n, 1.0, E_STAR).unwrap();
+    let mut solver = ContactSolver::new(wearsim::Grid::square(n, 1.0).unwrap(), E_STAR).unwrap();
     let mut p = vec![0.0; n * n];
     let info = solver.solve(&h, load, pm, &mut p).unwrap();
     let mean: f64 = p.iter().sum::<f64>() / (n * n) as f64;
@@ -161,7 +161,7 @@ fn default_tolerance_gives_converged_contact_maps() {
     let h = paper_pair(n, 5);
     let pm = flow_pressure(0.01);
     for load in [2.5e-4, 1e-3, 2.5e-3] {
-        let mut solver = ContactSolver::new(n, 1.0, E_STAR).unwrap();
+        let mut solver = ContactSolver::new(wearsim::Grid::square(n, 1.0).unwrap(), E_STAR).unwrap();
         let mut p = vec![0.0; n * n];
         solver.solve(&h, load, pm, &mut p).unwrap();
         let tighter = SolverOptions::new(solver.options().tolerance() / 100.0, 20_000).unwrap();
@@ -187,10 +187,10 @@ fn warm_start_after_a_slide_converges_to_the_cold_solution() {
         rms_height: 0.005,
         generation: Generation::RandomPhase,
     };
-    let top = Surface::generate(n, 1.0, &spectrum, 11).unwrap();
-    let bottom = Surface::generate(n, 1.0, &spectrum, 12).unwrap();
+    let top = Surface::generate(wearsim::Grid::square(n, 1.0).unwrap(), &spectrum, 11).unwrap();
+    let bottom = Surface::generate(wearsim::Grid::square(n, 1.0).unwrap(), &spectrum, 12).unwrap();
     let pm = flow_pressure(0.01);
-    let mut solver = ContactSolver::new(n, 1.0, E_STAR).unwrap();
+    let mut solver = ContactSolver::new(wearsim::Grid::square(n, 1.0).unwrap(), E_STAR).unwrap();
     let mut h = vec![0.0; n * n];
     composite_heights(&top, &bottom, 0, &mut h);
     let mut warm = vec![0.0; n * n];
@@ -215,7 +215,7 @@ fn solution_does_not_depend_on_thread_count() {
             .build()
             .unwrap()
             .install(|| {
-                let mut solver = ContactSolver::new(n, 1.0, E_STAR).unwrap();
+                let mut solver = ContactSolver::new(wearsim::Grid::square(n, 1.0).unwrap(), E_STAR).unwrap();
                 let mut p = vec![0.0; n * n];
                 let info = solver.solve(&h, 1e-3, flow_pressure(0.01), &mut p).unwrap();
                 (p, info.iterations)
@@ -229,7 +229,7 @@ fn infeasible_load_and_non_convergence_are_errors() {
     let n = 64;
     let h = paper_pair(n, 7);
     let pm = flow_pressure(0.01);
-    let mut solver = ContactSolver::new(n, 1.0, E_STAR).unwrap();
+    let mut solver = ContactSolver::new(wearsim::Grid::square(n, 1.0).unwrap(), E_STAR).unwrap();
     let mut p = vec![0.0; n * n];
     assert!(matches!(
         solver.solve(&h, pm, pm, &mut p),
@@ -249,7 +249,9 @@ fn a_raised_interrupt_stops_the_solve_and_a_fresh_one_does_not() {
     let h = paper_pair(n, 7);
     let pm = flow_pressure(0.01);
     let flag = wearsim::Interrupt::default();
-    let mut solver = ContactSolver::new(n, 1.0, E_STAR).unwrap().with_interrupt(flag.clone());
+    let mut solver = ContactSolver::new(wearsim::Grid::square(n, 1.0).unwrap(), E_STAR)
+        .unwrap()
+        .with_interrupt(flag.clone());
     flag.request();
     let e = solver.solve(&h, 1e-3, pm, &mut vec![0.0; n * n]).unwrap_err();
     assert!(matches!(e, Error::Interrupted), "{e}");
@@ -269,7 +271,7 @@ fn generated_psd_follows_the_self_affine_power_law() {
             rms_height: 0.005,
             generation,
         };
-        let s = Surface::generate(n, 1.0, &spectrum, 9).unwrap();
+        let s = Surface::generate(wearsim::Grid::square(n, 1.0).unwrap(), &spectrum, 9).unwrap();
         // Least-squares slope of log C(q) against log q inside the band (q from 6 to 60).
         let pts: Vec<(f64, f64)> = s
             .radial_psd()

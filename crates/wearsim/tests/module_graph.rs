@@ -5,13 +5,16 @@
 use std::collections::BTreeSet;
 use std::path::Path;
 
-const LAYERS: [&str; 13] = [
+const LAYERS: [&str; 16] = [
     "error",
     "check",
     "io",
     "fft",
+    "stats",
+    "grid",
     "material",
     "surface",
+    "topography",
     "contact",
     "junctions",
     "wear",

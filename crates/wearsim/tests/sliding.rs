@@ -17,8 +17,8 @@ fn setup_surfaces(n: usize) -> (Surface, Surface) {
     };
     let (a, b) = pair_seeds(21);
     (
-        Surface::generate(n, 1.0, &spectrum, a).unwrap(),
-        Surface::generate(n, 1.0, &spectrum, b).unwrap(),
+        Surface::generate(wearsim::Grid::square(n, 1.0).unwrap(), &spectrum, a).unwrap(),
+        Surface::generate(wearsim::Grid::square(n, 1.0).unwrap(), &spectrum, b).unwrap(),
     )
 }
 
@@ -54,7 +54,7 @@ fn run(threads: usize) -> (Vec<LoadRun>, Material, SlidingConfig, Surface, Surfa
 #[test]
 fn bookkeeping_invariants_and_initial_volume() {
     let (runs, material, sliding, top, bottom) = run(2);
-    let n = top.n();
+    let n = top.nx();
     assert_eq!(runs.len(), 2);
     for r in &runs {
         assert_eq!(r.steps.len(), schedule(n, &sliding).len());
@@ -101,12 +101,16 @@ fn bookkeeping_invariants_and_initial_volume() {
         assert!(r.steps.iter().all(|st| st.initial_junctions <= st.junctions));
         assert!(r.steps.last().unwrap().initial_junctions < r.steps[0].initial_junctions);
         // V₀ from an independent solve and labelling at s = 0.
-        let mut solver = ContactSolver::new(n, 1.0, material.effective_modulus(ModulusConvention::HalfSpace)).unwrap();
+        let mut solver = ContactSolver::new(
+            wearsim::Grid::square(n, 1.0).unwrap(),
+            material.effective_modulus(ModulusConvention::HalfSpace),
+        )
+        .unwrap();
         let mut h = vec![0.0; n * n];
         composite_heights(&top, &bottom, 0, &mut h);
         let mut p = vec![0.0; n * n];
         solver.solve(&h, r.load, material.flow_pressure(), &mut p).unwrap();
-        let mut labeller = JunctionLabeller::new(n, 4);
+        let mut labeller = JunctionLabeller::new(n, n, 4);
         labeller.label(|k| p[k] > 0.0);
         for (e, d) in material.critical_diameters().into_iter().enumerate() {
             let v0: f64 = labeller

@@ -13,6 +13,7 @@ fn shipped_study_files_expand() {
         ("paper-reduced.toml", 320),
         ("running-in-step.toml", 18),
         ("kim1986.toml", 20),
+        ("kim1986-window.toml", 20),
         ("appendix-discretization.toml", 40),
         ("appendix-discretization-reduced.toml", 18),
         ("appendix-area.toml", 60),

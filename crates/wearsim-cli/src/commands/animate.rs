@@ -62,11 +62,14 @@ pub fn run(args: &Args) -> Result<()> {
             "invalid `--delay {delay_ms}`: a GIF frame lasts 10 ms to 655350 ms (it is stored in hundredths of a second)"
         );
     }
-    let (top, bottom) = config.surfaces()?;
-    let n = top.n();
+    let pair = config.surface_pair()?;
+    super::report_surfaces(&pair, true);
+    let (top, bottom) = (pair.top, pair.bottom);
+    let (nx, ny) = (top.nx(), top.ny());
+    let n = nx.max(ny);
     let scale = (512 / n).max(1) as u32; // frames of at least 512 px where the grid is smaller
     let step_px = (n / 512).max(1); // and at most about 1024 px where it is larger
-    let side = (n / step_px) as u32 * scale;
+    let (width, height) = ((nx / step_px) as u32 * scale, (ny / step_px) as u32 * scale);
     let mut setup = SlidingSetup::from_run(&config, &sliding);
     setup.interrupt = super::interrupt().clone();
     let d_star = config
@@ -76,7 +79,7 @@ pub fn run(args: &Args) -> Result<()> {
     let length_unit = config.units.length_unit();
     let mut frame_error: Option<anyhow::Error> = None;
     {
-        let root = BitMapBackend::gif(&tmp, (side, side + 40), delay_ms)
+        let root = BitMapBackend::gif(&tmp, (width.max(560), height + 40), delay_ms)
             .map_err(|e| anyhow!("cannot write {}: {e}", tmp.display()))?
             .into_drawing_area();
         let ran = run_sliding(&top, &bottom, &setup, |view| {
@@ -87,9 +90,9 @@ pub fn run(args: &Args) -> Result<()> {
                 root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
                 let labels = view.labeller.labels();
                 let states = view.bookkeeping[energy_index].states();
-                for i in (0..n).step_by(step_px) {
-                    for j in (0..n).step_by(step_px) {
-                        let l = labels[i * n + j];
+                for i in (0..nx).step_by(step_px) {
+                    for j in (0..ny).step_by(step_px) {
+                        let l = labels[i * ny + j];
                         if l == NO_JUNCTION {
                             continue;
                         }

@@ -47,7 +47,7 @@ fn check_size(n: usize) -> Result<()> {
         );
     }
     wearsim::check::grid(n)?;
-    wearsim::check::memory("the benchmark", n, wearsim::check::SLIDING_ARRAYS)?;
+    wearsim::check::memory("the benchmark", n, n, wearsim::check::SLIDING_ARRAYS)?;
     Ok(())
 }
 
@@ -57,8 +57,8 @@ fn paper_pair(n: usize) -> Result<(Surface, Surface)> {
     let spectrum = SpectrumParams::paper_roughness(n, 1.0);
     let (s1, s2) = pair_seeds(1);
     Ok((
-        Surface::generate(n, 1.0, &spectrum, s1)?,
-        Surface::generate(n, 1.0, &spectrum, s2)?,
+        Surface::generate(wearsim::Grid::square(n, 1.0)?, &spectrum, s1)?,
+        Surface::generate(wearsim::Grid::square(n, 1.0)?, &spectrum, s2)?,
     ))
 }
 
@@ -94,8 +94,8 @@ pub fn run(args: &Args) -> Result<()> {
         let (top, bottom) = paper_pair(n)?;
 
         // FFT round trip (r2c + c2r with the kernel multiply fused), the floor of one iteration.
-        let mut plan = FftPlan::new(n);
-        let kernel = radial_kernel(n, |qx, qy| 1.0 / (1.0 + qx * qx + qy * qy));
+        let mut plan = FftPlan::new(n, n);
+        let kernel = radial_kernel(n, n, |qx, qy| 1.0 / (1.0 + qx * qx + qy * qy));
         let mut out = vec![0.0; n * n];
         plan.convolve(top.heights(), &kernel, &mut out);
         let fft_s = median(
@@ -109,7 +109,7 @@ pub fn run(args: &Args) -> Result<()> {
         );
         drop((plan, kernel, out));
 
-        let mut solver = ContactSolver::new(n, 1.0, e_star)?;
+        let mut solver = ContactSolver::new(wearsim::Grid::square(n, 1.0)?, e_star)?;
         let mut heights = vec![0.0; n * n];
         composite_heights(&top, &bottom, 0, &mut heights);
         let mut pressure = vec![0.0; n * n];
@@ -229,8 +229,8 @@ pub fn run_slide(args: &SlideArgs) -> Result<()> {
     if args.warm_n > 0 && args.warm_steps > 0 {
         let n = args.warm_n;
         let (top, bottom) = paper_pair(n)?;
-        let mut solver = ContactSolver::new(n, 1.0, e_star)?;
-        let mut labeller = wearsim::junctions::JunctionLabeller::new(n, 4);
+        let mut solver = ContactSolver::new(wearsim::Grid::square(n, 1.0)?, e_star)?;
+        let mut labeller = wearsim::junctions::JunctionLabeller::new(n, n, 4);
         let mut heights = vec![0.0; n * n];
         let mut pressure = vec![0.0; n * n];
         composite_heights(&top, &bottom, 0, &mut heights);

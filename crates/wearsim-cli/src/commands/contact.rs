@@ -18,10 +18,10 @@ pub struct Args {
     #[arg(long)]
     load: f64,
     /// Sliding offset of the top surface along x, in the run's length unit, within one period
-    /// [0, L); rounded to whole pixels (with a note when it is not one).
+    /// [0, Lx); rounded to whole pixels (with a note when it is not one).
     #[arg(long, conflicts_with = "offset_px")]
     offset: Option<f64>,
-    /// Sliding offset in pixels, within one period [0, N).
+    /// Sliding offset in pixels along x, within one period [0, Nx).
     #[arg(long)]
     offset_px: Option<usize>,
     /// Output folder (created if missing; an earlier `contact` there is replaced whole).
@@ -38,10 +38,9 @@ pub fn run(args: &Args) -> Result<()> {
     if !(load.is_finite() && load > 0.0) {
         bail!("invalid `--load`: {load} must be a finite positive normal force");
     }
-    let length = config.length();
-    wearsim::check::load(load, length * length, config.material.flow_pressure())?;
-    let n = config.grid()?;
-    let dx = length / n as f64;
+    let grid = config.grid()?;
+    wearsim::check::load(load, grid.area(), config.material.flow_pressure())?;
+    let (n, ny, length, dx) = (grid.nx(), grid.ny(), grid.length_x(), grid.pixel_size());
     let unit = config.units.length_unit();
     let (shift, offset) = match (args.offset, args.offset_px) {
         (_, Some(px)) => {
@@ -57,8 +56,8 @@ pub fn run(args: &Args) -> Result<()> {
             let offset = offset.unwrap_or(0.0);
             if !offset.is_finite() || offset < 0.0 || offset >= length {
                 bail!(
-                    "invalid `--offset`: {offset} {unit} is not within one period [0, L = {length} {unit}); the surfaces \
-                     are periodic, so give the offset modulo L"
+                    "invalid `--offset`: {offset} {unit} is not within one period [0, Lx = {length} {unit}); the \
+                     surfaces are periodic, so give the offset modulo Lx"
                 );
             }
             let pixels = offset / dx;
@@ -73,31 +72,33 @@ pub fn run(args: &Args) -> Result<()> {
         }
     };
     let out = OutputDir::begin(&args.out, "contact", args.overwrite)?;
-    let (top, bottom) = config.surfaces()?;
-    let mut solver = ContactSolver::new(n, length, config.effective_modulus())?
+    let pair = config.surface_pair()?;
+    super::report_surfaces(&pair, true);
+    let (top, bottom) = (pair.top, pair.bottom);
+    let mut solver = ContactSolver::new(grid, config.effective_modulus())?
         .with_options(config.solver)
         .with_interrupt(super::interrupt().clone());
-    let mut heights = vec![0.0; n * n];
+    let mut heights = vec![0.0; n * ny];
     composite_heights(&top, &bottom, shift, &mut heights);
-    let mut pressure = vec![0.0; n * n];
+    let mut pressure = vec![0.0; n * ny];
     let start = Instant::now();
     let info = solver.solve(
         &heights,
-        load / (length * length),
+        load / grid.area(),
         config.material.flow_pressure(),
         &mut pressure,
     )?;
     let record = ContactRecord::new(&info, &pressure, start.elapsed().as_secs_f64());
     let contact: Vec<bool> = pressure.iter().map(|&p| p > 0.0).collect();
-    write_npy_f64(&out.join("pressure.npy"), n, n, &pressure)?;
-    write_npy_bool(&out.join("contact.npy"), n, n, &contact)?;
+    write_npy_f64(&out.join("pressure.npy"), n, ny, &pressure)?;
+    write_npy_bool(&out.join("contact.npy"), n, ny, &contact)?;
     write_json(
         &out.join("summary.json"),
         &contact_summary(&config, load, offset, shift, &record),
     )?;
     out.commit()?;
     println!(
-        "contact area {:.6} of L², approach {:.6e} {unit}, {} iterations, residual {:.2e} (tolerance {:.0e}), {:.3} s",
+        "contact area {:.6} of the apparent area, approach {:.6e} {unit}, {} iterations, residual {:.2e} (tolerance {:.0e}), {:.3} s",
         record.contact_area, record.approach, record.iterations, record.residual, record.tolerance, record.seconds
     );
     println!("wrote {}", args.out.display());

@@ -40,11 +40,8 @@ pub fn run(args: &Args) -> Result<()> {
     ];
     let array = read_npy_2d(map, &accepted, "a contact map")?;
     let (rows, cols) = (array.rows, array.cols);
-    if rows != cols || rows == 0 {
-        bail!(
-            "{}: contact map is {rows}×{cols}; it must be square and non-empty",
-            map.display()
-        );
+    if rows == 0 || cols == 0 {
+        bail!("{}: the contact map is empty ({rows}×{cols})", map.display());
     }
     if let Some(k) = array.values.iter().position(|v| v.is_nan()) {
         bail!(
@@ -55,21 +52,20 @@ pub fn run(args: &Args) -> Result<()> {
         );
     }
     let out = OutputDir::begin(&args.out, "junctions", args.overwrite)?;
-    if rows > wearsim::check::MAX_GRID {
+    if rows.saturating_mul(cols) >= u32::MAX as usize {
         bail!(
-            "{}: a {rows}² map is above the largest grid, {}",
-            map.display(),
-            wearsim::check::MAX_GRID
+            "{}: a {rows}×{cols} map has more pixels than 32-bit junction labels can index",
+            map.display()
         );
     }
-    let mut labeller = JunctionLabeller::new(rows, connectivity);
+    let mut labeller = JunctionLabeller::new(rows, cols, connectivity);
     let count = labeller.label(|k| array.values[k] > 0.0);
     let labels: Vec<i64> = labeller
         .labels()
         .iter()
         .map(|&l| if l == NO_JUNCTION { -1 } else { l as i64 })
         .collect();
-    write_npy_i64(&out.join("labels.npy"), rows, rows, &labels)?;
+    write_npy_i64(&out.join("labels.npy"), rows, cols, &labels)?;
     write_json(
         &out.join("junctions.json"),
         &junctions_summary(connectivity, labeller.sizes()),

@@ -31,3 +31,16 @@ pub fn interrupt() -> &'static wearsim::Interrupt {
 pub fn load_run(run: &Path) -> Result<RunConfig> {
     RunConfig::from_path(run).with_context(|| format!("run file {}", run.display()))
 }
+
+/// Prints what was done to surfaces read from files (cropping, detrending, header lines skipped),
+/// and, with `warnings`, what about them may spoil the results (a surface far from periodic).
+pub fn report_surfaces(pair: &wearsim::config::SurfacePair, warnings: bool) {
+    for note in &pair.notes {
+        eprintln!("note: {note}");
+    }
+    if warnings {
+        for w in &pair.warnings {
+            eprintln!("warning: {w}");
+        }
+    }
+}

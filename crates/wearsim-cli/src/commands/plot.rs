@@ -24,7 +24,8 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use wearsim::config::{SurfaceSource, Units};
 use wearsim::output::{JobResult, Table, TidyRow};
-use wearsim::sliding::{line_fit, WearResult};
+use wearsim::sliding::WearResult;
+use wearsim::stats::line_fit;
 use wearsim::study::findings::{findings, markdown};
 use wearsim::study::{load_results, Job};
 
@@ -564,17 +565,17 @@ struct Severity {
 }
 
 impl Severity {
-    /// S_c = p_N √h_rms / K_Ic with p_N = F_N/L² and K_Ic = √(𝒢 E/(1 − ν²)) for every job and
+    /// S_c = p_N √h_rms / K_Ic with p_N = F_N/(Lx Ly) and K_Ic = √(𝒢 E/(1 − ν²)) for every job and
     /// fracture energy with W > 0, and the least-squares fit of ln W against ln S_c.
     fn of(data: &Data) -> Option<Self> {
         let mut points = Vec::new();
         let mut names: Vec<String> = Vec::new();
         for (job, r) in data.jobs.iter().zip(&data.results) {
-            let SurfaceSource::Generated { spectrum, .. } = &job.run.surfaces else {
+            let SurfaceSource::Generated { spectrum, grid, .. } = &job.run.surfaces else {
                 continue;
             };
             let m = &job.run.material;
-            let p_n = r.load / (job.run.length() * job.run.length());
+            let p_n = r.load / grid.area();
             let i = names.iter().position(|n| *n == job.material).unwrap_or_else(|| {
                 names.push(job.material.clone());
                 names.len() - 1

@@ -50,8 +50,10 @@ pub fn run(args: &Args) -> Result<()> {
     };
     // The output folder is made (and checked) before any work.
     let out = OutputDir::begin(&args.out, "slide", args.overwrite)?;
-    let (top, bottom) = config.surfaces()?;
-    let n = top.n();
+    let pair = config.surface_pair()?;
+    super::report_surfaces(&pair, false);
+    let (top, bottom) = (&pair.top, &pair.bottom);
+    let n = top.nx();
     sliding.check_grid(n)?;
     let units = config.units;
     eprintln!(
@@ -76,14 +78,15 @@ pub fn run(args: &Args) -> Result<()> {
     setup.interrupt = super::interrupt().clone();
     let progress = Progress::new("slide", "steps", (steps_per_load * sliding.loads.len()) as u64);
     let start = Instant::now();
-    let runs = run_sliding(&top, &bottom, &setup, |view| {
+    let runs = run_sliding(top, bottom, &setup, |view| {
         let note = format!("load {}/{}", view.load_index + 1, sliding.loads.len());
         progress.set(view.done as u64, view.total as u64, &note);
     });
     progress.finish();
     let runs = runs?;
     let seconds = start.elapsed().as_secs_f64();
-    let inputs = SlidingInputs::of_run(&config, &sliding);
+    let mut inputs = SlidingInputs::of_run(&config, &sliding);
+    inputs.warnings.extend(pair.warnings.iter().cloned());
     let summary = sliding_summary(&inputs, &runs, top.pixel_size(), seconds, steps_per_load);
     write_text(&out.join("series.csv"), &series_csv(&runs))?;
     write_json(&out.join("summary.json"), &summary)?;

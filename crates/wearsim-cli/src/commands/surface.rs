@@ -1,47 +1,205 @@
-//! `wearsim surface`: the run's surface pair and its statistics.
+//! `wearsim surface`: the run's surface pair and its statistics; `wearsim surface fit`: the
+//! self-affine parameters of a measured height map, as a run file's `[surface]` block.
 
 use std::path::PathBuf;
 
-use anyhow::Result;
-use wearsim::io::{write_json, OutputDir};
-use wearsim::output::{surface_summary, SurfaceStatistics};
+use anyhow::{bail, Context, Result};
+use wearsim::io::{write_json, write_text, OutputDir};
+use wearsim::output::{surface_summary, Provenance, SurfaceStatistics};
+use wearsim::surface::pair_seeds;
+use wearsim::topography::{self, Detrend, FileSurface, Preprocess};
+use wearsim::Surface;
 
 use super::load_run;
 
 #[derive(clap::Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct Args {
+    #[command(subcommand)]
+    action: Option<Action>,
     /// Run file (TOML, see README).
-    run: PathBuf,
+    #[arg(required = true)]
+    run: Option<PathBuf>,
     /// Output folder (created if missing; an earlier `surface` there is replaced whole).
+    #[arg(long, required = true)]
+    out: Option<PathBuf>,
+    /// Replace the output folder even when it holds another command's results or other files.
     #[arg(long)]
-    out: PathBuf,
+    overwrite: bool,
+}
+
+#[derive(clap::Subcommand)]
+enum Action {
+    /// Estimate H, λ_l, λ_u and h_rms of a measured height map from its radially averaged PSD;
+    /// print (and with --out write) the `[surface]` block of a run file that generates periodic
+    /// surfaces with them, and with --generate the synthetic pair itself.
+    Fit(FitArgs),
+}
+
+#[derive(clap::Args)]
+struct FitArgs {
+    /// Height map: .npy, .npz, a text or CSV matrix, or x y z columns.
+    file: PathBuf,
+    /// Physical size along the first axis, or both sides (`--length LX --length LY`); column files
+    /// state it themselves.
+    #[arg(long, num_args = 1..=2)]
+    length: Vec<f64>,
+    /// Unit of the heights (m, mm, um, nm, pm, A): the results are then in metres (SI runs).
+    #[arg(long)]
+    height_unit: Option<String>,
+    /// Unit of a column file's x y coordinates (default: the height unit).
+    #[arg(long)]
+    lateral_unit: Option<String>,
+    /// Levelling before the fit: none, mean, plane or curvature. A tilt or a form would dominate the
+    /// long wavelengths of the spectrum.
+    #[arg(long, default_value = "plane")]
+    detrend: String,
+    /// Fraction of each side brought smoothly to the mean before the fit (0: none).
+    #[arg(long, default_value_t = 0.0)]
+    taper: f64,
+    /// Seed written into the block (and used by --generate).
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Output folder: surface.toml (the block) and fit.json.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Also write the synthetic periodic pair (top.npy, bottom.npy) and its statistics into --out.
+    #[arg(long, requires = "out")]
+    generate: bool,
     /// Replace the output folder even when it holds another command's results or other files.
     #[arg(long)]
     overwrite: bool,
 }
 
 pub fn run(args: &Args) -> Result<()> {
-    let config = load_run(&args.run)?;
-    let out = OutputDir::begin(&args.out, "surface", args.overwrite)?;
-    let (top, bottom) = config.surfaces()?;
+    if let Some(Action::Fit(fit)) = &args.action {
+        return run_fit(fit);
+    }
+    let (Some(run), Some(out)) = (&args.run, &args.out) else {
+        bail!("give a run file and --out, or `wearsim surface fit FILE`");
+    };
+    let config = load_run(run)?;
+    let dir = OutputDir::begin(out, "surface", args.overwrite)?;
+    let pair = config.surface_pair()?;
+    super::report_surfaces(&pair, true);
+    let (top, bottom) = (pair.top, pair.bottom);
     let unit = config.units.length_unit();
     let stats = [SurfaceStatistics::of(&top), SurfaceStatistics::of(&bottom)];
-    top.write_npy(&out.join("top.npy"))?;
-    bottom.write_npy(&out.join("bottom.npy"))?;
+    top.write_npy(&dir.join("top.npy"))?;
+    bottom.write_npy(&dir.join("bottom.npy"))?;
     write_json(
-        &out.join("statistics.json"),
+        &dir.join("statistics.json"),
         &surface_summary(&config, &stats[0], &stats[1]),
     )?;
-    out.commit()?;
+    dir.commit()?;
     for (name, s) in [("top", &stats[0]), ("bottom", &stats[1])] {
-        println!(
-            "{name:>6}: {n}×{n}, L = {l} {unit}, h_rms = {h:.6e} {unit}, rms slope = {g:.6e}",
-            n = s.grid,
-            l = s.length,
-            h = s.rms_height,
-            g = s.rms_slope
-        );
+        print_statistics(name, s, unit);
     }
-    println!("wrote {}", args.out.display());
+    println!("wrote {}", out.display());
+    Ok(())
+}
+
+fn print_statistics(name: &str, s: &SurfaceStatistics, unit: &str) {
+    println!(
+        "{name:>6}: {nx}×{ny} pixels, {lx} × {ly} {unit}, h_rms = {h:.6e} {unit}, rms slope = {g:.6e}",
+        nx = s.grid,
+        ny = s.grid_y,
+        lx = s.length,
+        ly = s.length_y,
+        h = s.rms_height,
+        g = s.rms_slope
+    );
+}
+
+fn run_fit(args: &FitArgs) -> Result<()> {
+    let scale = |field: &str, unit: &Option<String>| -> Result<f64> {
+        Ok(match unit {
+            Some(u) => topography::metres_per(field, u)?,
+            None => 1.0,
+        })
+    };
+    let lateral = args.lateral_unit.clone().or_else(|| args.height_unit.clone());
+    let detrend: Detrend = args.detrend.parse().context("--detrend")?;
+    let how = FileSurface {
+        height_scale: scale("height_unit", &args.height_unit)?,
+        lateral_scale: scale("lateral_unit", &lateral)?,
+        length_x: args.length.first().copied(),
+        length_y: args.length.get(1).copied(),
+        preprocess: Preprocess {
+            detrend,
+            taper: args.taper,
+        },
+    };
+    for &l in &args.length {
+        wearsim::check::positive("length", l).context("--length")?;
+    }
+    let dir = match &args.out {
+        Some(out) => Some(OutputDir::begin(out, "surface-fit", args.overwrite)?),
+        None => None,
+    };
+    let loaded = topography::load(&args.file, &how).with_context(|| format!("{}", args.file.display()))?;
+    for note in &loaded.notes {
+        eprintln!("note: {note}");
+    }
+    let surface = &loaded.surface;
+    let grid = surface.grid();
+    let fit = topography::fit(surface)?;
+    let (spectrum, notes) = fit.spectrum(&grid);
+    for note in &notes {
+        eprintln!("warning: {note}");
+    }
+    let unit = if args.height_unit.is_some() {
+        "m"
+    } else {
+        "(file units)"
+    };
+    let source = args
+        .file
+        .file_name()
+        .map_or_else(|| args.file.display().to_string(), |n| n.to_string_lossy().into());
+    let block = topography::surface_block(&grid, &spectrum, args.seed, &source, unit.trim_matches(['(', ')']));
+    println!(
+        "fitted over {} wavenumber shells, R² = {} (log–log PSD); periodicity of the prepared map: border jumps {:.1} \
+         (x) and {:.1} (y) typical steps",
+        fit.shells,
+        fit.r2.map_or("undefined".into(), |r| format!("{r:.4}")),
+        loaded.periodicity.border_step_x,
+        loaded.periodicity.border_step_y
+    );
+    if fit.r2.is_some_and(|r| r < 0.9) {
+        eprintln!("warning: the PSD follows a power law poorly (R² < 0.9): H is a rough estimate");
+    }
+    if args.height_unit.is_some() {
+        println!("# in a run file with units = \"si\"");
+    }
+    print!("{block}");
+    let Some(dir) = dir else { return Ok(()) };
+    write_text(&dir.join("surface.toml"), &block)?;
+    let record = serde_json::json!({
+        "provenance": Provenance::current(),
+        "file": args.file,
+        "detrend": detrend.name(),
+        "taper": args.taper,
+        "length_unit": unit,
+        "grid": [grid.nx(), grid.ny()],
+        "length": [grid.length_x(), grid.length_y()],
+        "fit": fit,
+        "spectrum": spectrum,
+        "notes": notes,
+        "method": "least-squares line through ln PSD against ln q over the shells that follow it (grown from the middle \
+                   of the spectrum while each shell stays within a factor 2 of the line); slope −2(1+H); λ_l and λ_u where \
+                   the power law ends",
+    });
+    write_json(&dir.join("fit.json"), &record)?;
+    if args.generate {
+        let (a, b) = pair_seeds(args.seed);
+        for (name, seed) in [("top", a), ("bottom", b)] {
+            let s = Surface::generate(grid, &spectrum, seed)?;
+            s.write_npy(&dir.join(&format!("{name}.npy")))?;
+            print_statistics(name, &SurfaceStatistics::of(&s), unit);
+        }
+    }
+    dir.commit()?;
+    println!("wrote {}", args.out.as_ref().expect("an output folder").display());
     Ok(())
 }

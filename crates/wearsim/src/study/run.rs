@@ -182,24 +182,33 @@ pub fn run_jobs(
 /// How many of `jobs` can run at once in this machine's memory: `workers`, or fewer with a note saying
 /// so; an error (before anything is written) when not even one job fits.
 pub fn workers_for_memory(jobs: &[&Job], workers: usize) -> Result<(usize, Option<String>)> {
-    let mut largest = 0;
+    let mut largest = (0, 0);
     for job in jobs {
-        largest = largest.max(job.run.grid()?);
+        let grid = job.run.grid()?;
+        if grid.pixels() > largest.0 * largest.1 {
+            largest = (grid.nx(), grid.ny());
+        }
     }
-    if largest == 0 {
+    if largest.0 == 0 {
         return Ok((workers, None));
     }
-    crate::check::grid(largest)?;
-    crate::check::memory("one job of this study", largest, crate::check::SLIDING_ARRAYS)?;
-    let per_job = crate::check::SLIDING_ARRAYS * 8.0 * (largest as f64).powi(2);
+    crate::check::memory(
+        "one job of this study",
+        largest.0,
+        largest.1,
+        crate::check::SLIDING_ARRAYS,
+    )?;
+    let per_job = crate::check::SLIDING_ARRAYS * 8.0 * (largest.0 * largest.1) as f64;
     match crate::check::available_memory() {
         Some(have) if per_job * workers as f64 > have as f64 => {
             let fit = ((have as f64 / per_job) as usize).max(1);
             Ok((
                 fit,
                 Some(format!(
-                    "{workers} jobs of {largest}² pixels at once would not fit in the {:.1} GiB of memory available; \
+                    "{workers} jobs of {}×{} pixels at once would not fit in the {:.1} GiB of memory available; \
                      running {fit} at a time",
+                    largest.0,
+                    largest.1,
                     have as f64 / (1u64 << 30) as f64
                 )),
             ))

@@ -1,0 +1,211 @@
+//! Measured surfaces end to end: a height map as a profilometer gives it (ASCII, rectangular,
+//! odd-sized, tilted, not periodic, heights in µm, a header line) runs through `wearsim surface`,
+//! `contact` and `slide` with its units converted and its tilt removed; column files state their
+//! size; `wearsim surface fit` recovers the parameters of generated surfaces and writes a block that
+//! runs.
+
+mod common;
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use common::{run, s, stderr, stdout};
+use wearsim::surface::pair_seeds;
+use wearsim::{Generation, Grid, SpectrumParams, Surface};
+
+/// A measured-style map: a 64 × 48 self-affine surface (pixel 1 µm, h_rms 0.3 µm) with a tilt and an
+/// offset, cropped to 63 × 47, written in µm as comma-separated text under a header line.
+fn measured(path: &Path, seed: u64) -> Vec<f64> {
+    let grid = Grid::new(64, 48, 64e-6).unwrap();
+    let spectrum = SpectrumParams {
+        hurst: 0.8,
+        lambda_lower: 4e-6,
+        lambda_upper: 32e-6,
+        rms_height: 0.3e-6,
+        generation: Generation::RandomPhase,
+    };
+    let h = Surface::generate(grid, &spectrum, seed).unwrap().into_heights();
+    let mut text = String::from("Profilometer export, heights in um\n");
+    let mut kept = Vec::new();
+    for i in 0..63 {
+        let row: Vec<String> = (0..47)
+            .map(|j| {
+                let um = h[i * 48 + j] * 1e6 + 5.0 + 0.02 * i as f64 - 0.01 * j as f64;
+                kept.push(um);
+                format!("{um:.6}")
+            })
+            .collect();
+        writeln!(text, "{}", row.join(",")).unwrap();
+    }
+    std::fs::write(path, text).unwrap();
+    kept
+}
+
+const MATERIAL: &str = r#"
+[material]
+youngs_modulus = 200e9
+poisson_ratio = 0.3
+shear_strength = 2e9
+fracture_energies = [2.0]
+"#;
+
+#[test]
+fn a_measured_map_runs_end_to_end_with_units_and_levelling() {
+    let dir = tempfile::tempdir().unwrap();
+    measured(&dir.path().join("top.csv"), pair_seeds(5).0);
+    measured(&dir.path().join("bottom.csv"), pair_seeds(5).1);
+    let surface =
+        "units = \"si\"\n[surface]\ntop = \"top.csv\"\nbottom = \"bottom.csv\"\nlength = 63e-6\nheight_unit = \"um\"\n";
+    let raw = dir.path().join("raw.toml");
+    std::fs::write(&raw, format!("{surface}{MATERIAL}")).unwrap();
+    // As read: cropped to even sides (62 × 46 pixels of 1 µm), heights in m, tilted and not periodic.
+    let o = run(&["surface", s(&raw), "--out", s(&dir.path().join("raw"))]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("cropped to 62 × 46") && stderr(&o).contains("header line"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(stderr(&o).contains("not periodic"), "{}", stderr(&o));
+    assert!(stdout(&o).contains("62×46 pixels"), "{}", stdout(&o));
+    let stats: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("raw/statistics.json")).unwrap()).unwrap();
+    assert!((stats["top"]["pixel_size"].as_f64().unwrap() - 1e-6).abs() < 1e-15);
+    assert!((stats["top"]["length_y"].as_f64().unwrap() - 46e-6).abs() < 1e-15);
+    let h_raw = stats["top"]["rms_height"].as_f64().unwrap();
+    assert!(h_raw > 0.4e-6, "the tilt is part of the raw heights: {h_raw}");
+
+    // Levelled (plane) and tapered: the tilt is gone, h_rms back near 0.3 µm, and it slides.
+    let levelled = format!("{surface}detrend = \"plane\"\ntaper = 0.1\n{MATERIAL}[sliding]\nloads = [0.05]\n");
+    let run_file = dir.path().join("levelled.toml");
+    std::fs::write(&run_file, levelled).unwrap();
+    let o = run(&["surface", s(&run_file), "--out", s(&dir.path().join("levelled"))]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let stats: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("levelled/statistics.json")).unwrap()).unwrap();
+    let h = stats["top"]["rms_height"].as_f64().unwrap();
+    assert!(h > 0.15e-6 && h < 0.35e-6, "{h}");
+    assert_eq!(stats["surfaces"]["detrend"], "plane");
+    let out = dir.path().join("slide");
+    let o = run(&["slide", s(&run_file), "--out", s(&out), "--quiet"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["inputs"]["surfaces"]["height_unit"], "um");
+    assert!(summary["results"][0]["static_wear_coefficient"].as_f64().is_some());
+    // A contact at an offset given in pixels.
+    let o = run(&[
+        "contact",
+        s(&run_file),
+        "--load",
+        "0.05",
+        "--offset-px",
+        "3",
+        "--out",
+        s(&dir.path().join("c")),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+}
+
+#[test]
+fn column_files_state_their_size_and_bad_files_name_the_line() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, seed) in [("top.xyz", 1), ("bottom.xyz", 2)] {
+        let h = measured(&dir.path().join("tmp.csv"), seed);
+        let mut text = String::from("# x y z in um\n");
+        for i in 0..63 {
+            for j in 0..47 {
+                writeln!(text, "{} {} {}", i as f64 * 0.5, j as f64 * 0.5, h[i * 47 + j]).unwrap();
+            }
+        }
+        std::fs::write(dir.path().join(name), text).unwrap();
+    }
+    let surface = "units = \"si\"\n[surface]\ntop = \"top.xyz\"\nbottom = \"bottom.xyz\"\nheight_unit = \"um\"\n";
+    let run_file = dir.path().join("xyz.toml");
+    std::fs::write(&run_file, format!("{surface}{MATERIAL}")).unwrap();
+    let o = run(&["surface", s(&run_file), "--out", s(&dir.path().join("o"))]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let stats: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("o/statistics.json")).unwrap()).unwrap();
+    assert!((stats["top"]["pixel_size"].as_f64().unwrap() - 0.5e-6).abs() < 1e-15);
+    // A length that contradicts the coordinates, a unit in a reduced run, a ragged matrix.
+    std::fs::write(&run_file, format!("{surface}length = 1e-3\n{MATERIAL}")).unwrap();
+    let e = stderr(&run(&["surface", s(&run_file), "--out", s(&dir.path().join("p"))]));
+    assert!(e.contains("top.xyz") && e.contains("coordinates span"), "{e}");
+    std::fs::write(
+        &run_file,
+        format!("{}{MATERIAL}", surface.replace("units = \"si\"\n", "")),
+    )
+    .unwrap();
+    let e = stderr(&run(&["surface", s(&run_file), "--out", s(&dir.path().join("p"))]));
+    assert!(e.contains("height_unit") && e.contains("si"), "{e}");
+    std::fs::write(dir.path().join("top.csv"), "1,2,3\n4,5\n").unwrap();
+    std::fs::write(
+        &run_file,
+        format!("[surface]\ntop = \"top.csv\"\nbottom = \"top.csv\"\nlength = 1.0\n{MATERIAL}"),
+    )
+    .unwrap();
+    let e = stderr(&run(&["surface", s(&run_file), "--out", s(&dir.path().join("p"))]));
+    assert!(e.contains("top.csv") && e.contains("line 2"), "{e}");
+    assert!(!dir.path().join("p").exists());
+}
+
+#[test]
+fn surface_fit_recovers_generated_parameters_and_its_block_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let generated = dir.path().join("gen.toml");
+    std::fs::write(
+        &generated,
+        format!(
+            "[surface]\ngrid = [256, 128]\nlength = 1.0\nhurst = 0.6\nlambda_lower = 0.015625\nlambda_upper = 0.25\n\
+             rms_height = 0.004\nseed = 3\n{}",
+            "[material]\nyoungs_modulus = 1.0\npoisson_ratio = 0.3\nshear_strength = 0.01\nfracture_energies = [1e-7]\n"
+        ),
+    )
+    .unwrap();
+    assert!(run(&["surface", s(&generated), "--out", s(&dir.path().join("s"))])
+        .status
+        .success());
+    let fit = dir.path().join("fit");
+    let o = run(&[
+        "surface",
+        "fit",
+        s(&dir.path().join("s/top.npy")),
+        "--length",
+        "1.0",
+        "--detrend",
+        "none",
+        "--out",
+        s(&fit),
+        "--generate",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let record: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(fit.join("fit.json")).unwrap()).unwrap();
+    let f = &record["fit"];
+    let within = |v: &serde_json::Value, truth: f64| {
+        let v = v.as_f64().unwrap();
+        v / truth < 1.2 && truth / v < 1.2
+    };
+    assert!((f["hurst"].as_f64().unwrap() - 0.6).abs() <= 0.05, "{f}");
+    assert!(
+        within(&f["lambda_lower"], 0.015625) && within(&f["lambda_upper"], 0.25),
+        "{f}"
+    );
+    assert!(fit.join("top.npy").is_file() && fit.join("bottom.npy").is_file());
+    // The block is a run file's [surface] table as it stands.
+    let block = std::fs::read_to_string(fit.join("surface.toml")).unwrap();
+    assert!(stdout(&o).contains(&block));
+    let run_file = dir.path().join("from-fit.toml");
+    std::fs::write(
+        &run_file,
+        format!(
+            "{block}[material]\nyoungs_modulus = 1.0\npoisson_ratio = 0.3\nshear_strength = 0.01\nfracture_energies = \
+             [1e-7]\n"
+        ),
+    )
+    .unwrap();
+    let o = run(&["surface", s(&run_file), "--out", s(&dir.path().join("again"))]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).contains("256×128 pixels"));
+}
