@@ -52,6 +52,8 @@ struct Setting {
     /// Mean pressure F_N/L² of the box.
     pressure: f64,
     pixel_size: f64,
+    /// "m" in SI studies, "L" in reduced ones: the unit of lengths in the observations.
+    length_unit: &'static str,
     values: BTreeMap<String, f64>,
 }
 
@@ -67,7 +69,9 @@ impl Setting {
     fn label(&self) -> String {
         format!(
             "τ̃ = {}, 𝒢 = {:.2e}, F_N/L² = {:.2e}",
-            self.shear_strength, self.fracture_energy, self.pressure
+            param(self.shear_strength),
+            self.fracture_energy,
+            self.pressure
         )
     }
 }
@@ -106,10 +110,24 @@ fn settings(tidy: &Table) -> Vec<Setting> {
                 fracture_energy: num("fracture_energy"),
                 pressure: num("load") / (length * length),
                 pixel_size: length / grid,
+                length_unit: if col("units").is_some_and(|i| row[i].text() == "si") {
+                    "m"
+                } else {
+                    "L"
+                },
                 values,
             }
         })
         .collect()
+}
+
+/// An input value as given (0.008), in exponent form when large (3.37e9 Pa).
+fn param(x: f64) -> String {
+    if (1e-3..1e4).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
 }
 
 fn fmt(x: f64) -> String {
@@ -171,7 +189,7 @@ pub fn findings(tidy: &Table) -> Vec<Finding> {
                 "{} → {} (τ̃ = {}, 𝒢 = {:.2e})",
                 fmt(k[0]),
                 fmt(*k.last().unwrap_or(&f64::NAN)),
-                c[0].shear_strength,
+                param(c[0].shear_strength),
                 c[0].fracture_energy
             ));
         }
@@ -392,11 +410,12 @@ pub fn findings(tidy: &Table) -> Vec<Finding> {
             key: "memory-decays-exponentially",
             paper: "sliding model (§3): the number of contacts present at s = 0 decays exponentially with s",
             observed: format!(
-                "R² of ln N₀ against s: mean {} over {} settings; decay lengths {} … {} L",
+                "R² of ln N₀ against s: mean {} over {} settings; decay lengths {} … {} {}",
                 fmt(mean),
                 r2.len(),
                 fmt(lengths.iter().copied().fold(f64::INFINITY, f64::min)),
-                fmt(lengths.iter().copied().fold(0.0f64, f64::max))
+                fmt(lengths.iter().copied().fold(0.0f64, f64::max)),
+                all.first().map_or("L", |s| s.length_unit)
             ),
             verdict: verdict(!r2.is_empty(), mean >= 0.8),
         });
