@@ -240,6 +240,27 @@ fn bad_sliding_input_is_a_one_line_error() {
         !o.status.success() && err.contains("a.npy") && err.contains("not found"),
         "{err}"
     );
+    // A fields selection that names no load or no step is refused before any solve, and nothing is
+    // left behind.
+    let run = run_file(dir.path(), &format!("{GENERATED}[sliding]\nloads = [1e-3]\n"));
+    for (flags, needle) in [
+        (
+            vec!["--save-fields", "--fields-loads", "1"],
+            "load index 1 does not exist",
+        ),
+        (vec!["--save-fields", "--fields-every", "0"], "fields every"),
+        (vec!["--fields-every", "2"], "--save-fields"),
+    ] {
+        let out = dir.path().join("o");
+        let o = wearsim()
+            .args(["slide", run.to_str().unwrap(), "--out", out.to_str().unwrap()])
+            .args(&flags)
+            .output()
+            .unwrap();
+        let err = String::from_utf8(o.stderr).unwrap();
+        assert!(!o.status.success() && err.contains(needle), "{flags:?}: {err}");
+        assert!(!out.exists(), "{flags:?}");
+    }
 }
 
 #[test]

@@ -146,8 +146,12 @@ pub struct StepView<'a> {
     pub total: usize,
     /// Index of the load in `setup.sliding.loads`.
     pub load_index: usize,
+    /// Position of this step in the schedule of its load.
+    pub step_index: usize,
     /// This step's record.
     pub record: &'a StepRecord,
+    /// This step's contact pressure (row-major, x first).
+    pub pressure: &'a [f64],
     /// The labelled contact map of this step.
     pub labeller: &'a JunctionLabeller,
     /// The bookkeeping of every fracture energy, with the junction states of this step.
@@ -166,7 +170,7 @@ pub fn resolution_warnings(material: &Material, pixel_size: f64) -> Vec<String> 
         .filter(|(_, d)| d / pixel_size < crate::check::RESOLVED_PIXELS)
         .map(|(g, d)| {
             format!(
-                "d* = {d:.4e} for 𝒢 = {g:.4e} is {:.1} pixels, under {}: junctions of the critical size \
+                "d* = {d:.4e} for 𝒢 = {g:.4e} is {:.2} pixels, under {}: junctions of the critical size \
                  are not resolved and the wear results follow the grid; refine `grid`",
                 d / pixel_size,
                 crate::check::RESOLVED_PIXELS
@@ -232,7 +236,7 @@ pub fn run_sliding(
         let mut steps = Vec::with_capacity(offsets.len());
         let mut timing = Timing::default();
         pressure.iter_mut().for_each(|p| *p = 0.0); // cold start at s = 0 of every load
-        for &offset in &offsets {
+        for (step_index, &offset) in offsets.iter().enumerate() {
             setup.interrupt.check()?;
             let t0 = Instant::now();
             composite_heights(top, bottom, offset, &mut heights);
@@ -267,7 +271,9 @@ pub fn run_sliding(
                 done,
                 total: total_steps,
                 load_index,
+                step_index,
                 record: steps.last().expect("a step was just recorded"),
+                pressure: &pressure,
                 labeller: &labeller,
                 bookkeeping: &books,
             });

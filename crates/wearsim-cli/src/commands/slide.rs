@@ -6,7 +6,7 @@ use std::time::Instant;
 use anyhow::{bail, Result};
 use wearsim::config::Units;
 use wearsim::io::{write_json, write_text, OutputDir};
-use wearsim::output::{series_csv, sliding_summary, unit_of, SlidingInputs};
+use wearsim::output::{series_csv, sliding_summary, unit_of, FieldSelection, FieldsWriter, SlidingInputs};
 use wearsim::sliding::{run_sliding, SlidingSetup};
 
 use super::load_run;
@@ -22,12 +22,23 @@ pub struct Args {
     /// Replace the output folder even when it holds another command's results or other files.
     #[arg(long)]
     overwrite: bool,
+    /// Also write the per-step contact pressure, contact map and junction labels to
+    /// OUT/fields.zarr (Zarr, chunked and compressed; `xarray.open_zarr` opens it with
+    /// coordinates load, s, x, y and units).
+    #[arg(long)]
+    save_fields: bool,
+    /// Keep the fields of these loads only (indices into `loads`, from 0; default: all).
+    #[arg(long, value_delimiter = ',', requires = "save_fields", value_name = "I,J,…")]
+    fields_loads: Vec<usize>,
+    /// Keep the fields of every K-th step only (s = 0 always; default: every step).
+    #[arg(long, default_value_t = 1, requires = "save_fields", value_name = "K")]
+    fields_every: usize,
 }
 
-/// A value with the unit of the run's system, e.g. `1.2e-3 m²`.
+/// A value with the unit of the run's system, e.g. `1.2e-3 m²` (none for counts and ratios).
 pub fn with_unit(units: Units, quantity: &str, value: f64) -> String {
     let unit = unit_of(units, quantity);
-    if unit.is_empty() {
+    if unit.is_empty() || unit == "1" {
         format!("{value:.4e}")
     } else {
         format!("{value:.4e} {unit}")
@@ -73,20 +84,59 @@ pub fn run(args: &Args) -> Result<()> {
             d / top.pixel_size()
         );
     }
-    let steps_per_load = sliding.offsets(n).len();
+    let offsets = sliding.offsets(n);
+    let steps_per_load = offsets.len();
+    let mut inputs = SlidingInputs::of_run(&config, &sliding);
+    inputs.warnings.extend(pair.warnings.iter().cloned());
+    let mut fields = if args.save_fields {
+        let selection = FieldSelection {
+            loads: args.fields_loads.clone(),
+            every: args.fields_every,
+        };
+        let grid = top.grid();
+        let raw = FieldsWriter::raw_bytes(grid, sliding.loads.len(), steps_per_load, &selection);
+        eprintln!(
+            "fields: {:.1} MB before compression (13 bytes per pixel and kept step), into {}",
+            raw as f64 / 1e6,
+            args.out.join("fields.zarr").display()
+        );
+        Some(FieldsWriter::create(
+            &out.join("fields.zarr"),
+            grid,
+            units,
+            &sliding.loads,
+            &offsets,
+            &selection,
+            inputs.to_json(),
+        )?)
+    } else {
+        None
+    };
     let mut setup = SlidingSetup::from_run(&config, &sliding);
     setup.interrupt = super::interrupt().clone();
     let progress = Progress::new("slide", "steps", (steps_per_load * sliding.loads.len()) as u64);
     let start = Instant::now();
+    let mut fields_error = None;
     let runs = run_sliding(top, bottom, &setup, |view| {
         let note = format!("load {}/{}", view.load_index + 1, sliding.loads.len());
         progress.set(view.done as u64, view.total as u64, &note);
+        if let (Some(f), None) = (fields.as_mut(), fields_error.as_ref()) {
+            if let Err(e) = f.record(view.load_index, view.step_index, view.pressure, view.labeller.labels()) {
+                // Stop the run: its outputs could not all be written.
+                fields_error = Some(e);
+                setup.interrupt.request();
+            }
+        }
     });
     progress.finish();
+    if let Some(e) = fields_error {
+        return Err(e.into());
+    }
     let runs = runs?;
+    if let Some(f) = fields {
+        f.finish()?;
+    }
     let seconds = start.elapsed().as_secs_f64();
-    let mut inputs = SlidingInputs::of_run(&config, &sliding);
-    inputs.warnings.extend(pair.warnings.iter().cloned());
     let summary = sliding_summary(&inputs, &runs, top.pixel_size(), seconds, steps_per_load);
     write_text(&out.join("series.csv"), &series_csv(&runs))?;
     write_json(&out.join("summary.json"), &summary)?;

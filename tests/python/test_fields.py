@@ -1,0 +1,105 @@
+"""`wearsim slide --save-fields`: the per-step fields file opens in xarray with its coordinates and
+units, and its maps are those of `wearsim contact` at the same offset and of the run's series."""
+
+import json
+import subprocess
+
+import numpy as np
+import pandas as pd
+import pytest
+
+xr = pytest.importorskip("xarray")
+
+RUN = """
+units = "reduced"
+[surface]
+grid = [64, 48]
+length = 1.0
+hurst = 0.7
+lambda_lower = 0.125
+lambda_upper = 0.5
+rms_height = 0.01
+seed = 3
+[material]
+youngs_modulus = 1.0
+poisson_ratio = 0.3
+shear_strength = 0.010
+fracture_energies = [0.25e-6]
+[sliding]
+loads = [2e-3, 4e-3]
+distance = 0.5
+running_in = 0.25
+step_running_in = 4
+step = 1
+"""
+
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory, wearsim_bin):
+    d = tmp_path_factory.mktemp("fields")
+    (d / "run.toml").write_text(RUN)
+    subprocess.run(
+        [wearsim_bin, "--quiet", "slide", d / "run.toml", "--out", d / "slide", "--save-fields", "--fields-every", "3"],
+        check=True,
+        capture_output=True,
+    )
+    return d
+
+
+def test_the_fields_open_in_xarray_with_coordinates_and_units(run):
+    ds = xr.open_zarr(run / "slide" / "fields.zarr")
+    assert dict(ds.sizes) == {"load": 2, "s": 7, "x": 64, "y": 48}
+    for name in ["pressure", "contact", "junctions"]:
+        assert ds[name].dims == ("load", "s", "x", "y")
+    assert ds.contact.dtype == bool and ds.junctions.dtype == np.uint32
+    np.testing.assert_array_equal(ds["load"].values, [2e-3, 4e-3])
+    # Every third step of the schedule: 0, 4, …, 16 px of running-in, then one pixel per step.
+    schedule = pd.read_csv(run / "slide" / "series.csv").query("load == 2e-3")["s"].to_numpy()
+    np.testing.assert_allclose(ds.s.values, schedule[::3])
+    np.testing.assert_array_equal(ds.offset.values, np.rint(ds.s.values * 64).astype(int))
+    np.testing.assert_allclose(ds.x.values, np.arange(64) / 64)
+    assert ds.pressure.attrs["units"] == "E" and ds.s.attrs["units"] == "L" and ds["load"].attrs["units"] == "E L²"
+    assert ds.attrs["units"] == "reduced" and ds.attrs["provenance"]["software"].startswith("wearsim")
+
+
+def test_the_fields_are_the_contact_solutions_of_the_run(run, wearsim_bin):
+    ds = xr.open_zarr(run / "slide" / "fields.zarr")
+    series = pd.read_csv(run / "slide" / "series.csv")
+    pm = 3 * np.sqrt(3) * 0.010
+    for load_index, load in enumerate([2e-3, 4e-3]):
+        for step in [0, 5]:
+            offset = int(ds.offset.values[step])
+            out = run / f"contact-{load_index}-{offset}"
+            subprocess.run(
+                [
+                    wearsim_bin,
+                    "contact",
+                    run / "run.toml",
+                    "--load",
+                    str(load),
+                    "--offset-px",
+                    str(offset),
+                    "--out",
+                    out,
+                ],
+                check=True,
+                capture_output=True,
+            )
+            p_contact = np.load(out / "pressure.npy")
+            p_fields = ds.pressure.isel(load=load_index, s=step).values
+            contact = ds.contact.isel(load=load_index, s=step).values
+            assert p_fields.shape == p_contact.shape == (64, 48)
+            if step == 0:
+                # Both start cold at s = 0: the same solve, bit for bit.
+                np.testing.assert_array_equal(p_fields, p_contact)
+            else:
+                # The run warm-starts from the previous step; both are converged solutions.
+                assert np.abs(p_fields - p_contact).max() < 1e-6 * pm
+                assert np.count_nonzero(contact != (p_contact > 0)) <= 2
+            np.testing.assert_array_equal(contact, p_fields > 0)
+            labels = ds.junctions.isel(load=load_index, s=step).values
+            np.testing.assert_array_equal(labels > 0, contact)
+            row = series[(series["load"] == load) & np.isclose(series["s"], ds.s.values[step])].iloc[0]
+            assert len(np.unique(labels[labels > 0])) == row["junctions"]
+            summary = json.loads((out / "summary.json").read_text())
+            assert summary["surfaces"]["grid"] == [64, 48]
