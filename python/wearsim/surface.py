@@ -4,7 +4,9 @@ maps read and prepared, and the self-affine parameters fitted to either.
 Arrays are ``(Nx, Ny)`` float64 with square pixels, ``h[i, j]`` with i along the sliding direction
 x; ``length`` is the side Lx along x, in the unit of lengths (L in reduced units, m in SI).
 Functions that take heights also take a SurfaceTopography topography object (its
-``heights()`` and ``physical_sizes``), so every instrument format SurfaceTopography reads works.
+``heights()`` and ``physical_sizes``), so every instrument format SurfaceTopography reads works. A
+topography that states its ``unit`` (µm, nm, …) is converted to metres, heights and size alike, so
+that it meets SI material properties; one without a unit is taken as it is.
 """
 
 from __future__ import annotations
@@ -41,15 +43,24 @@ def _is_topography(obj: Any) -> bool:
 
 def as_heights(name: str, surface: Any, length: Optional[float] = None) -> Tuple[np.ndarray, float]:
     """``(heights, length)`` of an array-like with its side ``length`` (default 1), or of a
-    SurfaceTopography topography, whose ``physical_sizes`` give the side (in its own unit; pass
-    ``length`` to override it)."""
+    SurfaceTopography topography, whose ``physical_sizes`` give the side; a topography with a
+    ``unit`` comes back in metres (a ``length`` passed here is taken in metres too)."""
     if _is_topography(surface):
         heights = _float_grid(name, surface.heights())
+        if not np.all(np.isfinite(heights)):
+            raise ValueError(
+                f"invalid `{name}`: the topography has missing or non-finite heights; fill or crop them "
+                "(SurfaceTopography's interpolate_undefined_data, or a crop) first"
+            )
+        unit = getattr(surface, "unit", None)
+        scale = _wearsim.metres_per(str(unit)) if unit else 1.0
+        if scale != 1.0:
+            heights = heights * scale
         sizes = surface.physical_sizes
         if length is None:
             if sizes is None:
                 raise ValueError(f"invalid `{name}`: the topography has no physical size; pass `length`")
-            length = float(sizes[0])
+            length = float(sizes[0]) * scale
         return heights, float(length)
     return _float_grid(name, surface), 1.0 if length is None else float(length)
 

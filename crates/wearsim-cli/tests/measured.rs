@@ -14,7 +14,8 @@ use wearsim::surface::pair_seeds;
 use wearsim::{Generation, Grid, SpectrumParams, Surface};
 
 /// A measured-style map: a 64 × 48 self-affine surface (pixel 1 µm, h_rms 0.3 µm) with a tilt and an
-/// offset, cropped to 63 × 47, written in µm as comma-separated text under a header line.
+/// offset, cropped to 63 × 47, written in µm as comma-separated text under a header line, one line
+/// per scan along x. Returns the heights in µm indexed [x, y].
 fn measured(path: &Path, seed: u64) -> Vec<f64> {
     let grid = Grid::new(64, 48, 64e-6).unwrap();
     let spectrum = SpectrumParams {
@@ -26,19 +27,16 @@ fn measured(path: &Path, seed: u64) -> Vec<f64> {
     };
     let h = Surface::generate(grid, &spectrum, seed).unwrap().into_heights();
     let mut text = String::from("Profilometer export, heights in um\n");
-    let mut kept = Vec::new();
-    for i in 0..63 {
-        let row: Vec<String> = (0..47)
-            .map(|j| {
-                let um = h[i * 48 + j] * 1e6 + 5.0 + 0.02 * i as f64 - 0.01 * j as f64;
-                kept.push(um);
-                format!("{um:.6}")
-            })
-            .collect();
-        writeln!(text, "{}", row.join(",")).unwrap();
+    let um = |i: usize, j: usize| h[i * 48 + j] * 1e6 + 5.0 + 0.02 * i as f64 - 0.01 * j as f64;
+    for j in 0..47 {
+        let line: Vec<String> = (0..63).map(|i| format!("{:.6}", um(i, j))).collect();
+        writeln!(text, "{}", line.join(",")).unwrap();
     }
     std::fs::write(path, text).unwrap();
-    kept
+    (0..63)
+        .flat_map(|i| (0..47).map(move |j| (i, j)))
+        .map(|(i, j)| (um(i, j) * 1e6).round() / 1e6)
+        .collect()
 }
 
 const MATERIAL: &str = r#"

@@ -76,7 +76,11 @@ fn slide<'py>(
         solver,
         connectivity,
         sliding: &sliding,
-        warnings: Vec::new(),
+        // Arrays may be measured maps: a border jump the periodic solution would see is reported.
+        warnings: [("top", &t), ("bottom", &b)]
+            .into_iter()
+            .filter_map(|(name, s)| wearsim::topography::periodicity(s.heights(), s.nx(), s.ny()).warning(name))
+            .collect(),
     };
     let mut summary = sliding_summary(&inputs, &runs, t.pixel_size(), seconds, schedule(n, &sliding).len());
     summary.as_object_mut().expect("an object").remove("units");

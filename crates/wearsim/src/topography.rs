@@ -90,7 +90,7 @@ pub fn metres_per(field: &str, unit: &str) -> Result<f64> {
     Ok(match unit {
         "m" => 1.0,
         "mm" => 1e-3,
-        "um" | "µm" | "micron" => 1e-6,
+        "um" | "µm" | "μm" | "micron" => 1e-6,
         "nm" => 1e-9,
         "pm" => 1e-12,
         "A" | "Å" => 1e-10,
@@ -118,7 +118,9 @@ pub struct Measured {
 
 /// Reads a height map: `.npy` (float or integer), `.npz` (the array `heights`, or the only 2D array),
 /// or text — a matrix of numbers separated by spaces, tabs, commas or semicolons (`.txt`, `.csv`,
-/// `.dat`, `.asc`, …), or three columns x, y, z on a regular grid. Lines starting with `#`, `%` or
+/// `.dat`, `.asc`, …), each line a scan line along x and the lines stacked along y (the layout
+/// profilometers export and SurfaceTopography reads), or three columns x, y, z on a regular grid.
+/// `.npy`/`.npz` arrays are indexed `[x, y]`, as wearsim writes them. Lines starting with `#`, `%` or
 /// `//` are comments; non-numeric lines before the first number are a header and skipped.
 pub fn read(path: &Path) -> Result<Measured> {
     match extension(path).as_str() {
@@ -269,11 +271,17 @@ fn read_text(path: &Path) -> Result<Measured> {
     if rows[0].len() == 3 && rows.len() > 3 {
         return columns_to_grid(path, &rows, notes);
     }
-    let (r, c) = (rows.len(), rows[0].len());
+    // Each line is a scan line along x, lines stacked along y (as profilometers export and
+    // SurfaceTopography reads them): the map is the transpose of the file's matrix.
+    let (lines, per_line) = (rows.len(), rows[0].len());
+    let mut heights = Vec::with_capacity(lines * per_line);
+    for i in 0..per_line {
+        heights.extend(rows.iter().map(|line| line[i]));
+    }
     Ok(Measured {
-        rows: r,
-        cols: c,
-        heights: rows.into_iter().flatten().collect(),
+        rows: per_line,
+        cols: lines,
+        heights,
         lengths: None,
         notes,
     })
@@ -590,7 +598,7 @@ pub fn load(path: &Path, how: &FileSurface) -> Result<Loaded> {
         return Err(Error::InvalidSurface {
             name,
             message: format!(
-                "height at row {}, column {} is {} (a missing point); fill or crop non-finite pixels before use",
+                "height at x index {}, y index {} is {} (a missing point); fill or crop non-finite pixels before use",
                 k / ny,
                 k % ny,
                 heights[k]
@@ -893,9 +901,10 @@ mod tests {
         let matrix = dir.path().join("m.csv");
         std::fs::write(&matrix, "# measured\nx,y\n1,2,3\n4,5,6\n").unwrap();
         let m = read(&matrix).unwrap();
+        // Lines are scans along x: 3 pixels along x, 2 along y, indexed [x, y].
         assert_eq!(
             (m.rows, m.cols, m.heights.clone()),
-            (2, 3, vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0])
+            (3, 2, vec![1.0, 4.0, 2.0, 5.0, 3.0, 6.0])
         );
         assert_eq!(m.notes.len(), 1);
         std::fs::write(&matrix, "1 2 3\n4 5\n").unwrap();
