@@ -51,7 +51,7 @@ impl Progress {
             let b = indicatif::ProgressBar::new(total);
             b.set_style(
                 indicatif::ProgressStyle::with_template(&format!(
-                    "{label} {{bar:40}} {{pos}}/{{len}} {unit}, {{per_sec}}, {{eta}} left {{msg}}"
+                    "{label} {{wide_bar}} {{pos}}/{{len}} {unit}, {{per_sec}}, {{eta}} left, {{msg}}"
                 ))
                 .expect("valid template"),
             );

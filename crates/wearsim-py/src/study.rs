@@ -130,8 +130,8 @@ impl PyStudy {
             let requested = workers.unwrap_or_else(rayon::current_num_threads).max(1);
             let (workers, note) = study::workers_for_memory(&jobs, requested)?;
             study::prepare_folder(&out, study, base)?;
-            let summary = study::run_jobs(&out, &jobs, workers, interrupt, |done, total| {
-                done_jobs.set(done, total)
+            let summary = study::run_jobs(&out, &jobs, workers, interrupt, |p| {
+                done_jobs.set(p.jobs_done, p.jobs_total)
             })?;
             Ok((summary, note))
         })?;

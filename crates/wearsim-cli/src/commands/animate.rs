@@ -5,6 +5,7 @@
 
 use std::path::PathBuf;
 
+use crate::progress::Progress;
 use anyhow::{anyhow, Context, Result};
 use plotters::prelude::*;
 use wearsim::junctions::NO_JUNCTION;
@@ -82,7 +83,9 @@ pub fn run(args: &Args) -> Result<()> {
         let root = BitMapBackend::gif(&tmp, (width.max(560), height + 40), delay_ms)
             .map_err(|e| anyhow!("cannot write {}: {e}", tmp.display()))?
             .into_drawing_area();
+        let progress = Progress::new("animate", "frames", 0);
         let ran = run_sliding(&top, &bottom, &setup, |view| {
+            progress.set(view.done as u64, view.total as u64, "");
             if frame_error.is_some() {
                 return;
             }
@@ -137,6 +140,7 @@ pub fn run(args: &Args) -> Result<()> {
                 frame_error = Some(e);
             }
         });
+        progress.finish();
         if let Err(e) = ran {
             frame_error = Some(e.into());
         }

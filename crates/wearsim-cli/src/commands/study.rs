@@ -1,8 +1,8 @@
 //! `wearsim study run | collect`: studies on the local machine or as a Slurm job array.
 
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
+use crate::progress::Progress;
 use anyhow::{bail, Context, Result};
 use wearsim::study::{collect as collect_study, expand, prepare_folder, run_jobs, shard, workers_for_memory};
 
@@ -103,23 +103,17 @@ pub fn run(args: &RunArgs) -> Result<()> {
         study.jobs.len(),
         jobs.len()
     );
-    let bar = std::io::stderr().is_terminal().then(|| {
-        let b = indicatif::ProgressBar::new(0);
-        b.set_style(
-            indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} jobs, {eta} left").expect("valid template"),
-        );
-        b
+    // Progress in sliding steps over every pending job (a study of a few 4096² jobs moves between
+    // jobs too), with the jobs finished beside it.
+    let progress = Progress::new("study", "steps", 0);
+    let outcome = run_jobs(out, &jobs, workers, super::interrupt(), |p| {
+        progress.set(
+            p.steps_done as u64,
+            p.steps_total as u64,
+            &format!("{}/{} jobs done", p.jobs_done, p.jobs_total),
+        )
     });
-    let outcome = run_jobs(out, &jobs, workers, super::interrupt(), |done, total| match &bar {
-        Some(b) => {
-            b.set_length(total as u64);
-            b.set_position(done as u64);
-        }
-        None => eprintln!("job {done}/{total} done"),
-    });
-    if let Some(b) = bar {
-        b.finish_and_clear();
-    }
+    progress.finish();
     let summary = outcome?;
     for why in &summary.recomputed {
         eprintln!("warning: recomputed a job whose file could not be read: {why}");

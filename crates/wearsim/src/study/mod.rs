@@ -19,5 +19,5 @@ pub mod store;
 
 pub use collect::{collect, load_results};
 pub use expand::{expand, expand_stored, Job, Study};
-pub use run::{run_job, run_jobs, shard, workers_for_memory, RunSummary};
+pub use run::{job_steps, run_job, run_job_observed, run_jobs, shard, workers_for_memory, RunSummary, StudyProgress};
 pub use store::{job_path, prepare_folder, stored_result, write_result, Stored};

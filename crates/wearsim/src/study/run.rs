@@ -13,6 +13,19 @@ use crate::study::store::{stored_result, write_result, Claim, Stored, CLAIM_REFR
 
 /// Runs one job; a raised `interrupt` stops it with [`Error::Interrupted`].
 pub fn run_job(job: &Job, interrupt: &Interrupt) -> Result<JobResult> {
+    run_job_observed(job, interrupt, || {})
+}
+
+/// Sliding steps of a job (its schedule on its grid), for progress in steps.
+pub fn job_steps(job: &Job) -> usize {
+    match (job.run.sliding.as_ref(), job.run.grid()) {
+        (Some(s), Ok(grid)) => s.offsets(grid.nx()).len() * s.loads.len(),
+        _ => 0,
+    }
+}
+
+/// [`run_job`], calling `on_step` after every sliding step (progress of a long job).
+pub fn run_job_observed(job: &Job, interrupt: &Interrupt, on_step: impl Fn()) -> Result<JobResult> {
     let start = std::time::Instant::now();
     let run = &job.run;
     let sliding = run
@@ -22,7 +35,7 @@ pub fn run_job(job: &Job, interrupt: &Interrupt) -> Result<JobResult> {
     let (top, bottom) = run.surfaces()?;
     let mut setup = SlidingSetup::from_run(run, sliding);
     setup.interrupt = interrupt.clone();
-    let mut runs = run_sliding(&top, &bottom, &setup, |_| {})?;
+    let mut runs = run_sliding(&top, &bottom, &setup, |_| on_step())?;
     let r = runs.pop().ok_or_else(|| Error::param("loads", "job without a load"))?;
     Ok(JobResult {
         format: crate::output::JOB_FORMAT,
@@ -51,6 +64,17 @@ pub fn shard(jobs: &[Job], k: usize, count: usize) -> Vec<&Job> {
     jobs.iter().filter(|j| j.index % count == k - 1).collect()
 }
 
+/// How far a run of a study's jobs is: jobs finished by this run, and sliding steps done (of
+/// finished and running jobs) against the steps of every pending job, so that a study of a few
+/// large jobs shows progress between jobs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StudyProgress {
+    pub jobs_done: usize,
+    pub jobs_total: usize,
+    pub steps_done: usize,
+    pub steps_total: usize,
+}
+
 /// What a run of a study's jobs did.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct RunSummary {
@@ -70,14 +94,14 @@ pub struct RunSummary {
 /// run has claimed is left to it; every other is claimed, computed, written and released, so runs
 /// sharing a folder compute each job once. A failing job does not stop the others: the finished
 /// ones are written and [`Error::JobsFailed`] names the failed ones, which a new run retries.
-/// `progress(done, total)` is called after each job. A raised `interrupt` stops the jobs under way
+/// `progress` is called after every sliding step and every job. A raised `interrupt` stops the jobs under way
 /// (finished job files stay, so a later run resumes) and returns [`Error::Interrupted`].
 pub fn run_jobs(
     dir: &Path,
     jobs: &[&Job],
     workers: usize,
     interrupt: &Interrupt,
-    progress: impl Fn(usize, usize) + Sync,
+    progress: impl Fn(StudyProgress) + Sync,
 ) -> Result<RunSummary> {
     let mut summary = RunSummary::default();
     let mut pending: Vec<&Job> = Vec::new();
@@ -93,6 +117,16 @@ pub fn run_jobs(
     }
     let next = AtomicUsize::new(0);
     let done = AtomicUsize::new(0);
+    let steps_done = AtomicUsize::new(0);
+    let steps_total: usize = pending.iter().map(|j| job_steps(j)).sum();
+    let report = |jobs_done: usize| {
+        progress(StudyProgress {
+            jobs_done,
+            jobs_total: pending.len(),
+            steps_done: steps_done.load(Ordering::Relaxed).min(steps_total),
+            steps_total,
+        })
+    };
     let failed: Mutex<Vec<Error>> = Mutex::new(Vec::new());
     let elsewhere: Mutex<Vec<usize>> = Mutex::new(Vec::new());
     let held: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
@@ -137,12 +171,17 @@ pub fn run_jobs(
                         }
                         held.lock().map_err(|_| lock_error())?.push(claim.path().to_path_buf());
                         let outcome = pool
-                            .install(|| run_job(job, interrupt))
+                            .install(|| {
+                                run_job_observed(job, interrupt, || {
+                                    steps_done.fetch_add(1, Ordering::Relaxed);
+                                    report(done.load(Ordering::Relaxed));
+                                })
+                            })
                             .and_then(|r| write_result(dir, &r));
                         held.lock().map_err(|_| lock_error())?.retain(|p| p != claim.path());
                         drop(claim);
                         match outcome {
-                            Ok(()) => progress(done.fetch_add(1, Ordering::SeqCst) + 1, pending.len()),
+                            Ok(()) => report(done.fetch_add(1, Ordering::SeqCst) + 1),
                             Err(Error::Interrupted) => return Err(Error::Interrupted),
                             Err(e) => failed.lock().map_err(|_| lock_error())?.push(Error::Job {
                                 index: job.index,
