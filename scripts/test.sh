@@ -5,7 +5,8 @@
 #   the Python package: one abi3 wheel built by maturin, installed into a fresh venv with cargo off the
 #   PATH (a user without a Rust toolchain) and into .venv with the pinned test dependencies of
 #   tests/python/requirements.txt; its type stubs (mypy stubtest), mypy, the pytest suite (API, studies on
-#   a Dask LocalCluster, cross-checks against tamaas from PyPI) and examples/python/quickstart.py.
+#   a Dask LocalCluster, cross-checks against tamaas from PyPI); examples/python/quickstart.py runs in the
+#   fresh venv.
 # The Python dependencies are installed in the background while Rust compiles.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -50,12 +51,13 @@ rm -rf target/wheels
 wheel=$(ls target/wheels/wearsim-*.whl)
 echo "built $wheel"
 
-phase "The wheel in a fresh venv, without cargo on the PATH"
+phase "The wheel in a fresh venv, without cargo on the PATH: import, then the README's quickstart"
 fresh="$(mktemp -d)/venv"
 python3 -m venv "$fresh"
 no_cargo_path=$(printf '%s' "$PATH" | tr ':' '\n' | grep -v -e cargo -e rustup | paste -sd: -)
-(cd /tmp && env PATH="$no_cargo_path" "$fresh/bin/python" -m pip install -q "$root/$wheel")
+(cd /tmp && env PATH="$no_cargo_path" "$fresh/bin/python" -m pip install -q "$root/$wheel[examples]")
 (cd /tmp && env PATH="$no_cargo_path" "$fresh/bin/python" -c "import shutil, wearsim; assert shutil.which('cargo') is None; print('wearsim', wearsim.__version__, 'from the wheel, without cargo')")
+env PATH="$no_cargo_path" MPLBACKEND=Agg "$fresh/bin/python" examples/python/quickstart.py --out "$(mktemp -d)/python-example"
 rm -rf "$fresh"
 
 phase "The wheel in .venv; type stubs against the compiled module; mypy"
@@ -66,8 +68,5 @@ phase "The wheel in .venv; type stubs against the compiled module; mypy"
 
 phase "Python tests: pytest"
 WEARSIM_BIN="$root/target/release/wearsim" .venv/bin/python -m pytest -rs tests/python
-
-phase "Python example: examples/python/quickstart.py"
-MPLBACKEND=Agg .venv/bin/python examples/python/quickstart.py --out "$(mktemp -d)/python-example"
 
 phase "All tests passed"
