@@ -126,16 +126,23 @@ pub fn read(path: &Path) -> Result<Measured> {
     match extension(path).as_str() {
         "npy" => {
             let a = read_npy_2d(path, &HEIGHT_TYPES, "a height map")?;
-            Ok(Measured {
-                rows: a.rows,
-                cols: a.cols,
-                heights: a.values,
-                lengths: None,
-                notes: Vec::new(),
-            })
+            Ok(a.into())
         }
         "npz" => read_npz(path),
         _ => read_text(path),
+    }
+}
+
+/// A NumPy array as a height map: `[x, y]`, sizes from the run file.
+impl From<crate::io::Npy2> for Measured {
+    fn from(a: crate::io::Npy2) -> Self {
+        Measured {
+            rows: a.rows,
+            cols: a.cols,
+            heights: a.values,
+            lengths: None,
+            notes: Vec::new(),
+        }
     }
 }
 
@@ -175,13 +182,7 @@ fn read_npz(path: &Path) -> Result<Measured> {
     let size = entry.size();
     let inner = path.join(&chosen);
     let a = read_npy_2d_from(&mut entry, size, &inner, &HEIGHT_TYPES, "a height map")?;
-    Ok(Measured {
-        rows: a.rows,
-        cols: a.cols,
-        heights: a.values,
-        lengths: None,
-        notes: Vec::new(),
-    })
+    Ok(a.into())
 }
 
 /// Element types a height map may have.
