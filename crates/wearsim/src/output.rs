@@ -913,7 +913,7 @@ const FIELD_CHUNK: usize = 1024;
 /// provenance and the run's inputs on the group.
 #[derive(Debug)]
 pub struct FieldsWriter {
-    group: Option<crate::io::ZarrGroup>,
+    group: crate::io::ZarrGroup,
     pressure: crate::io::ZarrArray,
     contact: crate::io::ZarrArray,
     junctions: crate::io::ZarrArray,
@@ -1031,7 +1031,7 @@ impl FieldsWriter {
             }),
         )?;
         Ok(Self {
-            group: Some(group),
+            group,
             pressure,
             contact,
             junctions,
@@ -1074,10 +1074,7 @@ impl FieldsWriter {
     }
 
     /// Writes the consolidated metadata; the store is complete.
-    pub fn finish(mut self) -> Result<()> {
-        match self.group.take() {
-            Some(g) => g.finish(),
-            None => Ok(()),
-        }
+    pub fn finish(self) -> Result<()> {
+        self.group.finish()
     }
 }
