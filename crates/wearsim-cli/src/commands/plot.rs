@@ -23,7 +23,7 @@ use anyhow::{anyhow, bail, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use wearsim::config::{SurfaceSource, Units};
-use wearsim::output::{JobResult, Table, TidyRow};
+use wearsim::output::{unit_of, JobResult, Table, TidyRow};
 use wearsim::sliding::WearResult;
 use wearsim::stats::line_fit;
 use wearsim::study::findings::{findings, markdown};
@@ -50,40 +50,32 @@ pub struct Args {
     figures: Option<Vec<String>>,
 }
 
-/// The unit names of a study's axes.
+/// The unit names of a study's axes: those of the library's tables ([`unit_of`]), and values shown
+/// in legends with their unit.
 #[derive(Debug, Clone, Copy)]
 struct Units2 {
+    system: Units,
     si: bool,
 }
 
 impl Units2 {
-    fn load(self) -> &'static str {
-        if self.si {
-            "N"
-        } else {
-            "E L²"
+    fn of(system: Units) -> Self {
+        Self {
+            system,
+            si: system == Units::Si,
         }
+    }
+    fn load(self) -> &'static str {
+        unit_of(self.system, "load")
     }
     fn length(self) -> &'static str {
-        if self.si {
-            "m"
-        } else {
-            "L"
-        }
+        unit_of(self.system, "length")
     }
     fn area(self) -> &'static str {
-        if self.si {
-            "m²"
-        } else {
-            "L²"
-        }
+        unit_of(self.system, "wear_rate")
     }
     fn volume(self) -> &'static str {
-        if self.si {
-            "m³"
-        } else {
-            "L³"
-        }
+        unit_of(self.system, "volume")
     }
     /// A length for legends (µm in SI).
     fn show_length(self, v: f64) -> String {
@@ -172,9 +164,7 @@ struct Data {
 impl Data {
     fn new(jobs: Vec<Job>, results: Vec<JobResult>) -> Result<Self> {
         let first = jobs.first().ok_or_else(|| anyhow!("the study has no jobs"))?;
-        let units = Units2 {
-            si: first.run.units == Units::Si,
-        };
+        let units = Units2::of(first.run.units);
         let mut materials: Vec<String> = Vec::new();
         let mut curves: Vec<Curve> = Vec::new();
         let mut index: BTreeMap<String, usize> = BTreeMap::new();
