@@ -231,7 +231,9 @@ def contact_severity(tidy: pd.DataFrame) -> Any:
     k_ic = np.sqrt(
         rows["fracture_energy"] * rows["material.youngs_modulus"] / (1 - rows["material.poisson_ratio"] ** 2)
     )
-    s_c = rows["load"] / rows["surface.length"] ** 2 * np.sqrt(rows["surface.rms_height"]) / k_ic
+    # p_N = F_N / (Lx Ly); Ly is empty on square grids.
+    length_y = rows.get("surface.length_y", pd.Series(np.nan, index=rows.index)).fillna(rows["surface.length"])
+    s_c = rows["load"] / (rows["surface.length"] * length_y) * np.sqrt(rows["surface.rms_height"]) / k_ic
     fig, ax = plt.subplots(figsize=(8.5, 5.0))
     for i, material in enumerate(dict.fromkeys(rows["material"])):
         mine = rows["material"] == material

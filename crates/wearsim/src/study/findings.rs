@@ -49,7 +49,7 @@ struct Setting {
     family: String,
     shear_strength: f64,
     fracture_energy: f64,
-    /// Mean pressure F_N/L² of the box.
+    /// Mean pressure F_N/(Lx Ly) of the box.
     pressure: f64,
     pixel_size: f64,
     /// "m" in SI studies, "L" in reduced ones: the unit of lengths in the observations.
@@ -91,6 +91,10 @@ fn settings(tidy: &Table) -> Vec<Setting> {
         .map(|row| {
             let num = |name: &str| col(name).map_or(f64::NAN, |i| row[i].number());
             let length = num("surface.length");
+            // Ly is empty on square grids.
+            let length_y = Some(num("surface.length_y"))
+                .filter(|l| l.is_finite())
+                .unwrap_or(length);
             let grid = num("surface.grid");
             let mut family = Vec::new();
             let mut values = BTreeMap::new();
@@ -108,7 +112,7 @@ fn settings(tidy: &Table) -> Vec<Setting> {
                 family: family.join("|"),
                 shear_strength: num("material.shear_strength"),
                 fracture_energy: num("fracture_energy"),
-                pressure: num("load") / (length * length),
+                pressure: num("load") / (length * length_y),
                 pixel_size: length / grid,
                 length_unit: if col("units").is_some_and(|i| row[i].text() == "si") {
                     "m"
@@ -524,5 +528,17 @@ mod tests {
             Verdict::NotReproduced
         );
         assert!(markdown(&f).lines().count() == f.len() + 2);
+    }
+
+    #[test]
+    fn the_pressure_of_a_setting_is_the_load_over_the_box_area() {
+        let square = settings(&table(false));
+        assert!(square.iter().all(|s| s.pressure == 1e-3 || s.pressure == 2e-3));
+        // The same rows on a box of 1 × 0.5: twice the pressure.
+        let mut tidy = table(false);
+        let i = tidy.columns.iter().position(|c| c == "surface.length_y").unwrap();
+        tidy.rows.iter_mut().for_each(|r| r[i] = Cell::Float(0.5));
+        let oblong = settings(&tidy);
+        assert!(oblong.iter().all(|s| s.pressure == 2e-3 || s.pressure == 4e-3));
     }
 }
