@@ -6,8 +6,8 @@
 //! infinite periodic one: where the heights at opposite borders differ, the periodic surface has a
 //! ridge or a cliff there, which carries load and makes junctions that the real surface does not
 //! have. `detrend` removes the tilt (a plane) or the form (a quadratic) that causes most of the
-//! jump, `taper` brings the heights smoothly to zero over a fraction of each border (at the cost of
-//! flattening that strip), and [`periodicity`] measures what is left. The cleanest route for the
+//! jump, `taper` brings the heights smoothly to their mean over a fraction of each border (at the
+//! cost of flattening that strip), and [`periodicity`] measures what is left. The cleanest route for the
 //! paper's model, which assumes periodic self-affine surfaces, is [`fit`]: estimate H, λ_l, λ_u and
 //! h_rms from the measurement and generate periodic surfaces with them.
 
