@@ -1,7 +1,7 @@
 //! Saturated-pressure (elastic–perfectly-plastic) contact of a rigid rough surface on a periodic
 //! elastic half-space, solved by FFT boundary elements (paper §2 and appendix A).
 //!
-//! Problem: find p minimising ½⟨p, 𝒦p⟩ − ⟨p, h⟩ subject to 0 ≤ p ≤ p_m and mean(p) = F_N/L², where
+//! Problem: find p minimising ½⟨p, 𝒦p⟩ − ⟨p, h⟩ subject to 0 ≤ p ≤ p_m and mean(p) = F_N/(Lx Ly), where
 //! û(q) = 2 p̂(q)/(E*|k|) is the periodic half-space displacement. Its optimality conditions, with
 //! g = 𝒦p − h and c the Lagrange multiplier of the load (the rigid body's position), are
 //! g + c ≥ 0 where p = 0, g + c = 0 where 0 < p < p_m, g + c ≤ 0 where p = p_m.
@@ -290,13 +290,13 @@ impl Stats {
     }
 }
 
-/// FFT contact solver for one grid: plans, the influence kernel and all N² work buffers are made
+/// FFT contact solver for one grid: plans, the influence kernel and all Nx·Ny work buffers are made
 /// once here and reused by every solve (a sliding run makes one solver).
 pub struct ContactSolver {
     grid: Grid,
     effective_modulus: f64,
     plan: FftPlan,
-    /// Fourier multiplier of 𝒦 (1/N² folded in), transposed half-spectrum layout.
+    /// Fourier multiplier of 𝒦 (1/(Nx·Ny) folded in), transposed half-spectrum layout.
     kernel: Vec<f64>,
     /// Displacement of a single unit-pressure pixel at that pixel, 𝒦ᵢᵢ.
     self_influence: f64,
@@ -319,7 +319,7 @@ pub struct ContactSolver {
 struct SolveState {
     /// Flow pressure p_m.
     pm: f64,
-    /// Total load Σp = N² F_N/L².
+    /// Total load Σp = Nx Ny F_N/(Lx Ly).
     total: f64,
     /// Residual scale: std(h), or P·L/E* for a flat surface.
     scale: f64,
@@ -421,7 +421,7 @@ impl ContactSolver {
     }
 
     /// Solves the contact of the rigid surface of heights `heights` at mean pressure
-    /// `mean_pressure` = F_N/L², with flow pressure `flow_pressure` (`f64::INFINITY` for a purely
+    /// `mean_pressure` = F_N/(Lx Ly), with flow pressure `flow_pressure` (`f64::INFINITY` for a purely
     /// elastic solve). `pressure` is both the initial guess and the result: pass the previous
     /// step's converged field to warm-start, or zeros for a cold start (uniform pressure).
     /// Reaching the iteration limit is an [`Error::NotConverged`].

@@ -3,7 +3,7 @@
 //! Every solver iteration applies the half-space influence operator 𝒦 once, that is one real 2D FFT
 //! round trip with a multiplication by a real kernel in between. This module is that round trip,
 //! tuned for memory traffic (docs/performance.md has the measurements):
-//! - plans are made once ([`FftPlan::new`]) and every N² buffer is preallocated;
+//! - plans are made once ([`FftPlan::new`]) and every Nx·Ny buffer is preallocated;
 //! - the half spectrum is kept *transposed*: `N/2 + 1` rows (one per `q_y`) of length `N` (over
 //!   `q_x`), each row padded to `N + 4` so that the stride is not a power of two;
 //! - the transpose is fused into the row passes, in blocks of [`BLOCK`] rows;
@@ -85,7 +85,7 @@ impl<T> SharedMut<T> {
 unsafe impl<T: Send> Send for SharedMut<T> {}
 unsafe impl<T: Send> Sync for SharedMut<T> {}
 
-/// FFT plans and the transposed half-spectrum buffer for one N×N grid.
+/// FFT plans and the transposed half-spectrum buffer for one Nx × Ny grid.
 pub struct FftPlan {
     nx: usize,
     ny: usize,

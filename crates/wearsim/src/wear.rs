@@ -98,7 +98,7 @@ impl SlidingBookkeeping {
         &self.states
     }
 
-    /// Advances by one step on the labelled contact map. `scratch` is an N² flag buffer, all false on
+    /// Advances by one step on the labelled contact map. `scratch` is an Nx·Ny flag buffer, all false on
     /// entry and on exit, shared between the bookkeepings of a run.
     pub fn step(&mut self, labeller: &JunctionLabeller, junctions: &[Junction], scratch: &mut [bool]) -> StepWear {
         mark_overlapping(labeller, &self.blocked, scratch, &mut self.overlap);
@@ -133,7 +133,7 @@ impl SlidingBookkeeping {
 }
 
 /// Marks, in `overlap` (one flag per junction of `labeller`), the junctions that share a pixel with
-/// `pixels` (a previous step's pixels). `scratch` is an N² flag buffer, all false on entry and exit.
+/// `pixels` (a previous step's pixels). `scratch` is an Nx·Ny flag buffer, all false on entry and exit.
 fn mark_overlapping(labeller: &JunctionLabeller, pixels: &[u32], scratch: &mut [bool], overlap: &mut Vec<bool>) {
     let labels = labeller.labels();
     for &k in pixels {
