@@ -567,6 +567,32 @@ pub fn surface_summary(config: &RunConfig, top: &SurfaceStatistics, bottom: &Sur
     })
 }
 
+/// `fit.json` of `wearsim surface fit`: the file, how it was prepared, the fitted parameters, the
+/// spectrum a run would generate from them and what was adjusted on the way (`notes`).
+pub fn surface_fit_summary(
+    file: &std::path::Path,
+    preprocess: &crate::topography::Preprocess,
+    length_unit: &str,
+    grid: &crate::grid::Grid,
+    fit: &crate::topography::SpectrumFit,
+    spectrum: &crate::surface::SpectrumParams,
+    notes: &[String],
+) -> Value {
+    json!({
+        "provenance": Provenance::current(),
+        "file": file,
+        "detrend": preprocess.detrend.name(),
+        "taper": preprocess.taper,
+        "length_unit": length_unit,
+        "grid": [grid.nx(), grid.ny()],
+        "length": [grid.length_x(), grid.length_y()],
+        "fit": fit,
+        "spectrum": spectrum,
+        "notes": notes,
+        "method": crate::topography::FIT_METHOD,
+    })
+}
+
 /// `junctions.json` of `wearsim junctions`: pixel count per junction.
 pub fn junctions_summary(connectivity: u8, pixels: &[usize]) -> Value {
     json!({

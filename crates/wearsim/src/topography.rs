@@ -675,6 +675,12 @@ pub struct SpectrumFit {
     pub shells: usize,
 }
 
+/// How [`fit`] works, in one sentence for the documents that report a fit.
+pub const FIT_METHOD: &str =
+    "least-squares line through ln PSD against ln q over the shells that follow it (grown from \
+the middle of the spectrum while each shell stays within a factor 2 of the line); slope −2(1+H); λ_l and λ_u where the \
+power law ends";
+
 /// Estimates H, λ_l, λ_u and h_rms from the radially averaged PSD of `surface`: the power law is
 /// fitted in log–log over the wavenumbers where the PSD follows it (grown from the middle of the
 /// spectrum while each shell stays within a factor 2 of the line), and the cut-offs are where it

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
 use wearsim::io::{write_json, write_text, OutputDir};
-use wearsim::output::{surface_summary, Provenance, SurfaceStatistics};
+use wearsim::output::{surface_fit_summary, surface_summary, SurfaceStatistics};
 use wearsim::surface::pair_seeds;
 use wearsim::topography::{self, Detrend, FileSurface, Preprocess};
 use wearsim::Surface;
@@ -63,7 +63,8 @@ struct FitArgs {
     /// Output folder: surface.toml (the block) and fit.json.
     #[arg(long)]
     out: Option<PathBuf>,
-    /// Also write the synthetic periodic pair (top.npy, bottom.npy) and its statistics into --out.
+    /// Also write the synthetic periodic pair (top.npy, bottom.npy) into --out and print its
+    /// statistics.
     #[arg(long, requires = "out")]
     generate: bool,
     /// Replace the output folder even when it holds another command's results or other files.
@@ -175,22 +176,10 @@ fn run_fit(args: &FitArgs) -> Result<()> {
     print!("{block}");
     let Some(dir) = dir else { return Ok(()) };
     write_text(&dir.join("surface.toml"), &block)?;
-    let record = serde_json::json!({
-        "provenance": Provenance::current(),
-        "file": args.file,
-        "detrend": detrend.name(),
-        "taper": args.taper,
-        "length_unit": unit,
-        "grid": [grid.nx(), grid.ny()],
-        "length": [grid.length_x(), grid.length_y()],
-        "fit": fit,
-        "spectrum": spectrum,
-        "notes": notes,
-        "method": "least-squares line through ln PSD against ln q over the shells that follow it (grown from the middle \
-                   of the spectrum while each shell stays within a factor 2 of the line); slope −2(1+H); λ_l and λ_u where \
-                   the power law ends",
-    });
-    write_json(&dir.join("fit.json"), &record)?;
+    write_json(
+        &dir.join("fit.json"),
+        &surface_fit_summary(&args.file, &how.preprocess, unit, &grid, &fit, &spectrum, &notes),
+    )?;
     if args.generate {
         let (a, b) = pair_seeds(args.seed);
         for (name, seed) in [("top", a), ("bottom", b)] {
