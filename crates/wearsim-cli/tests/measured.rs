@@ -178,6 +178,9 @@ fn surface_fit_recovers_generated_parameters_and_its_block_runs() {
         "--generate",
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
+    // An array states no size: the error says which flag gives it, once, naming the file once.
+    let e = stderr(&run(&["surface", "fit", s(&dir.path().join("s/top.npy"))]));
+    assert!(e.contains("--length") && e.matches("top.npy").count() == 1, "{e}");
     let record: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(fit.join("fit.json")).unwrap()).unwrap();
     let f = &record["fit"];

@@ -551,10 +551,14 @@ pub fn file_grid(
         (Some(lx), None) => lx / rows as f64,
         (None, Some((fx, _))) => fx * how.lateral_scale / rows as f64,
         (None, None) => {
-            return Err(Error::run_file(format!(
-                "[surface] `length` is missing: {name} holds heights only, so give its physical size, length = Lx or \
-                 [Lx, Ly] (along its first and second axes)"
-            )))
+            // Run files are checked for `length` before; this is `surface fit` or Python's reader.
+            return Err(Error::param(
+                "length",
+                format!(
+                    "missing: {name} holds heights only, so give its physical size along its first and second axes \
+                     (`--length LX [--length LY]`, or `length=(Lx, Ly)` in Python)"
+                ),
+            ));
         }
     };
     if let Some(ly) = how.length_y {

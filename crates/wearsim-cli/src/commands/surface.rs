@@ -138,7 +138,8 @@ fn run_fit(args: &FitArgs) -> Result<()> {
         Some(out) => Some(OutputDir::begin(out, "surface-fit", args.overwrite)?),
         None => None,
     };
-    let loaded = topography::load(&args.file, &how).with_context(|| format!("{}", args.file.display()))?;
+    // The library's errors name the file already.
+    let loaded = topography::load(&args.file, &how)?;
     for note in &loaded.notes {
         eprintln!("note: {note}");
     }
