@@ -7,8 +7,9 @@ use numpy::PyReadonlyArray2;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use wearsim::config::{RunConfig, SlidingConfig};
+use wearsim::config::RunConfig;
 use wearsim::output::{series_rows, sliding_summary, SlidingInputs, Table};
+use wearsim::sliding::SlidingConfig;
 use wearsim::sliding::{run_sliding, schedule, LoadRun, SlidingSetup};
 use wearsim::{ModulusConvention, SolverOptions};
 

@@ -7,10 +7,11 @@ use serde::Deserialize;
 
 use crate::check::{connectivity as check_connectivity, positive};
 use crate::contact::SolverOptions;
-use crate::error::{Error, Result};
+use crate::error::{Error, Interrupt, Result};
 use crate::grid::Grid;
 use crate::io::{parent_or_dot, read_text};
 use crate::material::{Material, ModulusConvention};
+use crate::sliding::{SlidingConfig, SlidingSetup};
 use crate::surface::{pair_seeds, Generation, SpectrumParams, Surface};
 use crate::topography::{metres_per, Detrend, FileSurface, Preprocess};
 
@@ -188,120 +189,6 @@ pub struct SurfacePair {
     pub bottom: Surface,
     pub notes: Vec<String>,
     pub warnings: Vec<String>,
-}
-
-/// The sliding schedule (paper §3); distances as fractions of L, steps in pixels.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct SlidingConfig {
-    /// Normal loads F_N (E·L² reduced, N in SI).
-    pub loads: Vec<f64>,
-    /// Total sliding distance as a fraction of L (default ½).
-    pub distance: f64,
-    /// Running-in distance as a fraction of L (default ¼).
-    pub running_in: f64,
-    /// Step during running-in, in pixels (default 4).
-    pub step_running_in: usize,
-    /// Step after running-in, in pixels (default 1).
-    pub step: usize,
-}
-
-impl SlidingConfig {
-    /// A validated schedule; `grid`, when known, bounds the steps and must leave at least two steps
-    /// after running-in ([`SlidingConfig::check_grid`]).
-    pub fn new(
-        loads: Vec<f64>,
-        distance: f64,
-        running_in: f64,
-        step_running_in: usize,
-        step: usize,
-        grid: Option<usize>,
-    ) -> Result<Self> {
-        if loads.is_empty() {
-            return Err(Error::param(
-                "loads",
-                "the list is empty; give at least one normal load",
-            ));
-        }
-        for &f in &loads {
-            positive("loads", f)?;
-        }
-        if !(distance > 0.0 && distance <= 1.0) {
-            return Err(Error::param(
-                "distance",
-                format!("{distance} must lie in (0, 1] (a fraction of L)"),
-            ));
-        }
-        if !(running_in >= 0.0 && running_in < distance) {
-            return Err(Error::param(
-                "running_in",
-                format!("{running_in} must lie in [0, distance = {distance}) (a fraction of L)"),
-            ));
-        }
-        for (field, v) in [("step_running_in", step_running_in), ("step", step)] {
-            if v == 0 {
-                return Err(Error::param(field, format!("{v} pixels must be at least 1")));
-            }
-        }
-        let config = Self {
-            loads,
-            distance,
-            running_in,
-            step_running_in,
-            step,
-        };
-        if let Some(n) = grid {
-            config.check_grid(n)?;
-        }
-        Ok(config)
-    }
-
-    /// Sliding offsets in pixels on an `n`-pixel grid (paper §3): from 0 in steps of
-    /// `step_running_in` while below the running-in distance, then from the running-in distance in
-    /// steps of `step` while below the total distance (the end point excluded). Distances are
-    /// rounded to whole pixels. The paper's schedule gives 1,280 offsets at N = 4096.
-    pub fn offsets(&self, n: usize) -> Vec<usize> {
-        let (running_in, distance) = (self.running_in_pixels(n), self.distance_pixels(n));
-        let mut offsets: Vec<usize> = (0..running_in).step_by(self.step_running_in).collect();
-        offsets.extend((running_in..distance).step_by(self.step));
-        offsets
-    }
-
-    /// The running-in distance in whole pixels.
-    pub fn running_in_pixels(&self, n: usize) -> usize {
-        (self.running_in * n as f64).round() as usize
-    }
-
-    fn distance_pixels(&self, n: usize) -> usize {
-        (self.distance * n as f64).round() as usize
-    }
-
-    /// Checks the schedule on an `n`-pixel grid: steps below the grid size, and at least two steps
-    /// after running-in, the fewest a wear rate can be fitted to.
-    pub fn check_grid(&self, n: usize) -> Result<()> {
-        for (field, step) in [("step_running_in", self.step_running_in), ("step", self.step)] {
-            if step >= n {
-                return Err(Error::param(
-                    field,
-                    format!("{step} pixels must be below the grid size {n}"),
-                ));
-            }
-        }
-        let fitted = (self.running_in_pixels(n)..self.distance_pixels(n))
-            .step_by(self.step)
-            .count();
-        if fitted < 2 {
-            return Err(Error::param(
-                "distance",
-                format!(
-                    "{} − running_in {} leaves {fitted} step(s) of {} px on the {n}-pixel grid after running-in; the \
-                     wear rate is a line fitted to at least two: raise `distance`, lower `running_in` or `step`, or \
-                     refine `grid`",
-                    self.distance, self.running_in, self.step
-                ),
-            ));
-        }
-        Ok(())
-    }
 }
 
 /// Whether the surface files a run names must exist when it is read: for a run about to be
@@ -780,6 +667,20 @@ impl RunConfig {
     }
 }
 
+impl<'a> SlidingSetup<'a> {
+    /// The setup a run file describes, for the given schedule (the run's own, or one load of it).
+    pub fn from_run(run: &'a RunConfig, sliding: &'a SlidingConfig) -> Self {
+        Self {
+            material: &run.material,
+            effective_modulus: run.effective_modulus(),
+            solver: run.solver,
+            connectivity: run.connectivity,
+            sliding,
+            interrupt: Interrupt::default(),
+        }
+    }
+}
+
 /// Every input of a run as one flat record with the same fields for every run (absent ones empty):
 /// the input columns of a study's results table, and what identifies a study job in its job file.
 /// Field names are the run file's `section.key`.
@@ -872,41 +773,6 @@ loads = [1e-3]
         assert_eq!(c.sliding.as_ref().unwrap().step_running_in, 4);
         let (t, b) = c.surfaces().unwrap();
         assert_ne!(t, b);
-    }
-
-    fn schedule(distance: f64, running_in: f64, step: usize) -> SlidingConfig {
-        SlidingConfig {
-            loads: vec![1e-3],
-            distance,
-            running_in,
-            step_running_in: 4,
-            step,
-        }
-    }
-
-    #[test]
-    fn paper_schedule_has_1280_offsets_at_4096_and_160_at_512() {
-        let cfg = schedule(0.5, 0.25, 1);
-        let s = cfg.offsets(4096);
-        assert_eq!(s.len(), 1280);
-        assert_eq!(&s[..3], &[0, 4, 8]);
-        assert_eq!(s[255], 1020);
-        assert_eq!(s[256], 1024);
-        assert_eq!(*s.last().unwrap(), 2047);
-        assert_eq!(cfg.offsets(512).len(), 160);
-    }
-
-    #[test]
-    fn a_schedule_needs_two_steps_after_running_in() {
-        assert!(schedule(0.5, 0.25, 1).check_grid(64).is_ok());
-        // 64 px: running-in 16 px, distance 17 px → one fitted step.
-        let e = schedule(0.27, 0.25, 1).check_grid(64).unwrap_err().to_string();
-        assert!(e.contains("`distance`") && e.contains("1 step"), "{e}");
-        assert!(schedule(0.5, 0.25, 64)
-            .check_grid(64)
-            .unwrap_err()
-            .to_string()
-            .contains("`step`"));
     }
 
     #[test]

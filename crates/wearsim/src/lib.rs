@@ -12,8 +12,8 @@
 //!   maps read, prepared and fitted with self-affine parameters;
 //! - [`contact`]: the saturated-pressure FFT boundary-element solver;
 //! - [`junctions`] and [`wear`]: junctions of a contact map and the wear bookkeeping;
+//! - [`sliding`]: the sliding simulation, step by step, and its schedule;
 //! - [`config`]: run files turned into validated inputs;
-//! - [`sliding`]: the sliding simulation, step by step;
 //! - [`output`]: every result document (summaries, series, job files, tables);
 //! - [`study`]: study files expanded into jobs, run resumably, collected.
 //!

@@ -1,6 +1,6 @@
 //! The library's modules import one way only: each module may use the modules listed before it in
 //! `LAYERS`, never one after it (the data flow of the model: parameters → surfaces → contact →
-//! junctions → wear → sliding → outputs → studies). A new module gets a place in this list.
+//! junctions → wear → sliding → run files → outputs → studies). A new module gets a place in this list.
 
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -18,8 +18,8 @@ const LAYERS: [&str; 16] = [
     "contact",
     "junctions",
     "wear",
-    "config",
     "sliding",
+    "config",
     "output",
     "study",
 ];

@@ -6,8 +6,9 @@
 
 use std::path::Path;
 
-use wearsim::config::{RunConfig, SlidingConfig};
+use wearsim::config::RunConfig;
 use wearsim::junctions::JunctionLabeller;
+use wearsim::sliding::SlidingConfig;
 use wearsim::sliding::{run_sliding, LoadRun, SlidingSetup};
 use wearsim::surface::pair_seeds;
 use wearsim::{

@@ -1,8 +1,8 @@
 //! The sliding model end to end on a small grid: bookkeeping invariants, V₀ from an independent
 //! labelling, and independence from the thread count.
 
-use wearsim::config::SlidingConfig;
 use wearsim::junctions::JunctionLabeller;
+use wearsim::sliding::SlidingConfig;
 use wearsim::sliding::{run_sliding, schedule, LoadRun, SlidingSetup};
 use wearsim::surface::pair_seeds;
 use wearsim::{composite_heights, ContactSolver, Generation, Material, ModulusConvention, SpectrumParams, Surface};

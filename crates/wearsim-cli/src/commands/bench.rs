@@ -175,7 +175,7 @@ pub fn run_slide(args: &SlideArgs) -> Result<()> {
     if args.warm_n > 0 {
         check_size(args.warm_n).context("--warm-n")?;
     }
-    use wearsim::config::SlidingConfig;
+    use wearsim::sliding::SlidingConfig;
     use wearsim::sliding::{run_sliding, schedule, SlidingSetup};
     let threads = rayon::current_num_threads();
     let material = Material::new(1.0, 0.3, 0.010, vec![0.25e-6, 0.5e-6, 0.75e-6, 1.0e-6], 3.0)?;

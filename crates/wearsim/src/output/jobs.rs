@@ -1,0 +1,301 @@
+//! Study job files and the results tables collected from them (tidy and aggregated).
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+use serde_json::json;
+
+use crate::config::{InputRecord, Units};
+use crate::error::{Error, Result};
+use crate::sliding::{StepRecord, WearResult};
+
+use super::provenance::Provenance;
+use super::tables::{columns, Cell, Table};
+use super::units::units_map;
+
+/// The format of the job files this version writes; raised whenever what identifies a job or what
+/// a job file holds changes.
+pub const JOB_FORMAT: u32 = 2;
+
+/// What a study's job file holds: which job it is (checked when the file is read back, so that a
+/// file can never be attributed to another job), and its results.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct JobResult {
+    /// The job-file format ([`JOB_FORMAT`]); files of another format come from another version of
+    /// wearsim and are not mixed with this one's.
+    #[serde(default)]
+    pub format: u32,
+    pub provenance: Provenance,
+    pub index: usize,
+    pub material: String,
+    /// Every input of the job.
+    pub inputs: InputRecord,
+    pub load: f64,
+    pub flow_pressure: f64,
+    pub effective_modulus: f64,
+    pub results: Vec<WearResult>,
+    /// Per step: s, junctions, contact area, memory; per fracture energy: n_critical, n_formed,
+    /// volume and the static model.
+    pub steps: Vec<StepRow>,
+    pub total_iterations: usize,
+    pub seconds: f64,
+    /// What makes a result of this job under-resolved or undefined.
+    pub warnings: Vec<String>,
+}
+
+/// One step of a job file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StepRow {
+    pub s: f64,
+    pub junctions: usize,
+    pub contact_area: f64,
+    pub initial_junctions: usize,
+    pub n_critical: Vec<usize>,
+    pub n_formed: Vec<usize>,
+    pub volume: Vec<f64>,
+    pub static_wear_coefficient: Vec<f64>,
+}
+
+impl From<&StepRecord> for StepRow {
+    fn from(r: &StepRecord) -> Self {
+        Self {
+            s: r.s,
+            junctions: r.junctions,
+            contact_area: r.contact_area,
+            initial_junctions: r.initial_junctions,
+            static_wear_coefficient: r.statics.iter().map(|w| w.wear_coefficient).collect(),
+            n_critical: r.wear.iter().map(|w| w.n_critical).collect(),
+            n_formed: r.wear.iter().map(|w| w.n_formed).collect(),
+            volume: r.wear.iter().map(|w| w.volume).collect(),
+        }
+    }
+}
+
+impl JobResult {
+    /// The job file's text.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).expect("job results serialise")
+    }
+
+    /// Parses a job file's text.
+    pub fn from_json(text: &str) -> std::result::Result<Self, serde_json::Error> {
+        serde_json::from_str(text)
+    }
+}
+
+/// One row of a study's tidy table (`results.csv`): one job × fracture energy, with every input of
+/// the job, the load and the results.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct TidyRow {
+    pub job: usize,
+    pub material: String,
+    #[serde(flatten)]
+    pub inputs: InputRecord,
+    pub load: f64,
+    #[serde(flatten)]
+    pub result: WearResult,
+    pub flow_pressure: f64,
+    /// The job's warnings that concern this row (its fracture energy, or all of them), joined by
+    /// "; "; empty when the result is well resolved.
+    pub warnings: String,
+}
+
+impl TidyRow {
+    /// The rows of one job file, one per fracture energy.
+    pub fn of_job(result: &JobResult) -> Vec<TidyRow> {
+        result
+            .results
+            .iter()
+            .map(|w| {
+                // A warning that names a fracture energy belongs to that row only.
+                let tag = format!("𝒢 = {:.4e}", w.fracture_energy);
+                let mine: Vec<&str> = result
+                    .warnings
+                    .iter()
+                    .filter(|m| m.contains(&tag) || !m.contains("𝒢 = "))
+                    .map(String::as_str)
+                    .collect();
+                TidyRow {
+                    job: result.index,
+                    material: result.material.clone(),
+                    inputs: result.inputs.clone(),
+                    load: result.load,
+                    result: w.clone(),
+                    flow_pressure: result.flow_pressure,
+                    warnings: mine.join("; "),
+                }
+            })
+            .collect()
+    }
+}
+
+/// Columns of the tidy table that vary between surface pairs of one setting and are averaged over
+/// in the aggregated table: the results.
+fn result_columns() -> Vec<String> {
+    let mut c: Vec<String> = columns::<WearResult>()
+        .into_iter()
+        .filter(|c| c != "fracture_energy")
+        .collect();
+    c.push("flow_pressure".into());
+    c
+}
+
+/// Columns that neither identify a setting nor are averaged: the job index, the seed, the warnings.
+const NOT_A_SETTING: [&str; 3] = ["job", "surface.seed", "warnings"];
+
+/// The aggregated table of a tidy table: one row per setting (every column but the job index, the
+/// seed and the results), with the number of surface pairs and the mean, min and max over them of
+/// every result column, and the number of surface pairs with a warning. Rows keep the order in which
+/// settings first appear; undefined results (empty cells) are left out of the statistics.
+pub fn aggregate(tidy: &Table) -> Table {
+    let values = result_columns();
+    let value_index: Vec<usize> = values.iter().filter_map(|c| tidy.column(c)).collect();
+    let key_index: Vec<usize> = (0..tidy.columns.len())
+        .filter(|i| !value_index.contains(i) && !NOT_A_SETTING.contains(&tidy.columns[*i].as_str()))
+        .collect();
+    let mut order: BTreeMap<Vec<String>, usize> = BTreeMap::new();
+    let mut groups: Vec<(Vec<Cell>, Vec<&Vec<Cell>>)> = Vec::new();
+    for row in &tidy.rows {
+        let key: Vec<Cell> = key_index.iter().map(|&i| row[i].clone()).collect();
+        let text: Vec<String> = key.iter().map(Cell::text).collect();
+        let g = *order.entry(text).or_insert_with(|| {
+            groups.push((key, Vec::new()));
+            groups.len() - 1
+        });
+        groups[g].1.push(row);
+    }
+    let warnings = tidy.column("warnings");
+    let mut columns: Vec<String> = key_index.iter().map(|&i| tidy.columns[i].clone()).collect();
+    columns.push("surface_pairs".into());
+    columns.push("pairs_with_warnings".into());
+    for &i in &value_index {
+        let c = &tidy.columns[i];
+        columns.extend([format!("{c}_mean"), format!("{c}_min"), format!("{c}_max")]);
+    }
+    let rows = groups
+        .into_iter()
+        .map(|(key, members)| {
+            let mut line = key;
+            line.push(Cell::Int(members.len() as i64));
+            let warned = warnings.map_or(0, |w| members.iter().filter(|m| !m[w].text().is_empty()).count());
+            line.push(Cell::Int(warned as i64));
+            for &i in &value_index {
+                let v: Vec<f64> = members.iter().map(|m| m[i].number()).filter(|x| !x.is_nan()).collect();
+                if v.is_empty() {
+                    line.extend([Cell::Empty, Cell::Empty, Cell::Empty]);
+                    continue;
+                }
+                let mean = v.iter().sum::<f64>() / v.len() as f64;
+                let min = v.iter().copied().fold(f64::INFINITY, f64::min);
+                let max = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                line.extend([Cell::Float(mean), Cell::Float(min), Cell::Float(max)]);
+            }
+            line
+        })
+        .collect();
+    Table { columns, rows }
+}
+
+/// Writes `results.csv` (tidy), `results_aggregated.csv` and `results.units.json` (the unit of every
+/// column that has one) into `dir`, together (a failure leaves the earlier files); returns the row
+/// counts of the two tables.
+pub fn write_results_tables(dir: &std::path::Path, rows: &[TidyRow]) -> Result<(usize, usize)> {
+    let tidy = Table::of(rows);
+    let aggregated = aggregate(&tidy);
+    let units = rows.first().map_or(Units::Reduced, |r| r.inputs.units);
+    let unit_map = units_map(
+        units,
+        tidy.columns.iter().chain(&aggregated.columns).map(String::as_str),
+    );
+    let units_text = serde_json::to_string_pretty(&json!({"units": units, "columns": unit_map})).expect("plain data");
+    let (tidy_csv, aggregated_csv) = (tidy.to_csv(), aggregated.to_csv());
+    crate::io::write_texts_together(&[
+        (&dir.join("results.csv"), &tidy_csv),
+        (&dir.join("results_aggregated.csv"), &aggregated_csv),
+        (&dir.join("results.units.json"), &units_text),
+    ])?;
+    Ok((tidy.rows.len(), aggregated.rows.len()))
+}
+
+/// Reads a job file, with the fix in the message when it cannot be used.
+pub fn read_job_file(path: &std::path::Path) -> Result<JobResult> {
+    let text = crate::io::read_text(path)?;
+    JobResult::from_json(&text).map_err(|e| {
+        Error::file(
+            path,
+            format!(
+                "not a readable job result ({e}); it was cut short or written by another version of wearsim: delete \
+                 it and run the study again to recompute that job"
+            ),
+        )
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::output::summary::SeriesRow;
+
+    #[test]
+    fn columns_come_from_the_row_types() {
+        assert_eq!(
+            columns::<SeriesRow>(),
+            [
+                "load",
+                "fracture_energy",
+                "s",
+                "junctions",
+                "contact_area",
+                "n_critical",
+                "n_formed",
+                "n_shrunk",
+                "volume",
+                "initial_junctions",
+                "static_wear_coefficient",
+                "static_wear_rate",
+                "iterations",
+                "residual"
+            ]
+        );
+        let tidy = columns::<TidyRow>();
+        assert_eq!(&tidy[..3], ["job", "material", "units"]);
+        assert!(tidy.contains(&"surface.seed".to_string()) && tidy.contains(&"wear_rate".to_string()));
+        assert_eq!(tidy.last().map(String::as_str), Some("warnings"));
+    }
+
+    #[test]
+    fn aggregation_groups_over_seeds_and_skips_undefined_results() {
+        let row = |job: usize, seed: u64, wear_rate: Option<f64>| TidyRow {
+            job,
+            material: "m".into(),
+            inputs: InputRecord {
+                seed: Some(seed),
+                ..InputRecord::default()
+            },
+            load: 1e-3,
+            result: WearResult {
+                wear_rate,
+                ..WearResult::default()
+            },
+            flow_pressure: 0.05,
+            warnings: if wear_rate.is_none() {
+                "no particle".into()
+            } else {
+                String::new()
+            },
+        };
+        let tidy = Table::of(&[row(0, 1, Some(1.0)), row(1, 2, Some(3.0)), row(2, 3, None)]);
+        let agg = aggregate(&tidy);
+        assert_eq!(agg.rows.len(), 1);
+        let at = |name: &str| agg.rows[0][agg.column(name).unwrap()].clone();
+        assert_eq!(
+            (at("surface_pairs"), at("pairs_with_warnings")),
+            (Cell::Int(3), Cell::Int(1))
+        );
+        assert_eq!(
+            (at("wear_rate_mean"), at("wear_rate_min"), at("wear_rate_max")),
+            (Cell::Float(2.0), Cell::Float(1.0), Cell::Float(3.0))
+        );
+        assert!(agg.column("surface.seed").is_none() && agg.column("job").is_none());
+    }
+}

@@ -1,0 +1,26 @@
+//! Every result document wearsim writes, built in one place: the provenance block they share, the
+//! summary and series of a sliding run, the summary of one contact solve, surface statistics,
+//! junction tables, study job files and the tidy results tables. Front ends (the CLI, the Python
+//! bindings) call these and only choose where the files go.
+//!
+//! Tables are derived from one typed row each ([`SeriesRow`], [`TidyRow`]): their columns are the
+//! rows' serde fields in order, so a column list is never kept by hand. Numbers are written in
+//! Rust's shortest round-trip form (`{:e}` for floats); an undefined value (NaN, a missing input) is
+//! an empty cell.
+
+mod fields;
+mod jobs;
+mod provenance;
+mod summary;
+mod tables;
+mod units;
+
+pub use fields::{FieldSelection, FieldsWriter};
+pub use jobs::{aggregate, read_job_file, write_results_tables, JobResult, StepRow, TidyRow, JOB_FORMAT};
+pub use provenance::Provenance;
+pub use summary::{
+    contact_summary, junctions_summary, run_warnings, series_csv, series_rows, sliding_summary, surface_fit_summary,
+    surface_summary, ContactRecord, SeriesRow, SlidingInputs, SurfaceStatistics, PSD_CONVENTION, RESIDUAL_DEFINITION,
+};
+pub use tables::{columns, Cell, Table};
+pub use units::{unit_of, units_map};

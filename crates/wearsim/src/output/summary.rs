@@ -1,0 +1,373 @@
+//! The documents of one run or command: the series and summary of a sliding run, the summary of one
+//! contact solve, surface statistics and fits, junction tables.
+
+use serde::Serialize;
+use serde_json::{json, Value};
+
+use crate::config::{RunConfig, SurfaceSource, Units};
+use crate::contact::{SolveInfo, SolverOptions};
+use crate::material::{Material, ModulusConvention};
+use crate::sliding::{LoadRun, SlidingConfig, WearResult};
+use crate::surface::Surface;
+
+use super::provenance::Provenance;
+use super::tables::{columns, Table};
+use super::units::units_map;
+
+/// One row of a sliding run's series (`series.csv` of `wearsim slide`, the DataFrame of the Python
+/// `slide`): one step of one load for one fracture energy. The first nine columns are the paper's
+/// record per step (§3), then the memory of the initial contact and the static model at this step;
+/// `iterations` and `residual` are the contact solver's.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct SeriesRow {
+    /// Normal load F_N.
+    pub load: f64,
+    /// Fracture energy 𝒢.
+    pub fracture_energy: f64,
+    /// Sliding distance s in the run's length unit.
+    pub s: f64,
+    /// Number of junctions N.
+    pub junctions: usize,
+    /// Real contact area as a fraction of the apparent area L².
+    pub contact_area: f64,
+    /// N*: junctions with d_i ≥ d* at this step.
+    pub n_critical: usize,
+    /// N*₊: particles formed so far, s = 0 included.
+    pub n_formed: usize,
+    /// N*₋ = N*₊ − N*.
+    pub n_shrunk: i64,
+    /// V: wear volume so far, s = 0 included.
+    pub volume: f64,
+    /// Junctions descending from a junction present at s = 0 (the memory of the initial contact,
+    /// paper §3).
+    pub initial_junctions: usize,
+    /// Static model on this step's contact map: k_static and W_static/ω (paper §2).
+    pub static_wear_coefficient: f64,
+    pub static_wear_rate: f64,
+    /// Contact solver iterations of this step.
+    pub iterations: usize,
+    /// Contact solver residual of this step.
+    pub residual: f64,
+}
+
+/// The series of every load and fracture energy: load by load, then fracture energy, then step.
+pub fn series_rows(runs: &[LoadRun]) -> Vec<SeriesRow> {
+    let mut rows = Vec::new();
+    for r in runs {
+        for (e, w) in r.results.iter().enumerate() {
+            for st in &r.steps {
+                let sw = &st.wear[e];
+                rows.push(SeriesRow {
+                    load: r.load,
+                    fracture_energy: w.fracture_energy,
+                    s: st.s,
+                    junctions: st.junctions,
+                    contact_area: st.contact_area,
+                    n_critical: sw.n_critical,
+                    n_formed: sw.n_formed,
+                    n_shrunk: sw.n_shrunk(),
+                    volume: sw.volume,
+                    initial_junctions: st.initial_junctions,
+                    static_wear_coefficient: st.statics[e].wear_coefficient,
+                    static_wear_rate: st.statics[e].wear_rate_over_omega,
+                    iterations: st.iterations,
+                    residual: st.residual,
+                });
+            }
+        }
+    }
+    rows
+}
+
+/// `series.csv` of a sliding run: plain CSV for pandas and R; units and provenance are in the
+/// summary beside it.
+pub fn series_csv(runs: &[LoadRun]) -> String {
+    Table::of(&series_rows(runs)).to_csv()
+}
+
+/// What a sliding run was given, for its summary.
+pub struct SlidingInputs<'a> {
+    pub units: Units,
+    /// Where the surfaces came from (a run file's [`SurfaceSource`], or a description of arrays
+    /// handed over by the caller).
+    pub surfaces: Value,
+    pub material: &'a Material,
+    pub modulus: ModulusConvention,
+    pub solver: SolverOptions,
+    pub connectivity: u8,
+    pub sliding: &'a SlidingConfig,
+    /// Warnings about the inputs (e.g. λ_l of a few pixels), reported with the results'.
+    pub warnings: Vec<String>,
+}
+
+impl<'a> SlidingInputs<'a> {
+    /// The inputs of a run file with a sliding schedule.
+    pub fn of_run(config: &'a RunConfig, sliding: &'a SlidingConfig) -> Self {
+        Self {
+            units: config.units,
+            surfaces: surface_source(&config.surfaces),
+            material: &config.material,
+            modulus: config.modulus,
+            solver: config.solver,
+            connectivity: config.connectivity,
+            sliding,
+            warnings: config.warnings(),
+        }
+    }
+
+    /// The `inputs` block of the run's outputs (summary.json, the fields store).
+    pub fn to_json(&self) -> Value {
+        json!({
+            "surfaces": self.surfaces,
+            "material": self.material,
+            "contact": contact_inputs(self.modulus, self.solver, self.connectivity),
+            "sliding": self.sliding,
+        })
+    }
+}
+
+/// Every warning of a sliding run: about its inputs, d* against the pixel size, and each load's
+/// results.
+pub fn run_warnings(inputs: &SlidingInputs, pixel_size: f64, runs: &[LoadRun]) -> Vec<String> {
+    let mut all = inputs.warnings.clone();
+    all.extend(crate::sliding::resolution_warnings(inputs.material, pixel_size));
+    all.extend(runs.iter().flat_map(|r| r.warnings.iter().cloned()));
+    all
+}
+
+fn surface_source(source: &SurfaceSource) -> Value {
+    serde_json::to_value(source).expect("plain data serialises")
+}
+
+/// The contact settings of a run as they appear in its outputs.
+fn contact_inputs(modulus: ModulusConvention, solver: SolverOptions, connectivity: u8) -> Value {
+    json!({
+        "modulus": modulus.name(),
+        "tolerance": solver.tolerance(),
+        "max_iterations": solver.max_iterations(),
+        "connectivity": connectivity,
+    })
+}
+
+/// How the residual is defined, as written into every output that reports one.
+pub const RESIDUAL_DEFINITION: &str = "max over pixels of the violation of the optimality conditions (|g+c| on \
+free, max(0,-(g+c)) on non-contact, max(0,g+c) on plastic pixels) divided by std(h)";
+
+/// `summary.json` of a sliding run: provenance, inputs, derived quantities, solver statistics and
+/// the results per load and fracture energy, with the conventions they follow.
+pub fn sliding_summary(
+    inputs: &SlidingInputs,
+    runs: &[LoadRun],
+    pixel_size: f64,
+    seconds: f64,
+    steps_per_load: usize,
+) -> Value {
+    let m = inputs.material;
+    let results: Vec<Value> = runs
+        .iter()
+        .flat_map(|r| {
+            r.results.iter().map(move |w| {
+                let mut v = serde_json::to_value(w).expect("plain numbers serialise");
+                v.as_object_mut()
+                    .expect("a struct serialises to an object")
+                    .insert("load".into(), json!(r.load));
+                v
+            })
+        })
+        .collect();
+    let solver: Vec<Value> = runs
+        .iter()
+        .map(|r| {
+            json!({
+                "load": r.load,
+                "total_iterations": r.total_iterations,
+                "max_iterations": r.max_iterations,
+                "mean_iterations": r.total_iterations as f64 / r.steps.len() as f64,
+                "max_residual": r.steps.iter().map(|s| s.residual).fold(0.0, f64::max),
+                "seconds": {"solve": r.timing.solve, "labelling": r.timing.labelling, "bookkeeping": r.timing.bookkeeping},
+            })
+        })
+        .collect();
+    json!({
+        "provenance": Provenance::current(),
+        "units": inputs.units,
+        "inputs": inputs.to_json(),
+        "flow_pressure": m.flow_pressure(),
+        "critical_diameter": m.fracture_energies.iter().zip(m.critical_diameters()).map(|(g, d)| json!({"fracture_energy": g, "critical_diameter": d})).collect::<Vec<_>>(),
+        "effective_modulus": m.effective_modulus(inputs.modulus),
+        "modulus_convention": inputs.modulus.name(),
+        "solver": {"tolerance": inputs.solver.tolerance(), "residual_definition": RESIDUAL_DEFINITION, "per_load": solver},
+        "steps_per_load": steps_per_load,
+        "fit": "least-squares lines of V and N*₊ against s over the steps with s ≥ running_in·L",
+        "static_wear_rate_convention": "W_static/ω = k_static Σ A_i; static_wear_coefficient and static_wear_rate at s = 0, *_mean and *_std over every offset of the run",
+        "wear_rate_estimate_convention": "ω d*³ dN*₊/ds with ω = π/6",
+        "memory_convention": "initial_junctions: junctions descending by step-to-step pixel overlap from a junction present at s = 0; memory_decay_length ℓ from a least-squares fit of ln N₀ = ln N₀(0) − s/ℓ",
+        "results": results,
+        "units_of_results": units_map(inputs.units, columns::<WearResult>().iter().map(String::as_str).chain(["load", "flow_pressure", "effective_modulus"])),
+        "units_of_series": units_map(inputs.units, columns::<SeriesRow>().iter().map(String::as_str)),
+        "warnings": run_warnings(inputs, pixel_size, runs),
+        "seconds": seconds,
+    })
+}
+
+/// What one contact solve reports: the numbers of `wearsim contact`'s summary and of the Python
+/// `ContactResult`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ContactRecord {
+    /// Real contact area as a fraction of L².
+    pub contact_area: f64,
+    pub contact_pixels: usize,
+    pub plastic_pixels: usize,
+    /// Mean pressure of the solution, F_N/L² to round-off.
+    pub mean_pressure: f64,
+    /// Rigid-body approach since first contact (length unit).
+    pub approach: f64,
+    pub iterations: usize,
+    pub convolutions: usize,
+    pub residual: f64,
+    pub tolerance: f64,
+    pub seconds: f64,
+}
+
+impl ContactRecord {
+    /// The record of a solve that produced `pressure`.
+    pub fn new(info: &SolveInfo, pressure: &[f64], seconds: f64) -> Self {
+        let pixels = pressure.len().max(1) as f64;
+        Self {
+            contact_area: info.contact_pixels as f64 / pixels,
+            contact_pixels: info.contact_pixels,
+            plastic_pixels: info.plastic_pixels,
+            mean_pressure: pressure.iter().sum::<f64>() / pixels,
+            approach: info.approach,
+            iterations: info.iterations,
+            convolutions: info.convolutions,
+            residual: info.residual,
+            tolerance: info.tolerance,
+            seconds,
+        }
+    }
+}
+
+/// `summary.json` of `wearsim contact`: provenance, the solve's record, the load and offset, and
+/// the run's inputs and derived quantities.
+pub fn contact_summary(
+    config: &RunConfig,
+    load: f64,
+    offset: f64,
+    offset_pixels: usize,
+    record: &ContactRecord,
+) -> Value {
+    let mut doc = json!({
+        "provenance": Provenance::current(),
+        "units": config.units,
+        "load": load,
+        "offset": offset,
+        "offset_pixels": offset_pixels,
+    });
+    let object = doc.as_object_mut().expect("an object");
+    if let Value::Object(fields) = serde_json::to_value(record).expect("plain numbers serialise") {
+        object.extend(fields);
+    }
+    object.extend([
+        ("residual_definition".to_string(), json!(RESIDUAL_DEFINITION)),
+        ("effective_modulus".to_string(), json!(config.effective_modulus())),
+        ("modulus_convention".to_string(), json!(config.modulus.name())),
+        ("flow_pressure".to_string(), json!(config.material.flow_pressure())),
+        (
+            "critical_diameters".to_string(),
+            json!(config.material.critical_diameters()),
+        ),
+        ("material".to_string(), json!(config.material)),
+        ("surfaces".to_string(), surface_source(&config.surfaces)),
+        (
+            "contact".to_string(),
+            contact_inputs(config.modulus, config.solver, config.connectivity),
+        ),
+    ]);
+    doc
+}
+
+/// Statistics of one surface, as `wearsim surface` writes them and Python's `surface_statistics`
+/// returns them.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SurfaceStatistics {
+    /// Pixels along x (the sliding direction) and along y.
+    pub grid: usize,
+    pub grid_y: usize,
+    /// Sides along x and y.
+    pub length: f64,
+    pub length_y: f64,
+    pub pixel_size: f64,
+    pub rms_height: f64,
+    pub rms_slope: f64,
+    /// Radially averaged PSD as (q, C(q)) pairs (see [`PSD_CONVENTION`]).
+    pub psd: Vec<[f64; 2]>,
+}
+
+/// How the radially averaged PSD is defined.
+pub const PSD_CONVENTION: &str = "psd[q] = mean over the shell |q| ∈ [m−½, m+½) of |ĥ(q)|²/(Nx·Ny)² (variance \
+per Fourier mode, length²); q in units of 2π/Lx";
+
+impl SurfaceStatistics {
+    /// The statistics of `s`.
+    pub fn of(s: &Surface) -> Self {
+        Self {
+            grid: s.nx(),
+            grid_y: s.ny(),
+            length: s.length(),
+            length_y: s.grid().length_y(),
+            pixel_size: s.pixel_size(),
+            rms_height: s.rms_height(),
+            rms_slope: s.rms_slope(),
+            psd: s.radial_psd().iter().map(|(q, c)| [*q, *c]).collect(),
+        }
+    }
+}
+
+/// `statistics.json` of `wearsim surface`.
+pub fn surface_summary(config: &RunConfig, top: &SurfaceStatistics, bottom: &SurfaceStatistics) -> Value {
+    json!({
+        "provenance": Provenance::current(),
+        "units": config.units,
+        "surfaces": surface_source(&config.surfaces),
+        "psd_convention": PSD_CONVENTION,
+        "top": top,
+        "bottom": bottom,
+    })
+}
+
+/// `fit.json` of `wearsim surface fit`: the file, how it was prepared, the fitted parameters, the
+/// spectrum a run would generate from them and what was adjusted on the way (`notes`).
+pub fn surface_fit_summary(
+    file: &std::path::Path,
+    preprocess: &crate::topography::Preprocess,
+    length_unit: &str,
+    grid: &crate::grid::Grid,
+    fit: &crate::topography::SpectrumFit,
+    spectrum: &crate::surface::SpectrumParams,
+    notes: &[String],
+) -> Value {
+    json!({
+        "provenance": Provenance::current(),
+        "file": file,
+        "detrend": preprocess.detrend.name(),
+        "taper": preprocess.taper,
+        "length_unit": length_unit,
+        "grid": [grid.nx(), grid.ny()],
+        "length": [grid.length_x(), grid.length_y()],
+        "fit": fit,
+        "spectrum": spectrum,
+        "notes": notes,
+        "method": crate::topography::FIT_METHOD,
+    })
+}
+
+/// `junctions.json` of `wearsim junctions`: pixel count per junction.
+pub fn junctions_summary(connectivity: u8, pixels: &[usize]) -> Value {
+    json!({
+        "provenance": Provenance::current(),
+        "connectivity": connectivity,
+        "junctions": pixels.len(),
+        "pixels": pixels,
+    })
+}

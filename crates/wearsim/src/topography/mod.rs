@@ -1,0 +1,22 @@
+//! Measured topographies: reading height maps in the common formats, converting their units,
+//! preparing them for a periodic contact solution, and fitting the self-affine parameters the
+//! paper's model needs.
+//!
+//! A measured surface is not periodic, but the FFT solver treats every surface as one period of an
+//! infinite periodic one: where the heights at opposite borders differ, the periodic surface has a
+//! ridge or a cliff there, which carries load and makes junctions that the real surface does not
+//! have. `detrend` removes the tilt (a plane) or the form (a quadratic) that causes most of the
+//! jump, `taper` brings the heights smoothly to their mean over a fraction of each border (at the
+//! cost of flattening that strip), and [`periodicity`] measures what is left. The cleanest route for the
+//! paper's model, which assumes periodic self-affine surfaces, is [`fit`]: estimate H, λ_l, λ_u and
+//! h_rms from the measurement and generate periodic surfaces with them.
+
+mod fit;
+mod formats;
+mod load;
+mod prepare;
+
+pub use fit::{fit, surface_block, SpectrumFit, FIT_METHOD};
+pub use formats::{metres_per, read, Measured};
+pub use load::{file_grid, file_span, load, probe_grid, FileSurface, Loaded};
+pub use prepare::{periodicity, preprocess, Detrend, Periodicity, Preprocess, NOT_PERIODIC};
