@@ -130,7 +130,9 @@ impl PyStudy {
             let requested = workers.unwrap_or_else(rayon::current_num_threads).max(1);
             let (workers, note) = study::workers_for_memory(&jobs, requested)?;
             study::prepare_folder(&out, study, base)?;
-            let summary = study::run_jobs(&out, &jobs, workers, interrupt, |p| {
+            // Jobs save their state every few minutes, so a job killed part-way resumes.
+            let every = Some(wearsim::sliding::CHECKPOINT_EVERY);
+            let summary = study::run_jobs(&out, &jobs, workers, every, interrupt, |p| {
                 done_jobs.set(p.jobs_done, p.jobs_total)
             })?;
             Ok((summary, note))

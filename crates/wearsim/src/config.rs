@@ -437,6 +437,9 @@ impl RunConfig {
             taper: s.taper.unwrap_or(0.0),
         };
         preprocess.validate()?;
+        // One spelling per file, so that job files and the study's stored base agree however the
+        // study was named on the command line.
+        let (top, bottom) = (crate::io::canonical_path(&top), crate::io::canonical_path(&bottom));
         for p in [&top, &bottom] {
             if files == SurfaceFiles::MustExist && !p.is_file() {
                 return Err(Error::file(

@@ -3,7 +3,8 @@
 //! and advance one wear bookkeeping per fracture energy on the shared contact solutions. Ends with
 //! the least-squares wear rate, particle rate and Archard wear coefficient after running-in.
 
-use std::time::Instant;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
 
 use crate::check::positive;
 use crate::contact::{ContactSolver, SolverOptions};
@@ -13,7 +14,7 @@ use crate::junctions::JunctionLabeller;
 use crate::material::Material;
 use crate::stats::{line_fit, mean_std};
 use crate::surface::{composite_heights, Surface};
-use crate::wear::{static_wear, InitialContactMemory, SlidingBookkeeping, StaticWear, StepWear};
+use crate::wear::{static_wear, CarriedBookkeeping, InitialContactMemory, SlidingBookkeeping, StaticWear, StepWear};
 
 /// The sliding schedule (paper §3); distances as fractions of L, steps in pixels.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -135,7 +136,7 @@ pub fn schedule(nx: usize, sliding: &SlidingConfig) -> Vec<usize> {
 }
 
 /// One step of one load: the contact statistics and, per fracture energy, the wear record.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct StepRecord {
     /// Offset in pixels.
     pub offset: usize,
@@ -206,7 +207,7 @@ pub struct WearResult {
 }
 
 /// Time spent per part of the sliding loop, in seconds.
-#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Timing {
     pub solve: f64,
     pub labelling: f64,
@@ -214,7 +215,7 @@ pub struct Timing {
 }
 
 /// One load's sliding run.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct LoadRun {
     /// Normal load F_N.
     pub load: f64,
@@ -285,6 +286,23 @@ pub fn run_sliding(
     top: &Surface,
     bottom: &Surface,
     setup: &SlidingSetup,
+    observe: impl FnMut(&StepView),
+) -> Result<Vec<LoadRun>> {
+    run_sliding_resumable(top, bottom, setup, None, |_| {}, observe)
+}
+
+/// [`run_sliding`] that saves its state to `checkpointing.path` every `checkpointing.every` and,
+/// when that file holds the state of a run of the same inputs, resumes from it instead of starting
+/// at s = 0. The results equal those of an uninterrupted run bit for bit: the state saved is all one
+/// step hands to the next (the contact pressure that warm-starts the solver, the bookkeeping of
+/// every d*, the memory of the initial contact, the records so far). `on_resume` is told, before any
+/// step, what became of the file. The caller removes the file once the results are written.
+pub fn run_sliding_resumable(
+    top: &Surface,
+    bottom: &Surface,
+    setup: &SlidingSetup,
+    checkpointing: Option<&Checkpointing>,
+    on_resume: impl FnOnce(&Resumed),
     mut observe: impl FnMut(&StepView),
 ) -> Result<Vec<LoadRun>> {
     let grid: Grid = top.grid();
@@ -328,15 +346,52 @@ pub fn run_sliding(
     let mut pressure = vec![0.0; nx * ny];
     let mut scratch = vec![false; nx * ny];
     let mut junctions = Vec::new();
-    let mut runs = Vec::new();
-    let mut done = 0;
-    for (load_index, &load) in setup.sliding.loads.iter().enumerate() {
-        let mut books: Vec<SlidingBookkeeping> = diameters.iter().map(|&d| SlidingBookkeeping::new(d)).collect();
-        let mut memory = InitialContactMemory::default();
-        let mut steps = Vec::with_capacity(offsets.len());
-        let mut timing = Timing::default();
-        pressure.iter_mut().for_each(|p| *p = 0.0); // cold start at s = 0 of every load
-        for (step_index, &offset) in offsets.iter().enumerate() {
+    let key = inputs_key(top, bottom, setup);
+    let (mut saved, resumed) = match checkpointing {
+        None => (None, Resumed::Fresh),
+        Some(c) => match load_checkpoint(&c.path, &key, &mut pressure, diameters.len(), offsets.len()) {
+            Ok(None) => (None, Resumed::Fresh),
+            Ok(Some(state)) => {
+                let at = Resumed::At {
+                    done: state.done,
+                    total: total_steps,
+                };
+                (Some(state), at)
+            }
+            Err(why) => (None, Resumed::Ignored(why)),
+        },
+    };
+    on_resume(&resumed);
+    let mut runs = saved
+        .as_mut()
+        .map(|s| std::mem::take(&mut s.finished))
+        .unwrap_or_default();
+    let mut done = saved.as_ref().map_or(0, |s| s.done);
+    let mut last_save = Instant::now();
+    for (load_index, &load) in setup.sliding.loads.iter().enumerate().skip(runs.len()) {
+        let (mut books, mut memory, mut steps, mut timing) = match saved.take() {
+            // The checkpoint's pressure is already in `pressure`.
+            Some(state) => (
+                diameters
+                    .iter()
+                    .zip(state.books)
+                    .map(|(&d, b)| SlidingBookkeeping::restored(d, b))
+                    .collect::<Vec<_>>(),
+                state.memory,
+                state.steps,
+                state.timing,
+            ),
+            None => {
+                pressure.iter_mut().for_each(|p| *p = 0.0); // cold start at s = 0 of every load
+                (
+                    diameters.iter().map(|&d| SlidingBookkeeping::new(d)).collect(),
+                    InitialContactMemory::default(),
+                    Vec::with_capacity(offsets.len()),
+                    Timing::default(),
+                )
+            }
+        };
+        for (step_index, &offset) in offsets.iter().enumerate().skip(steps.len()) {
             setup.interrupt.check()?;
             let t0 = Instant::now();
             composite_heights(top, bottom, offset, &mut heights);
@@ -377,6 +432,23 @@ pub fn run_sliding(
                 labeller: &labeller,
                 bookkeeping: &books,
             });
+            if let Some(c) = checkpointing {
+                if done < total_steps && last_save.elapsed() >= c.every {
+                    let state = SavedState {
+                        format: CHECKPOINT_FORMAT,
+                        software: format!("wearsim {}", crate::VERSION),
+                        inputs: &key,
+                        done,
+                        finished: &runs,
+                        steps: &steps,
+                        timing,
+                        books: books.iter().map(SlidingBookkeeping::carried).collect(),
+                        memory: &memory,
+                    };
+                    save_checkpoint(&c.path, &state, &pressure)?;
+                    last_save = Instant::now();
+                }
+            }
         }
         let (results, warnings) = results_of_load(setup, load, pm, &steps, running_in);
         runs.push(LoadRun {
@@ -390,6 +462,168 @@ pub fn run_sliding(
         });
     }
     Ok(runs)
+}
+
+/// Where and how often a long sliding run saves its state, so that a rerun of a run killed (a Slurm
+/// job at its wall-time limit) resumes instead of starting over.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Checkpointing {
+    /// The checkpoint file, replaced atomically at every save.
+    pub path: PathBuf,
+    /// Least time between two saves; zero saves after every step.
+    pub every: Duration,
+}
+
+/// The interval between checkpoints when none is given: a killed run loses at most a few minutes.
+pub const CHECKPOINT_EVERY: Duration = Duration::from_secs(300);
+
+/// What a run made of the checkpoint file it was given.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Resumed {
+    /// There was none: the run starts at s = 0.
+    Fresh,
+    /// The run continues after `done` of its `total` steps.
+    At { done: usize, total: usize },
+    /// The file holds no usable state of this run (other inputs, another version of wearsim, cut
+    /// short); the message says why. The run starts at s = 0 and replaces it.
+    Ignored(String),
+}
+
+/// Version of the checkpoint layout.
+const CHECKPOINT_FORMAT: u32 = 1;
+
+/// First bytes of a checkpoint file; then the length of the JSON state (u64, little-endian), the
+/// state, and the contact pressure (Nx·Ny f64, little-endian, exact).
+const CHECKPOINT_MAGIC: &[u8] = b"wearsim sliding checkpoint\n";
+
+/// The state of a run between two steps, as saved.
+#[derive(serde::Serialize)]
+struct SavedState<'a> {
+    format: u32,
+    software: String,
+    /// Hash of every input of the run (see [`inputs_key`]).
+    inputs: &'a str,
+    /// Steps done over all loads.
+    done: usize,
+    /// Loads finished.
+    finished: &'a [LoadRun],
+    /// Records of the load under way.
+    steps: &'a [StepRecord],
+    timing: Timing,
+    books: Vec<CarriedBookkeeping>,
+    memory: &'a InitialContactMemory,
+}
+
+/// [`SavedState`] as read back.
+#[derive(serde::Deserialize)]
+struct LoadedState {
+    format: u32,
+    software: String,
+    inputs: String,
+    done: usize,
+    finished: Vec<LoadRun>,
+    steps: Vec<StepRecord>,
+    timing: Timing,
+    books: Vec<CarriedBookkeeping>,
+    memory: InitialContactMemory,
+}
+
+/// FNV-1a hash of everything that decides a run's results: the version, the material, modulus,
+/// solver options, connectivity and schedule, and both surfaces' sizes and heights (bit patterns).
+fn inputs_key(top: &Surface, bottom: &Surface, setup: &SlidingSetup) -> String {
+    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut feed = |bytes: &[u8]| {
+        for b in bytes {
+            hash ^= u64::from(*b);
+            hash = hash.wrapping_mul(0x0100_0000_01b3);
+        }
+    };
+    feed(crate::VERSION.as_bytes());
+    let settings = serde_json::json!({
+        "material": setup.material,
+        "effective_modulus": setup.effective_modulus.to_bits(),
+        "solver": setup.solver,
+        "connectivity": setup.connectivity,
+        "sliding": setup.sliding,
+    });
+    feed(settings.to_string().as_bytes());
+    for surface in [top, bottom] {
+        feed(&(surface.nx() as u64).to_le_bytes());
+        feed(&(surface.ny() as u64).to_le_bytes());
+        feed(&surface.length().to_bits().to_le_bytes());
+        feed(&surface.pixel_size().to_bits().to_le_bytes());
+        for h in surface.heights() {
+            feed(&h.to_bits().to_le_bytes());
+        }
+    }
+    format!("{hash:016x}")
+}
+
+/// Writes a checkpoint atomically (temporary sibling, then renamed over the old one).
+fn save_checkpoint(path: &Path, state: &SavedState, pressure: &[f64]) -> Result<()> {
+    let json =
+        serde_json::to_vec(state).map_err(|e| Error::file(path, format!("cannot encode the checkpoint: {e}")))?;
+    crate::io::atomic_write(path, |w| {
+        w.write_all(CHECKPOINT_MAGIC)?;
+        w.write_all(&(json.len() as u64).to_le_bytes())?;
+        w.write_all(&json)?;
+        for p in pressure {
+            w.write_all(&p.to_le_bytes())?;
+        }
+        Ok(())
+    })
+}
+
+/// Reads a checkpoint of the run whose inputs hash to `key` into `pressure`; `Ok(None)` when there
+/// is no file, `Err(why)` when it cannot be used.
+fn load_checkpoint(
+    path: &Path,
+    key: &str,
+    pressure: &mut [f64],
+    energies: usize,
+    steps_per_load: usize,
+) -> std::result::Result<Option<LoadedState>, String> {
+    let bytes = match std::fs::read(path) {
+        Ok(b) => b,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(format!("{}: cannot be read ({e})", path.display())),
+    };
+    let unusable = |why: &str| format!("{}: {why}; the run starts over and replaces it", path.display());
+    let rest = bytes
+        .strip_prefix(CHECKPOINT_MAGIC)
+        .ok_or_else(|| unusable("not a checkpoint of a wearsim sliding run"))?;
+    let cut = || unusable("cut short");
+    let (len, rest) = rest.split_first_chunk::<8>().ok_or_else(cut)?;
+    let len = usize::try_from(u64::from_le_bytes(*len)).map_err(|_| cut())?;
+    if rest.len() < len {
+        return Err(cut());
+    }
+    let (json, field) = rest.split_at(len);
+    let state: LoadedState = serde_json::from_slice(json).map_err(|e| unusable(&format!("unreadable state ({e})")))?;
+    if state.format != CHECKPOINT_FORMAT || state.software != format!("wearsim {}", crate::VERSION) {
+        return Err(unusable(&format!(
+            "written by {} (checkpoint format {}), not by this wearsim {}",
+            state.software,
+            state.format,
+            crate::VERSION
+        )));
+    }
+    if state.inputs != key {
+        return Err(unusable(
+            "saved by a run of other inputs (run file, surfaces or schedule changed since)",
+        ));
+    }
+    if field.len() != pressure.len() * 8
+        || state.books.len() != energies
+        || state.steps.len() > steps_per_load
+        || state.steps.is_empty() && state.finished.is_empty()
+    {
+        return Err(cut());
+    }
+    for (p, b) in pressure.iter_mut().zip(field.chunks_exact(8)) {
+        *p = f64::from_le_bytes(b.try_into().expect("8 bytes"));
+    }
+    Ok(Some(state))
 }
 
 /// The fitted results of one load per fracture energy (paper §3 and appendices B, C), and the

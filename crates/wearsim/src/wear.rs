@@ -4,7 +4,7 @@
 use crate::junctions::{Junction, JunctionLabeller, NO_JUNCTION};
 
 /// Static model from one contact solution (paper §2).
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct StaticWear {
     /// k_static = Σ_{A_i ≥ A*} A_i / Σ_i A_i.
     pub wear_coefficient: f64,
@@ -32,7 +32,7 @@ pub fn static_wear(junctions: &[Junction], critical_diameter: f64) -> StaticWear
 }
 
 /// What one sliding step adds to the record of one d* (paper §3).
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct StepWear {
     /// N*: junctions with d_i ≥ d* at this step.
     pub n_critical: usize,
@@ -94,6 +94,27 @@ impl SlidingBookkeeping {
     }
 
     /// State of every junction (indexed like the labeller's junctions) after the last step.
+    /// What one step hands to the next (pixels of formed or disabled junctions, N*₊, V), for a
+    /// checkpoint of a long run; [`SlidingBookkeeping::restored`] continues from it.
+    pub fn carried(&self) -> CarriedBookkeeping {
+        CarriedBookkeeping {
+            blocked: self.blocked.clone(),
+            n_formed: self.n_formed,
+            volume: self.volume,
+        }
+    }
+
+    /// The bookkeeping of `critical_diameter` continued from a state saved by
+    /// [`SlidingBookkeeping::carried`]: its next step is the one the saved run would have taken.
+    pub fn restored(critical_diameter: f64, carried: CarriedBookkeeping) -> Self {
+        Self {
+            blocked: carried.blocked,
+            n_formed: carried.n_formed,
+            volume: carried.volume,
+            ..Self::new(critical_diameter)
+        }
+    }
+
     pub fn states(&self) -> &[JunctionState] {
         &self.states
     }
@@ -164,10 +185,19 @@ fn flagged_pixels(labeller: &JunctionLabeller, flags: &[bool], out: &mut Vec<u32
     }
 }
 
+/// The state of a [`SlidingBookkeeping`] between two steps (see [`SlidingBookkeeping::carried`]).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct CarriedBookkeeping {
+    pub blocked: Vec<u32>,
+    pub n_formed: usize,
+    pub volume: f64,
+}
+
 /// The memory of the initial contact (paper §3): how many junctions of the current step descend from
 /// a junction present at s = 0, following junctions from step to step by shared pixels as the
 /// sliding bookkeeping does. The paper finds this number to decay exponentially with s.
-#[derive(Debug, Clone, Default)]
+/// Serialisable, so that a checkpoint of a long run carries it (its scratch `flags` included).
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct InitialContactMemory {
     /// Pixels of the previous step's junctions that descend from s = 0.
     descendants: Vec<u32>,

@@ -143,3 +143,96 @@ fn sliding_results_do_not_depend_on_thread_count() {
         "results differ between 1 and 2 threads"
     );
 }
+
+/// A run stopped after `stop_after` steps (of all loads) with a checkpoint after every step, then
+/// resumed, equals the uninterrupted run bit for bit (steps, results, warnings); a checkpoint of other
+/// inputs is set aside with a reason.
+#[test]
+fn a_checkpointed_run_stopped_anywhere_resumes_to_the_uninterrupted_results() {
+    use wearsim::sliding::{run_sliding_resumable, Checkpointing, Resumed};
+    let (reference, material, sliding, top, bottom) = run(2);
+    let setup = SlidingSetup {
+        material: &material,
+        effective_modulus: material.effective_modulus(ModulusConvention::HalfSpace),
+        solver: Default::default(),
+        connectivity: 4,
+        sliding: &sliding,
+        interrupt: Default::default(),
+    };
+    let total = 2 * schedule(top.nx(), &sliding).len();
+    let dir = tempfile::tempdir().unwrap();
+    for stop_after in [1, 7, total / 2, total / 2 + 1, total - 1] {
+        let checkpointing = Checkpointing {
+            path: dir.path().join(format!("run-{stop_after}.checkpoint")),
+            every: std::time::Duration::ZERO,
+        };
+        let mut stopped = setup.clone();
+        stopped.interrupt = Default::default();
+        let interrupt = stopped.interrupt.clone();
+        let first = run_sliding_resumable(
+            &top,
+            &bottom,
+            &stopped,
+            Some(&checkpointing),
+            |_| {},
+            |v| {
+                if v.done == stop_after {
+                    interrupt.request();
+                }
+            },
+        );
+        assert!(matches!(first, Err(wearsim::Error::Interrupted)), "{first:?}");
+        let mut resumed = None;
+        let runs = run_sliding_resumable(
+            &top,
+            &bottom,
+            &setup,
+            Some(&checkpointing),
+            |r| resumed = Some(r.clone()),
+            |_| {},
+        )
+        .unwrap();
+        assert_eq!(
+            resumed,
+            Some(Resumed::At {
+                done: stop_after,
+                total
+            })
+        );
+        assert_eq!(runs.len(), reference.len());
+        for (a, b) in runs.iter().zip(&reference) {
+            assert_eq!(
+                (&a.steps, &a.results, &a.warnings),
+                (&b.steps, &b.results, &b.warnings),
+                "stopped after {stop_after}"
+            );
+        }
+    }
+    // The checkpoint of another schedule is not used.
+    let other = SlidingConfig {
+        step: 2,
+        ..sliding.clone()
+    };
+    let checkpointing = Checkpointing {
+        path: dir.path().join(format!("run-{}.checkpoint", total - 1)),
+        every: std::time::Duration::from_secs(3600),
+    };
+    let mut resumed = None;
+    let other_setup = SlidingSetup {
+        sliding: &other,
+        ..setup.clone()
+    };
+    run_sliding_resumable(
+        &top,
+        &bottom,
+        &other_setup,
+        Some(&checkpointing),
+        |r| resumed = Some(r.clone()),
+        |_| {},
+    )
+    .unwrap();
+    match resumed {
+        Some(Resumed::Ignored(why)) => assert!(why.contains("other inputs"), "{why}"),
+        r => panic!("{r:?}"),
+    }
+}

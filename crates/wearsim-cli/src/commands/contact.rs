@@ -71,7 +71,12 @@ pub fn run(args: &Args) -> Result<()> {
             (shift, shift as f64 * dx)
         }
     };
-    let out = OutputDir::begin(&args.out, "contact", args.overwrite)?;
+    let out = OutputDir::begin(
+        &args.out,
+        "contact",
+        args.overwrite,
+        &super::run_inputs(&args.run, &config),
+    )?;
     let pair = config.surface_pair()?;
     super::report_surfaces(&pair, true);
     let (top, bottom) = (pair.top, pair.bottom);

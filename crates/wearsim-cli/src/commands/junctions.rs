@@ -51,7 +51,7 @@ pub fn run(args: &Args) -> Result<()> {
             k % cols
         );
     }
-    let out = OutputDir::begin(&args.out, "junctions", args.overwrite)?;
+    let out = OutputDir::begin(&args.out, "junctions", args.overwrite, &[map.as_path()])?;
     if rows.saturating_mul(cols) >= u32::MAX as usize {
         bail!(
             "{}: a {rows}×{cols} map has more pixels than 32-bit junction labels can index",

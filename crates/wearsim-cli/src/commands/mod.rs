@@ -32,6 +32,15 @@ pub fn load_run(run: &Path) -> Result<RunConfig> {
     RunConfig::from_path(run).with_context(|| format!("run file {}", run.display()))
 }
 
+/// The files a run reads, its run file and surface files: an output folder may hold none of them.
+pub fn run_inputs<'a>(run: &'a Path, config: &'a RunConfig) -> Vec<&'a Path> {
+    let mut inputs = vec![run];
+    if let wearsim::config::SurfaceSource::Files { top, bottom, .. } = &config.surfaces {
+        inputs.extend([top.as_path(), bottom.as_path()]);
+    }
+    inputs
+}
+
 /// Prints what was done to surfaces read from files (cropping, detrending, header lines skipped),
 /// and, with `warnings`, what about them may spoil the results (a surface far from periodic).
 pub fn report_surfaces(pair: &wearsim::config::SurfacePair, warnings: bool) {

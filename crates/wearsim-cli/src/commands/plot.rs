@@ -707,7 +707,7 @@ pub fn run(args: &Args) -> Result<()> {
     let (study, results) = load_results(dir)?;
     let data = Data::new(study.jobs, results)?;
     let series = series_job(&data, args.job)?;
-    let figures = wearsim::io::OutputDir::begin(&dir.join("figures"), "study plot", false)?;
+    let figures = wearsim::io::OutputDir::begin(&dir.join("figures"), "study plot", false, &[])?;
     let out = figures.join("");
     let (u, curves) = (data.units, &data.curves);
     let all: Vec<&Curve> = curves.iter().collect();

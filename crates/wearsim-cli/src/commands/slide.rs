@@ -7,7 +7,7 @@ use anyhow::{bail, Result};
 use wearsim::config::Units;
 use wearsim::io::{write_json, write_text, OutputDir};
 use wearsim::output::{series_csv, sliding_summary, unit_of, FieldSelection, FieldsWriter, SlidingInputs};
-use wearsim::sliding::{run_sliding, SlidingSetup};
+use wearsim::sliding::{run_sliding_resumable, Checkpointing, Resumed, SlidingSetup};
 
 use super::load_run;
 use crate::progress::Progress;
@@ -33,6 +33,29 @@ pub struct Args {
     /// Keep the fields of every K-th step only (s = 0 always; default: every step).
     #[arg(long, default_value_t = 1, requires = "save_fields", value_name = "K")]
     fields_every: usize,
+    /// Save the run's state this often (e.g. 30s, 5m, 1h) beside OUT, as .OUT.checkpoint, so that
+    /// the same command run again after a kill (a Slurm wall-time limit) resumes from it to the
+    /// results of an uninterrupted run; removed once the results are written. Not with
+    /// --save-fields (the fields of the steps before a kill are not kept).
+    #[arg(long, default_value = "5m", value_parser = humantime::parse_duration, value_name = "DURATION")]
+    checkpoint_every: std::time::Duration,
+}
+
+/// The checkpoint file of a run into `out`: `.NAME.checkpoint` beside it.
+pub fn checkpoint_path(out: &std::path::Path) -> PathBuf {
+    let name = out
+        .file_name()
+        .map_or("out".into(), |n| n.to_string_lossy().to_string());
+    wearsim::io::parent_or_dot(out).join(format!(".{name}.checkpoint"))
+}
+
+/// Says on stderr what became of a checkpoint.
+pub fn report_resume(resumed: &Resumed) {
+    match resumed {
+        Resumed::Fresh => {}
+        Resumed::At { done, total } => eprintln!("resuming from the checkpoint after {done} of {total} steps"),
+        Resumed::Ignored(why) => eprintln!("warning: checkpoint not used: {why}"),
+    }
 }
 
 /// A value with the unit of the run's system, e.g. `1.2e-3 m²` (none for counts and ratios).
@@ -60,7 +83,7 @@ pub fn run(args: &Args) -> Result<()> {
         );
     };
     // The output folder is made (and checked) before any work.
-    let out = OutputDir::begin(&args.out, "slide", args.overwrite)?;
+    let out = OutputDir::begin(&args.out, "slide", args.overwrite, &super::run_inputs(run, &config))?;
     let pair = config.surface_pair()?;
     super::report_surfaces(&pair, false);
     let (top, bottom) = (&pair.top, &pair.bottom);
@@ -117,7 +140,11 @@ pub fn run(args: &Args) -> Result<()> {
     let progress = Progress::new("slide", "steps", (steps_per_load * sliding.loads.len()) as u64);
     let start = Instant::now();
     let mut fields_error = None;
-    let runs = run_sliding(top, bottom, &setup, |view| {
+    let checkpointing = (!args.save_fields).then(|| Checkpointing {
+        path: checkpoint_path(out.target()),
+        every: args.checkpoint_every,
+    });
+    let runs = run_sliding_resumable(top, bottom, &setup, checkpointing.as_ref(), report_resume, |view| {
         let note = format!("load {}/{}", view.load_index + 1, sliding.loads.len());
         progress.set(view.done as u64, view.total as u64, &note);
         if let (Some(f), None) = (fields.as_mut(), fields_error.as_ref()) {
@@ -141,6 +168,10 @@ pub fn run(args: &Args) -> Result<()> {
     write_text(&out.join("series.csv"), &series_csv(&runs))?;
     write_json(&out.join("summary.json"), &summary)?;
     out.commit()?;
+    // The results are in place: the state they were resumed from is no longer needed.
+    if let Some(c) = &checkpointing {
+        let _ = std::fs::remove_file(&c.path);
+    }
     for r in &runs {
         for w in &r.results {
             println!(

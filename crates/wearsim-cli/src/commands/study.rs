@@ -20,6 +20,11 @@ pub struct RunArgs {
     /// Jobs run at once, sharing the threads (default: one job per thread); 1 for large grids.
     #[arg(long)]
     jobs: Option<usize>,
+    /// Each job saves its state this often (e.g. 30s, 5m, 1h) beside its job file, so that a job
+    /// killed part-way (a Slurm wall-time limit) resumes in the next run to the results of an
+    /// uninterrupted one; the checkpoint is removed once the job file is written.
+    #[arg(long, default_value = "5m", value_parser = humantime::parse_duration, value_name = "DURATION")]
+    checkpoint_every: std::time::Duration,
 }
 
 #[derive(clap::Args)]
@@ -96,6 +101,8 @@ pub fn run(args: &RunArgs) -> Result<()> {
     if let Some(note) = note {
         eprintln!("note: {note}");
     }
+    // The study file is an input too: a study folder holding it would overwrite or mix with it.
+    wearsim::io::refuse_inputs_inside(out, &[study_path.as_path()])?;
     prepare_folder(out, &study, base)?;
     eprintln!(
         "study {}: {} jobs, shard {k}/{n} holds {}; {workers} workers",
@@ -106,13 +113,20 @@ pub fn run(args: &RunArgs) -> Result<()> {
     // Progress in sliding steps over every pending job (a study of a few 4096² jobs moves between
     // jobs too), with the jobs finished beside it.
     let progress = Progress::new("study", "steps", 0);
-    let outcome = run_jobs(out, &jobs, workers, super::interrupt(), |p| {
-        progress.set(
-            p.steps_done as u64,
-            p.steps_total as u64,
-            &format!("{}/{} jobs done", p.jobs_done, p.jobs_total),
-        )
-    });
+    let outcome = run_jobs(
+        out,
+        &jobs,
+        workers,
+        Some(args.checkpoint_every),
+        super::interrupt(),
+        |p| {
+            progress.set(
+                p.steps_done as u64,
+                p.steps_total as u64,
+                &format!("{}/{} jobs done", p.jobs_done, p.jobs_total),
+            )
+        },
+    );
     progress.finish();
     let summary = outcome?;
     for why in &summary.recomputed {

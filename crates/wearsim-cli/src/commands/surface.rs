@@ -80,7 +80,7 @@ pub fn run(args: &Args) -> Result<()> {
         bail!("give a run file and --out, or `wearsim surface fit FILE`");
     };
     let config = load_run(run)?;
-    let dir = OutputDir::begin(out, "surface", args.overwrite)?;
+    let dir = OutputDir::begin(out, "surface", args.overwrite, &super::run_inputs(run, &config))?;
     let pair = config.surface_pair()?;
     super::report_surfaces(&pair, true);
     let (top, bottom) = (pair.top, pair.bottom);
@@ -135,7 +135,12 @@ fn run_fit(args: &FitArgs) -> Result<()> {
         wearsim::check::positive("length", l).context("--length")?;
     }
     let dir = match &args.out {
-        Some(out) => Some(OutputDir::begin(out, "surface-fit", args.overwrite)?),
+        Some(out) => Some(OutputDir::begin(
+            out,
+            "surface-fit",
+            args.overwrite,
+            &[args.file.as_path()],
+        )?),
         None => None,
     };
     // The library's errors name the file already.

@@ -11,11 +11,151 @@ use crate::error::{Error, Result};
 /// processes sharing a folder).
 static TMP_COUNTER: AtomicU64 = AtomicU64::new(0);
 
-/// A temporary sibling of `path`, unique to this process and call: `.{name}.{pid}-{k}.tmp`.
+/// A temporary sibling of `path`, unique to this process and call: `.{name}.{host}.{pid}-{k}.tmp`.
+/// The host and process in the name tell a later run whether its owner is gone
+/// ([`remove_abandoned_siblings`]), and keep runs on different cluster nodes sharing a folder apart.
 pub fn temporary_sibling(path: &Path) -> Result<std::path::PathBuf> {
     let name = path.file_name().ok_or_else(|| Error::file(path, "not a file path"))?;
     let k = TMP_COUNTER.fetch_add(1, Ordering::Relaxed);
-    Ok(parent_or_dot(path).join(format!(".{}.{}-{k}.tmp", name.to_string_lossy(), std::process::id())))
+    Ok(parent_or_dot(path).join(format!(
+        ".{}.{}.{}-{k}.tmp",
+        name.to_string_lossy(),
+        host_name(),
+        std::process::id()
+    )))
+}
+
+/// This machine's name, as written in claims and temporary names.
+pub fn host_name() -> String {
+    std::fs::read_to_string("/proc/sys/kernel/hostname")
+        .map(|h| h.trim().to_string())
+        .or_else(|_| std::env::var("HOSTNAME"))
+        .ok()
+        .filter(|h| !h.is_empty() && !h.contains(['/', ' ', '\n']))
+        .unwrap_or_else(|| "unknown".into())
+}
+
+/// Whether process `pid` of this host is gone; `None` where that cannot be told (no `/proc`).
+pub fn process_gone(pid: &str) -> Option<bool> {
+    if !Path::new("/proc/self").exists() || pid.is_empty() || !pid.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    Some(!Path::new("/proc").join(pid).exists())
+}
+
+/// Removes the temporary siblings of `path` ([`temporary_sibling`]) left by processes of this host
+/// that are gone (killed runs: a staging folder with a partial Zarr store, a half-written file).
+/// Those of another host, or of a live process, are never touched.
+pub fn remove_abandoned_siblings(path: &Path) {
+    let Some(name) = path.file_name() else { return };
+    let prefix = format!(".{}.", name.to_string_lossy());
+    let host = host_name();
+    let Ok(entries) = std::fs::read_dir(parent_or_dot(path)) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let file = entry.file_name().to_string_lossy().to_string();
+        let Some(owner) = file.strip_prefix(&prefix).and_then(|r| r.strip_suffix(".tmp")) else {
+            continue;
+        };
+        let Some((owner_host, pid_k)) = owner.rsplit_once('.') else {
+            continue;
+        };
+        let Some((pid, _)) = pid_k.split_once('-') else {
+            continue;
+        };
+        if owner_host == host && process_gone(pid) == Some(true) {
+            let p = entry.path();
+            let _ = if p.is_dir() {
+                std::fs::remove_dir_all(&p)
+            } else {
+                std::fs::remove_file(&p)
+            };
+        }
+    }
+}
+
+/// Refuses an output folder `out` that is, or contains, one of `inputs` (a run file, surfaces, a
+/// study file): outputs replace or add to their folder, which would delete or overwrite them.
+/// Paths are compared in their canonical form ([`canonical_path`]), whatever their spelling (`.`,
+/// `..`, a trailing slash, symbolic links).
+pub fn refuse_inputs_inside(out: &Path, inputs: &[&Path]) -> Result<()> {
+    let target = canonical_path(out);
+    for input in inputs {
+        let input = canonical_path(input);
+        if input.starts_with(&target) {
+            return Err(Error::file(
+                out,
+                format!(
+                    "holds the input {}: wearsim writes its outputs there, which would delete or overwrite it; \
+                     give an --out folder outside the inputs, e.g. --out results",
+                    input.display()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A claim on an output path: the file `.{name}.claim` beside it, created exclusively (two processes
+/// cannot both create it) before any work and holding `host pid`; removed when dropped. A claim
+/// whose process is gone (this host, no such process) is taken over.
+#[derive(Debug)]
+pub struct OutputClaim {
+    path: std::path::PathBuf,
+}
+
+impl OutputClaim {
+    /// Claims `target` (a canonical path with a file name) for this process.
+    pub fn take(target: &Path) -> Result<Self> {
+        let name = target
+            .file_name()
+            .ok_or_else(|| Error::file(target, "not a folder name"))?;
+        let path = parent_or_dot(target).join(format!(".{}.claim", name.to_string_lossy()));
+        for _ in 0..2 {
+            match std::fs::OpenOptions::new().write(true).create_new(true).open(&path) {
+                Ok(mut f) => {
+                    let owner = format!("{} {}\n", host_name(), std::process::id());
+                    f.write_all(owner.as_bytes()).map_err(|e| Error::io(&path, e))?;
+                    return Ok(Self { path });
+                }
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+                    let owner = std::fs::read_to_string(&path).unwrap_or_default();
+                    let mut words = owner.split_whitespace();
+                    let (host, pid) = (words.next().unwrap_or(""), words.next().unwrap_or(""));
+                    let age = std::fs::metadata(&path)
+                        .and_then(|m| m.modified())
+                        .ok()
+                        .and_then(|t| std::time::SystemTime::now().duration_since(t).ok());
+                    // An empty claim is one whose writer died between creating and filling it.
+                    let dead = (host == host_name() && process_gone(pid) == Some(true))
+                        || owner.is_empty() && age.is_some_and(|a| a.as_secs() > 5);
+                    if !dead {
+                        return Err(Error::file(
+                            target,
+                            format!(
+                                "another wearsim run (process {pid} on {host}) is writing this folder; wait for it \
+                                 to finish or give another --out (if that run is gone, remove {})",
+                                path.display()
+                            ),
+                        ));
+                    }
+                    let _ = std::fs::remove_file(&path);
+                }
+                Err(e) => return Err(Error::io(&path, e)),
+            }
+        }
+        Err(Error::file(
+            target,
+            "another wearsim run claimed this folder at the same moment; give another --out",
+        ))
+    }
+}
+
+impl Drop for OutputClaim {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.path);
+    }
 }
 
 /// The folder holding `path` (`.` for a bare file name).
@@ -24,6 +164,45 @@ pub fn parent_or_dot(path: &Path) -> &Path {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     }
+}
+
+/// `path` in one canonical form, so that one file named several ways (`a.npy`, `./a.npy`,
+/// `m/../a.npy`, through a symbolic link, relative or absolute) compares equal wherever it is
+/// recorded: absolute, symbolic links resolved. Of a path that does not exist, the nearest existing
+/// ancestor is resolved and the rest appended with `.` and `..` removed.
+pub fn canonical_path(path: &Path) -> std::path::PathBuf {
+    if let Ok(p) = std::fs::canonicalize(path) {
+        return p;
+    }
+    let absolute = if path.is_absolute() {
+        path.to_path_buf()
+    } else {
+        std::env::current_dir().map_or_else(|_| path.to_path_buf(), |d| d.join(path))
+    };
+    let mut lexical = std::path::PathBuf::new();
+    for c in absolute.components() {
+        match c {
+            std::path::Component::CurDir => {}
+            std::path::Component::ParentDir => {
+                lexical.pop();
+            }
+            other => lexical.push(other),
+        }
+    }
+    let mut existing = lexical.clone();
+    let mut rest = Vec::new();
+    while !existing.exists() {
+        match existing.file_name() {
+            Some(name) => {
+                rest.push(name.to_os_string());
+                existing.pop();
+            }
+            None => break,
+        }
+    }
+    let mut out = std::fs::canonicalize(&existing).unwrap_or(existing);
+    out.extend(rest.iter().rev());
+    out
 }
 
 /// Writes `path` atomically: `write` fills a temporary sibling (named uniquely for this process),
@@ -72,6 +251,8 @@ pub struct OutputDir {
     target: std::path::PathBuf,
     staging: std::path::PathBuf,
     committed: bool,
+    /// Held until the outputs are in place (or abandoned): one run per folder.
+    _claim: OutputClaim,
 }
 
 /// The marker file that says which command wrote a folder.
@@ -81,8 +262,30 @@ impl OutputDir {
     /// Prepares to write the outputs of `command` into `target`. An existing `target` must be a
     /// folder that is empty or holds an earlier run of the same command (which the new outputs
     /// replace whole); another command's results, or files wearsim did not write, are refused unless
-    /// `overwrite` is set.
-    pub fn begin(target: &Path, command: &str, overwrite: bool) -> Result<Self> {
+    /// `overwrite` is set. A `target` that is or holds one of `inputs` or the current folder is
+    /// refused whatever `overwrite` says; so is one another live run is writing (a claim beside it,
+    /// taken before anything else, decides). Staging folders of killed runs beside it are removed.
+    pub fn begin(target: &Path, command: &str, overwrite: bool, inputs: &[&Path]) -> Result<Self> {
+        let given = target;
+        let target = &canonical_path(target);
+        if target.file_name().is_none() {
+            return Err(Error::file(
+                given,
+                "is the root folder; give a folder to write into, e.g. --out results",
+            ));
+        }
+        refuse_inputs_inside(target, inputs)?;
+        if std::env::current_dir().is_ok_and(|cwd| canonical_path(&cwd).starts_with(target)) {
+            return Err(Error::file(
+                given,
+                "is the current folder (or holds it): the output folder is replaced whole; give a new folder, e.g. \
+                 --out results",
+            ));
+        }
+        let parent = parent_or_dot(target);
+        std::fs::create_dir_all(parent).map_err(|e| Error::io(parent, e))?;
+        let claim = OutputClaim::take(target)?;
+        remove_abandoned_siblings(target);
         if target.exists() && !target.is_dir() {
             return Err(Error::file(target, "exists and is not a folder; give another --out"));
         }
@@ -113,14 +316,13 @@ impl OutputDir {
                 }
             }
         }
-        let parent = parent_or_dot(target);
-        std::fs::create_dir_all(parent).map_err(|e| Error::io(parent, e))?;
         let staging = temporary_sibling(target)?;
         std::fs::create_dir(&staging).map_err(|e| Error::io(&staging, e))?;
         let dir = Self {
             target: target.to_path_buf(),
             staging,
             committed: false,
+            _claim: claim,
         };
         let provenance = serde_json::json!({"command": command, "software": format!("wearsim {}", crate::VERSION)});
         write_json(&dir.join(MARKER), &provenance)?;
@@ -214,22 +416,22 @@ mod tests {
     fn an_output_folder_appears_whole_and_refuses_another_commands_results() {
         let dir = tempfile::tempdir().unwrap();
         let out = dir.path().join("out");
-        let first = OutputDir::begin(&out, "slide", false).unwrap();
+        let first = OutputDir::begin(&out, "slide", false, &[]).unwrap();
         write_text(&first.join("summary.json"), "{}").unwrap();
         write_text(&first.join("series.csv"), "a\n").unwrap();
         assert!(!out.exists(), "nothing appears before the commit");
         first.commit().unwrap();
         assert!(out.join("series.csv").is_file());
         // The same command replaces the folder whole: no file of the earlier run survives.
-        let again = OutputDir::begin(&out, "slide", false).unwrap();
+        let again = OutputDir::begin(&out, "slide", false, &[]).unwrap();
         write_text(&again.join("summary.json"), "{\"new\": 1}").unwrap();
         again.commit().unwrap();
         assert!(!out.join("series.csv").exists());
         // Another command is refused without --overwrite, and the folder is left alone.
-        let e = OutputDir::begin(&out, "contact", false).unwrap_err().to_string();
+        let e = OutputDir::begin(&out, "contact", false, &[]).unwrap_err().to_string();
         assert!(e.contains("wearsim slide") && e.contains("--overwrite"), "{e}");
         // A run that fails before its commit leaves no trace.
-        let failed = OutputDir::begin(&out, "slide", false).unwrap();
+        let failed = OutputDir::begin(&out, "slide", false, &[]).unwrap();
         write_text(&failed.join("series.csv"), "half").unwrap();
         drop(failed);
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
@@ -240,12 +442,12 @@ mod tests {
         // A file in the way is refused before any work.
         let file = dir.path().join("file");
         std::fs::write(&file, "x").unwrap();
-        assert!(OutputDir::begin(&file, "slide", true)
+        assert!(OutputDir::begin(&file, "slide", true, &[])
             .unwrap_err()
             .to_string()
             .contains("not a folder"));
         std::fs::write(dir.path().join("mine.txt"), "x").unwrap();
-        assert!(OutputDir::begin(dir.path(), "slide", false)
+        assert!(OutputDir::begin(dir.path(), "slide", false, &[])
             .unwrap_err()
             .to_string()
             .contains("did not write"));

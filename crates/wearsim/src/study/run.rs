@@ -7,13 +7,18 @@ use std::sync::Mutex;
 
 use crate::error::{Error, Interrupt, Result};
 use crate::output::{JobResult, Provenance, StepRow};
-use crate::sliding::{run_sliding, SlidingSetup};
+use crate::sliding::{run_sliding_resumable, Checkpointing, SlidingSetup};
 use crate::study::expand::Job;
 use crate::study::store::{stored_result, write_result, Claim, Stored, CLAIM_REFRESH};
 
 /// Runs one job; a raised `interrupt` stops it with [`Error::Interrupted`].
 pub fn run_job(job: &Job, interrupt: &Interrupt) -> Result<JobResult> {
-    run_job_observed(job, interrupt, || {})
+    run_job_observed(job, interrupt, None, || {})
+}
+
+/// Path of job `index`'s checkpoint in a study folder (see [`crate::sliding::Checkpointing`]).
+pub fn checkpoint_path(dir: &Path, index: usize) -> PathBuf {
+    dir.join("jobs").join(format!("job-{index:06}.checkpoint"))
 }
 
 /// Sliding steps of a job (its schedule on its grid), for progress in steps.
@@ -24,8 +29,14 @@ pub fn job_steps(job: &Job) -> usize {
     }
 }
 
-/// [`run_job`], calling `on_step` after every sliding step (progress of a long job).
-pub fn run_job_observed(job: &Job, interrupt: &Interrupt, on_step: impl Fn()) -> Result<JobResult> {
+/// [`run_job`], calling `on_step` after every sliding step (progress of a long job), saving its
+/// state and resuming from it as `checkpointing` says.
+pub fn run_job_observed(
+    job: &Job,
+    interrupt: &Interrupt,
+    checkpointing: Option<&Checkpointing>,
+    on_step: impl Fn(),
+) -> Result<JobResult> {
     let start = std::time::Instant::now();
     let run = &job.run;
     let sliding = run
@@ -35,7 +46,7 @@ pub fn run_job_observed(job: &Job, interrupt: &Interrupt, on_step: impl Fn()) ->
     let (top, bottom) = run.surfaces()?;
     let mut setup = SlidingSetup::from_run(run, sliding);
     setup.interrupt = interrupt.clone();
-    let mut runs = run_sliding(&top, &bottom, &setup, |_| on_step())?;
+    let mut runs = run_sliding_resumable(&top, &bottom, &setup, checkpointing, |_| {}, |_| on_step())?;
     let r = runs.pop().ok_or_else(|| Error::param("loads", "job without a load"))?;
     Ok(JobResult {
         format: crate::output::JOB_FORMAT,
@@ -95,11 +106,14 @@ pub struct RunSummary {
 /// sharing a folder compute each job once. A failing job does not stop the others: the finished
 /// ones are written and [`Error::JobsFailed`] names the failed ones, which a new run retries.
 /// `progress` is called after every sliding step and every job. A raised `interrupt` stops the jobs under way
-/// (finished job files stay, so a later run resumes) and returns [`Error::Interrupted`].
+/// (finished job files stay, so a later run resumes) and returns [`Error::Interrupted`]. With
+/// `checkpoint_every`, each job saves its state that often beside its job file, and a job killed
+/// part-way resumes from it in the next run (the file is removed once the job file is written).
 pub fn run_jobs(
     dir: &Path,
     jobs: &[&Job],
     workers: usize,
+    checkpoint_every: Option<std::time::Duration>,
     interrupt: &Interrupt,
     progress: impl Fn(StudyProgress) + Sync,
 ) -> Result<RunSummary> {
@@ -170,14 +184,23 @@ pub fn run_jobs(
                             continue;
                         }
                         held.lock().map_err(|_| lock_error())?.push(claim.path().to_path_buf());
+                        let checkpointing = checkpoint_every.map(|every| Checkpointing {
+                            path: checkpoint_path(dir, job.index),
+                            every,
+                        });
                         let outcome = pool
                             .install(|| {
-                                run_job_observed(job, interrupt, || {
+                                run_job_observed(job, interrupt, checkpointing.as_ref(), || {
                                     steps_done.fetch_add(1, Ordering::Relaxed);
                                     report(done.load(Ordering::Relaxed));
                                 })
                             })
                             .and_then(|r| write_result(dir, &r));
+                        if outcome.is_ok() {
+                            if let Some(c) = &checkpointing {
+                                let _ = std::fs::remove_file(&c.path);
+                            }
+                        }
                         held.lock().map_err(|_| lock_error())?.retain(|p| p != claim.path());
                         drop(claim);
                         match outcome {

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, SystemTime};
 
 use crate::error::{Error, Result};
-use crate::io::{read_text, write_text};
+use crate::io::{host_name, read_text, temporary_sibling, write_text};
 use crate::output::{read_job_file, JobResult};
 use crate::study::expand::{Job, Study};
 
@@ -113,13 +113,6 @@ pub const CLAIM_EXPIRY: Duration = Duration::from_secs(600);
 /// How often a live claim is refreshed.
 pub const CLAIM_REFRESH: Duration = Duration::from_secs(60);
 
-fn host_name() -> String {
-    std::fs::read_to_string("/proc/sys/kernel/hostname")
-        .map(|h| h.trim().to_string())
-        .or_else(|_| std::env::var("HOSTNAME"))
-        .unwrap_or_else(|_| "unknown".into())
-}
-
 impl Claim {
     /// Claims job `index`; `Ok(None)` when another live run holds it. A claim left by a process that
     /// is gone (on this host: no such process; elsewhere: not refreshed for [`CLAIM_EXPIRY`]) is
@@ -178,27 +171,47 @@ impl Drop for Claim {
 /// that killed runs left behind (only those older than [`CLAIM_EXPIRY`]: a younger one may be
 /// another run's file being written).
 pub fn prepare_folder(dir: &Path, study: &Study, base: &Path) -> Result<()> {
+    let mut inputs: Vec<&Path> = Vec::new();
+    for job in &study.jobs {
+        if let crate::config::SurfaceSource::Files { top, bottom, .. } = &job.run.surfaces {
+            inputs.extend([top.as_path(), bottom.as_path()]);
+        }
+    }
+    crate::io::refuse_inputs_inside(dir, &inputs)?;
     std::fs::create_dir_all(dir.join("jobs")).map_err(|e| Error::io(dir, e))?;
     let hash_path = dir.join("study.hash");
-    match std::fs::read_to_string(&hash_path) {
-        Ok(existing) if existing.trim() != study.hash => {
-            return Err(Error::StudyFolder {
-                dir: dir.into(),
-                message: format!(
-                    "holds results of a different study (hash {} ≠ {}: the study file or a surface file it names has \
-                     changed); use a new --out folder or restore the original files",
-                    existing.trim(),
-                    study.hash
-                ),
-            })
+    // The folder belongs to the first study that links its hash file into place: a hard link
+    // cannot replace an existing file, so of two studies started at once exactly one wins, and the
+    // other finds its hash and is refused before any work.
+    let stored = if hash_path.exists() {
+        read_text(&hash_path)?
+    } else {
+        let tmp = temporary_sibling(&hash_path)?;
+        write_text(&tmp, &study.hash)?;
+        let linked = std::fs::hard_link(&tmp, &hash_path);
+        let _ = std::fs::remove_file(&tmp);
+        match linked {
+            Ok(()) => study.hash.clone(),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => read_text(&hash_path)?,
+            Err(e) => return Err(Error::io(&hash_path, e)),
         }
-        Ok(_) => {}
-        Err(_) => {
-            write_text(&dir.join("study.toml"), &study.canonical)?;
-            let base = base.canonicalize().map_err(|e| Error::io(base, e))?;
-            write_text(&dir.join("study.base"), &base.to_string_lossy())?;
-            write_text(&hash_path, &study.hash)?;
-        }
+    };
+    if stored.trim() != study.hash {
+        return Err(Error::StudyFolder {
+            dir: dir.into(),
+            message: format!(
+                "holds results of a different study (hash {} ≠ {}: another study file, or the study file or a surface \
+                 file it names has changed); use a new --out folder or restore the original files",
+                stored.trim(),
+                study.hash
+            ),
+        });
+    }
+    // Written by the study that claimed the folder (or, if it was killed first, by the next run).
+    if !dir.join("study.toml").is_file() {
+        let base = base.canonicalize().map_err(|e| Error::io(base, e))?;
+        write_text(&dir.join("study.base"), &base.to_string_lossy())?;
+        write_text(&dir.join("study.toml"), &study.canonical)?;
     }
     let jobs = dir.join("jobs");
     for entry in std::fs::read_dir(&jobs).map_err(|e| Error::io(&jobs, e))?.flatten() {
