@@ -259,7 +259,8 @@ mod tests {
                 "static_wear_coefficient",
                 "static_wear_rate",
                 "iterations",
-                "residual"
+                "residual",
+                "wrapping_junctions"
             ]
         );
         let tidy = columns::<TidyRow>();
