@@ -218,6 +218,25 @@ def test_bad_input_raises_value_error_naming_the_field(call, message):
         call()
 
 
+def test_arguments_of_the_wrong_kind_name_the_argument_and_the_fix():
+    spectrum = dict(lambda_lower=0.0625, lambda_upper=0.25, rms_height=0.005)
+    # A float grid was a multi-line enum extraction failure; a negative seed an OverflowError.
+    for grid in (64.0, "64", (64, 32, 16), 0, True):
+        with pytest.raises(ValueError, match=r"invalid `grid`: .* e\.g\. 64"):
+            wearsim.generate_pair(grid, **spectrum)
+    for seed in (-1, 2**64, 1.5):
+        with pytest.raises(ValueError, match=r"invalid `seed`: .*from 0 to 2\*\*64 - 1"):
+            wearsim.generate_surface(64, seed=seed, **spectrum)
+        with pytest.raises(ValueError, match="invalid `seed`"):
+            wearsim.generate_pair(64, seed=seed, **spectrum)
+    # A scalar where a list is needed: named, with the list to give.
+    top, bottom = wearsim.generate_pair(32, lambda_lower=0.125, lambda_upper=0.25, rms_height=0.005)
+    with pytest.raises(TypeError, match=r"invalid `loads`: 0\.001 is one value.*\[0\.001\]"):
+        wearsim.slide(top, bottom, wearsim.Material(1, 0.3, 0.01, [1e-6]), 1e-3)
+    largest = wearsim.generate_surface((32, 16), seed=2**64 - 1, lambda_lower=0.125, lambda_upper=0.25, rms_height=5e-3)
+    assert largest.shape == (32, 16)
+
+
 def test_errors_of_files_and_convergence(tmp_path):
     with pytest.raises(OSError, match="missing.toml"):
         wearsim.load_run(tmp_path / "missing.toml")
