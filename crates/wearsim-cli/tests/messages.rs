@@ -85,3 +85,29 @@ fn study_axes_that_repeat_or_could_be_rectangles_are_refused() {
     assert!(e.contains("units") && !e.contains("unit variant"), "{e}");
     assert!(!out.exists());
 }
+
+#[test]
+fn collecting_what_is_not_a_study_folder_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let empty = dir.path().join("empty");
+    std::fs::create_dir(&empty).unwrap();
+    let plain = file(dir.path(), "plain.txt", "x");
+    for (path, what) in [
+        (empty.as_path(), "holds no study.toml"),
+        (plain.as_path(), "is not a folder"),
+        (std::path::Path::new("/dev/null"), "is not a folder"),
+        (dir.path().join("missing").as_path(), "does not exist"),
+    ] {
+        for command in ["collect", "plot"] {
+            let e = fails(&["study", command, s(path)]);
+            assert!(
+                e.contains(what) && e.contains("--out folder of a `wearsim study run`"),
+                "{e}"
+            );
+            assert!(
+                !e.contains("study.toml: No such file") && !e.contains("os error"),
+                "{e}"
+            );
+        }
+    }
+}
