@@ -111,3 +111,21 @@ fn collecting_what_is_not_a_study_folder_says_so() {
         }
     }
 }
+
+#[test]
+fn a_folder_given_for_a_file_is_said_in_words() {
+    let dir = tempfile::tempdir().unwrap();
+    let folder = dir.path().join("d");
+    std::fs::create_dir(&folder).unwrap();
+    let out = dir.path().join("o");
+    for args in [
+        vec!["slide", s(&folder), "--out", s(&out)],
+        vec!["surface", "fit", s(&folder), "--length", "1"],
+    ] {
+        let e = fails(&args);
+        assert!(
+            e.contains("is a folder, where a file is needed") && !e.contains("os error"),
+            "{e}"
+        );
+    }
+}
