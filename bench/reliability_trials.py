@@ -4,10 +4,16 @@ Classes: bad inputs (every run-file and study-file field set to bad values, bad 
 arguments, broken .npy files), kill -9 of a study and resume, concurrent runs on one folder, a disk
 that fills up (a file-size limit), signals (SIGINT, SIGTERM), huge sizes. Each trial's outcome is
 classified: a clear error (exit 1 or 2, one line naming something), accepted (exit 0, consistent
-outputs), a panic (exit 101), an abort (134 or a signal), a hang (over the time limit), or data loss
-(outputs mixed, half-written, or a finished result lost).
+outputs), a panic (exit 101), an abort (134 or a signal), a hang (over the time limit), data loss
+(outputs mixed, half-written, or a finished result lost), or silently wrong (exit 0 with results
+that are not the model's, or with no word that they are not).
 
-    cargo build --release -p wearsim-cli && python bench/reliability_trials.py [--quick]
+The second round (``--second-round`` runs it alone) adds: spreadsheet CSV (a byte-order mark,
+decimal commas), full contact (a junction around the periodic box), study axes (repeated values,
+two-number grids), arguments (--jobs 0, three or negative --length), messages of the first round's
+unclear errors, and `surface fit` on surfaces wearsim generated.
+
+    cargo build --release -p wearsim-cli && python bench/reliability_trials.py [--quick | --second-round]
 """
 
 from __future__ import annotations
@@ -269,21 +275,161 @@ def huge_sizes(tmp: Path, tally: dict) -> None:
         tally[("huge sizes", o.kind)].append(f"bench {sizes}: {o.detail}")
 
 
+def _fit(tmp: Path, surface: Path, out: str) -> dict | None:
+    p = run(["surface", "fit", str(surface), "--length", "1.0", "--detrend", "none", "--out", str(tmp / out)])
+    if p is None or p.returncode != 0:
+        return None
+    fit = json.loads((tmp / out / "fit.json").read_text())["fit"]
+    subprocess.run(["rm", "-rf", str(tmp / out)])
+    return fit
+
+
+def second_round(tmp: Path, tally: dict) -> None:
+    """The classes of the second round of trials (see the module documentation)."""
+    # Spreadsheet CSV: the same 64 × 64 map as Excel and European spreadsheets save it.
+    surface = tmp / "gen.toml"
+    surface.write_text(toml({k: v for k, v in RUN.items() if k in ("surface", "material")}))
+    run(["surface", str(surface), "--out", str(tmp / "g")])
+    import numpy as np  # the trials need NumPy only for the CSV dialects
+
+    h = np.load(tmp / "g" / "top.npy")
+    lines = [[f"{v:.9e}" for v in row] for row in h.T]
+    plain = tmp / "plain.csv"
+    plain.write_text("\n".join(",".join(r) for r in lines) + "\n")
+    reference = _fit(tmp, plain, "f")
+    dialects = {
+        "byte-order mark": ("\ufeff" + "\n".join(",".join(r) for r in lines) + "\n", True),
+        "decimal commas, semicolons": ("\n".join(";".join(v.replace(".", ",") for v in r) for r in lines), True),
+        "decimal commas, tabs": ("\n".join("\t".join(v.replace(".", ",") for v in r) for r in lines), True),
+        "decimal commas, CRLF, BOM": (
+            "\ufeff" + "\r\n".join(";".join(v.replace(".", ",") for v in r) for r in lines),
+            True,
+        ),
+        "decimal commas, spaces": ("\n".join(" ".join(v.replace(".", ",") for v in r) for r in lines), False),
+    }
+    for name, (text, readable) in dialects.items():
+        path = tmp / "dialect.csv"
+        path.write_text(text, encoding="utf-8")
+        p = run(["surface", "fit", str(path), "--length", "1.0", "--detrend", "none", "--out", str(tmp / "d")])
+        o = classify(p)
+        if o.kind == "accepted":
+            fit = json.loads((tmp / "d" / "fit.json").read_text())["fit"]
+            same = reference is not None and all(
+                abs(fit[k] - reference[k]) <= 1e-9 * abs(reference[k]) for k in ("rms_height", "hurst")
+            )
+            o = Outcome("accepted" if same and readable else "silently wrong", name)
+        tally[("spreadsheet CSV", o.kind)].append(f"{name}: {o.detail}")
+        subprocess.run(["rm", "-rf", str(tmp / "d")])
+    # Full contact near p_m = 3√3 τ̃: a junction around the box must be flagged.
+    for load in ["0.0515", "0.05", "1e-3"]:
+        path = tmp / "full.toml"
+        text = toml(RUN).replace("loads = [1e-3]", f"loads = [{load}]").replace("distance = 0.5", "distance = 0.3")
+        path.write_text(text)
+        out = tmp / "full"
+        o = classify(run(["slide", str(path), "--out", str(out)], timeout=300))
+        if o.kind == "accepted":
+            summary = json.loads((out / "summary.json").read_text())
+            wrapped = "wraps the periodic box" in json.dumps(summary)
+            area = max(float(line.split(",")[4]) for line in (out / "series.csv").read_text().splitlines()[1:])
+            flagged = wrapped or area < 1.0  # full contact must be flagged
+            o = Outcome(
+                "accepted" if flagged else "silently wrong", f"F_N = {load}: contact area {area:.3f}, flagged {wrapped}"
+            )
+        tally[("full contact", o.kind)].append(o.detail)
+        subprocess.run(["rm", "-rf", str(out)])
+    # Study axes: repeated values and two-number grids must be refused, not run.
+    for name, edit in [
+        ("seed = [1, 1, 2]", ("seed = [1, 2, 3]", "seed = [1, 1, 2]")),
+        ("loads = [1e-3, 1e-3]", ("loads = [5e-4, 1e-3]", "loads = [1e-3, 1e-3]")),
+        ("grid = [64, 32]", ("grid = 64", "grid = [64, 32]")),
+        ("length = [1.0, 0.5]", ("length = 1.0", "length = [1.0, 0.5]")),
+        ('units = ["si", "reduced"]', ("[surface]", 'units = ["si", "reduced"]\n[surface]')),
+    ]:
+        study = tmp / "axes.toml"
+        study.write_text(STUDY.replace(*edit))
+        out = tmp / "axes"
+        o = classify(run(["study", "run", str(study), "--out", str(out)], timeout=300))
+        if o.kind == "accepted":
+            o = Outcome("silently wrong", f"{name} ran")
+        tally[("study axes", o.kind)].append(f"{name}: {o.detail}")
+        subprocess.run(["rm", "-rf", str(out)])
+    # Arguments.
+    path = tmp / "run.toml"
+    path.write_text(toml(RUN))
+    study = tmp / "one.toml"
+    study.write_text(toml(RUN))
+    npy = tmp / "g" / "top.npy"
+    long_name = tmp / ("a" * 250)
+    cases = [
+        ("--jobs 0", ["study", "run", str(study), "--out", str(tmp / "j0"), "--jobs", "0"]),
+        ("three --length", ["surface", "fit", str(npy), "--length", "1", "--length", "1", "--length", "1"]),
+        ("--length -1", ["surface", "fit", str(npy), "--length", "-1"]),
+        ("--load -1e-3", ["contact", str(path), "--load", "-1e-3", "--out", str(tmp / "c")]),
+        ("study collect of a plain folder", ["study", "collect", str(tmp / "g")]),
+        ("study collect /dev/null", ["study", "collect", "/dev/null"]),
+        ("study plot of a missing folder", ["study", "plot", str(tmp / "missing")]),
+        ("a 250-character --out", ["surface", str(path), "--out", str(long_name)]),
+        ("a directory as the run file", ["slide", str(tmp / "g"), "--out", str(tmp / "x")]),
+        ("a directory as the height map", ["surface", "fit", str(tmp / "g"), "--length", "1"]),
+    ]
+    for name, args in cases:
+        o = classify(run(args, timeout=300))
+        if name == "a 250-character --out" and o.kind == "accepted":
+            o = Outcome("accepted", "")
+        elif o.kind == "clear error" and (".tmp" in o.detail or "os error" in o.detail or "1-0" in o.detail):
+            o = Outcome("unclear error", o.detail)
+        tally[("arguments and messages", o.kind)].append(f"{name}: {o.detail}")
+        for d in ["j0", "c", "x", long_name.name]:
+            subprocess.run(["rm", "-rf", str(tmp / d)])
+    env = {**os.environ, "SLURM_ARRAY_TASK_ID": "1", "SLURM_ARRAY_TASK_COUNT": "0"}
+    o = classify(run(["study", "run", str(study), "--out", str(tmp / "sl")], env=env))
+    if "1-0" in o.detail or "K/0" in o.detail:
+        o = Outcome("unclear error", o.detail)
+    tally[("arguments and messages", o.kind)].append(f"Slurm count 0: {o.detail}")
+    # surface fit on surfaces wearsim generated (512², both methods): H within ±0.05, cut-offs ×1.2.
+    for generation in ["random-phase", "filtered-noise"]:
+        for hurst, lower in [("0.8", "0.015625"), ("0.7", "0.03125"), ("0.5", "0.015625")]:
+            text = toml({k: v for k, v in RUN.items() if k in ("surface", "material")})
+            text = text.replace("grid = 64", "grid = 512").replace("hurst = 0.7", f"hurst = {hurst}")
+            text = text.replace("lambda_lower = 0.0625", f"lambda_lower = {lower}")
+            text = text.replace('"random-phase"', f'"{generation}"')
+            surface.write_text(text)
+            run(["surface", str(surface), "--out", str(tmp / "s512")])
+            fit = _fit(tmp, tmp / "s512" / "top.npy", "f512")
+            if fit is None:
+                tally[("surface fit of generated surfaces", "clear error")].append(f"{generation} H {hurst}")
+                continue
+            good = (
+                abs(fit["hurst"] - float(hurst)) <= 0.05
+                and 1 / 1.2 < fit["lambda_lower"] / float(lower) < 1.2
+                and 1 / 1.2 < fit["lambda_upper"] / 0.25 < 1.2
+            )
+            detail = (
+                f"{generation} H {hurst} λ_l {lower}: fitted H {fit['hurst']:.3f}, "
+                f"λ_l {fit['lambda_lower']:.4g}, λ_u {fit['lambda_upper']:.4g}"
+            )
+            tally[("surface fit of generated surfaces", "accepted" if good else "silently wrong")].append(detail)
+            subprocess.run(["rm", "-rf", str(tmp / "s512")])
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="fewer trials")
     parser.add_argument("--verbose", action="store_true", help="list every trial")
+    parser.add_argument("--second-round", action="store_true", help="only the classes of the second round")
     args = parser.parse_args()
     tally: dict = collections.defaultdict(list)
     start = time.time()
     with tempfile.TemporaryDirectory() as d:
         tmp = Path(d)
-        bad_inputs(tmp, tally, args.quick)
-        kills_and_concurrency(tmp, tally, 3 if args.quick else 10)
-        disk_full_and_signals(tmp, tally, 2 if args.quick else 5)
-        huge_sizes(tmp, tally)
+        if not args.second_round:
+            bad_inputs(tmp, tally, args.quick)
+            kills_and_concurrency(tmp, tally, 3 if args.quick else 10)
+            disk_full_and_signals(tmp, tally, 2 if args.quick else 5)
+            huge_sizes(tmp, tally)
+        second_round(tmp, tally)
     classes = sorted({c for c, _ in tally})
-    kinds = ["accepted", "clear error", "unclear error", "panic", "abort", "hang", "data loss"]
+    kinds = ["accepted", "clear error", "unclear error", "panic", "abort", "hang", "data loss", "silently wrong"]
     print(f"| class | trials | {' | '.join(kinds)} |")
     print("|---|---|" + "---|" * len(kinds))
     for c in classes:
@@ -291,7 +437,7 @@ def main() -> None:
         print(f"| {c} | {sum(counts)} | {' | '.join(map(str, counts))} |")
     totals = [sum(len(tally[(c, k)]) for c in classes) for k in kinds]
     print(f"| **all** | {sum(totals)} | {' | '.join(map(str, totals))} |")
-    for k in ["unclear error", "panic", "abort", "hang", "data loss"]:
+    for k in ["unclear error", "panic", "abort", "hang", "data loss", "silently wrong"]:
         for c in classes:
             for detail in tally[(c, k)]:
                 print(f"{k}: {c}: {detail}")

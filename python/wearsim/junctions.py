@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import warnings
+from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
@@ -21,6 +22,15 @@ class Junctions:
     pixels: np.ndarray
     #: Pixel side Δx = L/N.
     pixel_size: float
+    #: Whether each junction wraps the periodic box along x and along y, (count, 2) bool. A junction
+    #: that closes on itself around the box (full contact, a band across it) has no finite extent:
+    #: it is no particle of the model (paper §3), and its diameter and volume mean nothing.
+    wraps: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), dtype=bool))
+
+    @property
+    def wrapping(self) -> np.ndarray:
+        """Whether each junction wraps the periodic box (along x or y)."""
+        return self.wraps.any(axis=1) if self.wraps.size else np.zeros(self.pixels.size, dtype=bool)
 
     @property
     def count(self) -> int:
@@ -43,15 +53,28 @@ class Junctions:
         return np.pi * self.diameters**3 / 6.0
 
     def table(self) -> pd.DataFrame:
-        """One row per junction: pixels, area, diameter, volume."""
+        """One row per junction: pixels, area, diameter, volume, and whether it wraps the box along x
+        and y (such a junction is no particle of the model)."""
+        wraps = self.wraps if self.wraps.size else np.zeros((self.pixels.size, 2), dtype=bool)
         return pd.DataFrame(
-            {"pixels": self.pixels, "area": self.areas, "diameter": self.diameters, "volume": self.volumes}
+            {
+                "pixels": self.pixels,
+                "area": self.areas,
+                "diameter": self.diameters,
+                "volume": self.volumes,
+                "wraps_x": wraps[:, 0],
+                "wraps_y": wraps[:, 1],
+            }
         )
 
 
 def label_junctions(contact: np.ndarray, *, connectivity: int = 4, pixel_size: float = 1.0) -> Junctions:
     """Labels the junctions of a contact map (bool, or numbers where > 0 is contact, e.g. a pressure
-    field) with 4- or 8-connectivity and periodic boundaries."""
+    field) with 4- or 8-connectivity and periodic boundaries.
+
+    A junction that wraps the periodic box (``Junctions.wraps``) is flagged and warned about
+    (``RuntimeWarning``): it is no particle of the model (paper §3), so its diameter and volume are
+    not those of a particle."""
     contact = np.asarray(contact)
     if contact.dtype != np.bool_:
         contact = contact > 0
@@ -59,5 +82,14 @@ def label_junctions(contact: np.ndarray, *, connectivity: int = 4, pixel_size: f
         raise ValueError(f"invalid `contact`: a 2-D array is needed, got {contact.ndim} dimensions")
     if not pixel_size > 0:
         raise ValueError(f"invalid `pixel_size`: {pixel_size} must be positive")
-    labels, pixels = _wearsim.label_junctions(np.ascontiguousarray(contact), connectivity)
-    return Junctions(labels=labels, pixels=pixels, pixel_size=float(pixel_size))
+    labels, pixels, wraps = _wearsim.label_junctions(np.ascontiguousarray(contact), connectivity)
+    if wraps.any():
+        which = np.flatnonzero(wraps.any(axis=1))
+        warnings.warn(
+            f"junction(s) {which.tolist()} wrap the periodic box ({int(pixels[which].sum())} of {contact.size} "
+            "pixels in contact): a junction around the box is no particle of the model (paper §3), so its "
+            "diameter and volume are not a particle's; see `Junctions.wraps`",
+            RuntimeWarning,
+            stacklevel=2,
+        )
+    return Junctions(labels=labels, pixels=pixels, pixel_size=float(pixel_size), wraps=wraps)

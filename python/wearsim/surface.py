@@ -18,7 +18,7 @@ from typing import Any, Dict, Literal, Optional, Tuple, Union
 
 import numpy as np
 
-from . import _wearsim
+from . import _args, _wearsim
 
 Generation = Literal["random-phase", "filtered-noise"]
 
@@ -83,7 +83,16 @@ def generate_surface(
     ``lambda_lower`` (cut-off), scaled to exactly ``rms_height``; lengths in the unit of ``length``.
     The same seed gives the same surface whatever the thread count.
     """
-    return _wearsim.generate_surface(grid, length, hurst, lambda_lower, lambda_upper, rms_height, seed, generation)
+    return _wearsim.generate_surface(
+        _args.grid_size(grid),
+        length,
+        hurst,
+        lambda_lower,
+        lambda_upper,
+        rms_height,
+        _args.seed("seed", seed),
+        generation,
+    )
 
 
 def generate_pair(
@@ -99,10 +108,10 @@ def generate_pair(
 ) -> Tuple[np.ndarray, np.ndarray]:
     """The (top, bottom) surface pair of a run file with this ``seed``: two independent surfaces
     whose seeds are derived from ``seed`` exactly as ``wearsim surface`` does."""
-    top_seed, bottom_seed = _wearsim.pair_seeds(seed)
+    top_seed, bottom_seed = _wearsim.pair_seeds(_args.seed("seed", seed))
     make = functools.partial(
         generate_surface,
-        grid,
+        _args.grid_size(grid),
         length=length,
         hurst=hurst,
         lambda_lower=lambda_lower,

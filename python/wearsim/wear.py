@@ -18,7 +18,7 @@ from typing import Any, Dict, Optional, Sequence, Tuple, Union
 import numpy as np
 import pandas as pd
 
-from . import _wearsim
+from . import _args, _wearsim
 from ._progress import ProgressArg, callback
 from .junctions import Junctions
 from .surface import as_heights
@@ -91,7 +91,7 @@ def slide(
         bottom_heights,
         lx,
         material,
-        [float(f) for f in loads],
+        _args.floats("loads", loads),
         modulus,
         tolerance,
         max_iterations,

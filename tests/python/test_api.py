@@ -9,6 +9,7 @@ import sys
 import textwrap
 import threading
 import time
+import warnings
 
 import numpy as np
 import pandas as pd
@@ -117,7 +118,8 @@ def test_junctions_and_static_model():
     assert (j.labels == -1).sum() == 256 - 11
     np.testing.assert_allclose(j.areas, j.pixels * 0.25)
     table = j.table()
-    assert list(table.columns) == ["pixels", "area", "diameter", "volume"]
+    assert list(table.columns) == ["pixels", "area", "diameter", "volume", "wraps_x", "wraps_y"]
+    assert not j.wrapping.any()
     # d* between the two junction diameters: only the 9-pixel junction counts.
     d_star = 0.5 * (j.diameters.min() + j.diameters.max())
     w = wearsim.static_wear(j, d_star)
@@ -125,6 +127,26 @@ def test_junctions_and_static_model():
     assert w["wear_rate_over_omega"] == pytest.approx(9 / 11 * 11 * 0.25)
     # A pressure field is a contact map too.
     assert wearsim.label_junctions(contact * 2.5).count == 2
+
+
+def test_a_junction_around_the_periodic_box_is_flagged_and_warned_about():
+    # Full contact: one junction that closes on itself both ways; it is no particle (d = 1.128 L).
+    with pytest.warns(RuntimeWarning, match="wrap the periodic box"):
+        full = wearsim.label_junctions(np.ones((64, 64), bool))
+    assert full.count == 1 and full.wraps.tolist() == [[True, True]]
+    # A band along y (a full row) wraps along y only; beside it an ordinary junction.
+    band = np.zeros((16, 12), bool)
+    band[3, :] = True
+    band[8:10, 4:6] = True
+    with pytest.warns(RuntimeWarning, match=r"junction\(s\) \[0\]"):
+        j = wearsim.label_junctions(band)
+    assert j.wraps.tolist() == [[False, True], [False, False]]
+    assert j.table()["wraps_y"].tolist() == [True, False]
+    # A row with a gap spans the box without closing: an ordinary junction, no warning.
+    band[3, 7] = False
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert not wearsim.label_junctions(band).wrapping.any()
 
 
 def test_slide_equals_the_cli(tmp_path, run_file, wearsim_bin):
@@ -194,6 +216,25 @@ def test_slide_equals_the_cli(tmp_path, run_file, wearsim_bin):
 def test_bad_input_raises_value_error_naming_the_field(call, message):
     with pytest.raises(ValueError, match=re.escape(message)):
         call()
+
+
+def test_arguments_of_the_wrong_kind_name_the_argument_and_the_fix():
+    spectrum = dict(lambda_lower=0.0625, lambda_upper=0.25, rms_height=0.005)
+    # A float grid was a multi-line enum extraction failure; a negative seed an OverflowError.
+    for grid in (64.0, "64", (64, 32, 16), 0, True):
+        with pytest.raises(ValueError, match=r"invalid `grid`: .* e\.g\. 64"):
+            wearsim.generate_pair(grid, **spectrum)
+    for seed in (-1, 2**64, 1.5):
+        with pytest.raises(ValueError, match=r"invalid `seed`: .*from 0 to 2\*\*64 - 1"):
+            wearsim.generate_surface(64, seed=seed, **spectrum)
+        with pytest.raises(ValueError, match="invalid `seed`"):
+            wearsim.generate_pair(64, seed=seed, **spectrum)
+    # A scalar where a list is needed: named, with the list to give.
+    top, bottom = wearsim.generate_pair(32, lambda_lower=0.125, lambda_upper=0.25, rms_height=0.005)
+    with pytest.raises(TypeError, match=r"invalid `loads`: 0\.001 is one value.*\[0\.001\]"):
+        wearsim.slide(top, bottom, wearsim.Material(1, 0.3, 0.01, [1e-6]), 1e-3)
+    largest = wearsim.generate_surface((32, 16), seed=2**64 - 1, lambda_lower=0.125, lambda_upper=0.25, rms_height=5e-3)
+    assert largest.shape == (32, 16)
 
 
 def test_errors_of_files_and_convergence(tmp_path):

@@ -111,3 +111,26 @@ def test_the_psd_fit_of_a_topography_gives_a_block_that_generates_similar_surfac
     assert 2e-6 / 1.2 < fit["lambda_lower"] < 2e-6 * 1.2
     assert 32e-6 / 1.2 < fit["lambda_upper"] < 32e-6 * 1.2
     assert fit["rms_height"] == pytest.approx(1.5e-6, rel=0.02)
+
+
+def test_read_surface_takes_csv_as_spreadsheets_write_it(tmp_path):
+    rng = np.random.default_rng(3)
+    h = rng.normal(scale=1e-3, size=(6, 5))
+    # Lines are scans along x: the file holds the transpose of the map.
+    lines = [[f"{v:.6f}" for v in row] for row in h.T]
+    plain = tmp_path / "plain.csv"
+    plain.write_text("\n".join(",".join(r) for r in lines) + "\n")
+    expected, _ = wearsim.read_surface(plain, length=1.0)
+    np.testing.assert_allclose(expected, np.round(h, 6))
+    # Excel's "CSV UTF-8" (a byte-order mark) and a European export (decimal commas, semicolons).
+    bom = tmp_path / "bom.csv"
+    bom.write_text("\ufeff" + "\n".join(",".join(r) for r in lines) + "\n", encoding="utf-8")
+    semi = tmp_path / "semi.csv"
+    semi.write_text("\n".join(";".join(v.replace(".", ",") for v in r) for r in lines) + "\r\n")
+    for path in (bom, semi):
+        heights, _ = wearsim.read_surface(path, length=1.0)
+        np.testing.assert_array_equal(heights, expected)
+    spaces = tmp_path / "spaces.txt"
+    spaces.write_text("\n".join(" ".join(v.replace(".", ",") for v in r) for r in lines) + "\n")
+    with pytest.raises(OSError, match="decimal commas"):
+        wearsim.read_surface(spaces, length=1.0)

@@ -190,14 +190,19 @@ impl PyContactSolver {
     }
 }
 
-/// Labels of a contact map (−1 outside contact) and the pixel count of every junction.
+/// Labels of a contact map (−1 outside contact), the pixel count of every junction, and whether it
+/// wraps the periodic box along x and along y (one row per junction).
 #[pyfunction]
 #[pyo3(signature = (contact, connectivity = 4))]
 fn label_junctions<'py>(
     py: Python<'py>,
     contact: PyReadonlyArray2<'py, bool>,
     connectivity: u8,
-) -> Pair<'py, PyArray2<i64>, PyArray1<u64>> {
+) -> PyResult<(
+    Bound<'py, PyArray2<i64>>,
+    Bound<'py, PyArray1<u64>>,
+    Bound<'py, PyArray2<bool>>,
+)> {
     wearsim::check::connectivity(connectivity).map_err(to_py)?;
     let ((rows, cols), flags) = field("contact", &contact)?;
     if rows.saturating_mul(cols) >= u32::MAX as usize {
@@ -205,7 +210,7 @@ fn label_junctions<'py>(
             "invalid `contact`: {rows}×{cols} pixels are more than 32-bit junction labels can index"
         )));
     }
-    let (labels, sizes) = py.detach(|| {
+    let (labels, sizes, wraps) = py.detach(|| {
         let mut labeller = JunctionLabeller::new(rows, cols, connectivity);
         labeller.label(|k| flags[k]);
         let labels: Vec<i64> = labeller
@@ -214,9 +219,20 @@ fn label_junctions<'py>(
             .map(|&l| if l == NO_JUNCTION { -1 } else { l as i64 })
             .collect();
         let sizes: Vec<u64> = labeller.sizes().iter().map(|&s| s as u64).collect();
-        (labels, sizes)
+        let wraps: Vec<bool> = (0..sizes.len())
+            .flat_map(|id| {
+                let (x, y) = labeller.wraps(id);
+                [x, y]
+            })
+            .collect();
+        (labels, sizes, wraps)
     });
-    Ok((to_array(py, (rows, cols), labels), sizes.into_pyarray(py)))
+    let count = sizes.len();
+    Ok((
+        to_array(py, (rows, cols), labels),
+        sizes.into_pyarray(py),
+        to_array(py, (count, 2), wraps),
+    ))
 }
 
 /// Static model (paper §2, Frérot et al. 2018) on the junction pixel counts of one contact map.

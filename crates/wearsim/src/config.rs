@@ -623,12 +623,16 @@ impl RunConfig {
             height_unit: None,
             detrend: None,
             taper: None,
+            generation: None,
+            lateral_unit: None,
             youngs_modulus: m.youngs_modulus,
             poisson_ratio: m.poisson_ratio,
             shear_strength: m.shear_strength,
             geometry_factor: m.geometry_factor,
             modulus: self.modulus,
             tolerance: self.solver.tolerance(),
+            max_iterations: (self.solver.max_iterations() != crate::contact::DEFAULT_MAX_ITERATIONS)
+                .then_some(self.solver.max_iterations()),
             connectivity: self.connectivity,
             distance: self.sliding.as_ref().map(|s| s.distance),
             running_in: self.sliding.as_ref().map(|s| s.running_in),
@@ -647,15 +651,18 @@ impl RunConfig {
                 record.lambda_upper = Some(spectrum.lambda_upper);
                 record.rms_height = Some(spectrum.rms_height);
                 record.seed = Some(*seed);
+                record.generation = (spectrum.generation != Generation::default()).then_some(spectrum.generation);
             }
             SurfaceSource::Files {
                 top,
                 bottom,
                 length_y,
                 height_unit,
+                lateral_unit,
                 preprocess,
                 ..
             } => {
+                record.lateral_unit = lateral_unit.clone();
                 record.top = Some(top.display().to_string());
                 record.bottom = Some(bottom.display().to_string());
                 record.length_y = *length_y;
@@ -720,6 +727,13 @@ pub struct InputRecord {
     pub detrend: Option<String>,
     #[serde(rename = "surface.taper", default)]
     pub taper: Option<f64>,
+    /// How generated heights are drawn, when not the default (random phases); absent in job files
+    /// written before it was recorded.
+    #[serde(rename = "surface.generation", default)]
+    pub generation: Option<Generation>,
+    /// Unit of a column file's x y coordinates, when given.
+    #[serde(rename = "surface.lateral_unit", default)]
+    pub lateral_unit: Option<String>,
     #[serde(rename = "material.youngs_modulus")]
     pub youngs_modulus: f64,
     #[serde(rename = "material.poisson_ratio")]
@@ -732,6 +746,9 @@ pub struct InputRecord {
     pub modulus: ModulusConvention,
     #[serde(rename = "contact.tolerance")]
     pub tolerance: f64,
+    /// The solver's iteration limit, when not the default.
+    #[serde(rename = "contact.max_iterations", default)]
+    pub max_iterations: Option<usize>,
     #[serde(rename = "contact.connectivity")]
     pub connectivity: u8,
     #[serde(rename = "sliding.distance")]
@@ -746,6 +763,86 @@ pub struct InputRecord {
 
 #[cfg(test)]
 mod tests {
+    /// The field names serde reads for `T` (renamed as in files), without a value: a deserializer
+    /// that only records the list `deserialize_struct` is handed.
+    fn field_names<T: for<'de> serde::Deserialize<'de>>() -> Vec<&'static str> {
+        use serde::de::{self, Visitor};
+        struct Names<'a>(&'a mut Vec<&'static str>);
+        impl<'de> de::Deserializer<'de> for Names<'_> {
+            type Error = de::value::Error;
+            fn deserialize_any<V: Visitor<'de>>(self, _: V) -> std::result::Result<V::Value, Self::Error> {
+                Err(de::Error::custom("field names only"))
+            }
+            fn deserialize_struct<V: Visitor<'de>>(
+                self,
+                _: &'static str,
+                fields: &'static [&'static str],
+                _: V,
+            ) -> std::result::Result<V::Value, Self::Error> {
+                self.0.extend(fields);
+                Err(de::Error::custom("field names only"))
+            }
+            serde::forward_to_deserialize_any! {
+                bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string bytes byte_buf option unit
+                unit_struct newtype_struct seq tuple tuple_struct map enum identifier ignored_any
+            }
+        }
+        let mut names = Vec::new();
+        let _ = T::deserialize(Names(&mut names));
+        names
+    }
+
+    #[test]
+    fn every_input_of_a_run_file_is_a_column_of_the_input_record() {
+        // Derived from the run file's own structs, so a new input cannot be forgotten: each key is
+        // a column `section.key` (or `units`), except the lists a results table has one row per
+        // (fracture energies, loads) and the sides of a rectangle, which are two columns each.
+        let columns = field_names::<super::InputRecord>();
+        assert!(!columns.is_empty());
+        let sections: [(&str, Vec<&str>); 4] = [
+            ("surface", field_names::<super::RawSurface>()),
+            ("material", field_names::<super::RawMaterial>()),
+            ("contact", field_names::<super::RawContact>()),
+            ("sliding", field_names::<super::RawSliding>()),
+        ];
+        let per_row = ["material.fracture_energies", "sliding.loads"];
+        let mut missing = Vec::new();
+        for (section, keys) in &sections {
+            assert!(!keys.is_empty(), "{section}");
+            for key in keys {
+                let column = format!("{section}.{key}");
+                if !per_row.contains(&column.as_str()) && !columns.contains(&column.as_str()) {
+                    missing.push(column);
+                }
+            }
+        }
+        assert!(columns.contains(&"units"));
+        for side in ["surface.grid_y", "surface.length_y"] {
+            assert!(columns.contains(&side), "{side}");
+        }
+        assert!(
+            missing.is_empty(),
+            "inputs that are no column of InputRecord: {missing:?}"
+        );
+    }
+
+    #[test]
+    fn jobs_differing_only_in_generation_lateral_unit_or_max_iterations_have_different_inputs() {
+        let base = "[surface]\ngrid = 64\nlambda_lower = 0.125\nlambda_upper = 0.25\nrms_height = 0.005\n\
+                    [material]\nyoungs_modulus = 1.0\npoisson_ratio = 0.3\nshear_strength = 0.01\n";
+        let inputs = |text: &str| {
+            super::RunConfig::from_toml(text, std::path::Path::new("."))
+                .unwrap()
+                .inputs()
+        };
+        let plain = inputs(base);
+        assert_eq!((plain.generation, plain.max_iterations), (None, None));
+        let noise = inputs(&base.replace("grid = 64", "grid = 64\ngeneration = \"filtered-noise\""));
+        assert_eq!(noise.generation, Some(super::Generation::FilteredNoise));
+        let capped = inputs(&format!("{base}[contact]\nmax_iterations = 500\n"));
+        assert_eq!(capped.max_iterations, Some(500));
+        assert!(plain != noise && plain != capped);
+    }
     use super::*;
 
     const RUN: &str = r#"

@@ -17,7 +17,7 @@ pub enum Error {
     InvalidSurface { name: String, message: String },
 
     /// A file or folder that could not be read or written.
-    #[error("{}: {source}", path.display())]
+    #[error("{}: {}", path.display(), explain(source))]
     Io {
         path: PathBuf,
         #[source]
@@ -84,6 +84,18 @@ pub enum Error {
 /// Result type of the library.
 pub type Result<T> = std::result::Result<T, Error>;
 
+/// The system's error in a user's words where the fix is plain: a folder given for a file, a
+/// missing path, a file standing where a folder is needed.
+fn explain(e: &std::io::Error) -> String {
+    use std::io::ErrorKind;
+    match e.kind() {
+        ErrorKind::IsADirectory => "is a folder, where a file is needed; give the file's path".into(),
+        ErrorKind::NotADirectory => "a part of this path is a file, where a folder is needed; check the path".into(),
+        ErrorKind::NotFound => "does not exist; check the path".into(),
+        _ => e.to_string(),
+    }
+}
+
 impl Error {
     /// Shorthand for [`Error::InvalidParameter`].
     pub fn param(field: impl Into<String>, message: impl Into<String>) -> Self {
@@ -93,7 +105,8 @@ impl Error {
         }
     }
 
-    /// Shorthand for [`Error::Io`].
+    /// Shorthand for [`Error::Io`]; the message says what is wrong with the path in words (a
+    /// folder where a file is needed, a path that does not exist) rather than the system's text.
     pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
         Error::Io {
             path: path.into(),
@@ -157,6 +170,25 @@ impl Interrupt {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn folders_for_files_and_missing_paths_are_said_in_words() {
+        let dir = tempfile::tempdir().unwrap();
+        let folder = std::fs::read_to_string(dir.path()).map_err(|e| Error::io(dir.path(), e));
+        let e = folder.unwrap_err().to_string();
+        assert!(
+            e.contains("is a folder, where a file is needed") && !e.contains("os error"),
+            "{e}"
+        );
+        let missing = dir.path().join("missing.toml");
+        let e = Error::io(&missing, std::fs::read_to_string(&missing).unwrap_err()).to_string();
+        assert!(
+            e.contains("missing.toml: does not exist") && !e.contains("os error"),
+            "{e}"
+        );
+        let e = Error::io("/dev/null/x", std::fs::read_to_string("/dev/null/x").unwrap_err()).to_string();
+        assert!(e.contains("is a file, where a folder is needed"), "{e}");
+    }
 
     #[test]
     fn a_failed_job_keeps_the_kind_of_its_cause() {

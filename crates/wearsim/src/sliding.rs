@@ -144,6 +144,9 @@ pub struct StepRecord {
     pub s: f64,
     /// Number of junctions N.
     pub junctions: usize,
+    /// Junctions that wrap the periodic box (full contact, a band across the box): no particles of
+    /// the model, which needs finite junctions (paper §3), yet counted in N and the wear records.
+    pub wrapping_junctions: usize,
     /// Real contact area as a fraction of the apparent area.
     pub contact_area: f64,
     /// Junctions of this step that descend from a junction present at s = 0 (paper §3's memory of
@@ -204,6 +207,12 @@ pub struct WearResult {
     pub memory_decay_length: Option<f64>,
     /// R² of that fit (in ln N₀).
     pub memory_decay_r2: Option<f64>,
+    /// Steps of the load at which a junction wrapped the periodic box (full contact near p_m, a
+    /// contact band across the box). Such a junction is no particle of the model (paper §3 needs
+    /// finite junctions), yet it is counted as one, so results with steps here are not the model's;
+    /// the warnings say so. Absent in job files written before it existed: 0.
+    #[serde(default)]
+    pub box_wrapping_steps: usize,
 }
 
 /// Time spent per part of the sliding loop, in seconds.
@@ -414,6 +423,7 @@ pub fn run_sliding_resumable(
                 offset,
                 s: offset as f64 * dx,
                 junctions: count,
+                wrapping_junctions: labeller.wrapping(),
                 contact_area: info.contact_pixels as f64 / grid.pixels() as f64,
                 initial_junctions,
                 iterations: info.iterations,
@@ -652,6 +662,18 @@ fn results_of_load(
         _ => (None, None),
     };
     let (junctions_mean, _) = mean_std(fitted.iter().map(|r| r.junctions as f64));
+    let wrapping: Vec<&StepRecord> = steps.iter().filter(|r| r.wrapping_junctions > 0).collect();
+    if let Some(first) = wrapping.first() {
+        warnings.push(format!(
+            "F_N = {load:.4e}: at {} of {} steps (the first at s = {:.4e}) a junction wraps the periodic box \
+             (contact area up to {:.3} of the box): it is no particle of the model, which needs finite junctions \
+             (paper §3), yet it is counted as one in N, V and k_static; lower the load or enlarge the box",
+            wrapping.len(),
+            steps.len(),
+            first.s,
+            wrapping.iter().map(|r| r.contact_area).fold(0.0, f64::max),
+        ));
+    }
     let results = setup
         .material
         .critical_diameters()
@@ -707,6 +729,7 @@ fn results_of_load(
                 static_wear_rate_std: w_std,
                 junctions_mean,
                 critical_junctions_mean,
+                box_wrapping_steps: wrapping.len(),
                 memory_decay_length,
                 memory_decay_r2,
             }

@@ -236,3 +236,45 @@ fn a_checkpointed_run_stopped_anywhere_resumes_to_the_uninterrupted_results() {
         r => panic!("{r:?}"),
     }
 }
+
+#[test]
+fn full_contact_near_the_flow_pressure_is_flagged_as_no_particle() {
+    // Near p_m the whole box is in contact: one junction around the torus, counted as a particle
+    // (k_static = 1) by the bookkeeping, which the results must flag.
+    let (top, bottom) = setup_surfaces(64);
+    let material = Material::new(1.0, 0.3, 0.01, vec![0.1e-6], 3.0).unwrap();
+    let pm = material.flow_pressure();
+    let sliding = SlidingConfig {
+        loads: vec![1e-4, 0.999 * pm],
+        distance: 0.25,
+        running_in: 0.125,
+        step_running_in: 4,
+        step: 1,
+    };
+    let setup = SlidingSetup {
+        material: &material,
+        effective_modulus: material.effective_modulus(ModulusConvention::HalfSpace),
+        solver: Default::default(),
+        connectivity: 4,
+        sliding: &sliding,
+        interrupt: Default::default(),
+    };
+    let runs = run_sliding(&top, &bottom, &setup, |_| {}).unwrap();
+    let (light, full) = (&runs[0], &runs[1]);
+    assert!(light.steps.iter().all(|r| r.wrapping_junctions == 0));
+    assert_eq!(light.results[0].box_wrapping_steps, 0);
+    assert!(!light.warnings.iter().any(|w| w.contains("wraps the periodic box")));
+    assert!(
+        full.steps.iter().all(|r| r.wrapping_junctions == 1),
+        "{:?}",
+        full.steps.iter().map(|r| r.contact_area).collect::<Vec<_>>()
+    );
+    assert_eq!(full.results[0].box_wrapping_steps, full.steps.len());
+    assert!(
+        full.warnings
+            .iter()
+            .any(|w| w.contains("wraps the periodic box") && w.contains("no particle")),
+        "{:?}",
+        full.warnings
+    );
+}

@@ -15,11 +15,11 @@ pub struct Args {
     /// Run file (TOML, see README).
     run: PathBuf,
     /// Normal load F_N in the run's units (E·L² reduced, N in SI).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     load: f64,
     /// Sliding offset of the top surface along x, in the run's length unit, within one period
     /// [0, Lx); rounded to whole pixels (with a note when it is not one).
-    #[arg(long, conflicts_with = "offset_px")]
+    #[arg(long, conflicts_with = "offset_px", allow_hyphen_values = true)]
     offset: Option<f64>,
     /// Sliding offset in pixels along x, within one period [0, Nx).
     #[arg(long)]

@@ -72,6 +72,12 @@ fn slurm_shard(id: &str, var: impl Fn(&str) -> Option<String>) -> Result<(usize,
     let step = number("SLURM_ARRAY_TASK_STEP", var("SLURM_ARRAY_TASK_STEP"))
         .unwrap_or(1)
         .max(1);
+    if count == 0 {
+        bail!(
+            "Slurm job array: SLURM_ARRAY_TASK_COUNT = 0 for task {id}, so its shard is unknown; give --shard K/N \
+             (K of N shards, e.g. --shard 1/4), or submit with --array=1-N"
+        );
+    }
     let offset = id
         .checked_sub(min)
         .with_context(|| format!("SLURM_ARRAY_TASK_ID {id} is below SLURM_ARRAY_TASK_MIN {min}"))?;
@@ -199,5 +205,12 @@ mod tests {
         ]);
         let e = slurm_shard("7", &list).unwrap_err().to_string();
         assert!(e.contains("--shard K/3"), "{e}");
+        // A count of 0 (a broken environment) asks for --shard, never for an empty range.
+        let zero = env(&[("SLURM_ARRAY_TASK_COUNT", "0"), ("SLURM_ARRAY_TASK_MIN", "1")]);
+        let e = slurm_shard("1", &zero).unwrap_err().to_string();
+        assert!(
+            e.contains("--shard K/N") && !e.contains("1-0") && !e.contains("K/0"),
+            "{e}"
+        );
     }
 }

@@ -42,7 +42,7 @@ struct FitArgs {
     file: PathBuf,
     /// Physical size along the first axis, or both sides (`--length LX --length LY`); column files
     /// state it themselves.
-    #[arg(long, num_args = 1..=2)]
+    #[arg(long, num_args = 1, allow_hyphen_values = true)]
     length: Vec<f64>,
     /// Unit of the heights (m, mm, um, nm, pm, A): the results are then in metres (SI runs).
     #[arg(long)]
@@ -131,6 +131,14 @@ fn run_fit(args: &FitArgs) -> Result<()> {
             taper: args.taper,
         },
     };
+    if args.length.len() > 2 {
+        anyhow::bail!(
+            "--length given {} times ({}): a height map has two sides; give `--length LX` for a square pixel grid or \
+             `--length LX --length LY`",
+            args.length.len(),
+            args.length.iter().map(|l| l.to_string()).collect::<Vec<_>>().join(", ")
+        );
+    }
     for &l in &args.length {
         wearsim::check::positive("length", l).context("--length")?;
     }

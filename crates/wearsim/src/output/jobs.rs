@@ -48,6 +48,10 @@ pub struct JobResult {
 pub struct StepRow {
     pub s: f64,
     pub junctions: usize,
+    /// Junctions that wrap the periodic box (no particles of the model, paper §3); 0 in job files
+    /// written before it existed.
+    #[serde(default)]
+    pub wrapping_junctions: usize,
     pub contact_area: f64,
     pub initial_junctions: usize,
     pub n_critical: Vec<usize>,
@@ -61,6 +65,7 @@ impl From<&StepRecord> for StepRow {
         Self {
             s: r.s,
             junctions: r.junctions,
+            wrapping_junctions: r.wrapping_junctions,
             contact_area: r.contact_area,
             initial_junctions: r.initial_junctions,
             static_wear_coefficient: r.statics.iter().map(|w| w.wear_coefficient).collect(),
@@ -254,7 +259,8 @@ mod tests {
                 "static_wear_coefficient",
                 "static_wear_rate",
                 "iterations",
-                "residual"
+                "residual",
+                "wrapping_junctions"
             ]
         );
         let tidy = columns::<TidyRow>();

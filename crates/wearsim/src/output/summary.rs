@@ -48,6 +48,9 @@ pub struct SeriesRow {
     pub iterations: usize,
     /// Contact solver residual of this step.
     pub residual: f64,
+    /// Junctions that wrap the periodic box at this step (full contact, a band across the box):
+    /// no particles of the model (paper §3), yet counted in N, V and k_static.
+    pub wrapping_junctions: usize,
 }
 
 /// The series of every load and fracture energy: load by load, then fracture energy, then step.
@@ -72,6 +75,7 @@ pub fn series_rows(runs: &[LoadRun]) -> Vec<SeriesRow> {
                     static_wear_rate: st.statics[e].wear_rate_over_omega,
                     iterations: st.iterations,
                     residual: st.residual,
+                    wrapping_junctions: st.wrapping_junctions,
                 });
             }
         }

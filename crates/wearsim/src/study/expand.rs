@@ -71,9 +71,14 @@ fn fnv1a_continue(hash: u64, bytes: &[u8]) -> u64 {
         .fold(hash, |h, &b| (h ^ b as u64).wrapping_mul(0x0100_0000_01b3))
 }
 
+/// Keys whose run-file value may be a two-element list `[along x, along y]` (a rectangle).
+const PER_SIDE: [&str; 2] = ["grid", "length"];
+
 /// Cartesian product of the list-valued keys of `table` (except `keep_lists`): every combination as
-/// a table of single values, with the chosen values.
-fn product(table: &Table, section: &str, keep_lists: &[&str]) -> Vec<(Table, BTreeMap<String, Value>)> {
+/// a table of single values, with the chosen values. An axis that lists a value twice is refused (it
+/// would run and average the same job twice), and so is a two-element list of `grid` or `length`,
+/// which a run file reads as one rectangle and a study as two squares.
+fn product(table: &Table, section: &str, keep_lists: &[&str]) -> Result<Vec<(Table, BTreeMap<String, Value>)>> {
     let mut out = vec![(Table::new(), BTreeMap::new())];
     for (key, value) in table {
         let varies = matches!(value, Value::Array(_)) && !keep_lists.contains(&key.as_str());
@@ -81,6 +86,9 @@ fn product(table: &Table, section: &str, keep_lists: &[&str]) -> Vec<(Table, BTr
             Value::Array(items) if varies => items.clone(),
             other => vec![other.clone()],
         };
+        if varies {
+            axis_is_unambiguous(section, key, &choices)?;
+        }
         let mut next = Vec::with_capacity(out.len() * choices.len());
         for (t, v) in &out {
             for c in &choices {
@@ -95,7 +103,43 @@ fn product(table: &Table, section: &str, keep_lists: &[&str]) -> Vec<(Table, BTr
         }
         out = next;
     }
-    out
+    Ok(out)
+}
+
+/// Refuses an axis `section.key = choices` that lists a value twice, or that could be a rectangle.
+fn axis_is_unambiguous(section: &str, key: &str, choices: &[Value]) -> Result<()> {
+    let field = format!("{section}.{key}");
+    let list = Value::Array(choices.to_vec());
+    if let Some((i, repeated)) = choices
+        .iter()
+        .enumerate()
+        .find(|(i, c)| choices[..*i].iter().any(|d| d == *c))
+    {
+        return Err(Error::param(
+            &field,
+            format!(
+                "`{key} = {list}` lists {repeated} twice (entry {}): every value of a list is a job, so the jobs \
+                 would repeat and be averaged twice; give each value once",
+                i + 1
+            ),
+        ));
+    }
+    if section == "surface" && PER_SIDE.contains(&key) && choices.len() == 2 && choices.iter().all(is_number) {
+        let (a, b) = (&choices[0], &choices[1]);
+        return Err(Error::param(
+            &field,
+            format!(
+                "`{key} = {list}` is ambiguous in a study: a run file reads it as one rectangle, a study as two \
+                 values; write `{key} = [[{a}, {b}]]` for one rectangle ({a} along x, {b} along y), or \
+                 `{key} = [[{a}, {a}], [{b}, {b}]]` for two squares"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+fn is_number(v: &Value) -> bool {
+    matches!(v, Value::Integer(_) | Value::Float(_))
 }
 
 /// One material of a study: its name, its table of single values, the values that vary, and the
@@ -130,7 +174,7 @@ fn materials(table: &Table) -> Result<Vec<MaterialChoice>> {
                         )))
                     }
                 };
-                for (m, v) in product(&t, "material", &["fracture_energies"]) {
+                for (m, v) in product(&t, "material", &["fracture_energies"])? {
                     materials.push((name.clone(), m, v, overrides.clone()));
                 }
             }
@@ -151,7 +195,7 @@ fn materials(table: &Table) -> Result<Vec<MaterialChoice>> {
                     )))
                 }
             };
-            for (m, v) in product(&t, "material", &["fracture_energies"]) {
+            for (m, v) in product(&t, "material", &["fracture_energies"])? {
                 materials.push((name.clone(), m, v, Table::new()));
             }
         }
@@ -211,9 +255,19 @@ fn expand_with(text: &str, base: &Path, files: SurfaceFiles) -> Result<Study> {
             )));
         }
     }
+    if let Some(Value::Array(units)) = table.get("units") {
+        return Err(Error::param(
+            "units",
+            format!(
+                "`units = {}` is a list, but the unit system is one value for the whole study: give `units = \
+                 \"reduced\"` or `units = \"si\"`, and run one study per unit system",
+                Value::Array(units.clone())
+            ),
+        ));
+    }
     let materials = materials(&table)?;
     let base_surface = section(&table, "surface")?;
-    let contacts = product(&section(&table, "contact")?, "contact", &[]);
+    let contacts = product(&section(&table, "contact")?, "contact", &[])?;
     let sliding = section(&table, "sliding")?;
     let loads = match sliding.get("loads") {
         Some(Value::Array(l)) if !l.is_empty() => l.clone(),
@@ -225,12 +279,13 @@ fn expand_with(text: &str, base: &Path, files: SurfaceFiles) -> Result<Study> {
         }
     };
     // Schedule settings may be lists too (e.g. `step_running_in`); `loads` are the innermost axis.
-    let schedules = product(&sliding, "sliding", &["loads"]);
+    let schedules = product(&sliding, "sliding", &["loads"])?;
+    axis_is_unambiguous("sliding", "loads", &loads)?;
     let mut jobs = Vec::new();
     for (name, material, mv, overrides) in &materials {
         let mut surface_table = base_surface.clone();
         surface_table.extend(overrides.clone());
-        for (surface, sv) in &product(&surface_table, "surface", &[]) {
+        for (surface, sv) in &product(&surface_table, "surface", &[])? {
             for ((contact, cv), (schedule, schv)) in contacts.iter().flat_map(|c| schedules.iter().map(move |s| (c, s)))
             {
                 for load in &loads {
@@ -262,6 +317,18 @@ fn expand_with(text: &str, base: &Path, files: SurfaceFiles) -> Result<Study> {
         }
     }
     if jobs.is_empty() {
+        // An empty list may be a key in the wrong place (`materials = []` under [surface]): the
+        // study with one value in place of each empty list names it.
+        let mut probe = table.clone();
+        fill_empty_lists(&mut probe);
+        if probe != table {
+            let text = toml::to_string(&probe).map_err(|e| Error::run_file(e.to_string()))?;
+            if let Err(e) = expand_with(&text, base, files) {
+                if e.to_string().contains("unknown field") {
+                    return Err(e);
+                }
+            }
+        }
         let empty: Vec<String> = find_empty_lists(&table);
         return Err(Error::run_file(format!(
             "the study expands to no jobs: {} empty; give at least one value",
@@ -273,6 +340,21 @@ fn expand_with(text: &str, base: &Path, files: SurfaceFiles) -> Result<Study> {
         )));
     }
     Ok(Study { jobs, hash, canonical })
+}
+
+/// Puts one value (1) in place of every empty list, at the top and in every table.
+fn fill_empty_lists(table: &mut Table) {
+    for (_, v) in table.iter_mut() {
+        match v {
+            Value::Array(items) if items.is_empty() => *v = Value::Integer(1),
+            Value::Table(t) => fill_empty_lists(t),
+            Value::Array(items) => items
+                .iter_mut()
+                .filter_map(|i| i.as_table_mut())
+                .for_each(|t| fill_empty_lists(t)),
+            _ => {}
+        }
+    }
 }
 
 /// The keys (`section.key`) whose value is an empty list.
@@ -384,6 +466,64 @@ loads = [5e-4, 1e-3]
                       name = 5\nyoungs_modulus = 1.0\npoisson_ratio = 0.3\nshear_strength = 0.01\n[sliding]\nloads = [1e-3]\n";
         let e = expand(single, Path::new(".")).unwrap_err().to_string();
         assert!(e.contains("`name` must be a string"), "{e}");
+    }
+
+    #[test]
+    fn repeated_values_and_two_element_grids_are_refused_with_the_fix() {
+        let e = |text: String| expand(&text, Path::new(".")).unwrap_err().to_string();
+        let seeds = e(STUDY.replace("seed = [1, 2, 3]", "seed = [1, 1, 2]"));
+        assert!(
+            seeds.contains("surface.seed") && seeds.contains("lists 1 twice") && seeds.contains("once"),
+            "{seeds}"
+        );
+        let loads = e(STUDY.replace("loads = [5e-4, 1e-3]", "loads = [5e-4, 5e-4]"));
+        assert!(loads.contains("loads") && loads.contains("twice"), "{loads}");
+        let grid = e(STUDY.replace("grid = 64", "grid = [64, 32]"));
+        assert!(
+            grid.contains("surface.grid") && grid.contains("[[64, 32]]") && grid.contains("[[64, 64], [32, 32]]"),
+            "{grid}"
+        );
+        // The unambiguous spellings: one rectangle, or two squares.
+        let rect = expand(&STUDY.replace("grid = 64", "grid = [[64, 32]]"), Path::new(".")).unwrap();
+        assert!(rect
+            .jobs
+            .iter()
+            .all(|j| j.inputs().grid == Some(64) && j.inputs().grid_y == Some(32)));
+        let squares = expand(
+            &STUDY.replace("grid = 64", "grid = [[64, 64], [32, 32]]"),
+            Path::new("."),
+        )
+        .unwrap();
+        let n: Vec<Option<usize>> = squares.jobs.iter().map(|j| j.inputs().grid).collect();
+        assert!(
+            n.contains(&Some(64)) && n.contains(&Some(32)) && squares.jobs.iter().all(|j| j.inputs().grid_y.is_none())
+        );
+        // Three values are an axis as before.
+        assert_eq!(
+            expand(&STUDY.replace("grid = 64", "grid = [64, 32, 128]"), Path::new("."))
+                .unwrap()
+                .jobs
+                .len(),
+            54
+        );
+    }
+
+    #[test]
+    fn a_list_of_unit_systems_and_a_misplaced_empty_list_name_the_fix() {
+        let e = expand(&format!("units = [\"si\", \"reduced\"]\n{STUDY}"), Path::new("."))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("units") && e.contains("one study per unit system") && !e.contains("unit variant"),
+            "{e}"
+        );
+        let e = expand(
+            &STUDY.replace("seed = [1, 2, 3]", "seed = [1, 2, 3]\nmaterials = []"),
+            Path::new("."),
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("unknown") && e.contains("materials"), "{e}");
     }
 
     #[test]

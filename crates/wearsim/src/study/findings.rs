@@ -414,12 +414,18 @@ pub fn findings(tidy: &Table) -> Vec<Finding> {
             key: "memory-decays-exponentially",
             paper: "sliding model (§3): the number of contacts present at s = 0 decays exponentially with s",
             observed: format!(
-                "R² of ln N₀ against s: mean {} over {} settings; decay lengths {} … {} {}",
+                "R² of ln N₀ against s: mean {} over {} settings; {}",
                 fmt(mean),
                 r2.len(),
-                fmt(lengths.iter().copied().fold(f64::INFINITY, f64::min)),
-                fmt(lengths.iter().copied().fold(0.0f64, f64::max)),
-                all.first().map_or("L", |s| s.length_unit)
+                match lengths.is_empty() {
+                    true => "no decay length fitted (N₀ did not decay in any setting)".to_string(),
+                    false => format!(
+                        "decay lengths {} … {} {}",
+                        fmt(lengths.iter().copied().fold(f64::INFINITY, f64::min)),
+                        fmt(lengths.iter().copied().fold(f64::NEG_INFINITY, f64::max)),
+                        all.first().map_or("L", |s| s.length_unit)
+                    ),
+                }
             ),
             verdict: verdict(!r2.is_empty(), mean >= 0.8),
         });
@@ -450,6 +456,11 @@ mod tests {
 
     /// A hand-made study: two hardnesses, one 𝒢, two loads, two surface pairs.
     fn table(flip: bool) -> Table {
+        table_with_decay(flip, Some(0.03))
+    }
+
+    /// The same study with the given memory decay length in every row.
+    fn table_with_decay(flip: bool, decay: Option<f64>) -> Table {
         let mut rows = Vec::new();
         for (job, (tau, load, seed)) in [
             (0.008, 1e-3, 1),
@@ -497,8 +508,9 @@ mod tests {
                     static_wear_rate_std: 0.0,
                     junctions_mean: 30.0,
                     critical_junctions_mean: 3.0,
-                    memory_decay_length: Some(0.03),
-                    memory_decay_r2: Some(0.9),
+                    memory_decay_length: decay,
+                    memory_decay_r2: decay.map(|_| 0.9),
+                    ..WearResult::default()
                 },
                 flow_pressure: 3.0 * 3f64.sqrt() * tau,
                 warnings: String::new(),
@@ -528,6 +540,24 @@ mod tests {
             Verdict::NotReproduced
         );
         assert!(markdown(&f).lines().count() == f.len() + 2);
+    }
+
+    #[test]
+    fn no_decay_length_fitted_is_said_so_not_printed_as_an_empty_range() {
+        let observed = |t: &Table| {
+            findings(t)
+                .into_iter()
+                .find(|x| x.key == "memory-decays-exponentially")
+                .unwrap()
+                .observed
+        };
+        let none = observed(&table_with_decay(false, None));
+        assert!(
+            none.contains("no decay length fitted") && !none.contains("inf"),
+            "{none}"
+        );
+        let some = observed(&table(false));
+        assert!(some.contains("decay lengths 0.030 … 0.030 L"), "{some}");
     }
 
     #[test]

@@ -244,6 +244,13 @@ pub fn run_jobs(
 /// How many of `jobs` can run at once in this machine's memory: `workers`, or fewer with a note saying
 /// so; an error (before anything is written) when not even one job fits.
 pub fn workers_for_memory(jobs: &[&Job], workers: usize) -> Result<(usize, Option<String>)> {
+    if workers == 0 {
+        return Err(Error::param(
+            "jobs",
+            "0 jobs at once would run nothing: give 1 or more (1 for large grids), or leave it out for one job per \
+             thread",
+        ));
+    }
     let mut largest = (0, 0);
     for job in jobs {
         let grid = job.run.grid()?;

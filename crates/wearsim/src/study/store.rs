@@ -231,7 +231,21 @@ pub fn prepare_folder(dir: &Path, study: &Study, base: &Path) -> Result<()> {
 
 /// The stored study of a folder and the folder its relative paths resolve against.
 pub fn stored_study(dir: &Path) -> Result<(String, PathBuf)> {
-    let text = read_text(&dir.join("study.toml"))?;
+    let file = dir.join("study.toml");
+    if !file.is_file() {
+        let what = if dir.is_dir() {
+            "holds no study.toml, so it is no study folder"
+        } else if dir.exists() {
+            "is not a folder, so it is no study folder"
+        } else {
+            "does not exist"
+        };
+        return Err(Error::file(
+            dir,
+            format!("{what}; give the --out folder of a `wearsim study run`"),
+        ));
+    }
+    let text = read_text(&file)?;
     let base = std::fs::read_to_string(dir.join("study.base"))
         .map(PathBuf::from)
         .unwrap_or_else(|_| dir.to_path_buf());

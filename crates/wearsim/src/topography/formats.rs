@@ -115,12 +115,50 @@ const HEIGHT_TYPES: [NpyType; 5] = [
     NpyType::Int16,
 ];
 
+/// How the numbers of a text file are separated, read once per file from its data lines.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Separator {
+    /// Spaces, tabs or commas (decimal points).
+    Plain,
+    /// `;` or a tab, as spreadsheets with decimal commas write them: a comma inside a field is
+    /// then a decimal comma.
+    DecimalComma(char),
+}
+
+/// The separator of a text file: `;` when its lines hold one, else a tab when they hold one and a
+/// comma (a spreadsheet's tab-separated export with decimal commas), else plain.
+fn separator(lines: &[&str]) -> Separator {
+    if lines.iter().any(|l| l.contains(';')) {
+        Separator::DecimalComma(';')
+    } else if lines.iter().any(|l| l.contains('\t') && l.contains(',')) {
+        Separator::DecimalComma('\t')
+    } else {
+        Separator::Plain
+    }
+}
+
 /// Splits a text line into numbers; `None` when a field is not a number.
-fn numbers(line: &str) -> Option<Vec<f64>> {
-    let fields: Vec<&str> = line
-        .split(|c: char| c.is_whitespace() || c == ',' || c == ';')
-        .filter(|f| !f.is_empty())
-        .collect();
+fn numbers(line: &str, sep: Separator) -> Option<Vec<f64>> {
+    let fields: Vec<String> = match sep {
+        Separator::Plain => line
+            .split(|c: char| c.is_whitespace() || c == ',')
+            .filter(|f| !f.is_empty())
+            .map(str::to_string)
+            .collect(),
+        // A field with both a point and a comma (1.234,5) is not a number: no thousands separators.
+        Separator::DecimalComma(c) => line
+            .split(c)
+            .map(str::trim)
+            .filter(|f| !f.is_empty())
+            .map(|f| {
+                if f.contains('.') {
+                    f.to_string()
+                } else {
+                    f.replace(',', ".")
+                }
+            })
+            .collect(),
+    };
     if fields.is_empty() {
         return None;
     }
@@ -134,6 +172,18 @@ fn numbers(line: &str) -> Option<Vec<f64>> {
         .collect()
 }
 
+/// Whether a line of a plain file is numbers with decimal commas between spaces (`0,12 -0,5`),
+/// which cannot be told from comma-separated integers: such a file is refused with the fix.
+fn decimal_commas_between_spaces(line: &str) -> bool {
+    let tokens: Vec<&str> = line.split_whitespace().collect();
+    tokens.len() >= 2
+        && tokens.iter().all(|t| {
+            let t = t.strip_prefix('-').unwrap_or(t);
+            matches!(t.split_once(','), Some((a, b)) if !a.is_empty() && !b.is_empty()
+                && a.bytes().all(|c| c.is_ascii_digit()) && b.bytes().all(|c| c.is_ascii_digit()))
+        })
+}
+
 fn read_text(path: &Path) -> Result<Measured> {
     let text = std::fs::read_to_string(path).map_err(|e| match e.kind() {
         std::io::ErrorKind::InvalidData => Error::file(
@@ -142,14 +192,33 @@ fn read_text(path: &Path) -> Result<Measured> {
         ),
         _ => Error::io(path, e),
     })?;
+    // Spreadsheets ("CSV UTF-8") start the file with a byte-order mark.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+    let is_data =
+        |line: &str| !(line.is_empty() || line.starts_with('#') || line.starts_with('%') || line.starts_with("//"));
+    let data: Vec<&str> = text.lines().map(str::trim).filter(|l| is_data(l)).collect();
+    let sep = separator(&data);
+    if sep == Separator::Plain {
+        if let Some(line) = data.iter().find(|l| decimal_commas_between_spaces(l)) {
+            return Err(Error::file(
+                path,
+                format!(
+                    "\"{}\" has decimal commas between spaces, which wearsim cannot tell from commas between \
+                     numbers; save the file with `;` or tabs between numbers (a spreadsheet's CSV with semicolons), \
+                     or with decimal points",
+                    line.chars().take(60).collect::<String>()
+                ),
+            ));
+        }
+    }
     let mut rows: Vec<Vec<f64>> = Vec::new();
     let mut header = 0;
     for (k, line) in text.lines().enumerate() {
         let line = line.trim();
-        if line.is_empty() || line.starts_with('#') || line.starts_with('%') || line.starts_with("//") {
+        if !is_data(line) {
             continue;
         }
-        match numbers(line) {
+        match numbers(line, sep) {
             Some(v) => {
                 if let Some(first) = rows.first() {
                     if v.len() != first.len() {
@@ -290,6 +359,47 @@ pub(super) fn is_array(path: &Path) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn spreadsheet_csv_with_a_byte_order_mark_or_decimal_commas_reads_as_written() {
+        let dir = tempfile::tempdir().unwrap();
+        let read_text = |name: &str, text: &str| {
+            let p = dir.path().join(name);
+            std::fs::write(&p, text).unwrap();
+            read(&p)
+        };
+        let plain = read_text("plain.csv", "0.001,-0.002,0.5\n0.25,1e-3,-2\n").unwrap();
+        // A byte-order mark is no header: every line is a scan line.
+        let bom = read_text("bom.csv", "\u{feff}0.001,-0.002,0.5\n0.25,1e-3,-2\n").unwrap();
+        assert_eq!(
+            (bom.rows, bom.cols, &bom.heights),
+            (plain.rows, plain.cols, &plain.heights)
+        );
+        assert!(bom.notes.is_empty(), "{:?}", bom.notes);
+        // Decimal commas with `;` or tabs between numbers, as European spreadsheets write them.
+        for (name, text) in [
+            ("semi.csv", "\u{feff}0,001;-0,002;0,5\r\n0,25;1e-3;-2\r\n"),
+            ("tab.txt", "0,001\t-0,002\t0,5\n0,25\t1e-3\t-2\n"),
+        ] {
+            let m = read_text(name, text).unwrap();
+            assert_eq!(
+                (m.rows, m.cols, &m.heights),
+                (plain.rows, plain.cols, &plain.heights),
+                "{name}"
+            );
+        }
+        // Decimal commas between spaces cannot be told from comma-separated integers: refused.
+        let e = read_text("spaces.txt", "0,001 -0,002 0,5\n0,25 0,1 -2,0\n")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("spaces.txt") && e.contains("decimal commas") && e.contains("`;`"),
+            "{e}"
+        );
+        // A thousands separator is not a number.
+        let e = read_text("thousands.csv", "1.234,5;2\n3;4\n").unwrap_err().to_string();
+        assert!(e.contains("not a list of numbers"), "{e}");
+    }
 
     #[test]
     fn text_matrices_and_columns_are_read_with_their_errors_named() {
