@@ -6,7 +6,9 @@
 #   PATH (a user without a Rust toolchain) and into .venv with the pinned test dependencies of
 #   tests/python/requirements.txt; its type stubs (mypy stubtest), mypy, the pytest suite (API, studies on
 #   a Dask LocalCluster, cross-checks against tamaas from PyPI); examples/python/quickstart.py runs in the
-#   fresh venv.
+#   fresh venv; the pytest suite again in a venv holding the oldest versions pyproject.toml allows
+#   (scripts/test-floors.sh); the API references (cargo doc and pdoc, warnings are errors); the
+#   tutorials of examples/tutorials run and convert to notebooks.
 # The Python dependencies are installed in the background while Rust compiles.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,6 +26,9 @@ pip_log="$root/target/pip-install.log"
         .venv/bin/python -m pip install -q -r tests/python/requirements.txt
 ) >"$pip_log" 2>&1 &
 pip_pid=$!
+floors_log="$root/target/pip-install-floors.log"
+scripts/test-floors.sh "" install >"$floors_log" 2>&1 &
+floors_pid=$!
 
 phase "Formatting: cargo fmt --check"
 cargo fmt --all --check
@@ -33,6 +38,9 @@ cargo clippy --workspace --all-targets --locked -q -- -D warnings
 
 phase "Rust tests: unit, property, analytic validation, CLI (release build)"
 cargo test --release --workspace --locked
+
+phase "Rust API reference: cargo doc --no-deps, warnings are errors"
+scripts/api-docs.sh rust
 
 phase "Waiting for the Python test environment"
 if ! wait "$pip_pid"; then
@@ -66,7 +74,25 @@ phase "The wheel in .venv; type stubs against the compiled module; mypy"
 (cd /tmp && "$root/.venv/bin/python" -m mypy.stubtest wearsim._wearsim)
 (cd python && ../.venv/bin/python -m mypy wearsim)
 
+phase "Python API reference: pdoc from the docstrings, warnings are errors"
+scripts/api-docs.sh python
+
+phase "Tutorials: each examples/tutorials/*.py runs, and converts to a notebook"
+for tutorial in examples/tutorials/*.py; do
+    echo "$tutorial"
+    (cd /tmp && env WEARSIM_BIN="$root/target/release/wearsim" MPLBACKEND=Agg "$root/.venv/bin/python" "$root/$tutorial" >/dev/null)
+    .venv/bin/jupytext --quiet --to ipynb --output "$(mktemp -d)/tutorial.ipynb" "$tutorial"
+done
+
 phase "Python tests: pytest"
 WEARSIM_BIN="$root/target/release/wearsim" .venv/bin/python -m pytest -rs tests/python
+
+phase "Python tests on the oldest versions pyproject.toml allows"
+if ! wait "$floors_pid"; then
+    cat "$floors_log" >&2
+    echo "error: installing the oldest allowed Python dependencies failed (log above)" >&2
+    exit 1
+fi
+scripts/test-floors.sh "$wheel"
 
 phase "All tests passed"

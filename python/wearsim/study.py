@@ -172,8 +172,24 @@ def run(
     return tidy
 
 
+def _provenance() -> Dict[str, str]:
+    """The versions of this process's software that can change a table: wearsim, Python, NumPy and
+    pandas (the job files' own provenance names the Rust crates behind the numbers)."""
+    import platform
+
+    import numpy as np
+
+    return {
+        "wearsim": _wearsim.__version__,
+        "python": platform.python_version(),
+        "numpy": np.__version__,
+        "pandas": pd.__version__,
+    }
+
+
 def _with_units(table: pd.DataFrame, units: Dict[str, str]) -> pd.DataFrame:
     table.attrs["units"] = {c: u for c, u in units.items() if c in table.columns}
+    table.attrs["provenance"] = _provenance()
     return table
 
 

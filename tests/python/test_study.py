@@ -3,6 +3,7 @@ LocalCluster with two worker processes equals the local run; resume after a part
 
 import subprocess
 
+import numpy as np
 import pandas as pd
 import pytest
 import wearsim
@@ -48,6 +49,9 @@ def test_local_run_equals_the_cli(tmp_path, study_file, wearsim_bin):
     assert (tmp_path / "py" / "results.csv").read_text() == (cli / "results.csv").read_text()
     pd.testing.assert_frame_equal(tidy, wearsim.study.collect(cli)[0])
     assert tidy.attrs["units"]["wear_rate"] == "L²" and tidy.attrs["units"]["load"] == "E L²"
+    assert tidy.attrs["provenance"]["numpy"] == np.__version__
+    assert tidy.attrs["provenance"]["pandas"] == pd.__version__
+    assert tidy.attrs["provenance"]["wearsim"] == wearsim.__version__
     assert len(tidy) == 16
     tidy2, aggregated = wearsim.study.collect(tmp_path / "py")
     pd.testing.assert_frame_equal(tidy2, tidy)

@@ -18,6 +18,121 @@
 //! - [`study`]: study files expanded into jobs, run resumably, collected.
 //!
 //! Figures are drawn by the front ends (the `wearsim` CLI, the Python package).
+//!
+//! ## A tour, in reduced units (E = 1, L = 1)
+//!
+//! Pressures are in E, lengths in L (the box side along x), loads F_N in E·L², fracture energies 𝒢
+//! in E·L. A surface pair, one saturated contact, its junctions and the static model
+//! (paper §2–3), on a 64² grid:
+//!
+//! ```
+//! use wearsim::junctions::JunctionLabeller;
+//! use wearsim::{composite_heights, ContactSolver, Grid, Material, ModulusConvention, SpectrumParams, Surface};
+//!
+//! let grid = Grid::square(64, 1.0)?; // 64 × 64 pixels, Lx = Ly = 1 L
+//! // H = 0.7, λ_l = 16 Δx, λ_u = L/2, h_rms = 0.005 L (paper §4.1), random phases.
+//! let spectrum = SpectrumParams::paper_roughness(64, 1.0);
+//! let (top_seed, bottom_seed) = wearsim::surface::pair_seeds(1);
+//! let top = Surface::generate(grid, &spectrum, top_seed)?;
+//! let bottom = Surface::generate(grid, &spectrum, bottom_seed)?;
+//! assert!((top.rms_height() - 0.005).abs() < 1e-12);
+//!
+//! // τ̃ = 0.01 E: p_m = 3√3 τ̃; d* = 2 f 𝒢 μ / τ̃² for 𝒢 = 0.5e-6 E·L (paper Eq. 1).
+//! let material = Material::new(1.0, 0.3, 0.01, vec![0.5e-6], 3.0)?;
+//! let p_m = material.flow_pressure();
+//! let d_star = material.critical_diameter(0.5e-6); // in L
+//!
+//! // The contact of the composite surface at F_N = 1e-3 E·L² (mean pressure F_N/(Lx·Ly)).
+//! let mut heights = vec![0.0; grid.pixels()];
+//! composite_heights(&top, &bottom, 0, &mut heights);
+//! let mut solver = ContactSolver::new(grid, material.effective_modulus(ModulusConvention::HalfSpace))?;
+//! let mut pressure = vec![0.0; grid.pixels()]; // cold start; the result is written here (in E)
+//! let info = solver.solve(&heights, 1e-3 / grid.area(), p_m, &mut pressure)?;
+//! assert!(pressure.iter().all(|&p| p >= 0.0 && p <= p_m * (1.0 + 1e-12)));
+//! let contact_area = info.contact_pixels as f64 / grid.pixels() as f64; // a fraction of Lx·Ly
+//! assert!(contact_area > 0.0 && contact_area < 0.5);
+//!
+//! // Junctions: periodic connected components (4-connectivity) of the contact map.
+//! let mut labeller = JunctionLabeller::new(grid.nx(), grid.ny(), 4);
+//! let junctions = labeller.label(|k| pressure[k] > 0.0);
+//! let largest = labeller.sizes().iter().max().copied().unwrap_or(0); // pixels
+//! assert!(junctions > 0 && largest > 0);
+//! # let _ = d_star;
+//! # Ok::<(), wearsim::Error>(())
+//! ```
+//!
+//! A sliding run from a run file (the format of `wearsim slide`): the wear rate W (L², a volume
+//! L³ per sliding distance L) and the Archard coefficient k = W p̃ / F_N (1) per fracture energy.
+//! `distance` and `running_in` are fractions of Lx:
+//!
+//! ```
+//! use std::path::Path;
+//! use wearsim::config::RunConfig;
+//! use wearsim::sliding::{run_sliding, SlidingSetup};
+//!
+//! let run = RunConfig::from_toml(
+//!     r#"
+//!     [surface]
+//!     grid = 32
+//!     lambda_lower = 0.125
+//!     lambda_upper = 0.5
+//!     rms_height = 0.01
+//!     seed = 3
+//!     [material]
+//!     youngs_modulus = 1.0
+//!     poisson_ratio = 0.3
+//!     shear_strength = 0.01
+//!     fracture_energies = [0.25e-6]
+//!     [sliding]
+//!     loads = [2e-3]
+//!     distance = 0.5
+//!     running_in = 0.25
+//!     "#,
+//!     Path::new("."),
+//! )?;
+//! let (top, bottom) = run.surfaces()?;
+//! let sliding = run.sliding.as_ref().expect("the run file has a [sliding] table");
+//! let runs = run_sliding(&top, &bottom, &SlidingSetup::from_run(&run, sliding), |_step| {})?;
+//! let result = &runs[0].results[0];
+//! assert_eq!(runs[0].load, 2e-3);
+//! assert!(result.wear_rate.is_none_or(|w| w >= 0.0));
+//! # Ok::<(), wearsim::Error>(())
+//! ```
+//!
+//! A study: a study file expands into jobs (surface pair × material × load), each a sliding run;
+//! [`study::run_jobs`] runs them resumably into a folder, [`study::collect`] makes the tables. One
+//! job, run directly:
+//!
+//! ```
+//! use std::path::Path;
+//! use wearsim::study::{expand, run_job};
+//!
+//! let study = expand(
+//!     r#"
+//!     [surface]
+//!     grid = 32
+//!     lambda_lower = 0.125
+//!     lambda_upper = 0.5
+//!     rms_height = 0.01
+//!     seed = [1, 2]
+//!     [material]
+//!     youngs_modulus = 1.0
+//!     poisson_ratio = 0.3
+//!     shear_strength = 0.01
+//!     fracture_energies = [0.25e-6]
+//!     [sliding]
+//!     loads = [1e-3, 2e-3]
+//!     distance = 0.5
+//!     running_in = 0.25
+//!     "#,
+//!     Path::new("."),
+//! )?;
+//! assert_eq!(study.jobs.len(), 4); // 2 surface pairs × 2 loads
+//! let result = run_job(&study.jobs[0], &wearsim::Interrupt::default())?;
+//! assert_eq!(result.load, 1e-3);
+//! assert!(result.provenance.dependencies.contains_key("rustfft"));
+//! # Ok::<(), wearsim::Error>(())
+//! ```
 
 pub mod check;
 pub mod config;
@@ -44,3 +159,7 @@ pub use surface::{composite_heights, Generation, SpectrumParams, Surface};
 
 /// Version of the library, recorded in every output file.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+
+/// The versions of the crates that decide wearsim's numbers (FFT, random streams of generated
+/// surfaces), as "name version" pairs separated by ", ", taken from the lockfile at build time.
+pub const DEPENDENCY_VERSIONS: &str = env!("WEARSIM_DEPENDENCY_VERSIONS");

@@ -3,7 +3,7 @@
 use std::f64::consts::PI;
 use std::path::Path;
 
-use rand::{Rng, SeedableRng};
+use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha20Rng;
 use rand_distr::StandardNormal;
 use rayon::prelude::*;
@@ -241,7 +241,7 @@ impl Surface {
                 let spec = plan.spectrum_mut();
                 for qy in 0..half {
                     for qx in 0..nx {
-                        let phase = rng.gen::<f64>() * 2.0 * PI;
+                        let phase = rng.random::<f64>() * 2.0 * PI;
                         let a = amplitude(wavenumber(qx, nx), qy as f64);
                         spec[qy * stride + qx] = C64::from_polar(a, phase);
                     }

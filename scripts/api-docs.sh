@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# The API references, built from the code's own documentation, warnings are errors:
+#   Rust:   target/doc/wearsim/index.html    (cargo doc: the library and the CLI crate)
+#   Python: target/api-python/wearsim.html   (pdoc, from the installed package's docstrings)
+#   scripts/api-docs.sh [rust|python|all] [PYTHON]
+# PYTHON: an interpreter with wearsim and pdoc installed (default .venv/bin/python).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+which="${1:-all}"
+if [ "$which" = rust ] || [ "$which" = all ]; then
+    RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --locked -q
+    echo "Rust API reference: target/doc/wearsim/index.html"
+fi
+if [ "$which" = python ] || [ "$which" = all ]; then
+    python=$(realpath "${2:-.venv/bin/python}")
+    out="$PWD/target/api-python"
+    rm -rf "$out"
+    # From /tmp, so that the installed package is documented, not the source folder.
+    (cd /tmp && "$python" -W error -m pdoc --docformat restructuredtext -o "$out" wearsim)
+    echo "Python API reference: target/api-python/wearsim.html"
+fi
