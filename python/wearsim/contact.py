@@ -1,9 +1,14 @@
 """The saturated-pressure contact solver (paper §2 and appendix A).
 
-Contact of a rigid surface of heights h with a periodic elastic half-space of effective modulus
-E*, pressure bounded by the flow pressure p_m (0 ≤ p ≤ p_m), mean pressure F_N/(Lx Ly). Solved by
-a bound-constrained conjugate gradient on FFT boundary elements; exact zeros outside the contact.
+Contact of a rigid surface of heights h with an elastic half-space of effective modulus E*,
+pressure bounded by the flow pressure p_m (0 ≤ p ≤ p_m), mean pressure F_N/(Lx Ly). Solved by a
+bound-constrained conjugate gradient on FFT boundary elements; exact zeros outside the contact.
 Grids are Nx × Ny square pixels; ``length`` is the side Lx along the first axis.
+
+The half-space is periodic (``boundary="periodic"``, the paper's model, used for sliding) or has a
+free boundary around the map (``boundary="free"``: the map is surrounded by an unloaded half-space,
+for measured maps, which are not periodic; Hockney's zero-padded FFT, 2Nx × 2Ny, four times the
+work).
 """
 
 from __future__ import annotations
@@ -21,11 +26,19 @@ from .surface import _float_grid
 class ContactResult:
     """One contact solution.
 
-    ``pressure`` is in the unit of E (reduced: E; SI: Pa); ``approach`` and lengths in the unit of L.
+    ``pressure`` is in the unit of E (reduced: E; SI: Pa); ``approach``, ``displacement``, ``gap``
+    and lengths in the unit of L (reduced: L; SI: m).
     """
 
     #: Contact pressure p, (Nx, Ny) float64, exactly 0 outside the contact.
     pressure: np.ndarray
+    #: Surface displacement of the half-space u = 𝒦p, (Nx, Ny) float64 (zero mean when periodic).
+    displacement: np.ndarray
+    #: Gap g = 𝒦p − h + δ, δ = max(h) − approach: the separation of the rigid surface and the
+    #: deformed half-space, (Nx, Ny) float64. 0 on contact pixels below p_m, ≥ 0 outside the contact,
+    #: ≤ 0 (interpenetration taken up by plastic flow) where p = p_m, each to within
+    #: ``residual`` × std(h).
+    gap: np.ndarray
     #: Conjugate-gradient iterations.
     iterations: int
     #: Convolutions (FFT round trips) in all.
@@ -56,9 +69,10 @@ class ContactSolver:
     """FFT contact solver for one grid. Plans and buffers are made once: reuse one solver for many
     solves on the same grid (e.g. the steps of a slide, warm-started from the previous pressure).
 
-    ``grid`` is N (an N × N grid) or (Nx, Ny); ``length`` the side Lx along x of the periodic box
-    (length unit; pixels are square, so Ly = Lx Ny/Nx); ``effective_modulus`` E* (unit of pressure;
-    see :meth:`wearsim.Material.effective_modulus`).
+    ``grid`` is N (an N × N grid) or (Nx, Ny); ``length`` the side Lx along x of the box (length
+    unit; pixels are square, so Ly = Lx Ny/Nx); ``effective_modulus`` E* (unit of pressure; see
+    :meth:`wearsim.Material.effective_modulus`); ``boundary`` ``"periodic"`` or ``"free"`` (see the
+    module documentation).
     """
 
     def __init__(
@@ -69,13 +83,15 @@ class ContactSolver:
         *,
         tolerance: float = _wearsim.DEFAULT_TOLERANCE,
         max_iterations: int = _wearsim.DEFAULT_MAX_ITERATIONS,
+        boundary: str = "periodic",
     ) -> None:
-        self._solver = _wearsim.ContactSolver(grid, length, effective_modulus, tolerance, max_iterations)
+        self._solver = _wearsim.ContactSolver(grid, length, effective_modulus, tolerance, max_iterations, boundary)
 
     shape = property(lambda self: self._solver.shape, doc="Grid (Nx, Ny).")
     length = property(lambda self: self._solver.length, doc="Side length Lx along x.")
     effective_modulus = property(lambda self: self._solver.effective_modulus, doc="E*.")
     tolerance = property(lambda self: self._solver.tolerance, doc="Tolerance on the residual.")
+    boundary = property(lambda self: self._solver.boundary, doc='"periodic" or "free".')
 
     def solve(
         self,
@@ -94,11 +110,14 @@ class ContactSolver:
         :class:`wearsim.NotConvergedError` when the iteration limit is reached.
         """
         p0 = None if initial_pressure is None else _float_grid("initial_pressure", initial_pressure)
-        pressure, info = self._solver.solve(_float_grid("heights", heights), float(load), float(flow_pressure), p0)
-        return ContactResult(pressure=pressure, **info)
+        pressure, displacement, gap, info = self._solver.solve(
+            _float_grid("heights", heights), float(load), float(flow_pressure), p0
+        )
+        return ContactResult(pressure=pressure, displacement=displacement, gap=gap, **info)
 
     def displacement(self, pressure: np.ndarray) -> np.ndarray:
-        """Zero-mean surface displacement 𝒦p of the half-space under ``pressure`` (length unit)."""
+        """Surface displacement 𝒦p of the half-space under ``pressure`` (length unit; zero mean when
+        periodic)."""
         return self._solver.displacement(_float_grid("pressure", pressure))
 
 
@@ -112,9 +131,11 @@ def solve_contact(
     initial_pressure: Optional[np.ndarray] = None,
     tolerance: float = _wearsim.DEFAULT_TOLERANCE,
     max_iterations: int = _wearsim.DEFAULT_MAX_ITERATIONS,
+    boundary: str = "periodic",
 ) -> ContactResult:
     """One contact solve (see :meth:`ContactSolver.solve`); for many solves on one grid, keep a
-    :class:`ContactSolver`."""
+    :class:`ContactSolver`. ``boundary="free"`` solves a map that is not periodic (a measured one)
+    as surrounded by an unloaded half-space."""
     heights = _float_grid("heights", heights)
     solver = ContactSolver(
         (heights.shape[0], heights.shape[1]),
@@ -122,5 +143,6 @@ def solve_contact(
         effective_modulus,
         tolerance=tolerance,
         max_iterations=max_iterations,
+        boundary=boundary,
     )
     return solver.solve(heights, load, flow_pressure=flow_pressure, initial_pressure=initial_pressure)

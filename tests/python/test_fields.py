@@ -103,3 +103,53 @@ def test_the_fields_are_the_contact_solutions_of_the_run(run, wearsim_bin):
             assert len(np.unique(labels[labels > 0])) == row["junctions"]
             summary = json.loads((out / "summary.json").read_text())
             assert summary["surfaces"]["grid"] == [64, 48]
+
+
+def test_the_fields_convert_to_cf_netcdf_that_another_reader_opens(run, wearsim_bin, tmp_path):
+    netCDF4 = pytest.importorskip("netCDF4")
+    pytest.importorskip("h5netcdf")
+    import sys
+
+    from wearsim.fields import to_netcdf
+
+    store = run / "slide" / "fields.zarr"
+    zarr_ds = xr.open_zarr(store)
+    # Written by h5netcdf (Python API), read by the netCDF-C library (what MATLAB and ParaView use).
+    path = to_netcdf(store, tmp_path / "fields.nc")
+    with netCDF4.Dataset(path) as nc:
+        assert nc.data_model == "NETCDF4" and nc.Conventions == "CF-1.8"
+        assert "Brink" in nc.references and json.loads(nc.provenance)["software"].startswith("wearsim")
+        assert nc.dimensions["x"].size == 64 and nc.dimensions["y"].size == 48
+        assert nc["pressure"].dimensions == ("load", "s", "x", "y")
+        assert nc["pressure"].units == "E" and nc["pressure"].long_name == "contact pressure"
+        assert nc["x"].units == "L" and nc["x"].axis == "X" and nc["y"].axis == "Y"
+        assert nc["load"].units == "E L^2"
+        np.testing.assert_array_equal(nc["pressure"][:], zarr_ds.pressure.values)
+        np.testing.assert_array_equal(nc["contact"][:], zarr_ds.contact.values.astype(np.int8))
+        assert list(nc["contact"].flag_values) == [0, 1]
+        np.testing.assert_array_equal(nc["junctions"][:], zarr_ds.junctions.values)
+        np.testing.assert_allclose(nc["x"][:], np.arange(64) / 64)
+    # xarray through the other engine decodes the same dataset.
+    back = xr.open_dataset(path, engine="netcdf4")
+    np.testing.assert_array_equal(back.offset.values, zarr_ds.offset.values)
+    assert back.pressure.attrs["units"] == "E"
+    back.close()
+    # The CLI counterpart runs the same conversion in the given interpreter.
+    out = tmp_path / "cli.nc"
+    subprocess.run(
+        [wearsim_bin, "fields", "to-netcdf", store, out, "--python", sys.executable], check=True, capture_output=True
+    )
+    with netCDF4.Dataset(out) as nc:
+        np.testing.assert_array_equal(nc["pressure"][:], zarr_ds.pressure.values)
+    # Not a store: a one-line error, no file.
+    bad = subprocess.run(
+        [wearsim_bin, "fields", "to-netcdf", tmp_path, tmp_path / "x.nc"], capture_output=True, text=True
+    )
+    assert bad.returncode != 0 and "not a fields store" in bad.stderr and not (tmp_path / "x.nc").exists()
+    # An interpreter without the package: the error says what to install.
+    missing = subprocess.run(
+        [wearsim_bin, "fields", "to-netcdf", store, tmp_path / "y.nc", "--python", "false"],
+        capture_output=True,
+        text=True,
+    )
+    assert missing.returncode != 0 and 'pip install "wearsim[fields]"' in missing.stderr

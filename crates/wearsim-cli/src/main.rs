@@ -8,7 +8,7 @@ mod commands;
 mod figures;
 mod progress;
 
-use commands::{animate, bench, contact, junctions, plot, slide, study, surface};
+use commands::{animate, bench, contact, fields, junctions, plot, slide, study, surface};
 
 #[derive(Parser)]
 #[command(
@@ -34,8 +34,8 @@ struct Cli {
 enum Command {
     /// Generate (or read) the run's surface pair; write top.npy, bottom.npy and statistics.json.
     Surface(surface::Args),
-    /// Solve one contact at a normal load and sliding offset; write pressure.npy, contact.npy and
-    /// summary.json.
+    /// Solve one contact at a normal load and sliding offset (periodic or free boundary); write
+    /// pressure.npy, contact.npy, displacement.npy, gap.npy and summary.json.
     Contact(contact::Args),
     /// Run the sliding wear model on every load of the run file; write summary.json and series.csv.
     Slide(slide::Args),
@@ -44,6 +44,9 @@ enum Command {
     /// Label the junctions of a contact map (.npy, bool or numbers > 0); write labels.npy and
     /// junctions.json.
     Junctions(junctions::Args),
+    /// Fields stores of `slide --save-fields`: convert to NetCDF-4 with CF attributes.
+    #[command(subcommand)]
+    Fields(FieldsCommand),
     /// Studies: expand a study file into jobs and run them (resumable), collect the results, draw
     /// the paper's figures.
     #[command(subcommand)]
@@ -52,6 +55,14 @@ enum Command {
     Bench(bench::Args),
     /// Time a full sliding run (solve / labelling / bookkeeping) and warm steps on a large grid.
     BenchSlide(bench::SlideArgs),
+}
+
+#[derive(Subcommand)]
+enum FieldsCommand {
+    /// Convert DIR/fields.zarr to a NetCDF-4 file with CF attributes (units, long names, x and y
+    /// coordinates in L or m) for MATLAB's ncread, ParaView and xarray. Runs the Python package
+    /// (`python -m wearsim.fields`), which needs `pip install "wearsim[fields]"`.
+    ToNetcdf(fields::ToNetcdfArgs),
 }
 
 #[derive(Subcommand)]
@@ -94,6 +105,7 @@ fn main() {
         Command::Slide(args) => slide::run(&args),
         Command::Animate(args) => animate::run(&args),
         Command::Junctions(args) => junctions::run(&args),
+        Command::Fields(FieldsCommand::ToNetcdf(args)) => fields::to_netcdf(&args),
         Command::Study(StudyCommand::Run(args)) => study::run(&args),
         Command::Study(StudyCommand::Collect(args)) => study::collect(&args),
         Command::Study(StudyCommand::Plot(args)) => plot::run(&args),

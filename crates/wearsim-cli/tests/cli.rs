@@ -67,10 +67,31 @@ fn surface_and_contact_write_their_files() {
         "effective_modulus",
         "flow_pressure",
         "seconds",
+        "boundary",
+        "gap.npy",
     ] {
         assert!(summary.contains(&format!("\"{key}\"")), "summary lacks {key}");
     }
-    assert!(contact.join("pressure.npy").is_file() && contact.join("contact.npy").is_file());
+    for f in ["pressure.npy", "contact.npy", "displacement.npy", "gap.npy"] {
+        assert!(contact.join(f).is_file(), "{f}");
+    }
+    // A free boundary has no periodic box to slide the top surface around.
+    let o = wearsim()
+        .args([
+            "contact",
+            run.to_str().unwrap(),
+            "--load",
+            "1e-3",
+            "--offset",
+            "0.03125",
+            "--boundary",
+            "free",
+            "--out",
+            dir.path().join("free").to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("free boundary"));
     // Read the written surfaces back as a run (files relative to the run file).
     let read = format!(
         "[surface]\ntop = \"o/top.npy\"\nbottom = \"o/bottom.npy\"\nlength = 1.0\n{}",

@@ -8,7 +8,7 @@ use pyo3::types::PyDict;
 use wearsim::junctions::{JunctionLabeller, NO_JUNCTION};
 use wearsim::output::ContactRecord;
 use wearsim::wear::static_wear;
-use wearsim::{Interrupt, Material, ModulusConvention, SolverOptions};
+use wearsim::{Boundary, Interrupt, Material, ModulusConvention, SolverOptions};
 
 use crate::error::{interruptible, to_py};
 use crate::{field, field_of, json_to_py, to_array, GridSize, Pair};
@@ -98,6 +98,14 @@ impl PyMaterial {
     }
 }
 
+/// A solve's pressure, displacement and gap fields and its record.
+type Solution<'py> = (
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyAny>,
+);
+
 /// FFT contact solver for one grid, reused across solves (plans and buffers are made once).
 #[pyclass(name = "ContactSolver", module = "wearsim._wearsim")]
 pub struct PyContactSolver {
@@ -107,16 +115,18 @@ pub struct PyContactSolver {
 #[pymethods]
 impl PyContactSolver {
     #[new]
-    #[pyo3(signature = (grid, length, effective_modulus, tolerance = wearsim::contact::DEFAULT_TOLERANCE, max_iterations = wearsim::contact::DEFAULT_MAX_ITERATIONS))]
+    #[pyo3(signature = (grid, length, effective_modulus, tolerance = wearsim::contact::DEFAULT_TOLERANCE, max_iterations = wearsim::contact::DEFAULT_MAX_ITERATIONS, boundary = "periodic"))]
     fn new(
         grid: GridSize,
         length: f64,
         effective_modulus: f64,
         tolerance: f64,
         max_iterations: usize,
+        boundary: &str,
     ) -> PyResult<Self> {
         let options = SolverOptions::new(tolerance, max_iterations).map_err(to_py)?;
-        let inner = wearsim::ContactSolver::new(grid.grid(length)?, effective_modulus)
+        let boundary = boundary.parse::<Boundary>().map_err(to_py)?;
+        let inner = wearsim::ContactSolver::with_boundary(grid.grid(length)?, effective_modulus, boundary)
             .map_err(to_py)?
             .with_options(options);
         Ok(Self { inner })
@@ -145,8 +155,13 @@ impl PyContactSolver {
     fn max_iterations(&self) -> usize {
         self.inner.options().max_iterations()
     }
+    /// "periodic" or "free".
+    #[getter]
+    fn boundary(&self) -> &'static str {
+        self.inner.boundary().name()
+    }
 
-    /// Returns (pressure, info dict); see the Python wrapper for the meaning.
+    /// Returns (pressure, displacement, gap, info dict); see the Python wrapper for the meaning.
     #[pyo3(signature = (heights, load, flow_pressure = f64::INFINITY, initial_pressure = None))]
     fn solve<'py>(
         &mut self,
@@ -155,7 +170,7 @@ impl PyContactSolver {
         load: f64,
         flow_pressure: f64,
         initial_pressure: Option<PyReadonlyArray2<'py, f64>>,
-    ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyAny>)> {
+    ) -> PyResult<Solution<'py>> {
         let shape = self.shape();
         let h = field_of("heights", &heights, shape, "solver")?;
         let mut pressure = match initial_pressure {
@@ -171,11 +186,20 @@ impl PyContactSolver {
             solver.set_interrupt(Interrupt::default());
             r
         })?;
-        let d = json_to_py(py, &ContactRecord::new(&info, &pressure, start.elapsed().as_secs_f64()))?;
-        Ok((to_array(py, shape, pressure), d))
+        let seconds = start.elapsed().as_secs_f64();
+        let fields = py
+            .detach(|| solver.gap_and_displacement(&h, &pressure, &info))
+            .map_err(to_py)?;
+        let d = json_to_py(py, &ContactRecord::new(&info, &pressure, seconds))?;
+        Ok((
+            to_array(py, shape, pressure),
+            to_array(py, shape, fields.displacement),
+            to_array(py, shape, fields.gap),
+            d,
+        ))
     }
 
-    /// Displacement 𝒦p of a pressure field (zero mean).
+    /// Displacement 𝒦p of a pressure field (zero mean when periodic).
     fn displacement<'py>(
         &mut self,
         py: Python<'py>,

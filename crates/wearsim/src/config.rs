@@ -9,6 +9,7 @@ use crate::check::{connectivity as check_connectivity, positive};
 use crate::contact::SolverOptions;
 use crate::error::{Error, Interrupt, Result};
 use crate::grid::Grid;
+use crate::influence::Boundary;
 use crate::io::{parent_or_dot, read_text};
 use crate::material::{Material, ModulusConvention};
 use crate::sliding::{SlidingConfig, SlidingSetup};
@@ -91,6 +92,7 @@ struct RawContact {
     tolerance: Option<f64>,
     max_iterations: Option<usize>,
     connectivity: Option<u8>,
+    boundary: Option<Boundary>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -210,6 +212,8 @@ pub struct RunConfig {
     pub solver: SolverOptions,
     /// Junction connectivity, 4 or 8.
     pub connectivity: u8,
+    /// The half-space's boundary at the map's edges for `contact` (sliding is always periodic).
+    pub boundary: Boundary,
     pub sliding: Option<SlidingConfig>,
 }
 
@@ -328,6 +332,14 @@ impl RunConfig {
         )?;
         let connectivity = c.connectivity.unwrap_or(4);
         check_connectivity(connectivity)?;
+        let boundary = c.boundary.unwrap_or_default();
+        if boundary == Boundary::Free && raw.sliding.is_some() {
+            return Err(Error::run_file(
+                "[contact] `boundary = \"free\"` applies to single contact solves; sliding is periodic (paper §2), so a \
+                 run file with [sliding] keeps the default \"periodic\" (for one free-boundary solve of its pair, use \
+                 `wearsim contact --boundary free`)",
+            ));
+        }
         let sliding = match raw.sliding {
             None => None,
             Some(sl) => {
@@ -368,6 +380,7 @@ impl RunConfig {
             modulus: c.modulus.unwrap_or_default(),
             solver,
             connectivity,
+            boundary,
             sliding,
         })
     }
@@ -873,6 +886,23 @@ loads = [1e-3]
         assert_eq!(c.sliding.as_ref().unwrap().step_running_in, 4);
         let (t, b) = c.surfaces().unwrap();
         assert_ne!(t, b);
+        assert_eq!(c.boundary, Boundary::Periodic);
+    }
+
+    #[test]
+    fn a_free_boundary_is_for_contact_runs_only() {
+        let contact_only = RUN.split("[sliding]").next().unwrap().to_string();
+        let free = contact_only.replace("modulus = \"composite\"", "boundary = \"free\"");
+        assert_eq!(
+            RunConfig::from_toml(&free, Path::new(".")).unwrap().boundary,
+            Boundary::Free
+        );
+        let err = RunConfig::from_toml(&format!("{free}[sliding]\nloads = [1e-3]\n"), Path::new("."))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("boundary") && err.contains("periodic"), "{err}");
+        let bad = contact_only.replace("modulus = \"composite\"", "boundary = \"open\"");
+        assert!(RunConfig::from_toml(&bad, Path::new(".")).is_err());
     }
 
     #[test]

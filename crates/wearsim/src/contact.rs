@@ -1,8 +1,10 @@
-//! Saturated-pressure (elastic–perfectly-plastic) contact of a rigid rough surface on a periodic
-//! elastic half-space, solved by FFT boundary elements (paper §2 and appendix A).
+//! Saturated-pressure (elastic–perfectly-plastic) contact of a rigid rough surface on an elastic
+//! half-space, solved by FFT boundary elements (paper §2 and appendix A).
 //!
 //! Problem: find p minimising ½⟨p, 𝒦p⟩ − ⟨p, h⟩ subject to 0 ≤ p ≤ p_m and mean(p) = F_N/(Lx Ly), where
-//! û(q) = 2 p̂(q)/(E*|k|) is the periodic half-space displacement. Its optimality conditions, with
+//! 𝒦 is the half-space's influence operator ([`crate::influence`]): periodic, û(q) = 2 p̂(q)/(E*|k|)
+//! as in the paper, or with a free boundary around the map (Hockney's zero-padded FFT), the
+//! pressure confined to the map. Its optimality conditions, with
 //! g = 𝒦p − h and c the Lagrange multiplier of the load (the rigid body's position), are
 //! g + c ≥ 0 where p = 0, g + c = 0 where 0 < p < p_m, g + c ≤ 0 where p = p_m.
 //!
@@ -23,14 +25,12 @@
 //! `max_i v_i / std(h)` with v_i = |g_i + c| on free pixels, max(0, −(g_i + c)) on non-contact pixels
 //! and max(0, g_i + c) on plastic pixels, c = −mean over free pixels of g.
 
-use std::f64::consts::PI;
-
 use rayon::prelude::*;
 
 use crate::check::positive;
 use crate::error::{Error, Interrupt, Result};
-use crate::fft::{radial_kernel, FftPlan};
 use crate::grid::Grid;
+use crate::influence::{self, Boundary, Influence};
 
 /// Default convergence tolerance on the residual (see the module documentation). A hundredfold
 /// tighter tolerance changes no contact pixel on the paper-roughness problems (validated in
@@ -124,6 +124,16 @@ pub struct SolveInfo {
     pub contact_pixels: usize,
     /// Pixels at the flow pressure (p = p_m).
     pub plastic_pixels: usize,
+}
+
+/// The displacement and gap of a solution ([`ContactSolver::gap_and_displacement`]), Nx·Ny values
+/// each in length units.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactFields {
+    /// Surface displacement of the half-space, u = 𝒦p (zero-mean when periodic).
+    pub displacement: Vec<f64>,
+    /// Gap g = 𝒦p − h + δ between the rigid surface and the deformed half-space.
+    pub gap: Vec<f64>,
 }
 
 /// Per-row partial sums of one pass, combined sequentially so that results do not depend on the
@@ -295,11 +305,8 @@ impl Stats {
 pub struct ContactSolver {
     grid: Grid,
     effective_modulus: f64,
-    plan: FftPlan,
-    /// Fourier multiplier of 𝒦 (1/(Nx·Ny) folded in), transposed half-spectrum layout.
-    kernel: Vec<f64>,
-    /// Displacement of a single unit-pressure pixel at that pixel, 𝒦ᵢᵢ.
-    self_influence: f64,
+    /// 𝒦, periodic or with a free boundary.
+    influence: Influence,
     u: Vec<f64>,
     t: Vec<f64>,
     r: Vec<f64>,
@@ -343,33 +350,19 @@ struct SolveState {
 impl ContactSolver {
     /// Solver for a periodic grid (Nx × Ny square pixels) on a half-space of effective modulus E*.
     pub fn new(grid: Grid, effective_modulus: f64) -> Result<Self> {
+        Self::with_boundary(grid, effective_modulus, Boundary::Periodic)
+    }
+
+    /// Solver on a half-space of effective modulus E* whose map is periodic or has a free boundary
+    /// (see [`crate::influence`]); the algorithm is the same, only 𝒦 differs.
+    pub fn with_boundary(grid: Grid, effective_modulus: f64, boundary: Boundary) -> Result<Self> {
         positive("effective_modulus", effective_modulus)?;
         let (nx, ny) = (grid.nx(), grid.ny());
-        crate::check::memory("the contact solver", nx, ny, 8.0)?;
-        let nn = (nx * ny) as f64;
-        let (length, aspect) = (grid.length_x(), grid.aspect());
-        // û = 2 p̂ / (E* |k|), |k| = 2π|q|/Lx with q = (q_x, q_y Lx/Ly) in units of 2π/Lx; the q = 0
-        // mode is the rigid-body position, set by the load.
-        let kernel = radial_kernel(nx, ny, |qx, qy| {
-            let qy = qy * aspect;
-            let q = (qx * qx + qy * qy).sqrt();
-            if q == 0.0 {
-                0.0
-            } else {
-                2.0 / (effective_modulus * 2.0 * PI * q / length) / nn
-            }
-        });
-        let mut self_influence = 0.0;
-        for (qy, row) in kernel.chunks(nx).enumerate() {
-            let w = if qy == 0 || qy == ny / 2 { 1.0 } else { 2.0 };
-            self_influence += w * row.iter().sum::<f64>();
-        }
+        crate::check::memory("the contact solver", nx, ny, 6.5 + influence::arrays(boundary))?;
         Ok(Self {
             grid,
             effective_modulus,
-            plan: FftPlan::new(nx, ny),
-            kernel,
-            self_influence,
+            influence: Influence::new(grid, effective_modulus, boundary)?,
             u: vec![0.0; nx * ny],
             t: vec![0.0; nx * ny],
             r: vec![0.0; nx * ny],
@@ -415,9 +408,49 @@ impl ContactSolver {
         self.options
     }
 
-    /// Applies the influence operator: `out = 𝒦 p` (zero-mean displacement of the half-space).
+    /// The half-space's boundary condition at the edges of the map.
+    pub fn boundary(&self) -> Boundary {
+        self.influence.boundary()
+    }
+
+    /// Applies the influence operator: `out = 𝒦 p`, the displacement of the half-space (zero-mean
+    /// when periodic).
     pub fn apply_influence(&mut self, pressure: &[f64], out: &mut [f64]) {
-        self.plan.convolve(pressure, &self.kernel, out);
+        self.influence.apply(pressure, out);
+    }
+
+    /// The fields of a solution that other programs read beside the pressure: the displacement
+    /// u = 𝒦p and the gap g = 𝒦p − h + δ, with δ = max(h) − approach the rigid body's position (the
+    /// c of the module documentation), all in length units. g is the separation of the two surfaces:
+    /// 0 on contact pixels below the flow pressure, ≥ 0 outside the contact, ≤ 0 (interpenetration
+    /// taken up by plastic flow) on pixels at p_m, each to within the solve's residual × std(h).
+    pub fn gap_and_displacement(
+        &mut self,
+        heights: &[f64],
+        pressure: &[f64],
+        info: &SolveInfo,
+    ) -> Result<ContactFields> {
+        let nn = self.grid.nx() * self.grid.ny();
+        if heights.len() != nn || pressure.len() != nn {
+            return Err(Error::param(
+                "heights",
+                format!(
+                    "heights and pressure must hold {}×{} values",
+                    self.grid.nx(),
+                    self.grid.ny()
+                ),
+            ));
+        }
+        let mut displacement = vec![0.0; nn];
+        self.influence.apply(pressure, &mut displacement);
+        let h_max = heights.par_iter().copied().reduce(|| f64::NEG_INFINITY, f64::max);
+        let shift = h_max - info.approach;
+        let gap = displacement
+            .par_iter()
+            .zip(heights.par_iter())
+            .map(|(&u, &h)| u - h + shift)
+            .collect();
+        Ok(ContactFields { displacement, gap })
     }
 
     /// Solves the contact of the rigid surface of heights `heights` at mean pressure
@@ -589,7 +622,7 @@ impl ContactSolver {
         // t is zero outside the free pixels, so `t ≠ 0` marks them without reading p (a free
         // pixel whose t is exactly 0 is left out consistently here and in the update).
         let t = &self.t;
-        self.plan.convolve_with(
+        self.influence.apply_with(
             &self.t,
             |_, row| {
                 for v in row.iter_mut() {
@@ -598,7 +631,6 @@ impl ContactSolver {
                     }
                 }
             },
-            &self.kernel,
             &mut self.r,
             |i, row| {
                 let mut s = 0.0;
@@ -616,7 +648,7 @@ impl ContactSolver {
         let (tau, cg_step) = if n_free > 0.0 && curvature > 0.0 && sum_dt > 0.0 {
             (sum_dt / curvature, true)
         } else {
-            (1.0 / self.self_influence, false)
+            (1.0 / self.influence.self_influence(), false)
         };
 
         // Step, clip to the bounds, release bound pixels whose gap points inwards; the next
@@ -734,10 +766,9 @@ impl ContactSolver {
     /// after the convolution).
     fn displacement_and_stats(&mut self, heights: &[f64], pressure: &[f64], reference: f64, pm: f64) -> Stats {
         let n = self.grid.ny();
-        self.plan.convolve_with(
+        self.influence.apply_with(
             pressure,
             |_, _| {},
-            &self.kernel,
             &mut self.u,
             |i, u| {
                 let mut s = Stats::default();

@@ -8,6 +8,7 @@
 //!
 //! - [`error`], [`check`] (the rules every input obeys), [`io`] (atomic files, `.npy`), [`fft`],
 //!   [`stats`] (least-squares lines) and [`grid`] (Nx × Ny square pixels): the leaves;
+//! - [`influence`]: the half-space's influence operator 𝒦, periodic or with a free boundary;
 //! - [`material`] and [`surface`]: parameters and height fields; [`topography`]: measured height
 //!   maps read, prepared and fitted with self-affine parameters;
 //! - [`contact`]: the saturated-pressure FFT boundary-element solver;
@@ -140,6 +141,7 @@ pub mod contact;
 pub mod error;
 pub mod fft;
 pub mod grid;
+pub mod influence;
 pub mod io;
 pub mod junctions;
 pub mod material;
@@ -151,9 +153,10 @@ pub mod surface;
 pub mod topography;
 pub mod wear;
 
-pub use contact::{ContactSolver, SolveInfo, SolverOptions, Termination};
+pub use contact::{ContactFields, ContactSolver, SolveInfo, SolverOptions, Termination};
 pub use error::{Error, Interrupt, Result};
 pub use grid::Grid;
+pub use influence::Boundary;
 pub use material::{Material, ModulusConvention};
 pub use surface::{composite_heights, Generation, SpectrumParams, Surface};
 

@@ -5,13 +5,14 @@
 use std::collections::BTreeSet;
 use std::path::Path;
 
-const LAYERS: [&str; 16] = [
+const LAYERS: [&str; 17] = [
     "error",
     "check",
     "io",
     "fft",
     "stats",
     "grid",
+    "influence",
     "material",
     "surface",
     "topography",

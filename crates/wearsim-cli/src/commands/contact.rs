@@ -1,4 +1,5 @@
-//! `wearsim contact`: one contact solve at a load and a sliding offset.
+//! `wearsim contact`: one contact solve at a load and a sliding offset, written as the fields other
+//! programs read (pressure, contact map, displacement and gap as `.npy`) and a summary.
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -6,7 +7,7 @@ use std::time::Instant;
 use anyhow::{bail, Result};
 use wearsim::io::{write_json, write_npy_bool, write_npy_f64, OutputDir};
 use wearsim::output::{contact_summary, ContactRecord};
-use wearsim::{composite_heights, ContactSolver};
+use wearsim::{composite_heights, Boundary, ContactSolver};
 
 use super::load_run;
 
@@ -24,7 +25,14 @@ pub struct Args {
     /// Sliding offset in pixels along x, within one period [0, Nx).
     #[arg(long)]
     offset_px: Option<usize>,
-    /// Output folder (created if missing; an earlier `contact` there is replaced whole).
+    /// Boundary of the elastic half-space at the map's edges: `periodic` (the paper's model, the
+    /// default, or the run file's `[contact] boundary`) or `free` (the map surrounded by an unloaded
+    /// half-space: measured maps, which are not periodic; zero-padded FFT, 4× the work).
+    #[arg(long, value_parser = ["periodic", "free"])]
+    boundary: Option<String>,
+    /// Output folder (created if missing; an earlier `contact` there is replaced whole). Holds
+    /// pressure.npy, contact.npy, displacement.npy (𝒦p), gap.npy (g = 𝒦p − h + δ: 0 in elastic
+    /// contact, ≥ 0 outside, ≤ 0 where plastic) and summary.json with their units.
     #[arg(long)]
     out: PathBuf,
     /// Replace the output folder even when it holds another command's results or other files.
@@ -71,6 +79,16 @@ pub fn run(args: &Args) -> Result<()> {
             (shift, shift as f64 * dx)
         }
     };
+    let boundary = match &args.boundary {
+        Some(name) => name.parse::<Boundary>()?,
+        None => config.boundary,
+    };
+    if boundary == Boundary::Free && shift != 0 {
+        bail!(
+            "invalid `--offset`/`--offset-px`: a sliding offset wraps the top surface around the periodic box, which a free boundary \
+             does not have; give offset 0 with `boundary = free`, or slide with the periodic boundary"
+        );
+    }
     let out = OutputDir::begin(
         &args.out,
         "contact",
@@ -80,7 +98,7 @@ pub fn run(args: &Args) -> Result<()> {
     let pair = config.surface_pair()?;
     super::report_surfaces(&pair, true);
     let (top, bottom) = (pair.top, pair.bottom);
-    let mut solver = ContactSolver::new(grid, config.effective_modulus())?
+    let mut solver = ContactSolver::with_boundary(grid, config.effective_modulus(), boundary)?
         .with_options(config.solver)
         .with_interrupt(super::interrupt().clone());
     let mut heights = vec![0.0; n * ny];
@@ -95,11 +113,14 @@ pub fn run(args: &Args) -> Result<()> {
     )?;
     let record = ContactRecord::new(&info, &pressure, start.elapsed().as_secs_f64());
     let contact: Vec<bool> = pressure.iter().map(|&p| p > 0.0).collect();
+    let fields = solver.gap_and_displacement(&heights, &pressure, &info)?;
     write_npy_f64(&out.join("pressure.npy"), n, ny, &pressure)?;
     write_npy_bool(&out.join("contact.npy"), n, ny, &contact)?;
+    write_npy_f64(&out.join("displacement.npy"), n, ny, &fields.displacement)?;
+    write_npy_f64(&out.join("gap.npy"), n, ny, &fields.gap)?;
     write_json(
         &out.join("summary.json"),
-        &contact_summary(&config, load, offset, shift, &record),
+        &contact_summary(&config, load, offset, shift, boundary, &record),
     )?;
     out.commit()?;
     println!(

@@ -3,6 +3,7 @@
 pub mod animate;
 pub mod bench;
 pub mod contact;
+pub mod fields;
 pub mod junctions;
 pub mod plot;
 pub mod slide;

@@ -6,13 +6,14 @@ use serde_json::{json, Value};
 
 use crate::config::{RunConfig, SurfaceSource, Units};
 use crate::contact::{SolveInfo, SolverOptions};
+use crate::influence::Boundary;
 use crate::material::{Material, ModulusConvention};
 use crate::sliding::{LoadRun, SlidingConfig, WearResult};
 use crate::surface::Surface;
 
 use super::provenance::Provenance;
 use super::tables::{columns, Table};
-use super::units::units_map;
+use super::units::{unit_of, units_map};
 
 /// One row of a sliding run's series (`series.csv` of `wearsim slide`, the DataFrame of the Python
 /// `slide`): one step of one load for one fracture energy. The first nine columns are the paper's
@@ -252,13 +253,35 @@ impl ContactRecord {
     }
 }
 
-/// `summary.json` of `wearsim contact`: provenance, the solve's record, the load and offset, and
-/// the run's inputs and derived quantities.
+/// How the gap written by `wearsim contact` (and returned by Python's `contact`) is defined.
+pub const GAP_DEFINITION: &str = "g = Kp - h + delta, the separation of the rigid surface h and the deformed \
+half-space (Kp: displacement.npy; delta = max(h) - approach, the rigid body's position): 0 on contact pixels below \
+the flow pressure, >= 0 outside the contact, <= 0 (interpenetration taken up by plastic flow) at p = p_m, each to \
+within residual * std(h)";
+
+/// The fields `wearsim contact` writes, each with its unit and meaning, for its summary.
+fn contact_fields(units: Units, boundary: Boundary) -> Value {
+    let displacement = match boundary {
+        Boundary::Periodic => "surface displacement u = Kp of the periodic half-space (zero mean)",
+        Boundary::Free => "surface displacement u = Kp of the half-space, zero far from the map",
+    };
+    json!({
+        "pressure.npy": {"unit": unit_of(units, "pressure"), "definition": "contact pressure p, exactly 0 outside the contact"},
+        "contact.npy": {"unit": "", "definition": "contact map, p > 0"},
+        "displacement.npy": {"unit": unit_of(units, "displacement"), "definition": displacement},
+        "gap.npy": {"unit": unit_of(units, "gap"), "definition": GAP_DEFINITION},
+    })
+}
+
+/// `summary.json` of `wearsim contact`: provenance, the solve's record, the load and offset, the
+/// boundary condition, the fields written with their units, and the run's inputs and derived
+/// quantities.
 pub fn contact_summary(
     config: &RunConfig,
     load: f64,
     offset: f64,
     offset_pixels: usize,
+    boundary: Boundary,
     record: &ContactRecord,
 ) -> Value {
     let mut doc = json!({
@@ -267,6 +290,8 @@ pub fn contact_summary(
         "load": load,
         "offset": offset,
         "offset_pixels": offset_pixels,
+        "boundary": boundary.name(),
+        "fields": contact_fields(config.units, boundary),
     });
     let object = doc.as_object_mut().expect("an object");
     if let Value::Object(fields) = serde_json::to_value(record).expect("plain numbers serialise") {

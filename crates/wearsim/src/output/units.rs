@@ -18,7 +18,7 @@ pub fn unit_of(units: Units, quantity: &str) -> &'static str {
     match q {
         "load" => pick("E L²", "N"),
         "fracture_energy" | "fracture_energies" => pick("E L", "J/m²"),
-        "flow_pressure" | "effective_modulus" | "youngs_modulus" | "shear_strength" | "mean_pressure" => {
+        "flow_pressure" | "effective_modulus" | "youngs_modulus" | "shear_strength" | "mean_pressure" | "pressure" => {
             pick("E", "Pa")
         }
         "critical_diameter"
@@ -29,7 +29,9 @@ pub fn unit_of(units: Units, quantity: &str) -> &'static str {
         | "rms_height"
         | "approach"
         | "memory_decay_length"
-        | "pixel_size" => pick("L", "m"),
+        | "pixel_size"
+        | "gap"
+        | "displacement" => pick("L", "m"),
         "wear_rate" | "wear_rate_estimate" | "static_wear_rate" => pick("L²", "m²"),
         "volume" | "initial_volume" => pick("L³", "m³"),
         "particle_rate" => pick("1/L", "1/m"),

@@ -1,0 +1,67 @@
+//! `wearsim fields to-netcdf`: a fields store of `slide --save-fields` converted to NetCDF-4 with CF
+//! attributes. Delegates to the Python package (`python -m wearsim.fields`, xarray and h5netcdf of
+//! the `fields` extra): no NetCDF writer in Rust is both well kept and free of a C build.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+use anyhow::{bail, Context, Result};
+
+#[derive(clap::Args)]
+pub struct ToNetcdfArgs {
+    /// The fields store, DIR/fields.zarr of `wearsim slide --save-fields`.
+    store: PathBuf,
+    /// The NetCDF-4 file to write (e.g. fields.nc); written beside and renamed into place.
+    out: PathBuf,
+    /// zlib compression level of the maps, 0 for none.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(0..=9))]
+    complevel: u8,
+    /// The Python interpreter with the wearsim package and its `fields` extra installed
+    /// (`pip install "wearsim[fields]"`); default: $WEARSIM_PYTHON, else python3.
+    #[arg(long)]
+    python: Option<PathBuf>,
+}
+
+pub fn to_netcdf(args: &ToNetcdfArgs) -> Result<()> {
+    if !args.store.join(".zgroup").is_file() {
+        bail!(
+            "{} is not a fields store (no .zgroup); give the fields.zarr folder written by `wearsim slide --save-fields`",
+            args.store.display()
+        );
+    }
+    let python = args
+        .python
+        .clone()
+        .or_else(|| std::env::var_os("WEARSIM_PYTHON").map(PathBuf::from))
+        .unwrap_or_else(|| PathBuf::from("python3"));
+    // Is the package with the extra there? Asked first, so that the error says what to install.
+    let probe = Command::new(&python)
+        .args(["-c", "import wearsim.fields, xarray, zarr, h5netcdf"])
+        .output()
+        .with_context(|| {
+            format!(
+                "cannot run {} (the conversion runs in Python); install Python 3 with `pip install \"wearsim[fields]\"`, \
+                 or name the interpreter with --python",
+                python.display()
+            )
+        })?;
+    if !probe.status.success() {
+        let why = String::from_utf8_lossy(&probe.stderr);
+        bail!(
+            "{} lacks the wearsim package or its `fields` extra ({}); install them with `pip install \"wearsim[fields]\"` \
+             into that interpreter, or name another with --python",
+            python.display(),
+            why.trim().lines().last().unwrap_or("import failed")
+        );
+    }
+    let status = Command::new(&python)
+        .args(["-m", "wearsim.fields", "to-netcdf", "--complevel", &args.complevel.to_string()])
+        .arg(&args.store)
+        .arg(&args.out)
+        .status()
+        .with_context(|| format!("cannot run {}", python.display()))?;
+    if !status.success() {
+        bail!("the conversion failed ({status}); its error is above");
+    }
+    Ok(())
+}
