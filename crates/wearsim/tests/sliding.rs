@@ -143,3 +143,56 @@ fn sliding_results_do_not_depend_on_thread_count() {
         "results differ between 1 and 2 threads"
     );
 }
+
+#[test]
+fn a_fit_window_inside_the_memory_of_the_initial_contact_is_not_run_in() {
+    // Running-in of 4 pixels (s_r = L/16): shorter than the decay length of the initial contact's
+    // memory on this 64² box, which is of the order of λ_u = L/4.
+    let (top, bottom) = setup_surfaces(64);
+    let material = Material::new(1.0, 0.3, 0.01, vec![0.1e-6], 3.0).unwrap();
+    let sliding = SlidingConfig {
+        loads: vec![2e-3],
+        distance: 0.5,
+        running_in: 0.0625,
+        step_running_in: 4,
+        step: 1,
+    };
+    let setup = SlidingSetup {
+        material: &material,
+        effective_modulus: material.effective_modulus(ModulusConvention::HalfSpace),
+        solver: Default::default(),
+        connectivity: 4,
+        sliding: &sliding,
+        interrupt: Default::default(),
+    };
+    let runs = run_sliding(&top, &bottom, &setup, |_| {}).unwrap();
+    let result = &runs[0].results[0];
+    let decay = result.memory_decay_length.expect("the memory decays");
+    assert!(decay > 0.0625, "decay length {decay} is not above the running-in");
+    let ratio = result.running_in_decay_lengths.unwrap();
+    assert!((ratio - 0.0625 / decay).abs() < 1e-12);
+    assert!(
+        runs[0].warnings.iter().any(|w| w.contains("not run in")),
+        "{:?}",
+        runs[0].warnings
+    );
+    // The same run with a running-in of three decay lengths or more is run in: no warning.
+    let long = SlidingConfig {
+        running_in: ((3.0 * decay * 64.0).ceil() / 64.0).min(0.75),
+        distance: 1.0,
+        ..sliding.clone()
+    };
+    let setup = SlidingSetup {
+        sliding: &long,
+        ..setup
+    };
+    let runs = run_sliding(&top, &bottom, &setup, |_| {}).unwrap();
+    let result = &runs[0].results[0];
+    let ratio = result.running_in_decay_lengths.unwrap_or(f64::INFINITY);
+    assert_eq!(
+        runs[0].warnings.iter().any(|w| w.contains("not run in")),
+        ratio < wearsim::sliding::RUN_IN_DECAY_LENGTHS,
+        "ratio {ratio}: {:?}",
+        runs[0].warnings
+    );
+}

@@ -38,6 +38,7 @@ pub fn unit_of(units: Units, quantity: &str) -> &'static str {
         | "static_wear_coefficient"
         | "wear_rate_r2"
         | "memory_decay_r2"
+        | "running_in_decay_lengths"
         | "poisson_ratio"
         | "geometry_factor"
         | "hurst"

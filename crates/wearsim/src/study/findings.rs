@@ -499,6 +499,7 @@ mod tests {
                     critical_junctions_mean: 3.0,
                     memory_decay_length: Some(0.03),
                     memory_decay_r2: Some(0.9),
+                    running_in_decay_lengths: Some(8.0),
                 },
                 flow_pressure: 3.0 * 3f64.sqrt() * tau,
                 warnings: String::new(),
