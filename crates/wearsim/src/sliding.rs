@@ -208,6 +208,11 @@ pub struct WearResult {
     /// [`RUN_IN_DECAY_LENGTHS`] the fit window starts while the initial contact is still remembered
     /// (paper §3) and the run is not run in; the run's `warnings` say so.
     pub running_in_decay_lengths: Option<f64>,
+    /// N*/(dN*₊/ds): the sliding distance a junction stays at least d* per particle it forms
+    /// (Little's law over the fit window). A junction forms one particle and is then disabled while
+    /// it overlaps itself (paper §3), so when critical junctions grow and live longer with load, this
+    /// grows and the particle rate per critical junction, and k, fall; absent without particles.
+    pub critical_residence: Option<f64>,
 }
 
 /// Decay lengths of the memory of the initial contact after which a run counts as run in: e^−3, so
@@ -504,6 +509,9 @@ fn results_of_load(
                 memory_decay_length,
                 memory_decay_r2,
                 running_in_decay_lengths,
+                critical_residence: particle_rate
+                    .filter(|r| *r > 0.0)
+                    .and_then(|r| finite(critical_junctions_mean / r)),
             }
         })
         .collect();

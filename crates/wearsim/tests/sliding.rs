@@ -95,6 +95,14 @@ fn bookkeeping_invariants_and_initial_volume() {
             let d = res.critical_diameter;
             let eq5 = std::f64::consts::PI / 6.0 * d.powi(3) * res.particle_rate.unwrap();
             assert!((res.wear_rate_estimate.unwrap() - eq5).abs() <= 1e-12 * eq5.abs().max(1e-300));
+            // The residence of a critical junction per particle, N*/(dN*₊/ds), wherever particles form.
+            match res.particle_rate.filter(|r| *r > 0.0) {
+                Some(rate) => {
+                    let residence = res.critical_residence.unwrap();
+                    assert!((residence - n_star / rate).abs() <= 1e-12 * residence);
+                }
+                None => assert_eq!(res.critical_residence, None),
+            }
         }
         // The memory of the initial contact starts at every junction of s = 0 and never exceeds N.
         assert_eq!(r.steps[0].initial_junctions, r.steps[0].junctions);

@@ -29,6 +29,7 @@ pub fn unit_of(units: Units, quantity: &str) -> &'static str {
         | "rms_height"
         | "approach"
         | "memory_decay_length"
+        | "critical_residence"
         | "pixel_size" => pick("L", "m"),
         "wear_rate" | "wear_rate_estimate" | "static_wear_rate" => pick("L²", "m²"),
         "volume" | "initial_volume" => pick("L³", "m³"),
