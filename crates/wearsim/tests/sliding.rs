@@ -95,6 +95,14 @@ fn bookkeeping_invariants_and_initial_volume() {
             let d = res.critical_diameter;
             let eq5 = std::f64::consts::PI / 6.0 * d.powi(3) * res.particle_rate.unwrap();
             assert!((res.wear_rate_estimate.unwrap() - eq5).abs() <= 1e-12 * eq5.abs().max(1e-300));
+            // The residence of a critical junction per particle, N*/(dN*₊/ds), wherever particles form.
+            match res.particle_rate.filter(|r| *r > 0.0) {
+                Some(rate) => {
+                    let residence = res.critical_residence.unwrap();
+                    assert!((residence - n_star / rate).abs() <= 1e-12 * residence);
+                }
+                None => assert_eq!(res.critical_residence, None),
+            }
         }
         // The memory of the initial contact starts at every junction of s = 0 and never exceeds N.
         assert_eq!(r.steps[0].initial_junctions, r.steps[0].junctions);
@@ -276,5 +284,58 @@ fn full_contact_near_the_flow_pressure_is_flagged_as_no_particle() {
             .any(|w| w.contains("wraps the periodic box") && w.contains("no particle")),
         "{:?}",
         full.warnings
+    );
+}
+
+#[test]
+fn a_fit_window_inside_the_memory_of_the_initial_contact_is_not_run_in() {
+    // Running-in of 4 pixels (s_r = L/16): shorter than the decay length of the initial contact's
+    // memory on this 64² box, which is of the order of λ_u = L/4.
+    let (top, bottom) = setup_surfaces(64);
+    let material = Material::new(1.0, 0.3, 0.01, vec![0.1e-6], 3.0).unwrap();
+    let sliding = SlidingConfig {
+        loads: vec![2e-3],
+        distance: 0.5,
+        running_in: 0.0625,
+        step_running_in: 4,
+        step: 1,
+    };
+    let setup = SlidingSetup {
+        material: &material,
+        effective_modulus: material.effective_modulus(ModulusConvention::HalfSpace),
+        solver: Default::default(),
+        connectivity: 4,
+        sliding: &sliding,
+        interrupt: Default::default(),
+    };
+    let runs = run_sliding(&top, &bottom, &setup, |_| {}).unwrap();
+    let result = &runs[0].results[0];
+    let decay = result.memory_decay_length.expect("the memory decays");
+    assert!(decay > 0.0625, "decay length {decay} is not above the running-in");
+    let ratio = result.running_in_decay_lengths.unwrap();
+    assert!((ratio - 0.0625 / decay).abs() < 1e-12);
+    assert!(
+        runs[0].warnings.iter().any(|w| w.contains("not run in")),
+        "{:?}",
+        runs[0].warnings
+    );
+    // The same run with a running-in of three decay lengths or more is run in: no warning.
+    let long = SlidingConfig {
+        running_in: ((3.0 * decay * 64.0).ceil() / 64.0).min(0.75),
+        distance: 1.0,
+        ..sliding.clone()
+    };
+    let setup = SlidingSetup {
+        sliding: &long,
+        ..setup
+    };
+    let runs = run_sliding(&top, &bottom, &setup, |_| {}).unwrap();
+    let result = &runs[0].results[0];
+    let ratio = result.running_in_decay_lengths.unwrap_or(f64::INFINITY);
+    assert_eq!(
+        runs[0].warnings.iter().any(|w| w.contains("not run in")),
+        ratio < wearsim::sliding::RUN_IN_DECAY_LENGTHS,
+        "ratio {ratio}: {:?}",
+        runs[0].warnings
     );
 }

@@ -29,6 +29,7 @@ pub fn unit_of(units: Units, quantity: &str) -> &'static str {
         | "rms_height"
         | "approach"
         | "memory_decay_length"
+        | "critical_residence"
         | "pixel_size"
         | "gap"
         | "displacement" => pick("L", "m"),
@@ -40,6 +41,7 @@ pub fn unit_of(units: Units, quantity: &str) -> &'static str {
         | "static_wear_coefficient"
         | "wear_rate_r2"
         | "memory_decay_r2"
+        | "running_in_decay_lengths"
         | "poisson_ratio"
         | "geometry_factor"
         | "hurst"
