@@ -1,10 +1,10 @@
 //! Drawing figures: the bundled font, one [`Figure`] drawn into both PNG and SVG by [`save`], and the
 //! pieces every figure shares — axes that may be logarithmic (drawn in log₁₀ of the value, with
 //! ticks at 1, 2 and 5 of each decade and labels such as `2.5e-4`), a legend in its own column so
-//! that it never hides data, a colour-blind-safe palette and marker shapes. The bundled font has no
-//! script 𝒢 and no combining tilde, so figures write the fracture energy G and the shear strength τ. Plotting is a front-end
+//! that it never hides data, a colour-blind-safe palette and marker shapes. Plotting is a front-end
 //! concern and stays out of the library; the text is drawn with the DejaVu Sans font shipped in
-//! `assets/`, so no system font is needed.
+//! `assets/` (STIX General for the script 𝒢 it lacks, see [`crate::raster`]), so no system font is
+//! needed.
 
 use std::path::Path;
 
@@ -20,7 +20,7 @@ pub const FONT: &str = "sans-serif";
 pub fn register_font() {
     static ONCE: std::sync::Once = std::sync::Once::new();
     ONCE.call_once(|| {
-        plotters::style::register_font(FONT, FontStyle::Normal, include_bytes!("../assets/DejaVuSans.ttf"))
+        plotters::style::register_font(FONT, FontStyle::Normal, crate::raster::FONT_BYTES)
             .map_err(|_| ())
             .expect("the bundled font is valid");
     });
@@ -53,7 +53,7 @@ pub fn save(dir: &Path, name: &str, size: (u32, u32), figure: &impl Figure) -> R
             root.present().map_err(drawing)?;
         }
         {
-            let root = BitMapBackend::new(&tmp_png, size).into_drawing_area();
+            let root = crate::raster::Raster::new(BitMapBackend::new(&tmp_png, size)).into_drawing_area();
             root.fill(&WHITE).map_err(drawing)?;
             figure.draw(&root)?;
             root.present().map_err(drawing)?;

@@ -106,7 +106,7 @@ fn input_label(key: &str, value: &toml::Value, units: Units2) -> String {
     let num = value.as_float().or(value.as_integer().map(|i| i as f64));
     let name = key.rsplit('.').next().unwrap_or(key);
     match (name, num) {
-        ("shear_strength", Some(v)) => format!("τ = {}", units.show_stress(v)),
+        ("shear_strength", Some(v)) => format!("τ̃ = {}", units.show_stress(v)),
         ("youngs_modulus", Some(v)) => format!("E = {}", units.show_stress(v)),
         ("rms_height", Some(v)) => format!("h_rms = {}", units.show_length(v)),
         ("lambda_lower", Some(v)) => format!("λ_l = {}", units.show_length(v)),
@@ -185,7 +185,7 @@ impl Data {
             );
             for (e, w) in r.results.iter().enumerate() {
                 let label = format!(
-                    "{}{}G = {} (d* = {})",
+                    "{}{}𝒢 = {} (d* = {})",
                     parts.join(", "),
                     if parts.is_empty() { "" } else { ", " },
                     units.show_energy(w.fracture_energy),
@@ -340,7 +340,7 @@ impl Figure for SeriesFigure<'_> {
             .seed
             .map_or(String::new(), |s| format!(", surface pair {s}"));
         let who = format!(
-            "job {}{}{seed}, τ = {}, F_N = {} {}",
+            "job {}{}{seed}, τ̃ = {}, F_N = {} {}",
             r.index,
             if job.material == "material" {
                 String::new()
@@ -372,7 +372,7 @@ impl Figure for SeriesFigure<'_> {
                     panel.line(&v, col, false, 2)?;
                     entries.push(Entry {
                         label: format!(
-                            "V, G = {} (d* = {})",
+                            "V, 𝒢 = {} (d* = {})",
                             u.show_energy(w.fracture_energy),
                             u.show_length(w.critical_diameter)
                         ),
