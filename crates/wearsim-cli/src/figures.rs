@@ -411,11 +411,49 @@ impl<'a, DB: DrawingBackend + 'a> Panel<'a, DB> {
         Ok(())
     }
 
-    /// Vertical bars from `lo` to `hi` at each x (min–max over surface pairs).
+    /// Markers at the drawable points, filled or hollow (an outline on white).
+    pub fn markers_hollow(&mut self, points: &[(f64, f64)], color: RGBColor, marker: Marker) -> Result<()> {
+        let pts: Vec<(f64, f64)> = points.iter().filter_map(|p| self.point(*p)).collect();
+        let shape = marker.outline();
+        let mut closed = shape.clone();
+        closed.push(shape[0]);
+        self.chart
+            .draw_series(pts.into_iter().map(|p| {
+                EmptyElement::at(p)
+                    + Polygon::new(shape.clone(), WHITE.filled())
+                    + PathElement::new(closed.clone(), color.stroke_width(2))
+            }))
+            .map_err(drawing)?;
+        Ok(())
+    }
+
+    /// A value of zero on a log axis: a downward triangle resting on the x axis at each x.
+    pub fn zeros_at_axis(&mut self, xs: &[f64], color: RGBColor) -> Result<()> {
+        let y = self.y.map(self.y.lo);
+        let pts: Vec<(f64, f64)> = xs
+            .iter()
+            .filter(|x| self.x.shows(**x))
+            .map(|x| (self.x.map(*x), y))
+            .collect();
+        self.chart
+            .draw_series(
+                pts.into_iter()
+                    .map(|p| EmptyElement::at(p) + Polygon::new(vec![(-6, -12), (6, -12), (0, 0)], color.filled())),
+            )
+            .map_err(drawing)?;
+        Ok(())
+    }
+
+    /// Vertical bars from `lo` to `hi` at each x (min–max over surface pairs); on a log axis a
+    /// minimum of zero (or below) is drawn down to the axis.
     pub fn bars(&mut self, bars: &[(f64, f64, f64)], color: RGBColor) -> Result<()> {
+        let floor = self.y.lo;
         let segments: Vec<Vec<(f64, f64)>> = bars
             .iter()
-            .filter_map(|&(x, lo, hi)| Some(vec![self.point((x, lo))?, self.point((x, hi))?]))
+            .filter_map(|&(x, lo, hi)| {
+                let lo = if self.y.log && lo <= 0.0 { floor } else { lo };
+                Some(vec![self.point((x, lo))?, self.point((x, hi))?])
+            })
             .collect();
         self.chart
             .draw_series(segments.into_iter().map(|s| PathElement::new(s, color.stroke_width(1))))
@@ -450,6 +488,8 @@ pub enum Swatch {
     Line { dashed: bool },
     LineMarker(Marker),
     Marker(Marker),
+    Hollow(Marker),
+    AtAxis,
     Band,
 }
 
@@ -509,6 +549,18 @@ pub fn legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, title: &str, en
             }
             Swatch::Marker(m) => area
                 .draw(&(EmptyElement::at((21, mid)) + Polygon::new(m.outline(), e.color.filled())))
+                .map_err(drawing)?,
+            Swatch::Hollow(m) => {
+                let mut closed = m.outline();
+                closed.push(closed[0]);
+                area.draw(&(EmptyElement::at((21, mid)) + PathElement::new(closed, e.color.stroke_width(2))))
+                    .map_err(drawing)?
+            }
+            Swatch::AtAxis => area
+                .draw(
+                    &(EmptyElement::at((21, mid + 6))
+                        + Polygon::new(vec![(-6, -12), (6, -12), (0, 0)], e.color.filled())),
+                )
                 .map_err(drawing)?,
             Swatch::Band => area
                 .draw(&Rectangle::new(

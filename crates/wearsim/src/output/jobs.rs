@@ -122,7 +122,7 @@ impl TidyRow {
                     .map(String::as_str)
                     .collect();
                 let p = &result.inputs;
-                let nominal_pressure = result.load / (p.length * p.length_y.unwrap_or(p.length));
+                let nominal_pressure = p.nominal_pressure(result.load);
                 let toughness =
                     (w.fracture_energy * p.youngs_modulus / (1.0 - p.poisson_ratio * p.poisson_ratio)).sqrt();
                 TidyRow {
