@@ -26,7 +26,9 @@ import pandas as pd
 #: Kim et al. (1986), rolling experiments: k = 6e-7 … 1.5e-3 (paper §4.3, Fig. 6c).
 KIM_RANGE = (6e-7, 1.5e-3)
 
-_NOT_SETTINGS = {"job", "surface.seed", "load", "fracture_energy", "warnings"}
+# Neither a study axis nor a result: the job, the seed, the load and the nominal pressure (along a
+# curve), the fracture energy (labelled apart) and the warnings.
+_NOT_SETTINGS = {"job", "surface.seed", "load", "nominal_pressure", "fracture_energy", "warnings"}
 _MARKERS = "o^sDvP*X"
 
 
@@ -83,7 +85,8 @@ def curves(tidy: pd.DataFrame) -> List[Tuple[str, pd.DataFrame]]:
             else:
                 parts.append(f"{name} = {v:g}" if isinstance(v, (int, float, np.number)) else f"{name} = {v}")
         numeric = group.select_dtypes("number")
-        stats = numeric.groupby(group["load"]).agg(["mean", "min", "max"])
+        stats = numeric.drop(columns=["nominal_pressure"], errors="ignore").groupby(group["nominal_pressure"])
+        stats = stats.agg(["mean", "min", "max"])
         stats.columns = ["_".join(map(str, pair)) for pair in stats.columns.to_flat_index()]
         out.append((", ".join(parts), stats.reset_index()))
     return out
@@ -112,12 +115,12 @@ def _load_figure(
             y = stats[f"{column}_mean"]
             err = [y - stats[f"{column}_min"], stats[f"{column}_max"] - y]
             ax.errorbar(
-                stats["load"], y, yerr=err, color=color, marker=_MARKERS[m % len(_MARKERS)], capsize=2, label=name
+                stats["nominal_pressure"], y, yerr=err, color=color, marker=_MARKERS[m % len(_MARKERS)], capsize=2, label=name
             )
         ax.set_xscale("log")
         if log:
             ax.set_yscale("log")
-        ax.set_xlabel(f"normal load F_N ({units['load']})")
+        ax.set_xlabel(f"nominal pressure p_N = F_N/(Lx·Ly) ({units['stress']})")
         ax.set_ylabel(label.format(**units))
         ax.grid(True, which="major", color="0.9")
     axes[0][0].set_title(title, loc="left", fontsize=10)
@@ -227,13 +230,9 @@ def contact_severity(tidy: pd.DataFrame) -> Any:
     """Paper appendix F: W = α S_cⁿ with S_c = p_N √h_rms / K_Ic, fitted in log–log, with R²."""
     plt = _pyplot()
     units = _units(tidy)
-    rows = tidy[(tidy["wear_rate"] > 0) & tidy["surface.rms_height"].notna()]
-    k_ic = np.sqrt(
-        rows["fracture_energy"] * rows["material.youngs_modulus"] / (1 - rows["material.poisson_ratio"] ** 2)
-    )
-    # p_N = F_N / (Lx Ly); Ly is empty on square grids.
-    length_y = rows.get("surface.length_y", pd.Series(np.nan, index=rows.index)).fillna(rows["surface.length"])
-    s_c = rows["load"] / (rows["surface.length"] * length_y) * np.sqrt(rows["surface.rms_height"]) / k_ic
+    # S_c = p_N √h_rms / K_Ic is a column of the library's table (empty on measured surfaces).
+    rows = tidy[(tidy["wear_rate"] > 0) & tidy["contact_severity"].notna()]
+    s_c = rows["contact_severity"]
     fig, ax = plt.subplots(figsize=(8.5, 5.0))
     for i, material in enumerate(dict.fromkeys(rows["material"])):
         mine = rows["material"] == material

@@ -1,10 +1,10 @@
 //! Drawing figures: the bundled font, one [`Figure`] drawn into both PNG and SVG by [`save`], and the
 //! pieces every figure shares — axes that may be logarithmic (drawn in log₁₀ of the value, with
 //! ticks at 1, 2 and 5 of each decade and labels such as `2.5e-4`), a legend in its own column so
-//! that it never hides data, a colour-blind-safe palette and marker shapes. The bundled font has no
-//! script 𝒢 and no combining tilde, so figures write the fracture energy G and the shear strength τ. Plotting is a front-end
+//! that it never hides data, a colour-blind-safe palette and marker shapes. Plotting is a front-end
 //! concern and stays out of the library; the text is drawn with the DejaVu Sans font shipped in
-//! `assets/`, so no system font is needed.
+//! `assets/` (STIX General for the script 𝒢 it lacks, see [`crate::raster`]), so no system font is
+//! needed.
 
 use std::path::Path;
 
@@ -20,7 +20,7 @@ pub const FONT: &str = "sans-serif";
 pub fn register_font() {
     static ONCE: std::sync::Once = std::sync::Once::new();
     ONCE.call_once(|| {
-        plotters::style::register_font(FONT, FontStyle::Normal, include_bytes!("../assets/DejaVuSans.ttf"))
+        plotters::style::register_font(FONT, FontStyle::Normal, crate::raster::FONT_BYTES)
             .map_err(|_| ())
             .expect("the bundled font is valid");
     });
@@ -53,7 +53,7 @@ pub fn save(dir: &Path, name: &str, size: (u32, u32), figure: &impl Figure) -> R
             root.present().map_err(drawing)?;
         }
         {
-            let root = BitMapBackend::new(&tmp_png, size).into_drawing_area();
+            let root = crate::raster::Raster::new(BitMapBackend::new(&tmp_png, size)).into_drawing_area();
             root.fill(&WHITE).map_err(drawing)?;
             figure.draw(&root)?;
             root.present().map_err(drawing)?;
@@ -411,11 +411,49 @@ impl<'a, DB: DrawingBackend + 'a> Panel<'a, DB> {
         Ok(())
     }
 
-    /// Vertical bars from `lo` to `hi` at each x (min–max over surface pairs).
+    /// Markers at the drawable points, filled or hollow (an outline on white).
+    pub fn markers_hollow(&mut self, points: &[(f64, f64)], color: RGBColor, marker: Marker) -> Result<()> {
+        let pts: Vec<(f64, f64)> = points.iter().filter_map(|p| self.point(*p)).collect();
+        let shape = marker.outline();
+        let mut closed = shape.clone();
+        closed.push(shape[0]);
+        self.chart
+            .draw_series(pts.into_iter().map(|p| {
+                EmptyElement::at(p)
+                    + Polygon::new(shape.clone(), WHITE.filled())
+                    + PathElement::new(closed.clone(), color.stroke_width(2))
+            }))
+            .map_err(drawing)?;
+        Ok(())
+    }
+
+    /// A value of zero on a log axis: a downward triangle resting on the x axis at each x.
+    pub fn zeros_at_axis(&mut self, xs: &[f64], color: RGBColor) -> Result<()> {
+        let y = self.y.map(self.y.lo);
+        let pts: Vec<(f64, f64)> = xs
+            .iter()
+            .filter(|x| self.x.shows(**x))
+            .map(|x| (self.x.map(*x), y))
+            .collect();
+        self.chart
+            .draw_series(
+                pts.into_iter()
+                    .map(|p| EmptyElement::at(p) + Polygon::new(vec![(-6, -12), (6, -12), (0, 0)], color.filled())),
+            )
+            .map_err(drawing)?;
+        Ok(())
+    }
+
+    /// Vertical bars from `lo` to `hi` at each x (min–max over surface pairs); on a log axis a
+    /// minimum of zero (or below) is drawn down to the axis.
     pub fn bars(&mut self, bars: &[(f64, f64, f64)], color: RGBColor) -> Result<()> {
+        let floor = self.y.lo;
         let segments: Vec<Vec<(f64, f64)>> = bars
             .iter()
-            .filter_map(|&(x, lo, hi)| Some(vec![self.point((x, lo))?, self.point((x, hi))?]))
+            .filter_map(|&(x, lo, hi)| {
+                let lo = if self.y.log && lo <= 0.0 { floor } else { lo };
+                Some(vec![self.point((x, lo))?, self.point((x, hi))?])
+            })
             .collect();
         self.chart
             .draw_series(segments.into_iter().map(|s| PathElement::new(s, color.stroke_width(1))))
@@ -450,6 +488,8 @@ pub enum Swatch {
     Line { dashed: bool },
     LineMarker(Marker),
     Marker(Marker),
+    Hollow(Marker),
+    AtAxis,
     Band,
 }
 
@@ -509,6 +549,18 @@ pub fn legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, title: &str, en
             }
             Swatch::Marker(m) => area
                 .draw(&(EmptyElement::at((21, mid)) + Polygon::new(m.outline(), e.color.filled())))
+                .map_err(drawing)?,
+            Swatch::Hollow(m) => {
+                let mut closed = m.outline();
+                closed.push(closed[0]);
+                area.draw(&(EmptyElement::at((21, mid)) + PathElement::new(closed, e.color.stroke_width(2))))
+                    .map_err(drawing)?
+            }
+            Swatch::AtAxis => area
+                .draw(
+                    &(EmptyElement::at((21, mid + 6))
+                        + Polygon::new(vec![(-6, -12), (6, -12), (0, 0)], e.color.filled())),
+                )
                 .map_err(drawing)?,
             Swatch::Band => area
                 .draw(&Rectangle::new(

@@ -7,6 +7,7 @@ use clap::{Parser, Subcommand};
 mod commands;
 mod figures;
 mod progress;
+mod raster;
 
 use commands::{animate, bench, contact, fields, junctions, plot, slide, study, surface};
 

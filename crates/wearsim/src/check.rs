@@ -50,7 +50,7 @@ pub fn connectivity(connectivity: u8) -> Result<()> {
     }
 }
 
-/// A normal load F_N the model can run on an apparent area L²: its mean pressure F_N/L² a normal
+/// A normal load F_N the model can run on an apparent area Lx·Ly: its mean pressure F_N/(Lx·Ly) a normal
 /// positive number below the flow pressure p_m (above it the surfaces would be in full plastic
 /// contact, where the saturated model has no solution).
 pub fn load(load: f64, area: f64, flow_pressure: f64) -> Result<()> {

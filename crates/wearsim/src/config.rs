@@ -774,6 +774,14 @@ pub struct InputRecord {
     pub step: Option<usize>,
 }
 
+impl InputRecord {
+    /// The nominal pressure p_N = F_N/(Lx·Ly) under a normal load F_N: the load axis of the paper's
+    /// figures.
+    pub fn nominal_pressure(&self, load: f64) -> f64 {
+        load / (self.length * self.length_y.unwrap_or(self.length))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     /// The field names serde reads for `T` (renamed as in files), without a value: a deserializer

@@ -60,8 +60,8 @@ pub enum Error {
     /// The mean pressure reaches the flow pressure: the surfaces would have to be in full plastic
     /// contact, where the saturated model has no solution.
     #[error(
-        "load cannot be carried: mean pressure F_N/L² = {mean_pressure:.6e} is at or above the flow \
-         pressure p_m = {flow_pressure:.6e}; lower the load (`loads`) below p_m·L² or raise `shear_strength`"
+        "load cannot be carried: mean pressure F_N/(Lx·Ly) = {mean_pressure:.6e} is at or above the flow \
+         pressure p_m = {flow_pressure:.6e}; lower the load (`loads`) below p_m·Lx·Ly or raise `shear_strength`"
     )]
     InfeasibleLoad { mean_pressure: f64, flow_pressure: f64 },
 

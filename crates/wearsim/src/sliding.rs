@@ -16,14 +16,15 @@ use crate::stats::{line_fit, mean_std};
 use crate::surface::{composite_heights, Surface};
 use crate::wear::{static_wear, CarriedBookkeeping, InitialContactMemory, SlidingBookkeeping, StaticWear, StepWear};
 
-/// The sliding schedule (paper §3); distances as fractions of L, steps in pixels.
+/// The sliding schedule (paper §3); distances as fractions of the box side Lx along the sliding
+/// direction x, steps in pixels.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct SlidingConfig {
     /// Normal loads F_N (E·L² reduced, N in SI).
     pub loads: Vec<f64>,
-    /// Total sliding distance as a fraction of L (default ½).
+    /// Total sliding distance as a fraction of Lx (default ½).
     pub distance: f64,
-    /// Running-in distance as a fraction of L (default ¼).
+    /// Running-in distance as a fraction of Lx (default ¼).
     pub running_in: f64,
     /// Step during running-in, in pixels (default 4).
     pub step_running_in: usize,
@@ -54,13 +55,13 @@ impl SlidingConfig {
         if !(distance > 0.0 && distance <= 1.0) {
             return Err(Error::param(
                 "distance",
-                format!("{distance} must lie in (0, 1] (a fraction of L)"),
+                format!("{distance} must lie in (0, 1] (a fraction of the box side Lx)"),
             ));
         }
         if !(running_in >= 0.0 && running_in < distance) {
             return Err(Error::param(
                 "running_in",
-                format!("{running_in} must lie in [0, distance = {distance}) (a fraction of L)"),
+                format!("{running_in} must lie in [0, distance = {distance}) (a fraction of the box side Lx)"),
             ));
         }
         for (field, v) in [("step_running_in", step_running_in), ("step", step)] {

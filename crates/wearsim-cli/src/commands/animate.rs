@@ -80,9 +80,11 @@ pub fn run(args: &Args) -> Result<()> {
     let length_unit = config.units.length_unit();
     let mut frame_error: Option<anyhow::Error> = None;
     {
-        let root = BitMapBackend::gif(&tmp, (width.max(560), height + 40), delay_ms)
-            .map_err(|e| anyhow!("cannot write {}: {e}", tmp.display()))?
-            .into_drawing_area();
+        let root = crate::raster::Raster::new(
+            BitMapBackend::gif(&tmp, (width.max(560), height + 40), delay_ms)
+                .map_err(|e| anyhow!("cannot write {}: {e}", tmp.display()))?,
+        )
+        .into_drawing_area();
         let progress = Progress::new("animate", "frames", 0);
         let ran = run_sliding(&top, &bottom, &setup, |view| {
             progress.set(view.done as u64, view.total as u64, "");

@@ -22,7 +22,7 @@ use std::path::PathBuf;
 use anyhow::{anyhow, bail, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use wearsim::config::{SurfaceSource, Units};
+use wearsim::config::Units;
 use wearsim::output::{unit_of, JobResult, Table, TidyRow};
 use wearsim::sliding::WearResult;
 use wearsim::stats::line_fit;
@@ -65,9 +65,6 @@ impl Units2 {
             si: system == Units::Si,
         }
     }
-    fn load(self) -> &'static str {
-        unit_of(self.system, "load")
-    }
     fn length(self) -> &'static str {
         unit_of(self.system, "length")
     }
@@ -106,7 +103,7 @@ fn input_label(key: &str, value: &toml::Value, units: Units2) -> String {
     let num = value.as_float().or(value.as_integer().map(|i| i as f64));
     let name = key.rsplit('.').next().unwrap_or(key);
     match (name, num) {
-        ("shear_strength", Some(v)) => format!("τ = {}", units.show_stress(v)),
+        ("shear_strength", Some(v)) => format!("τ̃ = {}", units.show_stress(v)),
         ("youngs_modulus", Some(v)) => format!("E = {}", units.show_stress(v)),
         ("rms_height", Some(v)) => format!("h_rms = {}", units.show_length(v)),
         ("lambda_lower", Some(v)) => format!("λ_l = {}", units.show_length(v)),
@@ -120,7 +117,7 @@ fn input_label(key: &str, value: &toml::Value, units: Units2) -> String {
 }
 
 /// One curve against load: a setting (material and varying inputs but the seed) and one fracture
-/// energy; per load, the results over surface pairs.
+/// energy; per nominal pressure p_N = F_N/(Lx·Ly), the results over surface pairs.
 struct Curve {
     label: String,
     material: usize,
@@ -133,7 +130,22 @@ struct Curve {
 
 type Quantity = fn(&WearResult) -> Option<f64>;
 
+/// Particles in a fit window (per surface pair, mean over the pairs) below which a point of a
+/// sliding quantity is drawn hollow: too few for the fitted rate to be resolved.
+const RESOLVED_PARTICLES: f64 = 20.0;
+
 impl Curve {
+    /// Per load: the mean over surface pairs of the particles formed in the fit window.
+    fn particles(&self) -> Vec<(f64, f64)> {
+        self.points
+            .values()
+            .map(|(load, results)| {
+                let n = results.iter().map(|r| r.particles_in_fit as f64).sum::<f64>();
+                (*load, n / results.len().max(1) as f64)
+            })
+            .collect()
+    }
+
     /// Per load: (load, mean, min, max) of a quantity over the surface pairs where it is defined.
     fn stats(&self, q: Quantity) -> Vec<(f64, f64, f64, f64)> {
         self.points
@@ -183,9 +195,10 @@ impl Data {
                     .filter(|(k, _)| k.as_str() != "surface.seed")
                     .map(|(k, v)| input_label(k, v, units)),
             );
+            let p_n = r.inputs.nominal_pressure(r.load);
             for (e, w) in r.results.iter().enumerate() {
                 let label = format!(
-                    "{}{}G = {} (d* = {})",
+                    "{}{}𝒢 = {} (d* = {})",
                     parts.join(", "),
                     if parts.is_empty() { "" } else { ", " },
                     units.show_energy(w.fracture_energy),
@@ -205,8 +218,8 @@ impl Data {
                 });
                 curves[i]
                     .points
-                    .entry(r.load.to_bits())
-                    .or_insert((r.load, Vec::new()))
+                    .entry(p_n.to_bits())
+                    .or_insert((p_n, Vec::new()))
                     .1
                     .push(w.clone());
             }
@@ -220,8 +233,12 @@ impl Data {
         })
     }
 
+    /// The paper's load axis: the nominal pressure.
     fn load_label(&self) -> String {
-        format!("normal load F_N ({})", self.units.load())
+        format!(
+            "nominal pressure p_N = F_N/(Lx·Ly) ({})",
+            unit_of(self.units.system, "nominal_pressure")
+        )
     }
 }
 
@@ -234,6 +251,9 @@ struct LoadFigure<'a> {
     band: Option<(f64, f64, &'static str)>,
     /// Colour and marker by material instead of by curve, with these material names in the legend.
     by_material: Option<&'a [String]>,
+    /// Whether the panels show fitted sliding rates, whose points with fewer than
+    /// [`RESOLVED_PARTICLES`] particles are drawn hollow.
+    fitted: bool,
     title: String,
 }
 
@@ -247,9 +267,17 @@ impl LoadFigure<'_> {
     }
 }
 
+/// "a", "b", … : the panel letters of the paper's multi-panel figures.
+fn panel_letter(p: usize) -> char {
+    (b'a' + (p % 26) as u8) as char
+}
+
 impl Figure for LoadFigure<'_> {
     fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()> {
         let (panels, legend_area) = layout(area, self.panels.len());
+        let particles: Vec<Vec<(f64, f64)>> = self.curves.iter().map(|c| c.particles()).collect();
+        let thin = |i: usize, x: f64| self.fitted && particles[i].iter().any(|p| p.0 == x && p.1 < RESOLVED_PARTICLES);
+        let mut zeros_drawn = false;
         for (p, (area, (q, label, log))) in self.panels.iter().enumerate().map(|(p, x)| (p, (&panels[p], x))) {
             let stats: Vec<Vec<(f64, f64, f64, f64)>> = self.curves.iter().map(|c| c.stats(*q)).collect();
             let xs = stats.iter().flatten().map(|s| s.0);
@@ -261,7 +289,12 @@ impl Figure for LoadFigure<'_> {
                 .chain(band.iter().flat_map(|b| [b.0, b.1]));
             let x = Axis::spanning(&self.x_label, true, xs, (1e-4, 1e-2));
             let y = Axis::spanning(label, *log, ys, (1e-6, 1.0));
-            let mut panel = Panel::new(area, if p == 0 { &self.title } else { "" }, x, y)?;
+            let caption = match (self.panels.len() > 1, p == 0) {
+                (true, true) => format!("({}) {}", panel_letter(p), self.title),
+                (true, false) => format!("({})", panel_letter(p)),
+                (false, _) => self.title.clone(),
+            };
+            let mut panel = Panel::new(area, &caption, x, y)?;
             if let Some((lo, hi, _)) = band {
                 panel.band(lo, hi, RGBColor(86, 180, 233).mix(0.25))?;
             }
@@ -269,10 +302,32 @@ impl Figure for LoadFigure<'_> {
                 let (col, marker) = self.style(i, c);
                 let means: Vec<(f64, f64)> = s.iter().map(|p| (p.0, p.1)).collect();
                 panel.line(&means, col, false, 2)?;
-                panel.markers(&means, col, marker)?;
+                let (hollow, filled): (Vec<(f64, f64)>, Vec<(f64, f64)>) = means.iter().partition(|p| thin(i, p.0));
+                panel.markers(&filled, col, marker)?;
+                panel.markers_hollow(&hollow, col, marker)?;
+                // No wear in any surface pair: zero has no place on a log axis, so it is marked on
+                // the axis itself.
+                if *log {
+                    let zeros: Vec<f64> = s.iter().filter(|p| p.3 <= 0.0).map(|p| p.0).collect();
+                    zeros_drawn |= !zeros.is_empty();
+                    panel.zeros_at_axis(&zeros, col)?;
+                }
                 panel.bars(&s.iter().map(|p| (p.0, p.2, p.3)).collect::<Vec<_>>(), col)?;
             }
         }
+        // Each curve's legend entry: its label, and the particle counts of its hollow points.
+        let thin_counts = |i: usize| -> String {
+            let counts: Vec<String> = particles[i]
+                .iter()
+                .filter(|p| self.fitted && p.1 < RESOLVED_PARTICLES)
+                .map(|p| number((p.1 * 10.0).round() / 10.0))
+                .collect();
+            if counts.is_empty() {
+                String::new()
+            } else {
+                format!(" — hollow: {} particles", counts.join(", "))
+            }
+        };
         let mut entries: Vec<Entry> = Vec::new();
         if let Some(names) = self.by_material {
             let mut seen = Vec::new();
@@ -292,11 +347,25 @@ impl Figure for LoadFigure<'_> {
             for (i, c) in self.curves.iter().enumerate() {
                 let (col, marker) = self.style(i, c);
                 entries.push(Entry {
-                    label: c.label.clone(),
+                    label: format!("{}{}", c.label, thin_counts(i)),
                     color: col,
                     swatch: Swatch::LineMarker(marker),
                 });
             }
+        }
+        if self.fitted && particles.iter().flatten().any(|p| p.1 < RESOLVED_PARTICLES) {
+            entries.push(Entry {
+                label: format!("hollow: < {RESOLVED_PARTICLES} particles per surface pair in the fit window"),
+                color: RGBColor(90, 90, 90),
+                swatch: Swatch::Hollow(Marker::Circle),
+            });
+        }
+        if zeros_drawn {
+            entries.push(Entry {
+                label: "on the axis: zero (no wear) in every surface pair".into(),
+                color: RGBColor(90, 90, 90),
+                swatch: Swatch::AtAxis,
+            });
         }
         if let Some((_, _, label)) = self.band {
             entries.push(Entry {
@@ -340,7 +409,7 @@ impl Figure for SeriesFigure<'_> {
             .seed
             .map_or(String::new(), |s| format!(", surface pair {s}"));
         let who = format!(
-            "job {}{}{seed}, τ = {}, F_N = {} {}",
+            "job {}{}{seed}, τ̃ = {}, p_N = {} {}",
             r.index,
             if job.material == "material" {
                 String::new()
@@ -348,8 +417,8 @@ impl Figure for SeriesFigure<'_> {
                 format!(" ({})", job.material)
             },
             u.show_stress(job.run.material.shear_strength),
-            number(r.load),
-            u.load()
+            number(r.inputs.nominal_pressure(r.load)),
+            unit_of(u.system, "nominal_pressure")
         );
         let (panels, legend_area) = layout(area, 1);
         let x_label = format!("sliding distance s ({})", u.length());
@@ -372,7 +441,7 @@ impl Figure for SeriesFigure<'_> {
                     panel.line(&v, col, false, 2)?;
                     entries.push(Entry {
                         label: format!(
-                            "V, G = {} (d* = {})",
+                            "V, 𝒢 = {} (d* = {})",
                             u.show_energy(w.fracture_energy),
                             u.show_length(w.critical_diameter)
                         ),
@@ -555,32 +624,17 @@ struct Severity {
 }
 
 impl Severity {
-    /// S_c = p_N √h_rms / K_Ic with p_N = F_N/(Lx Ly) and K_Ic = √(𝒢 E/(1 − ν²)) for every job and
-    /// fracture energy with W > 0, and the least-squares fit of ln W against ln S_c.
+    /// The contact severity S_c of the library's table (appendix F) against W, for every job and
+    /// fracture energy with W > 0 and S_c defined (generated surfaces), and the least-squares fit
+    /// of ln W against ln S_c.
     fn of(data: &Data) -> Option<Self> {
         let mut points = Vec::new();
-        let mut names: Vec<String> = Vec::new();
-        for (job, r) in data.jobs.iter().zip(&data.results) {
-            let SurfaceSource::Generated { spectrum, grid, .. } = &job.run.surfaces else {
-                continue;
-            };
-            let m = &job.run.material;
-            let p_n = r.load / grid.area();
-            let i = names.iter().position(|n| *n == job.material).unwrap_or_else(|| {
-                names.push(job.material.clone());
-                names.len() - 1
-            });
-            for w in &r.results {
-                let Some(wear_rate) = w.wear_rate.filter(|x| *x > 0.0) else {
-                    continue;
-                };
-                let k_ic = (w.fracture_energy * m.youngs_modulus / (1.0 - m.poisson_ratio * m.poisson_ratio)).sqrt();
-                points.push((
-                    i,
-                    job.material.clone(),
-                    p_n * spectrum.rms_height.sqrt() / k_ic,
-                    wear_rate,
-                ));
+        for r in &data.results {
+            let m = data.materials.iter().position(|n| *n == r.material).unwrap_or(0);
+            for row in TidyRow::of_job(r) {
+                if let (Some(s_c), Some(w)) = (row.contact_severity, row.result.wear_rate.filter(|x| *x > 0.0)) {
+                    points.push((m, r.material.clone(), s_c, w));
+                }
             }
         }
         let xs: Vec<f64> = points.iter().map(|p| p.2.ln()).collect();
@@ -593,6 +647,14 @@ impl Severity {
             r2: fit.r2,
             units: data.units,
         })
+    }
+
+    /// The fit of one material's points: (α, n), when it has two distinct S_c.
+    fn of_material(&self, m: usize) -> Option<(f64, f64)> {
+        let mine: Vec<&(usize, String, f64, f64)> = self.points.iter().filter(|p| p.0 == m).collect();
+        let xs: Vec<f64> = mine.iter().map(|p| p.2.ln()).collect();
+        let ys: Vec<f64> = mine.iter().map(|p| p.3.ln()).collect();
+        line_fit(&xs, &ys).map(|f| (f.intercept.exp(), f.slope))
     }
 }
 
@@ -626,11 +688,27 @@ impl Figure for Severity {
             panel.markers(&[(p.2, p.3)], color(p.0), Marker::nth(p.0))?;
             if !seen.contains(&p.0) {
                 seen.push(p.0);
-                entries.push(Entry {
-                    label: p.1.clone(),
-                    color: color(p.0),
-                    swatch: Swatch::Marker(Marker::nth(p.0)),
-                });
+            }
+        }
+        // Appendix F fits each material apart; one line per material with two or more points.
+        let several = seen.len() > 1;
+        for &m in &seen {
+            let name = self.points.iter().find(|p| p.0 == m).map_or("", |p| p.1.as_str());
+            match self.of_material(m).filter(|_| several) {
+                Some((alpha, n)) => {
+                    let line = [(x0, alpha * x0.powf(n)), (x1, alpha * x1.powf(n))];
+                    panel.line(&line, color(m), false, 1)?;
+                    entries.push(Entry {
+                        label: format!("{name}: α = {}, n = {:.2}", number(alpha), n),
+                        color: color(m),
+                        swatch: Swatch::LineMarker(Marker::nth(m)),
+                    });
+                }
+                None => entries.push(Entry {
+                    label: name.to_string(),
+                    color: color(m),
+                    swatch: Swatch::Marker(Marker::nth(m)),
+                }),
             }
         }
         let line = [
@@ -639,11 +717,24 @@ impl Figure for Severity {
         ];
         panel.line(&line, BLACK, true, 1)?;
         entries.push(Entry {
-            label: format!("least-squares fit (log–log), R² = {r2}"),
+            label: format!("all materials, least-squares fit (log–log), R² = {r2}"),
             color: BLACK,
             swatch: Swatch::Line { dashed: true },
         });
         legend(&legend_area, "", &entries)
+    }
+}
+
+/// A figure that only says why it has no data.
+struct Note(&'static str);
+
+impl Figure for Note {
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()> {
+        let (_, h) = area.dim_in_pixel();
+        let style = (crate::figures::FONT, 18).into_font().color(&BLACK);
+        area.draw_text(self.0, &style, (40, h as i32 / 2))
+            .map_err(crate::figures::drawing)?;
+        Ok(())
     }
 }
 
@@ -712,12 +803,13 @@ pub fn run(args: &Args) -> Result<()> {
     let (u, curves) = (data.units, &data.curves);
     let all: Vec<&Curve> = curves.iter().collect();
     let area = u.area();
-    let by_load = |panels: Vec<(Quantity, String, bool)>, title: &str| LoadFigure {
+    let by_load = |panels: Vec<(Quantity, String, bool)>, fitted: bool, title: &str| LoadFigure {
         curves: all.clone(),
         panels,
         x_label: data.load_label(),
         band: None,
         by_material: None,
+        fitted,
         title: title.into(),
     };
     let wide = (1700, 640);
@@ -735,6 +827,7 @@ pub fn run(args: &Args) -> Result<()> {
                     false,
                 ),
             ],
+            false,
             "static model, mean over every offset of the sliding run",
         );
         save(&out, "fig2_static_model", wide, &fig)?;
@@ -745,6 +838,7 @@ pub fn run(args: &Args) -> Result<()> {
                 (|w| w.wear_rate, format!("sliding wear rate W = dV/ds ({area})"), true),
                 (|w| w.wear_coefficient, "wear coefficient k = W p_m / F_N".into(), true),
             ],
+            true,
             "sliding model",
         );
         save(&out, "fig4_sliding_wear", wide, &fig)?;
@@ -756,6 +850,7 @@ pub fn run(args: &Args) -> Result<()> {
                 format!("particle rate dN*₊/ds (1/{})", u.length()),
                 true,
             )],
+            true,
             "wear particles emitted per sliding distance",
         );
         save(&out, "fig5_particle_rate", (1150, 640), &fig)?;
@@ -763,7 +858,9 @@ pub fn run(args: &Args) -> Result<()> {
     if wants("fig4c") {
         let groups = equal_d_star(curves);
         if groups.is_empty() {
-            println!("fig4c: no two settings of the study have d* within 15 % with different τ̃ or 𝒢; not drawn");
+            let note = "Fig. 4c compares settings of equal d* (within 15 %) with different τ̃ or 𝒢; this study has none";
+            println!("fig4c: {note}");
+            save(&out, "fig4c_constant_d_star", (1150, 640), &Note(note))?;
         }
         for (g, group) in groups.iter().enumerate() {
             let fig = LoadFigure {
@@ -776,6 +873,7 @@ pub fn run(args: &Args) -> Result<()> {
                 x_label: data.load_label(),
                 band: None,
                 by_material: None,
+                fitted: true,
                 title: format!(
                     "settings of nearly equal d* ≈ {}",
                     u.show_length(group[0].critical_diameter)
@@ -803,6 +901,7 @@ pub fn run(args: &Args) -> Result<()> {
             )),
             // One colour and marker per material where the study has several (Kim et al.'s ceramics).
             by_material: (data.materials.len() > 1).then_some(&data.materials[..]),
+            fitted: true,
             title: "simulated sliding k per material against the experimental range".into(),
         };
         save(&out, "fig6_kim_comparison", (1150, 640), &fig)?;
@@ -819,6 +918,7 @@ pub fn run(args: &Args) -> Result<()> {
             x_label: data.load_label(),
             band: None,
             by_material: None,
+            fitted: false,
             title: "number of junctions".into(),
         };
         let critical = by_load(
@@ -827,6 +927,7 @@ pub fn run(args: &Args) -> Result<()> {
                 "junctions ≥ d*, N* (mean after running-in)".into(),
                 true,
             )],
+            false,
             "number of critical junctions",
         );
         save(&out, "appC_junctions", (1150, 640), &fig)?;

@@ -97,9 +97,15 @@ pub struct TidyRow {
     #[serde(flatten)]
     pub inputs: InputRecord,
     pub load: f64,
+    /// The nominal pressure p_N = F_N/(Lx·Ly), the load axis of the paper's figures (in E).
+    pub nominal_pressure: f64,
     #[serde(flatten)]
     pub result: WearResult,
     pub flow_pressure: f64,
+    /// The contact severity S_c = p_N √h_rms / K_Ic of appendix F, with the mode-I fracture
+    /// toughness K_Ic = √(𝒢 E/(1 − ν²)) of this row's 𝒢; the abscissa of the fit W = α S_cⁿ.
+    /// Empty on measured surfaces (no h_rms among the inputs).
+    pub contact_severity: Option<f64>,
     /// The job's warnings that concern this row (its fracture energy, or all of them), joined by
     /// "; "; empty when the result is well resolved.
     pub warnings: String,
@@ -120,13 +126,19 @@ impl TidyRow {
                     .filter(|m| m.contains(&tag) || !m.contains("𝒢 = "))
                     .map(String::as_str)
                     .collect();
+                let p = &result.inputs;
+                let nominal_pressure = p.nominal_pressure(result.load);
+                let toughness =
+                    (w.fracture_energy * p.youngs_modulus / (1.0 - p.poisson_ratio * p.poisson_ratio)).sqrt();
                 TidyRow {
                     job: result.index,
                     material: result.material.clone(),
                     inputs: result.inputs.clone(),
                     load: result.load,
+                    nominal_pressure,
                     result: w.clone(),
                     flow_pressure: result.flow_pressure,
+                    contact_severity: p.rms_height.map(|h| nominal_pressure * h.sqrt() / toughness),
                     warnings: mine.join("; "),
                 }
             })
@@ -146,12 +158,18 @@ fn result_columns() -> Vec<String> {
 }
 
 /// Columns that neither identify a setting nor are averaged: the job index, the seed, the warnings.
-const NOT_A_SETTING: [&str; 3] = ["job", "surface.seed", "warnings"];
+pub const NOT_A_SETTING: [&str; 3] = ["job", "surface.seed", "warnings"];
+
+/// Setting columns that change along one curve of the paper's figures (a setting against load):
+/// the load and what follows from it with the setting's other inputs.
+pub const ALONG_A_CURVE: [&str; 3] = ["load", "nominal_pressure", "contact_severity"];
 
 /// The aggregated table of a tidy table: one row per setting (every column but the job index, the
-/// seed and the results), with the number of surface pairs and the mean, min and max over them of
-/// every result column, and the number of surface pairs with a warning. Rows keep the order in which
-/// settings first appear; undefined results (empty cells) are left out of the statistics.
+/// seed and the results), then `curve`, the index of the row's curve (its setting but the load, in
+/// order of first appearance: the one grouping every figure uses), the number of surface pairs and
+/// the mean, min and max over them of every result column, and the number of surface pairs with a
+/// warning. Rows keep the order in which settings first appear; undefined results (empty cells) are
+/// left out of the statistics.
 pub fn aggregate(tidy: &Table) -> Table {
     let values = result_columns();
     let value_index: Vec<usize> = values.iter().filter_map(|c| tidy.column(c)).collect();
@@ -171,6 +189,11 @@ pub fn aggregate(tidy: &Table) -> Table {
     }
     let warnings = tidy.column("warnings");
     let mut columns: Vec<String> = key_index.iter().map(|&i| tidy.columns[i].clone()).collect();
+    let curve_part: Vec<usize> = (0..key_index.len())
+        .filter(|&k| !ALONG_A_CURVE.contains(&columns[k].as_str()))
+        .collect();
+    let mut curves: BTreeMap<Vec<String>, usize> = BTreeMap::new();
+    columns.push("curve".into());
     columns.push("surface_pairs".into());
     columns.push("pairs_with_warnings".into());
     for &i in &value_index {
@@ -180,7 +203,11 @@ pub fn aggregate(tidy: &Table) -> Table {
     let rows = groups
         .into_iter()
         .map(|(key, members)| {
+            let curve_key: Vec<String> = curve_part.iter().map(|&k| key[k].text()).collect();
+            let next = curves.len();
+            let curve = *curves.entry(curve_key).or_insert(next);
             let mut line = key;
+            line.push(Cell::Int(curve as i64));
             line.push(Cell::Int(members.len() as i64));
             let warned = warnings.map_or(0, |w| members.iter().filter(|m| !m[w].text().is_empty()).count());
             line.push(Cell::Int(warned as i64));
@@ -240,6 +267,7 @@ pub fn read_job_file(path: &std::path::Path) -> Result<JobResult> {
 mod tests {
     use super::*;
     use crate::output::summary::SeriesRow;
+    use crate::output::units::unit_of;
 
     #[test]
     fn columns_come_from_the_row_types() {
@@ -279,6 +307,8 @@ mod tests {
                 ..InputRecord::default()
             },
             load: 1e-3,
+            nominal_pressure: 1e-3,
+            contact_severity: None,
             result: WearResult {
                 wear_rate,
                 ..WearResult::default()
@@ -293,6 +323,7 @@ mod tests {
         let tidy = Table::of(&[row(0, 1, Some(1.0)), row(1, 2, Some(3.0)), row(2, 3, None)]);
         let agg = aggregate(&tidy);
         assert_eq!(agg.rows.len(), 1);
+        assert_eq!(agg.rows[0][agg.column("curve").unwrap()], Cell::Int(0));
         let at = |name: &str| agg.rows[0][agg.column(name).unwrap()].clone();
         assert_eq!(
             (at("surface_pairs"), at("pairs_with_warnings")),
@@ -303,5 +334,66 @@ mod tests {
             (Cell::Float(2.0), Cell::Float(1.0), Cell::Float(3.0))
         );
         assert!(agg.column("surface.seed").is_none() && agg.column("job").is_none());
+    }
+
+    /// A job file of a 2 × 1 L box (E = 1, ν = 0.5, h_rms = 0.04) under F_N = 0.01 with 𝒢 = 3e-6.
+    fn job(index: usize, load: f64, shear_strength: f64) -> JobResult {
+        JobResult {
+            format: JOB_FORMAT,
+            provenance: Provenance::current(),
+            index,
+            material: "m".into(),
+            inputs: InputRecord {
+                length: 2.0,
+                length_y: Some(1.0),
+                rms_height: Some(0.04),
+                youngs_modulus: 1.0,
+                poisson_ratio: 0.5,
+                shear_strength,
+                ..InputRecord::default()
+            },
+            load,
+            flow_pressure: 0.05,
+            effective_modulus: 1.0,
+            results: vec![WearResult {
+                fracture_energy: 3e-6,
+                ..WearResult::default()
+            }],
+            steps: Vec::new(),
+            total_iterations: 0,
+            seconds: 0.0,
+            warnings: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn nominal_pressure_and_contact_severity_by_hand() {
+        let row = &TidyRow::of_job(&job(0, 0.01, 0.01))[0];
+        // p_N = F_N/(Lx·Ly) = 0.01/2; K_Ic = √(3e-6 · 1/(1 − 0.25)) = 2e-3; S_c = p_N √0.04 / K_Ic.
+        assert!((row.nominal_pressure - 0.005).abs() < 1e-15);
+        let s_c = row.contact_severity.unwrap();
+        assert!((s_c - 0.005 * 0.2 / 2e-3).abs() < 1e-12, "S_c = {s_c}");
+        assert_eq!(unit_of(Units::Reduced, "nominal_pressure"), "E");
+        assert_eq!(unit_of(Units::Si, "contact_severity_mean"), "1");
+        let measured = TidyRow::of_job(&JobResult {
+            inputs: InputRecord {
+                rms_height: None,
+                ..job(0, 0.01, 0.01).inputs
+            },
+            ..job(0, 0.01, 0.01)
+        });
+        assert_eq!(measured[0].contact_severity, None);
+    }
+
+    #[test]
+    fn a_curve_is_a_setting_against_load() {
+        let rows: Vec<TidyRow> = [job(0, 0.01, 0.01), job(1, 0.02, 0.01), job(2, 0.01, 0.02)]
+            .iter()
+            .flat_map(TidyRow::of_job)
+            .collect();
+        let agg = aggregate(&Table::of(&rows));
+        let curve = agg.column("curve").unwrap();
+        let curves: Vec<Cell> = agg.rows.iter().map(|r| r[curve].clone()).collect();
+        assert_eq!(curves, [Cell::Int(0), Cell::Int(0), Cell::Int(1)]);
     }
 }

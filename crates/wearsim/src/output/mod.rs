@@ -16,7 +16,10 @@ mod tables;
 mod units;
 
 pub use fields::{FieldSelection, FieldsWriter};
-pub use jobs::{aggregate, read_job_file, write_results_tables, JobResult, StepRow, TidyRow, JOB_FORMAT};
+pub use jobs::{
+    aggregate, read_job_file, write_results_tables, JobResult, StepRow, TidyRow, ALONG_A_CURVE, JOB_FORMAT,
+    NOT_A_SETTING,
+};
 pub use provenance::Provenance;
 pub use summary::{
     contact_summary, junctions_summary, run_warnings, series_csv, series_rows, sliding_summary, surface_fit_summary,

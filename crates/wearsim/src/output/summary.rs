@@ -29,7 +29,7 @@ pub struct SeriesRow {
     pub s: f64,
     /// Number of junctions N.
     pub junctions: usize,
-    /// Real contact area as a fraction of the apparent area L².
+    /// Real contact area as a fraction of the apparent area Lx·Ly.
     pub contact_area: f64,
     /// N*: junctions with d_i ≥ d* at this step.
     pub n_critical: usize,
@@ -219,11 +219,11 @@ pub fn sliding_summary(
 /// `ContactResult`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ContactRecord {
-    /// Real contact area as a fraction of L².
+    /// Real contact area as a fraction of the apparent area Lx·Ly.
     pub contact_area: f64,
     pub contact_pixels: usize,
     pub plastic_pixels: usize,
-    /// Mean pressure of the solution, F_N/L² to round-off.
+    /// Mean pressure of the solution, F_N/(Lx·Ly) to round-off.
     pub mean_pressure: f64,
     /// Rigid-body approach since first contact (length unit).
     pub approach: f64,

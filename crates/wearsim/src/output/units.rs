@@ -17,6 +17,7 @@ pub fn unit_of(units: Units, quantity: &str) -> &'static str {
     let pick = |reduced: &'static str, si_unit: &'static str| if si { si_unit } else { reduced };
     match q {
         "load" => pick("E L²", "N"),
+        "nominal_pressure" => pick("E", "Pa"),
         "fracture_energy" | "fracture_energies" => pick("E L", "J/m²"),
         "flow_pressure" | "effective_modulus" | "youngs_modulus" | "shear_strength" | "mean_pressure" | "pressure" => {
             pick("E", "Pa")
@@ -36,8 +37,9 @@ pub fn unit_of(units: Units, quantity: &str) -> &'static str {
         "wear_rate" | "wear_rate_estimate" | "static_wear_rate" => pick("L²", "m²"),
         "volume" | "initial_volume" => pick("L³", "m³"),
         "particle_rate" => pick("1/L", "1/m"),
-        "contact_area" => "1 (fraction of L²)",
-        "wear_coefficient"
+        "contact_area" => "1 (fraction of Lx·Ly)",
+        "contact_severity"
+        | "wear_coefficient"
         | "static_wear_coefficient"
         | "wear_rate_r2"
         | "memory_decay_r2"

@@ -212,6 +212,9 @@ fn settings(tidy: &Table) -> Vec<Setting> {
         "material.shear_strength",
         "fracture_energy",
         "load",
+        "nominal_pressure",
+        "contact_severity",
+        "curve",
         "surface_pairs",
         "pairs_with_warnings",
     ];
@@ -874,6 +877,7 @@ mod tests {
                 },
                 flow_pressure: 3.0 * 3f64.sqrt() * tau,
                 warnings: String::new(),
+                ..TidyRow::default()
             });
         }
         Table::of(&rows)
