@@ -11,7 +11,7 @@ use wearsim::wear::static_wear;
 use wearsim::{Boundary, Interrupt, Material, ModulusConvention, SolverOptions};
 
 use crate::error::{interruptible, to_py};
-use crate::{field, field_of, json_to_py, to_array, GridSize, Pair};
+use crate::{field, field_of, json_to_py, to_array, GridSize};
 
 /// Elastic and adhesive-wear properties of the (identical) materials of both surfaces.
 ///
@@ -214,19 +214,18 @@ impl PyContactSolver {
     }
 }
 
+/// Labels, pixel counts and wrap flags of the junctions of one contact map.
+type Labelled<'py> = PyResult<(
+    Bound<'py, PyArray2<i64>>,
+    Bound<'py, PyArray1<u64>>,
+    Bound<'py, PyArray2<bool>>,
+)>;
+
 /// Labels of a contact map (−1 outside contact), the pixel count of every junction, and whether it
 /// wraps the periodic box along x and along y (one row per junction).
 #[pyfunction]
 #[pyo3(signature = (contact, connectivity = 4))]
-fn label_junctions<'py>(
-    py: Python<'py>,
-    contact: PyReadonlyArray2<'py, bool>,
-    connectivity: u8,
-) -> PyResult<(
-    Bound<'py, PyArray2<i64>>,
-    Bound<'py, PyArray1<u64>>,
-    Bound<'py, PyArray2<bool>>,
-)> {
+fn label_junctions<'py>(py: Python<'py>, contact: PyReadonlyArray2<'py, bool>, connectivity: u8) -> Labelled<'py> {
     wearsim::check::connectivity(connectivity).map_err(to_py)?;
     let ((rows, cols), flags) = field("contact", &contact)?;
     if rows.saturating_mul(cols) >= u32::MAX as usize {

@@ -348,10 +348,11 @@ fn fill_empty_lists(table: &mut Table) {
         match v {
             Value::Array(items) if items.is_empty() => *v = Value::Integer(1),
             Value::Table(t) => fill_empty_lists(t),
-            Value::Array(items) => items
-                .iter_mut()
-                .filter_map(|i| i.as_table_mut())
-                .for_each(|t| fill_empty_lists(t)),
+            Value::Array(items) => {
+                for t in items.iter_mut().filter_map(|i| i.as_table_mut()) {
+                    fill_empty_lists(t);
+                }
+            }
             _ => {}
         }
     }

@@ -397,7 +397,7 @@ mod tests {
             "{e}"
         );
         // A thousands separator is not a number.
-        let e = read_text("thousands.csv", "1.234,5;2\n3;4\n").unwrap_err().to_string();
+        let e = read_text("thousands.csv", "3;4\n1.234,5;2\n").unwrap_err().to_string();
         assert!(e.contains("not a list of numbers"), "{e}");
     }
 
