@@ -55,7 +55,13 @@ pub fn to_netcdf(args: &ToNetcdfArgs) -> Result<()> {
         );
     }
     let status = Command::new(&python)
-        .args(["-m", "wearsim.fields", "to-netcdf", "--complevel", &args.complevel.to_string()])
+        .args([
+            "-m",
+            "wearsim.fields",
+            "to-netcdf",
+            "--complevel",
+            &args.complevel.to_string(),
+        ])
         .arg(&args.store)
         .arg(&args.out)
         .status()
