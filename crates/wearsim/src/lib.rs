@@ -39,8 +39,7 @@ pub mod wear;
 pub use contact::{ContactSolver, SolveInfo, SolverOptions, Termination};
 pub use error::{Error, Interrupt, Result};
 pub use grid::Grid;
+/// Version of the library, recorded in every output file.
+pub use io::VERSION;
 pub use material::{Material, ModulusConvention};
 pub use surface::{composite_heights, Generation, SpectrumParams, Surface};
-
-/// Version of the library, recorded in every output file.
-pub const VERSION: &str = env!("CARGO_PKG_VERSION");

@@ -8,6 +8,7 @@ mod zarr;
 
 pub use atomic::{
     atomic_write, parent_or_dot, read_text, temporary_sibling, write_json, write_text, write_texts_together, OutputDir,
+    VERSION,
 };
 pub use npy::{npy_shape, read_npy_2d, read_npy_2d_from, write_npy_bool, write_npy_f64, write_npy_i64, Npy2, NpyType};
 pub use zarr::{ZarrArray, ZarrGroup, ZarrType};

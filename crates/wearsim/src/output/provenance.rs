@@ -26,7 +26,7 @@ impl Provenance {
             .collect::<Vec<_>>()
             .join(" ");
         Self {
-            software: format!("wearsim {}", crate::VERSION),
+            software: format!("wearsim {}", crate::io::VERSION),
             command,
             date: humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string(),
         }
