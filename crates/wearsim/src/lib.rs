@@ -161,8 +161,8 @@ pub use material::{Material, ModulusConvention};
 pub use surface::{composite_heights, Generation, SpectrumParams, Surface};
 
 /// Version of the library, recorded in every output file.
-pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+pub use io::VERSION;
 
 /// The versions of the crates that decide wearsim's numbers (FFT, random streams of generated
 /// surfaces), as "name version" pairs separated by ", ", taken from the lockfile at build time.
-pub const DEPENDENCY_VERSIONS: &str = env!("WEARSIM_DEPENDENCY_VERSIONS");
+pub use output::DEPENDENCY_VERSIONS;

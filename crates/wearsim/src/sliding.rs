@@ -463,7 +463,7 @@ pub fn run_sliding_resumable(
                 if done < total_steps && last_save.elapsed() >= c.every {
                     let state = SavedState {
                         format: CHECKPOINT_FORMAT,
-                        software: format!("wearsim {}", crate::VERSION),
+                        software: format!("wearsim {}", crate::io::VERSION),
                         inputs: &key,
                         done,
                         finished: &runs,
@@ -565,7 +565,7 @@ fn inputs_key(top: &Surface, bottom: &Surface, setup: &SlidingSetup) -> String {
             hash = hash.wrapping_mul(0x0100_0000_01b3);
         }
     };
-    feed(crate::VERSION.as_bytes());
+    feed(crate::io::VERSION.as_bytes());
     let settings = serde_json::json!({
         "material": setup.material,
         "effective_modulus": setup.effective_modulus.to_bits(),
@@ -627,12 +627,12 @@ fn load_checkpoint(
     }
     let (json, field) = rest.split_at(len);
     let state: LoadedState = serde_json::from_slice(json).map_err(|e| unusable(&format!("unreadable state ({e})")))?;
-    if state.format != CHECKPOINT_FORMAT || state.software != format!("wearsim {}", crate::VERSION) {
+    if state.format != CHECKPOINT_FORMAT || state.software != format!("wearsim {}", crate::io::VERSION) {
         return Err(unusable(&format!(
             "written by {} (checkpoint format {}), not by this wearsim {}",
             state.software,
             state.format,
-            crate::VERSION
+            crate::io::VERSION
         )));
     }
     if state.inputs != key {

@@ -1,6 +1,12 @@
 //! The library's modules import one way only: each module may use the modules listed before it in
 //! `LAYERS`, never one after it (the data flow of the model: parameters → surfaces → contact →
-//! junctions → wear → sliding → run files → outputs → studies). A new module gets a place in this list.
+//! junctions → wear → sliding → run files → outputs → studies). A new module gets a place in this
+//! list. Inside a folder module the submodules are layered the same way (`SUBLAYERS`).
+//!
+//! Paths are resolved as the compiler resolves them: `crate::a::b` names module `a` (and its
+//! submodule `b`), `super::x` in `src/a/b.rs` names `a::x` and in `src/a.rs` the top-level `x`
+//! (inside a file's `mod tests`, `super` is the file itself). A name that is not a module (an item
+//! of the crate root such as `crate::VERSION`) is a re-export and refused.
 
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -25,43 +31,167 @@ const LAYERS: [&str; 17] = [
     "study",
 ];
 
-/// Top-level modules named by `crate::…` paths in `text`, including `use crate::{a, b::c}`.
-fn references(text: &str) -> BTreeSet<String> {
+/// The order of the submodules of each folder module; a submodule uses only those before it.
+const SUBLAYERS: [(&str, &[&str]); 4] = [
+    ("io", &["atomic", "npy", "zarr"]),
+    ("topography", &["formats", "prepare", "load", "fit"]),
+    (
+        "output",
+        &["provenance", "units", "tables", "summary", "jobs", "fields"],
+    ),
+    ("study", &["expand", "store", "run", "collect", "findings"]),
+];
+
+/// Module paths (up to two components) named by `prefix…` paths in `text`, including grouped
+/// imports such as `use crate::{a, b::{c, d}}`.
+fn paths_after(text: &str, prefix: &str) -> BTreeSet<Vec<String>> {
     let mut out = BTreeSet::new();
     let mut rest = text;
-    while let Some(at) = rest.find("crate::") {
-        rest = &rest[at + "crate::".len()..];
-        if let Some(group) = rest.strip_prefix('{') {
-            // Top-level names of a brace group: split at commas outside nested braces.
-            let mut depth = 0;
-            let mut name = String::new();
-            let mut at_start = true;
-            for c in group.chars() {
-                match c {
-                    '{' => depth += 1,
-                    '}' if depth == 0 => break,
-                    '}' => depth -= 1,
-                    ',' if depth == 0 => {
-                        at_start = true;
-                        continue;
-                    }
-                    _ => {}
+    while let Some(at) = rest.find(prefix) {
+        // `super::` inside `super::super::` is counted once, from the first.
+        let before = &rest[..at];
+        rest = &rest[at + prefix.len()..];
+        if prefix == "super::" && before.ends_with("super::") {
+            continue;
+        }
+        collect_group(rest, Vec::new(), &mut out);
+    }
+    out
+}
+
+/// Reads one path (or a brace group of paths) at the start of `text`, appending what it names to
+/// `head`, and records paths of at most two components.
+fn collect_group(text: &str, head: Vec<String>, out: &mut BTreeSet<Vec<String>>) {
+    if let Some(group) = text.strip_prefix('{') {
+        let mut depth = 0;
+        let mut start = 0;
+        for (i, c) in group.char_indices() {
+            match c {
+                '{' => depth += 1,
+                '}' if depth == 0 => {
+                    collect_group(group[start..i].trim(), head.clone(), out);
+                    return;
                 }
-                if depth == 0 && at_start {
-                    if c.is_alphanumeric() || c == '_' {
-                        name.push(c);
-                    } else if !name.is_empty() {
-                        out.insert(std::mem::take(&mut name));
-                        at_start = false;
-                    }
+                '}' => depth -= 1,
+                ',' if depth == 0 => {
+                    collect_group(group[start..i].trim(), head.clone(), out);
+                    start = i + 1;
                 }
+                _ => {}
             }
-            if !name.is_empty() {
-                out.insert(name);
-            }
-        } else {
-            let name: String = rest.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
-            out.insert(name);
+        }
+        return;
+    }
+    let name: String = text.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
+    if name.is_empty() || name == "self" {
+        if !head.is_empty() {
+            out.insert(head);
+        }
+        return;
+    }
+    let mut path = head;
+    path.push(name.clone());
+    let rest = &text[name.len()..];
+    match rest.strip_prefix("::") {
+        Some(next) if path.len() < 2 => collect_group(next, path, out),
+        _ => {
+            out.insert(path);
+        }
+    }
+}
+
+/// The module path of a source file relative to `src`: `a.rs` → [a], `a/mod.rs` → [a], `a/b.rs` → [a, b].
+fn module_of(relative: &Path) -> Vec<String> {
+    let mut parts: Vec<String> = relative
+        .components()
+        .map(|c| c.as_os_str().to_string_lossy().trim_end_matches(".rs").to_string())
+        .collect();
+    if parts.last().is_some_and(|p| p == "mod") {
+        parts.pop();
+    }
+    parts
+}
+
+fn layer(name: &str) -> Option<usize> {
+    LAYERS.iter().position(|m| *m == name)
+}
+
+fn sublayer(module: &str, name: &str) -> Option<usize> {
+    SUBLAYERS
+        .iter()
+        .find(|(m, _)| *m == module)
+        .and_then(|(_, subs)| subs.iter().position(|s| *s == name))
+}
+
+/// Why the file of module `from` may not use the module path `to` (absolute, from the crate root),
+/// or None when it may.
+fn refusal(from: &[String], to: &[String]) -> Option<String> {
+    let target = to.first()?;
+    let Some(to_layer) = layer(target) else {
+        return Some(format!(
+            "crate::{target} is not a module: use the module, not a re-export"
+        ));
+    };
+    let from_layer = layer(&from[0]).expect("the file's module is in LAYERS");
+    if to_layer > from_layer {
+        return Some(format!("crate::{target} is a layer above {}", from[0]));
+    }
+    if to_layer < from_layer {
+        return None;
+    }
+    // Within one module: submodules use only the submodules before them.
+    let (Some(from_sub), Some(to_sub)) = (from.get(1), to.get(1)) else {
+        return None;
+    };
+    if from_sub == to_sub || SUBLAYERS.iter().all(|(m, _)| *m != from[0]) {
+        return None;
+    }
+    match (sublayer(&from[0], from_sub), sublayer(&from[0], to_sub)) {
+        (Some(a), Some(b)) if b < a => None,
+        (Some(_), Some(_)) => Some(format!(
+            "{}::{to_sub} is a layer above {}::{from_sub}",
+            from[0], from[0]
+        )),
+        (None, _) => Some(format!("submodule {}::{from_sub} has no place in SUBLAYERS", from[0])),
+        (_, None) => Some(format!(
+            "{}::{to_sub} is not a submodule: use the submodule, not a re-export",
+            from[0]
+        )),
+    }
+}
+
+/// The imports of one source file (`relative` to `src`) that point up or around.
+fn violations(relative: &Path, text: &str) -> Vec<String> {
+    let module = module_of(relative);
+    if module.first().is_none_or(|m| m == "lib") {
+        return Vec::new();
+    }
+    if layer(&module[0]).is_none() {
+        return vec![format!(
+            "module `{}` ({}) has no place in LAYERS",
+            module[0],
+            relative.display()
+        )];
+    }
+    // `super` of a folder's `mod.rs` or of a top-level file is the crate root; of a submodule, its folder.
+    let is_mod_rs = relative.file_name().is_some_and(|f| f == "mod.rs");
+    let parent: Vec<String> = if is_mod_rs || module.len() == 1 {
+        Vec::new()
+    } else {
+        module[..module.len() - 1].to_vec()
+    };
+    // Inside the file's own `mod tests`, `super` is the file itself; only the code before it counts.
+    let outside_tests = text.split("#[cfg(test)]\nmod tests {").next().unwrap_or(text);
+    let mut targets: Vec<Vec<String>> = paths_after(text, "crate::").into_iter().collect();
+    for path in paths_after(outside_tests, "super::") {
+        let mut absolute = parent.clone();
+        absolute.extend(path);
+        targets.push(absolute);
+    }
+    let mut out = Vec::new();
+    for to in targets {
+        if let Some(why) = refusal(&module, &to) {
+            out.push(format!("{} uses {}: {why}", relative.display(), to.join("::")));
         }
     }
     out
@@ -83,48 +213,51 @@ fn modules_import_only_the_layers_below_them() {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
     let mut files = Vec::new();
     visit(&src, &mut files);
-    let mut violations = Vec::new();
+    let mut found = Vec::new();
     for file in files {
         let relative = file.strip_prefix(&src).unwrap();
-        let module = relative
-            .components()
-            .next()
-            .unwrap()
-            .as_os_str()
-            .to_string_lossy()
-            .trim_end_matches(".rs")
-            .to_string();
-        if module == "lib" {
-            continue;
-        }
-        let layer = LAYERS
-            .iter()
-            .position(|m| *m == module)
-            .unwrap_or_else(|| panic!("module `{module}` ({}) has no place in LAYERS", relative.display()));
-        let text = std::fs::read_to_string(&file).unwrap();
-        for name in references(&text) {
-            if name == "VERSION" || name == module {
-                continue;
-            }
-            match LAYERS.iter().position(|m| *m == name) {
-                Some(l) if l < layer => {}
-                Some(_) => violations.push(format!("{} uses crate::{name}, a layer above it", relative.display())),
-                None => violations.push(format!(
-                    "{} uses crate::{name}: use the module, not a re-export",
-                    relative.display()
-                )),
-            }
-        }
+        found.extend(violations(relative, &std::fs::read_to_string(&file).unwrap()));
     }
-    assert!(
-        violations.is_empty(),
-        "imports pointing up or around:\n{}",
-        violations.join("\n")
-    );
+    assert!(found.is_empty(), "imports pointing up or around:\n{}", found.join("\n"));
 }
 
 #[test]
 fn the_reference_scanner_reads_grouped_imports() {
-    let names = references("use crate::{error::{Error, Result}, io::read_text};\nlet x = crate::fft::FftPlan::new(4);");
-    assert_eq!(names.into_iter().collect::<Vec<_>>(), ["error", "fft", "io"]);
+    let names = paths_after(
+        "use crate::{error::{Error, Result}, io::read_text};\nlet x = crate::fft::FftPlan::new(4);",
+        "crate::",
+    );
+    let names: Vec<String> = names.into_iter().map(|p| p.join("::")).collect();
+    assert_eq!(
+        names,
+        ["error::Error", "error::Result", "fft::FftPlan", "io::read_text"]
+    );
+}
+
+#[test]
+fn the_checker_refuses_upward_imports_and_re_exports() {
+    let refused = |file: &str, text: &str| !violations(Path::new(file), text).is_empty();
+    // Between top-level modules, through `crate::` and through `super::` of a top-level file.
+    assert!(refused("sliding.rs", "use crate::config::RunConfig;"));
+    assert!(refused("sliding.rs", "use super::config::RunConfig;"));
+    assert!(!refused("config.rs", "use crate::sliding::SlidingConfig;"));
+    // An item of the crate root is a re-export, VERSION included.
+    assert!(refused("output/provenance.rs", "crate::VERSION"));
+    assert!(refused("output/provenance.rs", "use crate::Grid;"));
+    // Between the submodules of a folder, through `super::` and `crate::`.
+    assert!(refused("study/expand.rs", "use super::run::run_job;"));
+    assert!(refused("study/expand.rs", "use crate::study::store::Stored;"));
+    assert!(!refused(
+        "study/run.rs",
+        "use crate::study::{expand::Job, store::Stored};"
+    ));
+    assert!(!refused("study/run.rs", "use super::expand::Job;"));
+    assert!(refused("study/run.rs", "use super::Job;"));
+    // A folder's mod.rs: `super` is the crate root; a file's tests may use the file itself.
+    assert!(refused("io/mod.rs", "use super::output::Table;"));
+    assert!(!refused(
+        "study/expand.rs",
+        "fn f() {}\n#[cfg(test)]\nmod tests {\n    use super::*;\n}"
+    ));
+    assert!(refused("nowhere.rs", ""));
 }

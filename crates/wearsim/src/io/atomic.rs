@@ -7,6 +7,9 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::error::{Error, Result};
 
+/// Version of the library, recorded in every output file.
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+
 /// Counter that makes temporary names unique within a process (with the process id, across
 /// processes sharing a folder).
 static TMP_COUNTER: AtomicU64 = AtomicU64::new(0);
@@ -324,7 +327,7 @@ impl OutputDir {
             committed: false,
             _claim: claim,
         };
-        let provenance = serde_json::json!({"command": command, "software": format!("wearsim {}", crate::VERSION)});
+        let provenance = serde_json::json!({"command": command, "software": format!("wearsim {VERSION}")});
         write_json(&dir.join(MARKER), &provenance)?;
         Ok(dir)
     }

@@ -20,7 +20,7 @@ pub use jobs::{
     aggregate, read_job_file, write_results_tables, JobResult, StepRow, TidyRow, ALONG_A_CURVE, JOB_FORMAT,
     NOT_A_SETTING,
 };
-pub use provenance::Provenance;
+pub use provenance::{Provenance, DEPENDENCY_VERSIONS};
 pub use summary::{
     contact_summary, junctions_summary, run_warnings, series_csv, series_rows, sliding_summary, surface_fit_summary,
     surface_summary, ContactRecord, SeriesRow, SlidingInputs, SurfaceStatistics, PSD_CONVENTION, RESIDUAL_DEFINITION,

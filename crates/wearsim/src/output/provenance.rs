@@ -16,6 +16,10 @@ pub struct Provenance {
     pub date: String,
 }
 
+/// The versions of the crates that decide wearsim's numbers (FFT, random streams of generated
+/// surfaces), as "name version" pairs separated by ", ", taken from the lockfile at build time.
+pub const DEPENDENCY_VERSIONS: &str = env!("WEARSIM_DEPENDENCY_VERSIONS");
+
 impl Provenance {
     /// This process, now.
     pub fn current() -> Self {
@@ -31,8 +35,8 @@ impl Provenance {
             .collect::<Vec<_>>()
             .join(" ");
         Self {
-            software: format!("wearsim {}", crate::VERSION),
-            dependencies: crate::DEPENDENCY_VERSIONS
+            software: format!("wearsim {}", crate::io::VERSION),
+            dependencies: DEPENDENCY_VERSIONS
                 .split(", ")
                 .filter_map(|pair| pair.split_once(' '))
                 .map(|(name, version)| (name.to_string(), version.to_string()))
