@@ -302,7 +302,7 @@ impl Figure for LoadFigure<'_> {
                 let (col, marker) = self.style(i, c);
                 let means: Vec<(f64, f64)> = s.iter().map(|p| (p.0, p.1)).collect();
                 panel.line(&means, col, false, 2)?;
-                let (hollow, filled): (Vec<(f64, f64)>, Vec<(f64, f64)>) = means.iter().partition(|p| thin(i, p.0));
+                let (hollow, filled): (Vec<_>, Vec<_>) = means.iter().partition(|p| thin(i, p.0));
                 panel.markers(&filled, col, marker)?;
                 panel.markers_hollow(&hollow, col, marker)?;
                 // No wear in any surface pair: zero has no place on a log axis, so it is marked on
