@@ -290,7 +290,7 @@ loads = [5e-4, 2e-3]
 "#;
 
 /// Fig. 6: each material its own series beside Kim et al.'s band of wear coefficients, with the
-/// band's bounds in its legend entry.
+/// band's bounds in its legend entry, which is not wrapped onto a second line.
 #[test]
 fn fig6_draws_each_material_against_kims_band() {
     let dir = tempfile::tempdir().unwrap();
@@ -321,9 +321,18 @@ fn fig6_draws_each_material_against_kims_band() {
             "one series of {name}: {texts:?}"
         );
     }
-    let all = texts.join(" ");
     assert!(
-        all.contains("Kim et al. 1986") && all.contains("6×10⁻⁷ … 1.5×10⁻³"),
-        "band entry with both bounds: {texts:?}"
+        texts
+            .iter()
+            .any(|t| t.starts_with("Kim et al. 1986") && t.contains("6×10⁻⁷ … 1.5×10⁻³")),
+        "band entry with both bounds on one line: {texts:?}"
     );
+    // The legend column is fitted to its longest entry; the panel keeps three quarters of the width.
+    let width: f64 = svg
+        .split("width=\"")
+        .nth(1)
+        .and_then(|w| w.split('"').next())
+        .and_then(|w| w.parse().ok())
+        .unwrap();
+    assert!(width >= 1150.0, "{width}");
 }
