@@ -45,6 +45,23 @@ pub fn save(dir: &Path, name: &str, size: (u32, u32), figure: &impl Figure) -> R
     let png = dir.join(format!("{name}.png"));
     let tmp_svg = dir.join(format!(".{name}.{}.tmp.svg", std::process::id()));
     let tmp_png = dir.join(format!(".{name}.{}.tmp.png", std::process::id()));
+    // A first drawing, thrown away, measures the legend; the figure is then widened so that the
+    // legend column fits its longest entry on one line and the panels keep at least three quarters
+    // of the width (and no less than they were given).
+    LEGEND.with(|l| l.set((LEGEND_WIDTH, 0)));
+    {
+        let mut sink = String::new();
+        let root = SVGBackend::with_string(&mut sink, size).into_drawing_area();
+        figure.draw(&root)?;
+    }
+    let needed = LEGEND.with(|l| l.get().1);
+    let size = if needed == 0 {
+        size
+    } else {
+        let panels = size.0.saturating_sub(LEGEND_WIDTH).max(3 * needed);
+        LEGEND.with(|l| l.set((needed, 0)));
+        (panels + needed, size.1)
+    };
     let drawn = (|| -> Result<()> {
         {
             let root = SVGBackend::new(&tmp_svg, size).into_drawing_area();
@@ -501,8 +518,14 @@ pub struct Entry {
     pub swatch: Swatch,
 }
 
-/// Width of the legend column.
+/// Width of the legend column before [`save`] has measured the legend.
 pub const LEGEND_WIDTH: u32 = 360;
+
+thread_local! {
+    /// The legend column's width for the drawing under way (set by [`save`]), and the widest that a
+    /// legend drawn asked for.
+    static LEGEND: std::cell::Cell<(u32, u32)> = const { std::cell::Cell::new((LEGEND_WIDTH, 0)) };
+}
 
 /// Splits a figure into `n` panels side by side and a legend column on the right.
 pub fn layout<DB: DrawingBackend>(
@@ -510,11 +533,12 @@ pub fn layout<DB: DrawingBackend>(
     n: usize,
 ) -> (Vec<DrawingArea<DB, Shift>>, DrawingArea<DB, Shift>) {
     let (w, _) = area.dim_in_pixel();
-    let (panels, legend) = area.split_horizontally(w.saturating_sub(LEGEND_WIDTH));
+    let width = LEGEND.with(|l| l.get().0);
+    let (panels, legend) = area.split_horizontally(w.saturating_sub(width));
     (panels.split_evenly((1, n.max(1))), legend)
 }
 
-/// Draws a legend (entries one per line, wrapped at the column's width) from the top.
+/// Draws a legend (entries one per line, never wrapped) from the top, and records the width it needs.
 pub fn legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, title: &str, entries: &[Entry]) -> Result<()> {
     let font = (FONT, 12).into_font().color(&BLACK);
     let mut y = 34;
@@ -522,8 +546,17 @@ pub fn legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, title: &str, en
         area.draw_text(title, &(FONT, 13).into_font().color(&BLACK), (8, y - 20))
             .map_err(drawing)?;
     }
-    let (w, _) = area.dim_in_pixel();
-    let chars = ((w as usize).saturating_sub(50) / 7).max(20);
+    let text_width = |t: &str, size: u32| {
+        area.estimate_text_size(t, &(FONT, size).into_font().color(&BLACK))
+            .map_or(7 * t.chars().count() as u32, |(w, _)| w)
+    };
+    let needed = entries
+        .iter()
+        .map(|e| 42 + text_width(&e.label, 12) + 12)
+        .chain([8 + text_width(title, 13) + 12])
+        .max()
+        .unwrap_or(0);
+    LEGEND.with(|l| l.set((l.get().0, l.get().1.max(needed))));
     for e in entries {
         let mid = y + 6;
         match e.swatch {
@@ -569,30 +602,10 @@ pub fn legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, title: &str, en
                 ))
                 .map_err(drawing)?,
         }
-        for line in wrap(&e.label, chars) {
-            area.draw_text(&line, &font, (42, y)).map_err(drawing)?;
-            y += 16;
-        }
-        y += 4;
+        area.draw_text(&e.label, &font, (42, y)).map_err(drawing)?;
+        y += 20;
     }
     Ok(())
-}
-
-/// Splits text into lines of at most `width` characters at spaces.
-fn wrap(text: &str, width: usize) -> Vec<String> {
-    let mut lines = vec![String::new()];
-    for word in text.split(' ') {
-        let last = lines.last_mut().expect("one line");
-        if !last.is_empty() && last.chars().count() + 1 + word.chars().count() > width {
-            lines.push(word.to_string());
-        } else {
-            if !last.is_empty() {
-                last.push(' ');
-            }
-            last.push_str(word);
-        }
-    }
-    lines
 }
 
 #[cfg(test)]

@@ -263,3 +263,76 @@ fn shards_and_worker_counts_give_the_unsharded_results() {
         .unwrap();
     assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("different study"));
 }
+
+/// Two materials on one surface, as in the Kim et al. studies (studies/kim1986*.toml), reduced.
+const TWO_MATERIALS: &str = r#"
+units = "reduced"
+[surface]
+grid = 128
+lambda_lower = 0.0625
+lambda_upper = 0.25
+rms_height = 0.005
+seed = 1
+[[materials]]
+name = "ceramicA"
+youngs_modulus = 1.0
+poisson_ratio = 0.3
+shear_strength = 0.008
+fracture_energies = [0.25e-6]
+[[materials]]
+name = "ceramicB"
+youngs_modulus = 1.0
+poisson_ratio = 0.3
+shear_strength = 0.012
+fracture_energies = [1e-6]
+[sliding]
+loads = [5e-4, 2e-3]
+"#;
+
+/// Fig. 6: each material its own series beside Kim et al.'s band of wear coefficients, with the
+/// band's bounds in its legend entry, which is not wrapped onto a second line.
+#[test]
+fn fig6_draws_each_material_against_kims_band() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = dir.path().join("study.toml");
+    std::fs::write(&study, TWO_MATERIALS).unwrap();
+    let out = dir.path().join("out");
+    run_study(&study, &out, &[]);
+    collect(&out);
+    let o = wearsim()
+        .args(["study", "plot", out.to_str().unwrap(), "--figures", "fig6"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let svg = std::fs::read_to_string(out.join("figures/fig6_kim_comparison.svg")).unwrap();
+    // The SVG backend writes each text on its own line between the tags.
+    let texts: Vec<&str> = svg
+        .split("<text")
+        .skip(1)
+        .filter_map(|t| {
+            t.split_once('>')
+                .map(|(_, rest)| rest.split("</text>").next().unwrap_or("").trim())
+        })
+        .collect();
+    for name in ["ceramicA", "ceramicB"] {
+        assert_eq!(
+            texts.iter().filter(|t| t.starts_with(&format!("{name}, "))).count(),
+            1,
+            "one series of {name}: {texts:?}"
+        );
+    }
+    assert!(
+        texts
+            .iter()
+            .any(|t| t.starts_with("Kim et al. 1986") && t.contains("6×10⁻⁷ … 1.5×10⁻³")),
+        "band entry with both bounds on one line: {texts:?}"
+    );
+    // The legend column is fitted to its longest entry; the panel keeps three quarters of the width.
+    let width: f64 = svg
+        .split("width=\"")
+        .nth(1)
+        .and_then(|w| w.split('"').next())
+        .and_then(|w| w.parse().ok())
+        .unwrap();
+    assert!(width >= 1150.0, "{width}");
+}

@@ -130,6 +130,9 @@ struct Curve {
 
 type Quantity = fn(&WearResult) -> Option<f64>;
 
+/// Points (x, y) of a series.
+type Points = Vec<(f64, f64)>;
+
 /// Particles in a fit window (per surface pair, mean over the pairs) below which a point of a
 /// sliding quantity is drawn hollow: too few for the fitted rate to be resolved.
 const RESOLVED_PARTICLES: f64 = 20.0;
@@ -249,8 +252,8 @@ struct LoadFigure<'a> {
     x_label: String,
     /// Shaded range of the last panel's y and its legend label (Kim et al.'s experiments).
     band: Option<(f64, f64, &'static str)>,
-    /// Colour and marker by material instead of by curve, with these material names in the legend.
-    by_material: Option<&'a [String]>,
+    /// Colour by material instead of by curve (its several series told apart by marker).
+    by_material: bool,
     /// Whether the panels show fitted sliding rates, whose points with fewer than
     /// [`RESOLVED_PARTICLES`] particles are drawn hollow.
     fitted: bool,
@@ -259,8 +262,10 @@ struct LoadFigure<'a> {
 
 impl LoadFigure<'_> {
     fn style(&self, i: usize, c: &Curve) -> (RGBColor, Marker) {
-        if self.by_material.is_some() {
-            (color(c.material), Marker::nth(c.material))
+        if self.by_material {
+            // The material's colour; its several series (surface variants, energies) by marker.
+            let within = self.curves[..i].iter().filter(|d| d.material == c.material).count();
+            (color(c.material), Marker::nth(within))
         } else {
             (color(i), Marker::nth(c.material))
         }
@@ -302,7 +307,7 @@ impl Figure for LoadFigure<'_> {
                 let (col, marker) = self.style(i, c);
                 let means: Vec<(f64, f64)> = s.iter().map(|p| (p.0, p.1)).collect();
                 panel.line(&means, col, false, 2)?;
-                let (hollow, filled): (Vec<_>, Vec<_>) = means.iter().partition(|p| thin(i, p.0));
+                let (hollow, filled): (Points, Points) = means.iter().partition(|p| thin(i, p.0));
                 panel.markers(&filled, col, marker)?;
                 panel.markers_hollow(&hollow, col, marker)?;
                 // No wear in any surface pair: zero has no place on a log axis, so it is marked on
@@ -328,30 +333,15 @@ impl Figure for LoadFigure<'_> {
                 format!(" — hollow: {} particles", counts.join(", "))
             }
         };
+        // One entry per series (each material its own colour), with its hollow points' counts.
         let mut entries: Vec<Entry> = Vec::new();
-        if let Some(names) = self.by_material {
-            let mut seen = Vec::new();
-            for c in &self.curves {
-                if !seen.contains(&c.material) {
-                    seen.push(c.material);
-                    let (col, marker) = self.style(0, c);
-                    let name = names.get(c.material).cloned().unwrap_or_default();
-                    entries.push(Entry {
-                        label: name,
-                        color: col,
-                        swatch: Swatch::LineMarker(marker),
-                    });
-                }
-            }
-        } else {
-            for (i, c) in self.curves.iter().enumerate() {
-                let (col, marker) = self.style(i, c);
-                entries.push(Entry {
-                    label: format!("{}{}", c.label, thin_counts(i)),
-                    color: col,
-                    swatch: Swatch::LineMarker(marker),
-                });
-            }
+        for (i, c) in self.curves.iter().enumerate() {
+            let (col, marker) = self.style(i, c);
+            entries.push(Entry {
+                label: format!("{}{}", c.label, thin_counts(i)),
+                color: col,
+                swatch: Swatch::LineMarker(marker),
+            });
         }
         if self.fitted && particles.iter().flatten().any(|p| p.1 < RESOLVED_PARTICLES) {
             entries.push(Entry {
@@ -808,7 +798,7 @@ pub fn run(args: &Args) -> Result<()> {
         panels,
         x_label: data.load_label(),
         band: None,
-        by_material: None,
+        by_material: false,
         fitted,
         title: title.into(),
     };
@@ -872,7 +862,7 @@ pub fn run(args: &Args) -> Result<()> {
                 ],
                 x_label: data.load_label(),
                 band: None,
-                by_material: None,
+                by_material: false,
                 fitted: true,
                 title: format!(
                     "settings of nearly equal d* ≈ {}",
@@ -900,7 +890,7 @@ pub fn run(args: &Args) -> Result<()> {
                 "Kim et al. 1986, rolling experiments: k = 6×10⁻⁷ … 1.5×10⁻³",
             )),
             // One colour and marker per material where the study has several (Kim et al.'s ceramics).
-            by_material: (data.materials.len() > 1).then_some(&data.materials[..]),
+            by_material: data.materials.len() > 1,
             fitted: true,
             title: "simulated sliding k per material against the experimental range".into(),
         };
@@ -917,7 +907,7 @@ pub fn run(args: &Args) -> Result<()> {
             )],
             x_label: data.load_label(),
             band: None,
-            by_material: None,
+            by_material: false,
             fitted: false,
             title: "number of junctions".into(),
         };
