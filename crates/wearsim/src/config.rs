@@ -826,7 +826,9 @@ mod tests {
             ("contact", field_names::<super::RawContact>()),
             ("sliding", field_names::<super::RawSliding>()),
         ];
-        let per_row = ["material.fracture_energies", "sliding.loads"];
+        // `contact.boundary` distinguishes no study jobs: a run with `[sliding]` (every study job) is
+        // periodic, and a free boundary is refused there.
+        let per_row = ["material.fracture_energies", "sliding.loads", "contact.boundary"];
         let mut missing = Vec::new();
         for (section, keys) in &sections {
             assert!(!keys.is_empty(), "{section}");
