@@ -123,12 +123,16 @@ fn main() {
 }
 
 /// The error and its causes on one line, each cause once (library errors already quote the
-/// message of the error they wrap).
+/// message of the error they wrap, and a library I/O error says the system's error in words, so
+/// its source is not repeated).
 fn message(e: &anyhow::Error) -> String {
     let mut text = String::new();
+    let mut explained = false;
     for cause in e.chain() {
         let part = cause.to_string();
-        if !text.contains(&part) {
+        let skip = explained && cause.downcast_ref::<std::io::Error>().is_some();
+        explained = matches!(cause.downcast_ref::<wearsim::Error>(), Some(wearsim::Error::Io { .. }));
+        if !skip && !text.contains(&part) {
             if !text.is_empty() {
                 text.push_str(": ");
             }
