@@ -6,7 +6,7 @@
 //! - plans are made once ([`FftPlan::new`]) and every Nx·Ny buffer is preallocated;
 //! - the half spectrum is kept *transposed*: `N/2 + 1` rows (one per `q_y`) of length `N` (over
 //!   `q_x`), each row padded to `N + 4` so that the stride is not a power of two;
-//! - the transpose is fused into the row passes, in blocks of [`BLOCK`] rows;
+//! - the transpose is fused into the row passes, in blocks of `BLOCK` rows;
 //! - forward column FFT, kernel multiplication and inverse column FFT run in one pass per row;
 //! - work is split with `rayon`, with per-thread scratch buffers that grow once and are then
 //!   reused by every transform on that thread (no allocation per transform); every element is

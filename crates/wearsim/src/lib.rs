@@ -101,7 +101,7 @@
 //! ```
 //!
 //! A study: a study file expands into jobs (surface pair × material × load), each a sliding run;
-//! [`study::run_jobs`] runs them resumably into a folder, [`study::collect`] makes the tables. One
+//! [`study::run_jobs`] runs them resumably into a folder, [`study::collect()`] makes the tables. One
 //! job, run directly:
 //!
 //! ```

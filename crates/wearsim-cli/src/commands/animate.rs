@@ -17,7 +17,7 @@ use crate::figures::{register_font, FONT};
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// Run file (TOML, see README) with a [sliding] table.
+    /// Run file (TOML, see README) with a `[sliding]` table.
     run: PathBuf,
     /// Output file (.gif).
     #[arg(long)]

@@ -14,7 +14,7 @@ use crate::progress::Progress;
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// Run file (TOML, see README) with a [sliding] table.
+    /// Run file (TOML, see README) with a `[sliding]` table.
     run: PathBuf,
     /// Output folder (created if missing; an earlier `slide` there is replaced whole).
     #[arg(long)]

@@ -8,7 +8,7 @@ use wearsim::study::{collect as collect_study, expand, prepare_folder, run_jobs,
 
 #[derive(clap::Args)]
 pub struct RunArgs {
-    /// Study file (a run file whose fields may be lists, or with [[materials]]).
+    /// Study file (a run file whose fields may be lists, or with `[[materials]]`).
     study: PathBuf,
     /// Study folder (created if missing).
     #[arg(long)]

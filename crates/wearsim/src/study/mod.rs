@@ -3,12 +3,12 @@
 //! product, one job per surface pair × material × contact setting × load (every fracture energy
 //! inside the job), in four steps, one file each:
 //!
-//! - [`expand`]: study file → jobs, each a validated single-load run;
+//! - [`expand`](mod@expand): study file → jobs, each a validated single-load run;
 //! - [`store`]: the study folder — the stored study, one job file per finished job written
 //!   atomically, checked when read back;
 //! - [`run`]: runs pending jobs, several at once, resumably (a killed study resumes where it
 //!   stopped);
-//! - [`collect`]: job files → the tidy table and its aggregate over surface pairs;
+//! - [`collect`](mod@collect): job files → the tidy table and its aggregate over surface pairs;
 //! - [`findings`]: the paper's qualitative findings checked on a tidy table.
 
 pub mod collect;
