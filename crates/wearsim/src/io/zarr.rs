@@ -40,7 +40,7 @@ pub struct ZarrArray {
 /// A Zarr format-2 group being written: arrays are created in it, their metadata collected and
 /// written as consolidated metadata (`.zmetadata`) by [`ZarrGroup::finish`], so that
 /// `xarray.open_zarr` reads it in one request. Chunk data is written as it comes; the caller makes
-/// the whole store appear at once (e.g. inside an [`OutputDir`](crate::io::OutputDir)).
+/// the whole store appear at once (e.g. inside an `OutputDir`).
 #[derive(Debug)]
 pub struct ZarrGroup {
     dir: std::path::PathBuf,
