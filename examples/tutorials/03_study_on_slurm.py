@@ -62,7 +62,13 @@ try:
 except ImportError:
     print("dask-jobqueue is not installed: pip install 'wearsim[slurm]'")
 else:
-    slurm = SLURMCluster(cores=16, processes=1, memory="32GB", walltime="04:00:00", scheduler_options={"port": 0, "dashboard_address": None})
+    slurm = SLURMCluster(
+        cores=16,
+        processes=1,
+        memory="32GB",
+        walltime="04:00:00",
+        scheduler_options={"port": 0, "dashboard_address": None},
+    )
     script = work / "dask-worker.sbatch"
     script.write_text(slurm.job_script())
     slurm.close()

@@ -115,7 +115,13 @@ def _load_figure(
             y = stats[f"{column}_mean"]
             err = [y - stats[f"{column}_min"], stats[f"{column}_max"] - y]
             ax.errorbar(
-                stats["nominal_pressure"], y, yerr=err, color=color, marker=_MARKERS[m % len(_MARKERS)], capsize=2, label=name
+                stats["nominal_pressure"],
+                y,
+                yerr=err,
+                color=color,
+                marker=_MARKERS[m % len(_MARKERS)],
+                capsize=2,
+                label=name,
             )
         ax.set_xscale("log")
         if log:
