@@ -143,6 +143,7 @@ class ContactSolver:
         tolerance: float = ...,
         max_iterations: int = ...,
         boundary: str = ...,
+        device: str = ...,
     ) -> ContactSolver: ...
     @property
     def shape(self) -> Tuple[int, int]: ...
@@ -156,6 +157,8 @@ class ContactSolver:
     def max_iterations(self) -> int: ...
     @property
     def boundary(self) -> str: ...
+    @property
+    def device(self) -> str: ...
     def solve(
         self,
         heights: _F64Array,

@@ -72,7 +72,8 @@ class ContactSolver:
     ``grid`` is N (an N × N grid) or (Nx, Ny); ``length`` the side Lx along x of the box (length
     unit; pixels are square, so Ly = Lx Ny/Nx); ``effective_modulus`` E* (unit of pressure; see
     :meth:`wearsim.Material.effective_modulus`); ``boundary`` ``"periodic"`` or ``"free"`` (see the
-    module documentation).
+    module documentation); ``device`` where the solver computes, ``"cpu"`` (``"cuda"``, an NVIDIA GPU,
+    is refused by builds without a GPU backend, which this release is).
     """
 
     def __init__(
@@ -84,14 +85,18 @@ class ContactSolver:
         tolerance: float = _wearsim.DEFAULT_TOLERANCE,
         max_iterations: int = _wearsim.DEFAULT_MAX_ITERATIONS,
         boundary: str = "periodic",
+        device: str = "cpu",
     ) -> None:
-        self._solver = _wearsim.ContactSolver(grid, length, effective_modulus, tolerance, max_iterations, boundary)
+        self._solver = _wearsim.ContactSolver(
+            grid, length, effective_modulus, tolerance, max_iterations, boundary, device
+        )
 
     shape = property(lambda self: self._solver.shape, doc="Grid (Nx, Ny).")
     length = property(lambda self: self._solver.length, doc="Side length Lx along x.")
     effective_modulus = property(lambda self: self._solver.effective_modulus, doc="E*.")
     tolerance = property(lambda self: self._solver.tolerance, doc="Tolerance on the residual.")
     boundary = property(lambda self: self._solver.boundary, doc='"periodic" or "free".')
+    device = property(lambda self: self._solver.device, doc='Where the solver computes: "cpu".')
 
     def solve(
         self,

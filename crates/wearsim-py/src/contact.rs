@@ -115,7 +115,7 @@ pub struct PyContactSolver {
 #[pymethods]
 impl PyContactSolver {
     #[new]
-    #[pyo3(signature = (grid, length, effective_modulus, tolerance = wearsim::contact::DEFAULT_TOLERANCE, max_iterations = wearsim::contact::DEFAULT_MAX_ITERATIONS, boundary = "periodic"))]
+    #[pyo3(signature = (grid, length, effective_modulus, tolerance = wearsim::contact::DEFAULT_TOLERANCE, max_iterations = wearsim::contact::DEFAULT_MAX_ITERATIONS, boundary = "periodic", device = "cpu"))]
     fn new(
         grid: GridSize,
         length: f64,
@@ -123,10 +123,12 @@ impl PyContactSolver {
         tolerance: f64,
         max_iterations: usize,
         boundary: &str,
+        device: &str,
     ) -> PyResult<Self> {
         let options = SolverOptions::new(tolerance, max_iterations).map_err(to_py)?;
         let boundary = boundary.parse::<Boundary>().map_err(to_py)?;
-        let inner = wearsim::ContactSolver::with_boundary(grid.grid(length)?, effective_modulus, boundary)
+        let device = device.parse::<wearsim::Device>().map_err(to_py)?;
+        let inner = wearsim::ContactSolver::on_device(device, grid.grid(length)?, effective_modulus, boundary)
             .map_err(to_py)?
             .with_options(options);
         Ok(Self { inner })
@@ -159,6 +161,11 @@ impl PyContactSolver {
     #[getter]
     fn boundary(&self) -> &'static str {
         self.inner.boundary().name()
+    }
+    /// "cpu".
+    #[getter]
+    fn device(&self) -> &'static str {
+        self.inner.device().name()
     }
 
     /// Returns (pressure, displacement, gap, info dict); see the Python wrapper for the meaning.

@@ -58,6 +58,7 @@ fn slide<'py>(
             material: &material.inner,
             effective_modulus: material.inner.effective_modulus(convention),
             solver,
+            device: Default::default(),
             connectivity,
             sliding: &sliding,
             interrupt: interrupt.clone(),

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 
 use crate::check::{connectivity as check_connectivity, positive};
-use crate::contact::SolverOptions;
+use crate::contact::{Device, SolverOptions};
 use crate::error::{Error, Interrupt, Result};
 use crate::grid::Grid;
 use crate::influence::Boundary;
@@ -93,6 +93,7 @@ struct RawContact {
     max_iterations: Option<usize>,
     connectivity: Option<u8>,
     boundary: Option<Boundary>,
+    device: Option<Device>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -214,6 +215,8 @@ pub struct RunConfig {
     pub connectivity: u8,
     /// The half-space's boundary at the map's edges for `contact` (sliding is always periodic).
     pub boundary: Boundary,
+    /// Where the contact solver computes.
+    pub device: Device,
     pub sliding: Option<SlidingConfig>,
 }
 
@@ -340,6 +343,10 @@ impl RunConfig {
                  `wearsim contact --boundary free`)",
             ));
         }
+        let device = c.device.unwrap_or_default();
+        device
+            .available()
+            .map_err(|e| Error::run_file(format!("[contact] `device`: {e}")))?;
         let sliding = match raw.sliding {
             None => None,
             Some(sl) => {
@@ -381,6 +388,7 @@ impl RunConfig {
             solver,
             connectivity,
             boundary,
+            device,
             sliding,
         })
     }
@@ -647,6 +655,7 @@ impl RunConfig {
             max_iterations: (self.solver.max_iterations() != crate::contact::DEFAULT_MAX_ITERATIONS)
                 .then_some(self.solver.max_iterations()),
             connectivity: self.connectivity,
+            device: (self.device != Device::default()).then_some(self.device),
             distance: self.sliding.as_ref().map(|s| s.distance),
             running_in: self.sliding.as_ref().map(|s| s.running_in),
             step_running_in: self.sliding.as_ref().map(|s| s.step_running_in),
@@ -697,6 +706,7 @@ impl<'a> SlidingSetup<'a> {
             material: &run.material,
             effective_modulus: run.effective_modulus(),
             solver: run.solver,
+            device: run.device,
             connectivity: run.connectivity,
             sliding,
             interrupt: Interrupt::default(),
@@ -764,6 +774,9 @@ pub struct InputRecord {
     pub max_iterations: Option<usize>,
     #[serde(rename = "contact.connectivity")]
     pub connectivity: u8,
+    /// Where the contact solver computed, when not the CPU.
+    #[serde(rename = "contact.device", default)]
+    pub device: Option<Device>,
     #[serde(rename = "sliding.distance")]
     pub distance: Option<f64>,
     #[serde(rename = "sliding.running_in")]
@@ -897,6 +910,24 @@ loads = [1e-3]
         let (t, b) = c.surfaces().unwrap();
         assert_ne!(t, b);
         assert_eq!(c.boundary, Boundary::Periodic);
+    }
+
+    #[test]
+    fn the_device_is_read_checked_before_any_work_and_recorded_when_not_the_cpu() {
+        let cpu = RunConfig::from_toml(
+            &RUN.replace("modulus = \"composite\"", "device = \"cpu\""),
+            Path::new("."),
+        )
+        .unwrap();
+        assert_eq!(cpu.device, crate::contact::Device::Cpu);
+        assert_eq!(cpu.inputs().device, None);
+        assert_eq!(RunConfig::from_toml(RUN, Path::new(".")).unwrap().device, cpu.device);
+        let cuda = RUN.replace("modulus = \"composite\"", "device = \"cuda\"");
+        let err = RunConfig::from_toml(&cuda, Path::new(".")).unwrap_err().to_string();
+        assert!(err.contains("[contact] `device`") && err.contains("\"cpu\""), "{err}");
+        let typo = RUN.replace("modulus = \"composite\"", "device = \"gpu\"");
+        let err = RunConfig::from_toml(&typo, Path::new(".")).unwrap_err().to_string();
+        assert!(err.contains("device"), "{err}");
     }
 
     #[test]

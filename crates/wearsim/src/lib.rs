@@ -153,7 +153,7 @@ pub mod surface;
 pub mod topography;
 pub mod wear;
 
-pub use contact::{ContactFields, ContactSolver, SolveInfo, SolverOptions, Termination};
+pub use contact::{ContactFields, ContactMap, ContactSolver, Device, SolveInfo, SolverOptions, Termination};
 pub use error::{Error, Interrupt, Result};
 pub use grid::Grid;
 pub use influence::Boundary;

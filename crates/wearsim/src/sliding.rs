@@ -7,13 +7,14 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use crate::check::positive;
-use crate::contact::{ContactSolver, SolverOptions};
+use crate::contact::{ContactSolver, Device, SolverOptions};
 use crate::error::{Error, Interrupt, Result};
 use crate::grid::Grid;
+use crate::influence::Boundary;
 use crate::junctions::JunctionLabeller;
 use crate::material::Material;
 use crate::stats::{line_fit, mean_std};
-use crate::surface::{composite_heights, Surface};
+use crate::surface::Surface;
 use crate::wear::{static_wear, CarriedBookkeeping, InitialContactMemory, SlidingBookkeeping, StaticWear, StepWear};
 
 /// The sliding schedule (paper §3); distances as fractions of the box side Lx along the sliding
@@ -260,6 +261,8 @@ pub struct SlidingSetup<'a> {
     pub material: &'a Material,
     pub effective_modulus: f64,
     pub solver: SolverOptions,
+    /// Where the contact solver computes (`[contact] device`).
+    pub device: Device,
     pub connectivity: u8,
     pub sliding: &'a SlidingConfig,
     /// Raised by another thread to stop the run ([`Error::Interrupted`]).
@@ -364,18 +367,16 @@ pub fn run_sliding_resumable(
     let running_in = setup.sliding.running_in_pixels(nx);
     let diameters = setup.material.critical_diameters();
     let total_steps = offsets.len() * setup.sliding.loads.len();
-    let mut solver = ContactSolver::new(grid, setup.effective_modulus)?
+    let mut solver = ContactSolver::on_device(setup.device, grid, setup.effective_modulus, Boundary::Periodic)?
         .with_options(setup.solver)
         .with_interrupt(setup.interrupt.clone());
     let mut labeller = JunctionLabeller::new(nx, ny, setup.connectivity);
-    let mut heights = vec![0.0; nx * ny];
-    let mut pressure = vec![0.0; nx * ny];
     let mut scratch = vec![false; nx * ny];
     let mut junctions = Vec::new();
     let key = inputs_key(top, bottom, setup);
     let (mut saved, resumed) = match checkpointing {
         None => (None, Resumed::Fresh),
-        Some(c) => match load_checkpoint(&c.path, &key, &mut pressure, diameters.len(), offsets.len()) {
+        Some(c) => match load_checkpoint(&c.path, &key, &mut solver, diameters.len(), offsets.len()) {
             Ok(None) => (None, Resumed::Fresh),
             Ok(Some(state)) => {
                 let at = Resumed::At {
@@ -396,7 +397,7 @@ pub fn run_sliding_resumable(
     let mut last_save = Instant::now();
     for (load_index, &load) in setup.sliding.loads.iter().enumerate().skip(runs.len()) {
         let (mut books, mut memory, mut steps, mut timing) = match saved.take() {
-            // The checkpoint's pressure is already in `pressure`.
+            // The checkpoint's pressure is already the solver's.
             Some(state) => (
                 diameters
                     .iter()
@@ -408,7 +409,7 @@ pub fn run_sliding_resumable(
                 state.timing,
             ),
             None => {
-                pressure.iter_mut().for_each(|p| *p = 0.0); // cold start at s = 0 of every load
+                solver.set_pressure(|p| p.fill(0.0)); // cold start at s = 0 of every load
                 (
                     diameters.iter().map(|&d| SlidingBookkeeping::new(d)).collect(),
                     InitialContactMemory::default(),
@@ -420,10 +421,11 @@ pub fn run_sliding_resumable(
         for (step_index, &offset) in offsets.iter().enumerate().skip(steps.len()) {
             setup.interrupt.check()?;
             let t0 = Instant::now();
-            composite_heights(top, bottom, offset, &mut heights);
-            let info = solver.solve(&heights, load / area, pm, &mut pressure)?;
+            solver.compose(top, bottom, offset)?;
+            let info = solver.solve_in_place(load / area, pm)?;
             let t1 = Instant::now();
-            let count = labeller.label(|k| pressure[k] > 0.0);
+            let map = solver.contact_map();
+            let count = labeller.label(|k| map.contains(k));
             labeller.junctions_into(dx, &mut junctions);
             let t2 = Instant::now();
             let statics: Vec<StaticWear> = diameters.iter().map(|&d| static_wear(&junctions, d)).collect();
@@ -455,7 +457,7 @@ pub fn run_sliding_resumable(
                 load_index,
                 step_index,
                 record: steps.last().expect("a step was just recorded"),
-                pressure: &pressure,
+                pressure: solver.pressure(),
                 labeller: &labeller,
                 bookkeeping: &books,
             });
@@ -472,7 +474,7 @@ pub fn run_sliding_resumable(
                         books: books.iter().map(SlidingBookkeeping::carried).collect(),
                         memory: &memory,
                     };
-                    save_checkpoint(&c.path, &state, &pressure)?;
+                    save_checkpoint(&c.path, &state, solver.pressure())?;
                     last_save = Instant::now();
                 }
             }
@@ -606,7 +608,7 @@ fn save_checkpoint(path: &Path, state: &SavedState, pressure: &[f64]) -> Result<
 fn load_checkpoint(
     path: &Path,
     key: &str,
-    pressure: &mut [f64],
+    solver: &mut ContactSolver,
     energies: usize,
     steps_per_load: usize,
 ) -> std::result::Result<Option<LoadedState>, String> {
@@ -640,16 +642,18 @@ fn load_checkpoint(
             "saved by a run of other inputs (run file, surfaces or schedule changed since)",
         ));
     }
-    if field.len() != pressure.len() * 8
+    if field.len() != solver.grid().pixels() * 8
         || state.books.len() != energies
         || state.steps.len() > steps_per_load
         || state.steps.is_empty() && state.finished.is_empty()
     {
         return Err(cut());
     }
-    for (p, b) in pressure.iter_mut().zip(field.chunks_exact(8)) {
-        *p = f64::from_le_bytes(b.try_into().expect("8 bytes"));
-    }
+    solver.set_pressure(|pressure| {
+        for (p, b) in pressure.iter_mut().zip(field.chunks_exact(8)) {
+            *p = f64::from_le_bytes(b.try_into().expect("8 bytes"));
+        }
+    });
     Ok(Some(state))
 }
 

@@ -272,6 +272,53 @@ fn warm_start_after_a_slide_converges_to_the_cold_solution() {
 }
 
 #[test]
+fn fields_kept_in_the_solver_give_the_solution_of_fields_passed_in_bit_for_bit() {
+    // A sliding run composes the heights where the solver's fields live and warm-starts from the
+    // solver's own pressure; `solve` copies heights and pressure in and out. Same algorithm, same bits.
+    let n = 64;
+    let grid = wearsim::Grid::square(n, 1.0).unwrap();
+    let spectrum = SpectrumParams::paper_roughness(n, 1.0);
+    let top = Surface::generate(grid, &spectrum, 21).unwrap();
+    let bottom = Surface::generate(grid, &spectrum, 22).unwrap();
+    let pm = flow_pressure(0.01);
+    let mut kept = ContactSolver::on_device(wearsim::Device::Cpu, grid, E_STAR, Boundary::Periodic).unwrap();
+    let mut passed = ContactSolver::new(grid, E_STAR).unwrap();
+    let (mut h, mut p) = (vec![0.0; n * n], vec![0.0; n * n]);
+    for offset in 0..3 {
+        kept.compose(&top, &bottom, offset).unwrap();
+        let a = kept.solve_in_place(1e-3, pm).unwrap();
+        composite_heights(&top, &bottom, offset, &mut h);
+        let b = passed.solve(&h, 1e-3, pm, &mut p).unwrap();
+        assert_eq!(a, b);
+        assert_eq!(kept.pressure(), &p[..]);
+        let map = kept.contact_map();
+        assert!((0..n * n).all(|k| map.contains(k) == (p[k] > 0.0)));
+    }
+    // A cold start set from outside equals a fresh solve.
+    kept.set_pressure(|p| p.fill(0.0));
+    let a = kept.solve_in_place(1e-3, pm).unwrap();
+    let b = passed.solve(&h, 1e-3, pm, &mut vec![0.0; n * n]).unwrap();
+    assert_eq!(a, b);
+    // Surfaces of another grid are refused.
+    let mut other = ContactSolver::new(wearsim::Grid::square(32, 1.0).unwrap(), E_STAR).unwrap();
+    let e = other.compose(&top, &bottom, 0).unwrap_err().to_string();
+    assert!(e.contains("32×32"), "{e}");
+}
+
+#[test]
+fn a_device_this_build_cannot_compute_on_is_refused_with_the_fix() {
+    let grid = wearsim::Grid::square(32, 1.0).unwrap();
+    let e = ContactSolver::on_device(wearsim::Device::Cuda, grid, E_STAR, Boundary::Periodic)
+        .err()
+        .expect("no GPU backend in this build")
+        .to_string();
+    assert!(e.contains("device") && e.contains("\"cpu\""), "{e}");
+    let e = "gpu".parse::<wearsim::Device>().unwrap_err().to_string();
+    assert!(e.contains("device") && e.contains("cpu"), "{e}");
+    assert_eq!("cuda".parse::<wearsim::Device>().unwrap(), wearsim::Device::Cuda);
+}
+
+#[test]
 fn solution_does_not_depend_on_thread_count() {
     let n = 128;
     let h = paper_pair(n, 6);

@@ -32,8 +32,9 @@ const LAYERS: [&str; 17] = [
 ];
 
 /// The order of the submodules of each folder module; a submodule uses only those before it.
-const SUBLAYERS: [(&str, &[&str]); 4] = [
+const SUBLAYERS: [(&str, &[&str]); 5] = [
     ("io", &["atomic", "npy", "zarr"]),
+    ("contact", &["backend", "cpu"]),
     ("topography", &["formats", "prepare", "load", "fit"]),
     (
         "output",

@@ -103,6 +103,7 @@ fn slide(top: &Surface, bottom: &Surface, loads: Vec<f64>) -> Vec<LoadRun> {
         material: &material,
         effective_modulus: material.effective_modulus(ModulusConvention::HalfSpace),
         solver: wearsim::SolverOptions::new(1e-12, 20_000).unwrap(),
+        device: Default::default(),
         connectivity: 4,
         sliding: &sliding,
         interrupt: Default::default(),

@@ -9,7 +9,7 @@ use anyhow::{Context, Result};
 use serde_json::json;
 use wearsim::fft::{radial_kernel, FftPlan};
 use wearsim::surface::pair_seeds;
-use wearsim::{composite_heights, ContactSolver, Material, ModulusConvention, SpectrumParams, Surface};
+use wearsim::{ContactSolver, Material, ModulusConvention, SpectrumParams, Surface};
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -22,6 +22,9 @@ pub struct Args {
     /// Write the results as JSON here too.
     #[arg(long)]
     json: Option<PathBuf>,
+    /// Where the contact solver computes: cpu (or cuda, in builds with a GPU backend).
+    #[arg(long, default_value = "cpu")]
+    device: wearsim::Device,
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -109,16 +112,16 @@ pub fn run(args: &Args) -> Result<()> {
         );
         drop((plan, kernel, out));
 
-        let mut solver = ContactSolver::new(wearsim::Grid::square(n, 1.0)?, e_star)?;
-        let mut heights = vec![0.0; n * n];
-        composite_heights(&top, &bottom, 0, &mut heights);
-        let mut pressure = vec![0.0; n * n];
+        // As a sliding run solves: the fields stay in the solver, composed there, warm-started.
+        let grid = wearsim::Grid::square(n, 1.0)?;
+        let mut solver = ContactSolver::on_device(args.device, grid, e_star, wearsim::Boundary::Periodic)?;
+        solver.compose(&top, &bottom, 0)?;
         let t = Instant::now();
-        let cold = solver.solve(&heights, 1e-3, material.flow_pressure(), &mut pressure)?;
+        let cold = solver.solve_in_place(1e-3, material.flow_pressure())?;
         let cold_s = t.elapsed().as_secs_f64();
-        composite_heights(&top, &bottom, 1, &mut heights);
+        solver.compose(&top, &bottom, 1)?;
         let t = Instant::now();
-        let warm = solver.solve(&heights, 1e-3, material.flow_pressure(), &mut pressure)?;
+        let warm = solver.solve_in_place(1e-3, material.flow_pressure())?;
         let warm_s = t.elapsed().as_secs_f64();
         let per_iter = cold_s / cold.iterations.max(1) as f64;
         let per_conv = cold_s / cold.convolutions.max(1) as f64;
@@ -168,6 +171,9 @@ pub struct SlideArgs {
     /// Warm one-pixel steps timed at `--warm-n`.
     #[arg(long, default_value_t = 10)]
     warm_steps: usize,
+    /// Where the contact solver computes: cpu (or cuda, in builds with a GPU backend).
+    #[arg(long, default_value = "cpu")]
+    device: wearsim::Device,
 }
 
 pub fn run_slide(args: &SlideArgs) -> Result<()> {
@@ -192,6 +198,7 @@ pub fn run_slide(args: &SlideArgs) -> Result<()> {
         material: &material,
         effective_modulus: e_star,
         solver: Default::default(),
+        device: args.device,
         connectivity: 4,
         sliding: &sliding,
         interrupt: Default::default(),
@@ -229,19 +236,19 @@ pub fn run_slide(args: &SlideArgs) -> Result<()> {
     if args.warm_n > 0 && args.warm_steps > 0 {
         let n = args.warm_n;
         let (top, bottom) = paper_pair(n)?;
-        let mut solver = ContactSolver::new(wearsim::Grid::square(n, 1.0)?, e_star)?;
+        let grid = wearsim::Grid::square(n, 1.0)?;
+        let mut solver = ContactSolver::on_device(args.device, grid, e_star, wearsim::Boundary::Periodic)?;
         let mut labeller = wearsim::junctions::JunctionLabeller::new(n, n, 4);
-        let mut heights = vec![0.0; n * n];
-        let mut pressure = vec![0.0; n * n];
-        composite_heights(&top, &bottom, 0, &mut heights);
-        solver.solve(&heights, 1e-3, material.flow_pressure(), &mut pressure)?;
+        solver.compose(&top, &bottom, 0)?;
+        solver.solve_in_place(1e-3, material.flow_pressure())?;
         let (mut solve_s, mut label_s, mut iters) = (0.0, 0.0, 0);
         for step in 1..=args.warm_steps {
             let t = Instant::now();
-            composite_heights(&top, &bottom, step, &mut heights);
-            let info = solver.solve(&heights, 1e-3, material.flow_pressure(), &mut pressure)?;
+            solver.compose(&top, &bottom, step)?;
+            let info = solver.solve_in_place(1e-3, material.flow_pressure())?;
             let t1 = Instant::now();
-            labeller.label(|k| pressure[k] > 0.0);
+            let map = solver.contact_map();
+            labeller.label(|k| map.contains(k));
             solve_s += (t1 - t).as_secs_f64();
             label_s += t1.elapsed().as_secs_f64();
             iters += info.iterations;

@@ -98,7 +98,7 @@ pub fn run(args: &Args) -> Result<()> {
     let pair = config.surface_pair()?;
     super::report_surfaces(&pair, true);
     let (top, bottom) = (pair.top, pair.bottom);
-    let mut solver = ContactSolver::with_boundary(grid, config.effective_modulus(), boundary)?
+    let mut solver = ContactSolver::on_device(config.device, grid, config.effective_modulus(), boundary)?
         .with_options(config.solver)
         .with_interrupt(super::interrupt().clone());
     let mut heights = vec![0.0; n * ny];

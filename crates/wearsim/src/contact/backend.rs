@@ -1,0 +1,267 @@
+//! The seam between the contact algorithm and the hardware it runs on.
+//!
+//! `ContactSolver` writes the saturated conjugate-gradient algorithm once, in scalars: step
+//! lengths, conjugation coefficients, the load's Newton iteration, the convergence test. Everything
+//! that touches an Nx·Ny field goes through a [`ContactBackend`]: the backend owns the fields of a
+//! solve (heights h, pressure p, displacement u = 𝒦p and its spare, the conjugate direction t, its
+//! response r = 𝒦t, the previous pressure) for as long as the solver lives (a whole sliding run),
+//! performs the convolutions and the fused element-wise passes, and returns only the scalars of
+//! their reductions ([`Stats`], [`LoadSums`], sums). Fields cross to the caller only when asked for
+//! ([`ContactBackend::pressure`]); the contact map that labelling needs is read through
+//! `ContactMap`.
+//!
+//! A backend fixes the order of its reductions, so that its results do not depend on the thread
+//! count (the CPU backend: per-row partials combined in row order).
+
+use crate::influence::Boundary;
+use crate::surface::{composite_heights, Surface};
+
+/// Statistics of g = u − h over the three regions of the pressure field (free 0 < p < p_m,
+/// non-contact p = 0, plastic p = p_m), gathered by one pass; per-row partials are combined in row
+/// order so that results do not depend on the thread count.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Stats {
+    pub n_free: f64,
+    /// Σ over free pixels of (g − reference).
+    pub sum: f64,
+    /// Σ over free pixels of (g − reference)².
+    pub sum_sq: f64,
+    pub max_free: f64,
+    pub min_free: f64,
+    /// Smallest g over non-contact pixels.
+    pub min_zero: f64,
+    /// Largest g over plastic pixels.
+    pub max_plastic: f64,
+    pub n_plastic: f64,
+    /// Objective ½⟨p, 𝒦p⟩ − ⟨p, h⟩ (its merit for the step safeguard).
+    pub energy: f64,
+    /// Load carried by free and by plastic pixels, and the largest free pressure (for the load
+    /// balance of `ContactSolver`).
+    pub load: LoadSums,
+}
+
+/// Sums of the pressure field that the load balance needs.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct LoadSums {
+    pub free: f64,
+    pub plastic: f64,
+    pub n_contact: usize,
+    pub max_free: f64,
+}
+
+impl LoadSums {
+    #[inline]
+    pub fn add(&mut self, p: f64, pm: f64) {
+        if p >= pm {
+            self.plastic += p;
+            self.n_contact += 1;
+        } else if p > 0.0 {
+            self.free += p;
+            self.n_contact += 1;
+            self.max_free = self.max_free.max(p);
+        }
+    }
+
+    pub fn merge(a: LoadSums, b: LoadSums) -> LoadSums {
+        LoadSums {
+            free: a.free + b.free,
+            plastic: a.plastic + b.plastic,
+            n_contact: a.n_contact + b.n_contact,
+            max_free: a.max_free.max(b.max_free),
+        }
+    }
+}
+
+impl Default for Stats {
+    fn default() -> Self {
+        Self {
+            n_free: 0.0,
+            sum: 0.0,
+            sum_sq: 0.0,
+            max_free: f64::NEG_INFINITY,
+            min_free: f64::INFINITY,
+            min_zero: f64::INFINITY,
+            max_plastic: f64::NEG_INFINITY,
+            n_plastic: 0.0,
+            energy: 0.0,
+            load: LoadSums::default(),
+        }
+    }
+}
+
+impl Stats {
+    /// Adds pixel (p, u, h) with g = u − h, free-pixel sums taken about `reference`.
+    #[inline]
+    pub fn add(&mut self, p: f64, u: f64, h: f64, reference: f64, flow_pressure: f64) {
+        let g = u - h;
+        self.load.add(p, flow_pressure);
+        if p <= 0.0 {
+            self.min_zero = self.min_zero.min(g);
+        } else {
+            self.energy += p * (0.5 * u - h);
+            if p >= flow_pressure {
+                self.n_plastic += 1.0;
+                self.max_plastic = self.max_plastic.max(g);
+            } else {
+                let d = g - reference;
+                self.n_free += 1.0;
+                self.sum += d;
+                self.sum_sq += d * d;
+                self.max_free = self.max_free.max(g);
+                self.min_free = self.min_free.min(g);
+            }
+        }
+    }
+
+    /// The statistics of the union of `parts`, combined in order.
+    pub fn combine(parts: &[Stats]) -> Stats {
+        let mut s = Stats::default();
+        for p in parts {
+            s.n_free += p.n_free;
+            s.sum += p.sum;
+            s.sum_sq += p.sum_sq;
+            s.max_free = s.max_free.max(p.max_free);
+            s.min_free = s.min_free.min(p.min_free);
+            s.min_zero = s.min_zero.min(p.min_zero);
+            s.max_plastic = s.max_plastic.max(p.max_plastic);
+            s.n_plastic += p.n_plastic;
+            s.energy += p.energy;
+            s.load = LoadSums::merge(s.load, p.load);
+        }
+        s
+    }
+
+    /// Mean of g over free pixels (−c), or, without free pixels, a value between the bounds.
+    pub fn mean_gap(&self, reference: f64) -> f64 {
+        if self.n_free > 0.0 {
+            reference + self.sum / self.n_free
+        } else {
+            match (self.min_zero.is_finite(), self.max_plastic.is_finite()) {
+                (true, true) => 0.5 * (self.min_zero + self.max_plastic),
+                (true, false) => self.min_zero,
+                (false, true) => self.max_plastic,
+                (false, false) => reference,
+            }
+        }
+    }
+
+    /// Σ over free pixels of (g − ḡ)².
+    pub fn gradient_norm_sq(&self, reference: f64, mean: f64) -> f64 {
+        let shift = mean - reference;
+        (self.sum_sq - self.n_free * shift * shift).max(0.0)
+    }
+
+    /// Largest violation of the optimality conditions, in length units.
+    pub fn violation(&self, mean: f64) -> f64 {
+        let mut v: f64 = 0.0;
+        if self.n_free > 0.0 {
+            v = v.max(self.max_free - mean).max(mean - self.min_free);
+        }
+        if self.min_zero.is_finite() {
+            v = v.max(mean - self.min_zero);
+        }
+        if self.max_plastic.is_finite() {
+            v = v.max(self.max_plastic - mean);
+        }
+        v
+    }
+}
+
+/// Statistics of the heights h of a solve, from one pass: sums are taken about the first height h₀
+/// for accuracy.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct HeightStats {
+    /// Σ(h − h₀) and Σ(h − h₀)².
+    pub sum: f64,
+    pub sum_sq: f64,
+    pub max: f64,
+    /// The first height that is not finite (row-major index and value), if any.
+    pub not_finite: Option<(usize, f64)>,
+}
+
+/// What the update pass reports: the statistics of the new p (valid when nothing was clipped or
+/// released), the new total load Σp, and whether any pixel was released from or clipped to a bound.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Update {
+    pub stats: Stats,
+    pub total: f64,
+    pub released: bool,
+    pub clipped: bool,
+}
+
+/// The fields of a contact solve and the passes over them (module documentation). Each method is
+/// one fused pass (or one convolution with its fused reduction) of the algorithm of
+/// `ContactSolver`; the arithmetic of each is specified in the CPU backend's methods, which
+/// another backend must reproduce up to the order of its reductions.
+pub(crate) trait ContactBackend: Send + Sync {
+    /// The half-space's boundary condition of the backend's influence operator.
+    fn boundary(&self) -> Boundary;
+
+    /// 𝒦ᵢᵢ, the displacement of a unit-pressure pixel at that pixel.
+    fn self_influence(&self) -> f64;
+
+    /// `out = 𝒦 input` for host fields (a solution's displacement, the Python `influence`).
+    fn apply_influence(&mut self, input: &[f64], out: &mut [f64]);
+
+    /// Sets the heights h: `fill` writes them, row-major, into a host buffer of Nx·Ny values.
+    fn write_heights(&mut self, fill: &mut dyn FnMut(&mut [f64]));
+
+    /// Sets the heights to the composite topography of `top` slid by `offset` pixels over `bottom`
+    /// ([`composite_heights`]); a device backend may compose them where the fields live.
+    fn compose(&mut self, top: &Surface, bottom: &Surface, offset: usize) {
+        self.write_heights(&mut |h| composite_heights(top, bottom, offset, h));
+    }
+
+    /// Sets the pressure p (initial guess or warm start): `fill` writes it into a host buffer.
+    fn write_pressure(&mut self, fill: &mut dyn FnMut(&mut [f64]));
+
+    /// The pressure p, row-major, on the host (a device backend copies it back).
+    fn pressure(&mut self) -> &[f64];
+
+    /// Statistics of h ([`HeightStats`]).
+    fn height_stats(&self) -> HeightStats;
+
+    /// The initial guess: p clipped to p_m where it is usable (finite, ≥ 0, not all zero), else
+    /// the uniform pressure `mean_pressure`.
+    fn initial_guess(&mut self, mean_pressure: f64, pm: f64);
+
+    /// [`LoadSums`] of p.
+    fn load_sums(&self, pm: f64) -> LoadSums;
+
+    /// p ← p_m on every contact pixel (the contact cannot carry the load and must grow).
+    fn saturate_contact(&mut self, pm: f64);
+
+    /// Σ min(p_m, s·pᵢ) and its derivative in s, over the movable pixels (free ones, or every
+    /// contact pixel when `scale_plastic`).
+    fn scaled_load(&self, s: f64, pm: f64, scale_plastic: bool) -> (f64, f64);
+
+    /// pᵢ ← min(p_m, s·pᵢ) on the movable pixels.
+    fn scale(&mut self, s: f64, pm: f64, scale_plastic: bool);
+
+    /// Gives the load missing from Σp = `total` to the non-contact pixels in proportion to their
+    /// penetration −(g − `mean`) (all of them evenly when `mean` is NaN or none penetrates).
+    fn spread_missing_load(&mut self, total: f64, pm: f64, mean: f64);
+
+    /// u = 𝒦p, and the [`Stats`] of g = u − h about `reference`.
+    fn displacement_and_stats(&mut self, reference: f64, pm: f64) -> Stats;
+
+    /// t ← (g − `mean`) + β t on free pixels, 0 elsewhere; returns (Σ t, Σ (g − `mean`) t) over
+    /// free pixels.
+    fn direction(&mut self, mean: f64, beta: f64, pm: f64) -> (f64, f64);
+
+    /// r = 𝒦 t_f with t_f = t − `shift` where t ≠ 0 (else 0); returns Σ r·t_f over those pixels.
+    fn response(&mut self, shift: f64) -> f64;
+
+    /// The update pass (copying p first, for [`ContactBackend::undo`]): with `shift` finite, free
+    /// pixels take the CG step p −= τ(t − shift), clipped to [0, p_m], and u follows (u −= τr);
+    /// non-contact pixels that penetrate and plastic pixels whose gap opens take a gradient step
+    /// p −= τ(g − `mean`). With `shift` NaN no CG step is taken.
+    fn update(&mut self, mean: f64, tau: f64, shift: f64, pm: f64) -> Update;
+
+    /// Swaps u with its spare buffer: the carried-along u is kept there (for an undo) while the
+    /// next [`ContactBackend::displacement_and_stats`] writes a fresh 𝒦p into u.
+    fn keep_displacement(&mut self);
+
+    /// Undoes an update: p from its copy, u = (kept u) + `step`·r.
+    fn undo(&mut self, step: f64);
+}

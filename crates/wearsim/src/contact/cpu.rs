@@ -1,0 +1,380 @@
+//! The CPU backend: the fields in host memory, the passes as rayon loops over rows with per-row
+//! partials combined in row order (results independent of the thread count), 𝒦 by the real FFT of
+//! [`crate::influence`].
+
+use rayon::prelude::*;
+
+use super::backend::{ContactBackend, HeightStats, LoadSums, Stats, Update};
+use crate::error::Result;
+use crate::grid::Grid;
+use crate::influence::{self, Boundary, Influence};
+
+/// Arrays of Nx·Ny doubles the CPU backend holds besides its influence operator: h, p, u, t, r,
+/// the previous p and the spare u (7), and rounding for the per-row partials and FFT rows.
+pub(crate) fn arrays(boundary: Boundary) -> f64 {
+    8.5 + influence::arrays(boundary)
+}
+
+/// The fields of a solve in host memory, the influence operator and the per-row partials, all
+/// made once.
+pub(crate) struct CpuBackend {
+    ny: usize,
+    /// 𝒦, periodic or with a free boundary.
+    influence: Influence,
+    heights: Vec<f64>,
+    pressure: Vec<f64>,
+    u: Vec<f64>,
+    t: Vec<f64>,
+    r: Vec<f64>,
+    /// p before the last step, to undo a step that raised the objective.
+    p_old: Vec<f64>,
+    /// Spare displacement buffer: receives 𝒦p after a step off the CG line.
+    u_alt: Vec<f64>,
+    stats: Vec<Stats>,
+    sums: Vec<[f64; 2]>,
+    row_partials: Vec<f64>,
+    /// Rows per rayon task in the element-wise passes.
+    min_len: usize,
+}
+
+impl CpuBackend {
+    pub fn new(grid: Grid, effective_modulus: f64, boundary: Boundary) -> Result<Self> {
+        let (nx, ny) = (grid.nx(), grid.ny());
+        Ok(Self {
+            ny,
+            influence: Influence::new(grid, effective_modulus, boundary)?,
+            heights: vec![0.0; nx * ny],
+            pressure: vec![0.0; nx * ny],
+            u: vec![0.0; nx * ny],
+            t: vec![0.0; nx * ny],
+            r: vec![0.0; nx * ny],
+            p_old: vec![0.0; nx * ny],
+            u_alt: vec![0.0; nx * ny],
+            stats: vec![Stats::default(); nx],
+            sums: vec![[0.0; 2]; nx],
+            row_partials: vec![0.0; nx],
+            min_len: (8192 / ny).max(1),
+        })
+    }
+}
+
+impl ContactBackend for CpuBackend {
+    fn boundary(&self) -> Boundary {
+        self.influence.boundary()
+    }
+
+    fn self_influence(&self) -> f64 {
+        self.influence.self_influence()
+    }
+
+    fn apply_influence(&mut self, input: &[f64], out: &mut [f64]) {
+        self.influence.apply(input, out);
+    }
+
+    fn write_heights(&mut self, fill: &mut dyn FnMut(&mut [f64])) {
+        fill(&mut self.heights);
+    }
+
+    fn write_pressure(&mut self, fill: &mut dyn FnMut(&mut [f64])) {
+        fill(&mut self.pressure);
+    }
+
+    fn pressure(&mut self) -> &[f64] {
+        &self.pressure
+    }
+
+    /// One deterministic parallel pass: Σ(h − h₀), Σ(h − h₀)², max, finite.
+    fn height_stats(&self) -> HeightStats {
+        let heights = &self.heights;
+        let h0 = heights[0];
+        let (sum, sum_sq, max, finite) = heights
+            .par_chunks(self.ny)
+            .map(|row| {
+                row.iter()
+                    .fold((0.0, 0.0, f64::NEG_INFINITY, true), |(s, q, m, f), &h| {
+                        (s + (h - h0), q + (h - h0) * (h - h0), m.max(h), f && h.is_finite())
+                    })
+            })
+            .collect::<Vec<_>>()
+            .into_iter()
+            .fold((0.0, 0.0, f64::NEG_INFINITY, true), |a, b| {
+                (a.0 + b.0, a.1 + b.1, a.2.max(b.2), a.3 && b.3)
+            });
+        let not_finite = if finite && h0.is_finite() {
+            None
+        } else {
+            let k = heights.iter().position(|h| !h.is_finite()).unwrap_or(0);
+            Some((k, heights[k]))
+        };
+        HeightStats {
+            sum,
+            sum_sq,
+            max,
+            not_finite,
+        }
+    }
+
+    fn initial_guess(&mut self, mean_pressure: f64, pm: f64) {
+        let pressure = &mut self.pressure;
+        let usable = pressure.par_iter().all(|p| p.is_finite() && *p >= 0.0) && pressure.par_iter().any(|&p| p > 0.0);
+        if usable {
+            pressure.par_iter_mut().for_each(|p| *p = p.min(pm));
+        } else {
+            pressure.par_iter_mut().for_each(|p| *p = mean_pressure);
+        }
+    }
+
+    fn load_sums(&self, pm: f64) -> LoadSums {
+        self.pressure
+            .par_chunks(4096)
+            .with_min_len(self.min_len)
+            .map(|c| {
+                let mut s = LoadSums::default();
+                for &p in c {
+                    s.add(p, pm);
+                }
+                s
+            })
+            .collect::<Vec<_>>()
+            .into_iter()
+            .fold(LoadSums::default(), LoadSums::merge)
+    }
+
+    fn saturate_contact(&mut self, pm: f64) {
+        self.pressure.par_iter_mut().for_each(|p| {
+            if *p > 0.0 {
+                *p = pm
+            }
+        });
+    }
+
+    fn scaled_load(&self, s: f64, pm: f64, scale_plastic: bool) -> (f64, f64) {
+        let movable_pixel = |p: f64| p > 0.0 && (scale_plastic || p < pm);
+        self.pressure
+            .par_chunks(4096)
+            .with_min_len(self.min_len)
+            .map(|c| {
+                let (mut f, mut df) = (0.0, 0.0);
+                for &p in c {
+                    if movable_pixel(p) {
+                        let v = s * p;
+                        if v >= pm {
+                            f += pm;
+                        } else {
+                            f += v;
+                            df += p;
+                        }
+                    }
+                }
+                (f, df)
+            })
+            .collect::<Vec<_>>()
+            .into_iter()
+            .fold((0.0, 0.0), |(a, b), (f, df)| (a + f, b + df))
+    }
+
+    fn scale(&mut self, s: f64, pm: f64, scale_plastic: bool) {
+        let movable_pixel = |p: f64| p > 0.0 && (scale_plastic || p < pm);
+        self.pressure.par_iter_mut().for_each(|p| {
+            if movable_pixel(*p) {
+                *p = (s * *p).min(pm);
+            }
+        });
+    }
+
+    fn spread_missing_load(&mut self, total: f64, pm: f64, mean: f64) {
+        let pressure = &mut self.pressure;
+        let carried: f64 = pressure.iter().sum();
+        let missing = total - carried;
+        let (u, heights) = (&self.u, &self.heights);
+        let penetration = |i: usize| {
+            if mean.is_nan() {
+                0.0
+            } else {
+                (mean - (u[i] - heights[i])).max(0.0)
+            }
+        };
+        let (weight_sum, n_zero) = pressure
+            .iter()
+            .enumerate()
+            .filter(|(_, &p)| p <= 0.0)
+            .fold((0.0, 0usize), |(w, c), (i, _)| (w + penetration(i), c + 1));
+        for (i, p) in pressure.iter_mut().enumerate() {
+            if *p <= 0.0 {
+                let share = if weight_sum > 0.0 {
+                    missing * penetration(i) / weight_sum
+                } else {
+                    missing / n_zero.max(1) as f64
+                };
+                *p = share.min(pm);
+            }
+        }
+    }
+
+    /// Gathers the statistics row by row as the inverse transform writes u (one pass over the
+    /// arrays fewer than computing them after the convolution).
+    fn displacement_and_stats(&mut self, reference: f64, pm: f64) -> Stats {
+        let n = self.ny;
+        let (pressure, heights) = (&self.pressure, &self.heights);
+        self.influence.apply_with(
+            pressure,
+            |_, _| {},
+            &mut self.u,
+            |i, u| {
+                let mut s = Stats::default();
+                for ((&p, &u), &h) in pressure[i * n..(i + 1) * n]
+                    .iter()
+                    .zip(u)
+                    .zip(&heights[i * n..(i + 1) * n])
+                {
+                    s.add(p, u, h, reference, pm);
+                }
+                s
+            },
+            Some(&mut self.stats),
+        );
+        Stats::combine(&self.stats)
+    }
+
+    fn direction(&mut self, mean: f64, beta: f64, pm: f64) -> (f64, f64) {
+        let n = self.ny;
+        self.sums
+            .par_iter_mut()
+            .with_min_len(self.min_len)
+            .zip(self.t.par_chunks_mut(n))
+            .zip(
+                self.pressure
+                    .par_chunks(n)
+                    .zip(self.u.par_chunks(n).zip(self.heights.par_chunks(n))),
+            )
+            .for_each(|((acc, t), (p, (u, h)))| {
+                let (mut st, mut sdt) = (0.0, 0.0);
+                for (((t, &p), &u), &h) in t.iter_mut().zip(p).zip(u).zip(h) {
+                    if p > 0.0 && p < pm {
+                        let d = u - h - mean;
+                        *t = d + beta * *t;
+                        st += *t;
+                        sdt += d * *t;
+                    } else {
+                        *t = 0.0;
+                    }
+                }
+                *acc = [st, sdt];
+            });
+        self.sums.iter().fold((0.0, 0.0), |(a, b), s| (a + s[0], b + s[1]))
+    }
+
+    /// t is zero outside the free pixels, so `t ≠ 0` marks them without reading p (a free pixel
+    /// whose t is exactly 0 is left out consistently here and in the update).
+    fn response(&mut self, shift: f64) -> f64 {
+        let n = self.ny;
+        let t = &self.t;
+        self.influence.apply_with(
+            &self.t,
+            |_, row| {
+                for v in row.iter_mut() {
+                    if *v != 0.0 {
+                        *v -= shift;
+                    }
+                }
+            },
+            &mut self.r,
+            |i, row| {
+                let mut s = 0.0;
+                for (&r, &tv) in row.iter().zip(&t[i * n..(i + 1) * n]) {
+                    if tv != 0.0 {
+                        s += r * (tv - shift);
+                    }
+                }
+                s
+            },
+            Some(&mut self.row_partials),
+        );
+        self.row_partials.iter().sum()
+    }
+
+    fn update(&mut self, mean: f64, tau: f64, shift: f64, pm: f64) -> Update {
+        let n = self.ny;
+        let cg_step = shift.is_finite();
+        let results = &mut self.stats;
+        let mut totals = std::mem::take(&mut self.row_partials);
+        let mut events = std::mem::take(&mut self.sums);
+        results
+            .par_iter_mut()
+            .with_min_len(self.min_len)
+            .zip(totals.par_iter_mut().zip(events.par_iter_mut()))
+            .zip(self.pressure.par_chunks_mut(n).zip(self.u.par_chunks_mut(n)))
+            .zip(
+                self.t
+                    .par_chunks(n)
+                    .zip(self.r.par_chunks(n).zip(self.heights.par_chunks(n))),
+            )
+            .zip(self.p_old.par_chunks_mut(n))
+            .for_each(|((((acc, (total, event)), (p, u)), (t, (r, h))), p_old)| {
+                p_old.copy_from_slice(p);
+                let mut s = Stats::default();
+                let mut sum_p = 0.0;
+                let (mut released, mut clipped) = (0.0, 0.0);
+                for ((((p, u), &t), &r), &h) in p.iter_mut().zip(u.iter_mut()).zip(t).zip(r).zip(h) {
+                    let d = *u - h - mean;
+                    if *p <= 0.0 {
+                        if d < 0.0 {
+                            *p = (-tau * d).min(pm);
+                            released += 1.0;
+                        }
+                    } else if *p >= pm {
+                        if d > 0.0 {
+                            *p = (pm - tau * d).max(0.0);
+                            released += 1.0;
+                        }
+                    } else if cg_step && t != 0.0 {
+                        let q = *p - tau * (t - shift);
+                        if q <= 0.0 {
+                            *p = 0.0;
+                            clipped += 1.0;
+                        } else if q >= pm {
+                            *p = pm;
+                            clipped += 1.0;
+                        } else {
+                            *p = q;
+                        }
+                    }
+                    if cg_step {
+                        *u -= tau * r;
+                    }
+                    sum_p += *p;
+                    s.add(*p, *u, h, mean, pm);
+                }
+                *acc = s;
+                *total = sum_p;
+                *event = [released, clipped];
+            });
+        let stats = Stats::combine(results);
+        let total: f64 = totals.iter().sum();
+        let released = events.iter().any(|e| e[0] > 0.0);
+        let clipped = events.iter().any(|e| e[1] > 0.0);
+        self.row_partials = totals;
+        self.sums = events;
+        Update {
+            stats,
+            total,
+            released,
+            clipped,
+        }
+    }
+
+    fn keep_displacement(&mut self) {
+        std::mem::swap(&mut self.u, &mut self.u_alt);
+    }
+
+    fn undo(&mut self, step: f64) {
+        self.pressure
+            .par_iter_mut()
+            .zip(self.p_old.par_iter())
+            .for_each(|(p, &o)| *p = o);
+        self.u
+            .par_iter_mut()
+            .zip(self.u_alt.par_iter().zip(self.r.par_iter()))
+            .for_each(|(u, (&a, &r))| *u = a + step * r);
+    }
+}

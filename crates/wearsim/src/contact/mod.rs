@@ -1,0 +1,696 @@
+//! Saturated-pressure (elastic–perfectly-plastic) contact of a rigid rough surface on an elastic
+//! half-space, solved by FFT boundary elements (paper §2 and appendix A).
+//!
+//! Problem: find p minimising ½⟨p, 𝒦p⟩ − ⟨p, h⟩ subject to 0 ≤ p ≤ p_m and mean(p) = F_N/(Lx Ly), where
+//! 𝒦 is the half-space's influence operator ([`crate::influence`]): periodic, û(q) = 2 p̂(q)/(E*|k|)
+//! as in the paper, or with a free boundary around the map (Hockney's zero-padded FFT), the
+//! pressure confined to the map. Its optimality conditions, with
+//! g = 𝒦p − h and c the Lagrange multiplier of the load (the rigid body's position), are
+//! g + c ≥ 0 where p = 0, g + c = 0 where 0 < p < p_m, g + c ≤ 0 where p = p_m.
+//!
+//! Algorithm: the constrained conjugate gradient of Polonsky & Keer (1999), extended to the upper
+//! bound as in the bound-constrained CG of Vollebregt (2014): conjugate directions live on the free
+//! pixels 0 < p < p_m (made zero-mean there so that a step keeps the load); pixels that cross a bound
+//! are clipped to it (exact zeros outside the contact); bound pixels whose gap says they should move
+//! (penetrating non-contact pixels, plastic pixels whose gap opens) are released with a gradient step
+//! and restart the conjugation; the load is then restored exactly by scaling.
+//!
+//! Cost: one convolution 𝒦t per iteration. The displacement u = 𝒦p is carried along as
+//! u ← u − τ𝒦t, and recomputed only after a clip, release or rescale changed p off the line, and
+//! once more before convergence is declared, so that the final residual is that of a freshly
+//! computed 𝒦p.
+//!
+//! Residual (the convergence criterion, reported with every result): the largest pixel-wise
+//! violation of the three optimality conditions above, divided by the RMS of h about its mean:
+//! `max_i v_i / std(h)` with v_i = |g_i + c| on free pixels, max(0, −(g_i + c)) on non-contact pixels
+//! and max(0, g_i + c) on plastic pixels, c = −mean over free pixels of g.
+
+pub(crate) mod backend;
+mod cpu;
+
+use rayon::prelude::*;
+
+use self::backend::{ContactBackend, LoadSums, Stats};
+use self::cpu::CpuBackend;
+use crate::check::positive;
+use crate::error::{Error, Interrupt, Result};
+use crate::grid::Grid;
+use crate::influence::Boundary;
+use crate::surface::Surface;
+
+/// Default convergence tolerance on the residual (see the module documentation). A hundredfold
+/// tighter tolerance changes no contact pixel on the paper-roughness problems (validated in
+/// `tests/contact_validation.rs`).
+pub const DEFAULT_TOLERANCE: f64 = 1e-8;
+
+/// Smallest tolerance a solve in double precision can reach (round-off in 𝒦p is about 1e-16 of h).
+pub const MIN_TOLERANCE: f64 = 1e-15;
+
+/// Default iteration limit of one solve.
+pub const DEFAULT_MAX_ITERATIONS: usize = 20_000;
+
+/// Convergence settings of the contact solver.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct SolverOptions {
+    tolerance: f64,
+    max_iterations: usize,
+}
+
+impl SolverOptions {
+    /// Validated settings: `tolerance` in (0, 1), `max_iterations` at least 1.
+    pub fn new(tolerance: f64, max_iterations: usize) -> Result<Self> {
+        if !(tolerance > 0.0 && tolerance < 1.0) {
+            return Err(Error::param("tolerance", format!("{tolerance} must lie in (0, 1)")));
+        }
+        if tolerance < MIN_TOLERANCE {
+            return Err(Error::param(
+                "tolerance",
+                format!(
+                    "{tolerance:e} is below {MIN_TOLERANCE:e}, which double precision cannot reach; use e.g. 1e-10"
+                ),
+            ));
+        }
+        if max_iterations == 0 {
+            return Err(Error::param("max_iterations", "must be at least 1"));
+        }
+        Ok(Self {
+            tolerance,
+            max_iterations,
+        })
+    }
+
+    /// Tolerance on the residual (module documentation).
+    pub fn tolerance(&self) -> f64 {
+        self.tolerance
+    }
+
+    /// Iteration limit; reaching it is an [`Error::NotConverged`] from [`ContactSolver::solve`].
+    pub fn max_iterations(&self) -> usize {
+        self.max_iterations
+    }
+}
+
+impl Default for SolverOptions {
+    fn default() -> Self {
+        Self {
+            tolerance: DEFAULT_TOLERANCE,
+            max_iterations: DEFAULT_MAX_ITERATIONS,
+        }
+    }
+}
+
+/// Why a solve stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Termination {
+    /// The residual reached the tolerance, confirmed on a freshly computed displacement.
+    Converged,
+    /// The iteration limit was reached first.
+    MaxIterations,
+}
+
+/// What one solve reports beside the pressure field.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct SolveInfo {
+    /// Why the solve stopped ([`ContactSolver::solve`] returns only converged solves).
+    pub termination: Termination,
+    /// Conjugate-gradient iterations (one convolution 𝒦t each).
+    pub iterations: usize,
+    /// Convolutions performed in all (iterations plus recomputations of 𝒦p).
+    pub convolutions: usize,
+    /// Final residual (module documentation).
+    pub residual: f64,
+    /// Tolerance the residual was required to reach.
+    pub tolerance: f64,
+    /// Rigid-body approach since first contact, max(h) − c, in length units: how far the rigid
+    /// surface has moved towards the zero-mean deformed half-space from the position where it first
+    /// touched it (h's highest point).
+    pub approach: f64,
+    /// Pixels in contact (p > 0).
+    pub contact_pixels: usize,
+    /// Pixels at the flow pressure (p = p_m).
+    pub plastic_pixels: usize,
+}
+
+/// The displacement and gap of a solution ([`ContactSolver::gap_and_displacement`]), Nx·Ny values
+/// each in length units.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactFields {
+    /// Surface displacement of the half-space, u = 𝒦p (zero-mean when periodic).
+    pub displacement: Vec<f64>,
+    /// Gap g = 𝒦p − h + δ between the rigid surface and the deformed half-space.
+    pub gap: Vec<f64>,
+}
+
+/// Where the contact solver computes: the backend behind the algorithm's field passes
+/// (backend (`contact::backend`)), chosen by `[contact] device` in a run file.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Device {
+    /// Host memory and threads (rayon), the FFT of `realfft`.
+    #[default]
+    Cpu,
+    /// An NVIDIA GPU through CUDA. No backend for it is part of this build: choosing it is an error.
+    Cuda,
+}
+
+impl Device {
+    /// The name used in run files, on the command line and in Python.
+    pub fn name(self) -> &'static str {
+        match self {
+            Device::Cpu => "cpu",
+            Device::Cuda => "cuda",
+        }
+    }
+
+    /// Whether this build can compute on the device: checked when a run file is read, before any
+    /// output is made, and again when a solver is made.
+    pub fn available(self) -> Result<()> {
+        match self {
+            Device::Cpu => Ok(()),
+            Device::Cuda => Err(no_gpu_backend()),
+        }
+    }
+}
+
+/// The error of a device this build has no backend for.
+fn no_gpu_backend() -> Error {
+    Error::param(
+        "device",
+        "\"cuda\" asks for the GPU backend, which this build of wearsim does not contain; use \"cpu\" (the default)",
+    )
+}
+
+impl std::str::FromStr for Device {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        match s {
+            "cpu" => Ok(Device::Cpu),
+            "cuda" => Ok(Device::Cuda),
+            other => Err(Error::param(
+                "device",
+                format!("{other:?} is not a device; use \"cpu\" (or \"cuda\" for an NVIDIA GPU)"),
+            )),
+        }
+    }
+}
+
+/// Which pixels are in contact (p > 0) after a solve, as labelling reads them (a device backend
+/// would hand over a bit map instead of the pressure).
+#[derive(Debug, Clone, Copy)]
+pub struct ContactMap<'a> {
+    pressure: &'a [f64],
+}
+
+impl ContactMap<'_> {
+    /// Whether pixel `k` (row-major) is in contact.
+    #[inline]
+    pub fn contains(&self, k: usize) -> bool {
+        self.pressure[k] > 0.0
+    }
+}
+
+/// FFT contact solver for one grid: the algorithm of the module documentation over a
+/// backend (`contact::backend`) that holds the fields (made once here and reused by every solve: a sliding run makes
+/// one solver).
+pub struct ContactSolver {
+    grid: Grid,
+    effective_modulus: f64,
+    device: Device,
+    backend: Box<dyn ContactBackend>,
+    options: SolverOptions,
+    /// Checked once per iteration: a raised flag ends the solve with [`Error::Interrupted`].
+    interrupt: Interrupt,
+}
+
+/// The constants of one solve and the state carried from one iteration to the next.
+struct SolveState {
+    /// Flow pressure p_m.
+    pm: f64,
+    /// Total load Σp = Nx Ny F_N/(Lx Ly).
+    total: f64,
+    /// Residual scale: std(h), or P·L/E* for a flat surface.
+    scale: f64,
+    h_std: f64,
+    h_max: f64,
+    /// Statistics of g = 𝒦p − h over the free, non-contact and plastic pixels of the current p.
+    stats: Stats,
+    /// Shift subtracted from g in `stats` (the previous mean gap), for accurate sums.
+    reference: f64,
+    /// Whether u was computed from p by FFT, not carried along.
+    fresh: bool,
+    /// Whether the next direction restarts the conjugation.
+    restart: bool,
+    g_norm_old: f64,
+    iterations: usize,
+    convolutions: usize,
+}
+
+impl ContactSolver {
+    /// Solver for a periodic grid (Nx × Ny square pixels) on a half-space of effective modulus E*,
+    /// on the CPU.
+    pub fn new(grid: Grid, effective_modulus: f64) -> Result<Self> {
+        Self::on_device(Device::Cpu, grid, effective_modulus, Boundary::Periodic)
+    }
+
+    /// Solver on a half-space of effective modulus E* whose map is periodic or has a free boundary
+    /// (see [`crate::influence`]), on the CPU; the algorithm is the same, only 𝒦 differs.
+    pub fn with_boundary(grid: Grid, effective_modulus: f64, boundary: Boundary) -> Result<Self> {
+        Self::on_device(Device::Cpu, grid, effective_modulus, boundary)
+    }
+
+    /// Solver on `device`: the one place a backend is chosen. A device this build has no backend
+    /// for is an error naming the fix.
+    pub fn on_device(device: Device, grid: Grid, effective_modulus: f64, boundary: Boundary) -> Result<Self> {
+        positive("effective_modulus", effective_modulus)?;
+        let backend: Box<dyn ContactBackend> = match device {
+            Device::Cpu => {
+                crate::check::memory("the contact solver", grid.nx(), grid.ny(), cpu::arrays(boundary))?;
+                Box::new(CpuBackend::new(grid, effective_modulus, boundary)?)
+            }
+            Device::Cuda => return Err(no_gpu_backend()),
+        };
+        Ok(Self {
+            grid,
+            effective_modulus,
+            device,
+            backend,
+            options: SolverOptions::default(),
+            interrupt: Interrupt::default(),
+        })
+    }
+
+    /// The grid.
+    pub fn grid(&self) -> Grid {
+        self.grid
+    }
+
+    /// Effective modulus E*.
+    pub fn effective_modulus(&self) -> f64 {
+        self.effective_modulus
+    }
+
+    /// Where the solver computes.
+    pub fn device(&self) -> Device {
+        self.device
+    }
+
+    /// The solver with these convergence settings (validated by [`SolverOptions::new`]).
+    pub fn with_options(mut self, options: SolverOptions) -> Self {
+        self.options = options;
+        self
+    }
+
+    /// The solver checking `interrupt` once per iteration.
+    pub fn with_interrupt(mut self, interrupt: Interrupt) -> Self {
+        self.interrupt = interrupt;
+        self
+    }
+
+    /// Replaces the interrupt flag (a solver kept across calls that each bring their own flag).
+    pub fn set_interrupt(&mut self, interrupt: Interrupt) {
+        self.interrupt = interrupt;
+    }
+
+    /// Convergence settings.
+    pub fn options(&self) -> SolverOptions {
+        self.options
+    }
+
+    /// The half-space's boundary condition at the edges of the map.
+    pub fn boundary(&self) -> Boundary {
+        self.backend.boundary()
+    }
+
+    /// Applies the influence operator: `out = 𝒦 p`, the displacement of the half-space (zero-mean
+    /// when periodic).
+    pub fn apply_influence(&mut self, pressure: &[f64], out: &mut [f64]) {
+        self.backend.apply_influence(pressure, out);
+    }
+
+    /// The fields of a solution that other programs read beside the pressure: the displacement
+    /// u = 𝒦p and the gap g = 𝒦p − h + δ, with δ = max(h) − approach the rigid body's position (the
+    /// c of the module documentation), all in length units. g is the separation of the two surfaces:
+    /// 0 on contact pixels below the flow pressure, ≥ 0 outside the contact, ≤ 0 (interpenetration
+    /// taken up by plastic flow) on pixels at p_m, each to within the solve's residual × std(h).
+    pub fn gap_and_displacement(
+        &mut self,
+        heights: &[f64],
+        pressure: &[f64],
+        info: &SolveInfo,
+    ) -> Result<ContactFields> {
+        self.check_len(heights, pressure)?;
+        let mut displacement = vec![0.0; heights.len()];
+        self.backend.apply_influence(pressure, &mut displacement);
+        let h_max = heights.par_iter().copied().reduce(|| f64::NEG_INFINITY, f64::max);
+        let shift = h_max - info.approach;
+        let gap = displacement
+            .par_iter()
+            .zip(heights.par_iter())
+            .map(|(&u, &h)| u - h + shift)
+            .collect();
+        Ok(ContactFields { displacement, gap })
+    }
+
+    fn check_len(&self, heights: &[f64], pressure: &[f64]) -> Result<()> {
+        let nn = self.grid.pixels();
+        if heights.len() != nn || pressure.len() != nn {
+            return Err(Error::param(
+                "heights",
+                format!(
+                    "heights and pressure must hold {}×{} values",
+                    self.grid.nx(),
+                    self.grid.ny()
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Solves the contact of the rigid surface of heights `heights` at mean pressure
+    /// `mean_pressure` = F_N/(Lx Ly), with flow pressure `flow_pressure` (`f64::INFINITY` for a purely
+    /// elastic solve). `pressure` is both the initial guess and the result: pass the previous
+    /// step's converged field to warm-start, or zeros for a cold start (uniform pressure).
+    /// Reaching the iteration limit is an [`Error::NotConverged`].
+    pub fn solve(
+        &mut self,
+        heights: &[f64],
+        mean_pressure: f64,
+        flow_pressure: f64,
+        pressure: &mut [f64],
+    ) -> Result<SolveInfo> {
+        let info = self.run(heights, mean_pressure, flow_pressure, pressure)?;
+        converged(info)
+    }
+
+    /// [`ContactSolver::solve`] that returns the state reached at the iteration limit instead of an
+    /// error: the caller inspects [`SolveInfo::termination`] (and `pressure` holds the last
+    /// iterate). A raised interrupt flag still ends the solve with [`Error::Interrupted`].
+    pub fn run(
+        &mut self,
+        heights: &[f64],
+        mean_pressure: f64,
+        flow_pressure: f64,
+        pressure: &mut [f64],
+    ) -> Result<SolveInfo> {
+        self.check_len(heights, pressure)?;
+        self.backend.write_heights(&mut |h| h.copy_from_slice(heights));
+        self.backend.write_pressure(&mut |p| p.copy_from_slice(pressure));
+        let info = self.run_in_place(mean_pressure, flow_pressure)?;
+        pressure.copy_from_slice(self.backend.pressure());
+        Ok(info)
+    }
+
+    /// Sets the heights of the next in-place solve to the composite topography of `top` slid by
+    /// `offset` pixels over `bottom` ([`composite_heights`](crate::surface::composite_heights)),
+    /// where the solver's fields live.
+    pub fn compose(&mut self, top: &Surface, bottom: &Surface, offset: usize) -> Result<()> {
+        let (nx, ny) = (self.grid.nx(), self.grid.ny());
+        if top.nx() != nx || top.ny() != ny || bottom.nx() != nx || bottom.ny() != ny {
+            return Err(Error::param(
+                "surface",
+                format!("the surfaces must have the solver's {nx}×{ny} grid"),
+            ));
+        }
+        self.backend.compose(top, bottom, offset);
+        Ok(())
+    }
+
+    /// Sets the pressure that the next in-place solve starts from: `fill` writes it, row-major,
+    /// into Nx·Ny values (zeros for a cold start; a warm start keeps the previous solution, which
+    /// needs no call).
+    pub fn set_pressure(&mut self, mut fill: impl FnMut(&mut [f64])) {
+        self.backend.write_pressure(&mut fill);
+    }
+
+    /// The pressure of the last solve (or as set), row-major.
+    pub fn pressure(&mut self) -> &[f64] {
+        self.backend.pressure()
+    }
+
+    /// The contact map of the last solve.
+    pub fn contact_map(&mut self) -> ContactMap<'_> {
+        ContactMap {
+            pressure: self.backend.pressure(),
+        }
+    }
+
+    /// [`ContactSolver::solve`] on the heights set by [`ContactSolver::compose`] from the
+    /// solver's own pressure (the previous solution, a warm start), which it replaces: no field
+    /// crosses between the caller and the backend.
+    pub fn solve_in_place(&mut self, mean_pressure: f64, flow_pressure: f64) -> Result<SolveInfo> {
+        let info = self.run_in_place(mean_pressure, flow_pressure)?;
+        converged(info)
+    }
+
+    /// The algorithm: set-up, iterations until the residual reaches the tolerance (confirmed on a
+    /// freshly computed displacement) or the iteration limit.
+    fn run_in_place(&mut self, mean_pressure: f64, flow_pressure: f64) -> Result<SolveInfo> {
+        let mut state = self.start(mean_pressure, flow_pressure)?;
+        loop {
+            let mean = state.stats.mean_gap(state.reference);
+            let residual = state.stats.violation(mean) / state.scale;
+            if residual <= self.options.tolerance {
+                if state.fresh {
+                    return Ok(self.finish(&state, mean, residual, Termination::Converged));
+                }
+                // Confirm with an exactly balanced load and a freshly computed displacement.
+                self.balance_load(&state, mean, Some(state.stats.load));
+                state.reference = mean;
+                state.stats = self.backend.displacement_and_stats(state.reference, state.pm);
+                state.convolutions += 1;
+                state.fresh = true;
+                continue;
+            }
+            if state.iterations >= self.options.max_iterations {
+                return Ok(self.finish(&state, mean, residual, Termination::MaxIterations));
+            }
+            self.interrupt.check()?;
+            self.iterate(&mut state, mean);
+        }
+    }
+
+    /// Set-up of a solve: checks the inputs, measures the heights, makes the initial guess (the
+    /// given field when usable, else uniform pressure) carry the load, and computes its statistics.
+    fn start(&mut self, mean_pressure: f64, flow_pressure: f64) -> Result<SolveState> {
+        let nn = self.grid.pixels();
+        positive("load", mean_pressure)?;
+        if flow_pressure.is_nan() || flow_pressure <= 0.0 {
+            return Err(Error::param(
+                "flow_pressure",
+                format!("{flow_pressure} must be positive"),
+            ));
+        }
+        if mean_pressure >= flow_pressure {
+            return Err(Error::InfeasibleLoad {
+                mean_pressure,
+                flow_pressure,
+            });
+        }
+        let heights = self.backend.height_stats();
+        if let Some((k, h)) = heights.not_finite {
+            let n = self.grid.ny();
+            return Err(Error::InvalidSurface {
+                name: "composite".into(),
+                message: format!("height at ({}, {}) is {}", k / n, k % n, h),
+            });
+        }
+        let pm = flow_pressure;
+        let total = mean_pressure * nn as f64;
+        let shift_mean = heights.sum / nn as f64;
+        let h_std = (heights.sum_sq / nn as f64 - shift_mean * shift_mean).max(0.0).sqrt();
+        // Residual scale: the surface's RMS height, or for a flat surface the elastic length P·L/E*.
+        let scale = if h_std > 0.0 {
+            h_std
+        } else {
+            mean_pressure * self.grid.length_x() / self.effective_modulus
+        };
+        self.backend.initial_guess(mean_pressure, pm);
+        let mut state = SolveState {
+            pm,
+            total,
+            scale,
+            h_std,
+            h_max: heights.max,
+            stats: Stats::default(),
+            reference: 0.0,
+            fresh: true,
+            restart: true,
+            g_norm_old: 1.0,
+            iterations: 0,
+            convolutions: 0,
+        };
+        self.balance_load(&state, f64::NAN, None);
+        state.stats = self.backend.displacement_and_stats(state.reference, pm);
+        state.convolutions += 1;
+        Ok(state)
+    }
+
+    /// One iteration: the conjugate direction on the free pixels, its convolution, and the step
+    /// (clipped to the bounds, releasing bound pixels whose gap points inwards), shortened until the
+    /// objective descends when it left the CG line.
+    fn iterate(&mut self, state: &mut SolveState, mean: f64) {
+        let (pm, total) = (state.pm, state.total);
+        state.iterations += 1;
+
+        // Conjugate direction on the free pixels: t = (g − ḡ) + β t.
+        let g_norm = state.stats.gradient_norm_sq(state.reference, mean);
+        let beta = if state.restart || state.g_norm_old <= 0.0 {
+            0.0
+        } else {
+            g_norm / state.g_norm_old
+        };
+        state.g_norm_old = g_norm;
+        let (sum_t, sum_dt) = self.backend.direction(mean, beta, pm);
+        let n_free = state.stats.n_free;
+        let shift = if n_free > 0.0 { sum_t / n_free } else { 0.0 };
+
+        // r = 𝒦 t_f with t_f = t − shift on free pixels (zero mean there), and Σ_free r·t_f.
+        let curvature = self.backend.response(shift);
+        state.convolutions += 1;
+        let (tau, cg_step) = if n_free > 0.0 && curvature > 0.0 && sum_dt > 0.0 {
+            (sum_dt / curvature, true)
+        } else {
+            (1.0 / self.backend.self_influence(), false)
+        };
+
+        // Step, clip to the bounds, release bound pixels whose gap points inwards; the next
+        // iteration's statistics come out of the same pass. A step that changed p off the CG
+        // line is checked on the objective and shortened until it descends (projected search).
+        let energy_before = state.stats.energy;
+        let slack = 1e-13 * (energy_before.abs() + total * state.h_std.max(state.h_max.abs()));
+        let mut tau = tau;
+        let mut backtracks = 0;
+        loop {
+            let update = self
+                .backend
+                .update(mean, tau, if cg_step { shift } else { f64::NAN }, pm);
+            let drift = (update.total - total).abs() > 1e-12 * total;
+            if !(update.clipped || update.released || drift || !cg_step) {
+                state.stats = update.stats;
+                state.fresh = false;
+                state.restart = false;
+                break;
+            }
+            self.balance_load(state, mean, Some(update.stats.load));
+            // The carried-along u is kept for an undo; 𝒦p goes into u.
+            self.backend.keep_displacement();
+            state.stats = self.backend.displacement_and_stats(mean, pm);
+            state.convolutions += 1;
+            state.fresh = true;
+            state.restart = update.released || backtracks > 0;
+            if state.stats.energy <= energy_before + slack || backtracks >= 40 {
+                break;
+            }
+            // Undo: p from its copy, u = (u − τr) + τr from the carried-along field.
+            self.backend.undo(if cg_step { tau } else { 0.0 });
+            tau *= 0.25;
+            backtracks += 1;
+        }
+        state.reference = mean;
+    }
+
+    /// What a solve reports, from its last statistics.
+    fn finish(&self, state: &SolveState, mean: f64, residual: f64, termination: Termination) -> SolveInfo {
+        SolveInfo {
+            termination,
+            iterations: state.iterations,
+            convolutions: state.convolutions,
+            residual,
+            tolerance: self.options.tolerance,
+            approach: state.h_max + mean,
+            contact_pixels: state.stats.load.n_contact,
+            plastic_pixels: state.stats.n_plastic as usize,
+        }
+    }
+
+    /// Restores the load exactly ([`ContactSolver::scale_to_load`]). Where the contact cannot carry
+    /// it even at the flow pressure, the missing load goes to the non-contact pixels that penetrate
+    /// most, in proportion to their penetration −(g − ḡ) (all non-contact pixels evenly when `mean`
+    /// is NaN or none penetrates), then the load is balanced again.
+    fn balance_load(&mut self, state: &SolveState, mean: f64, mut sums: Option<LoadSums>) {
+        let (total, pm) = (state.total, state.pm);
+        for _ in 0..4 {
+            if self.scale_to_load(total, pm, sums.take()) {
+                return;
+            }
+            self.backend.spread_missing_load(total, pm, mean);
+        }
+        self.scale_to_load(total, pm, None);
+    }
+
+    /// Restores Σp = `total` by scaling the free pixels, pᵢ ← min(p_m, s·pᵢ) for 0 < pᵢ < p_m, which
+    /// keeps exact zeros and leaves plastic pixels at p_m (scaling them too would free the whole
+    /// plastic zone at once). s solves the monotone, concave, piecewise-linear equation by Newton's
+    /// method from below, which ends in finitely many steps. Where the plastic pixels alone exceed
+    /// the load, every contact pixel is scaled; where even p_m on every contact pixel cannot carry
+    /// it, the contact pixels are set to p_m and `false` is returned: the contact must grow.
+    fn scale_to_load(&mut self, total: f64, pm: f64, sums: Option<LoadSums>) -> bool {
+        let sums = sums.unwrap_or_else(|| self.backend.load_sums(pm));
+        let (free_sum, plastic_sum, n_contact) = (sums.free, sums.plastic, sums.n_contact);
+        if free_sum + plastic_sum == total {
+            return true;
+        }
+        // Which pixels scale: the free ones, or all contact pixels if the plastic zone alone is too much.
+        let scale_plastic = plastic_sum >= total || free_sum == 0.0;
+        let (fixed, movable) = if scale_plastic {
+            (0.0, free_sum + plastic_sum)
+        } else {
+            (plastic_sum, free_sum)
+        };
+        if movable <= 0.0 || pm * n_contact as f64 <= total {
+            self.backend.saturate_contact(pm);
+            return false;
+        }
+        let target = total - fixed;
+        let mut s = target / movable;
+        // Without a pixel pushed to p_m the first guess is exact; otherwise Newton from below.
+        let max_movable = if scale_plastic { pm } else { sums.max_free };
+        let iterations = if s * max_movable < pm { 0 } else { 100 };
+        for _ in 0..iterations {
+            let (f, df) = self.backend.scaled_load(s, pm, scale_plastic);
+            let err = target - f;
+            if err.abs() <= 1e-15 * total || df <= 0.0 {
+                break;
+            }
+            s += err / df;
+        }
+        self.backend.scale(s, pm, scale_plastic);
+        true
+    }
+}
+
+/// A solve that reached the iteration limit as [`Error::NotConverged`].
+fn converged(info: SolveInfo) -> Result<SolveInfo> {
+    match info.termination {
+        Termination::Converged => Ok(info),
+        Termination::MaxIterations => Err(Error::NotConverged {
+            iterations: info.iterations,
+            residual: info.residual,
+            tolerance: info.tolerance,
+        }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unreachable_or_meaningless_settings_are_refused() {
+        assert!(SolverOptions::new(1e-8, 100).is_ok());
+        for bad in [0.0, 1.0, f64::NAN, 5e-324, 1e-16] {
+            assert!(
+                SolverOptions::new(bad, 100)
+                    .unwrap_err()
+                    .to_string()
+                    .contains("`tolerance`"),
+                "{bad}"
+            );
+        }
+        assert!(SolverOptions::new(1e-8, 0)
+            .unwrap_err()
+            .to_string()
+            .contains("`max_iterations`"));
+    }
+}
