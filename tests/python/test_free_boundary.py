@@ -60,3 +60,11 @@ def test_free_boundary_contact_agrees_with_contact_mechanics():
     assert differ <= 5, f"{differ} of {ours_contact.sum()} contact pixels differ"
     np.testing.assert_allclose(theirs.sum(), ours.pressure.sum(), rtol=1e-8)
     assert np.abs(theirs - ours.pressure).max() < 1e-3 * ours.pressure.max()
+
+
+def test_the_device_is_the_cpu_and_a_gpu_this_build_lacks_is_refused_with_the_fix():
+    assert wearsim.ContactSolver(32, 1.0, E_STAR).device == "cpu"
+    with pytest.raises(ValueError, match='"cpu"'):
+        wearsim.ContactSolver(32, 1.0, E_STAR, device="cuda")
+    with pytest.raises(ValueError, match="device"):
+        wearsim.ContactSolver(32, 1.0, E_STAR, device="gpu")
