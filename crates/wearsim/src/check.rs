@@ -15,6 +15,30 @@ pub fn positive(field: &str, value: f64) -> Result<()> {
     }
 }
 
+/// Range of a box side (in the run's length unit) and of a modulus or strength (in its stress
+/// unit) within which every result is representable in double precision and equals the
+/// dimensionless result scaled: wear volumes grow as L³, the solver's curvature as L³/E*, loads as
+/// E·L². Outside it a result would underflow to 0 or overflow.
+pub const SCALE_RANGE: (f64, f64) = (1e-90, 1e90);
+
+/// `value` (positive) must lie within [`SCALE_RANGE`].
+pub fn scale(field: &str, value: f64) -> Result<()> {
+    positive(field, value)?;
+    let (low, high) = SCALE_RANGE;
+    if (low..=high).contains(&value) {
+        Ok(())
+    } else {
+        Err(Error::param(
+            field,
+            format!(
+                "{value:e} is outside {low:e} … {high:e} of its unit, the range in which wearsim's double-precision \
+                 results stay representable (wear volumes scale as L³, loads as E·L²); state the run in other units \
+                 (e.g. µm and GPa, or units = \"reduced\")"
+            ),
+        ))
+    }
+}
+
 /// A grid side: an even number of pixels, at least 16 (the FFT and the periodic junction labelling
 /// need at least a few pixels per side; powers of two are fastest).
 pub fn grid(n: usize) -> Result<()> {

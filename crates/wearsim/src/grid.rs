@@ -27,7 +27,7 @@ impl Grid {
                 format!("{nx} × {ny} pixels is more than 32-bit junction labels can index; lower `grid`"),
             ));
         }
-        positive("length", length_x)?;
+        crate::check::scale("length", length_x)?;
         let pixel_size = length_x / nx as f64;
         positive("length", pixel_size)?;
         Ok(Self { nx, ny, pixel_size })
@@ -42,7 +42,7 @@ impl Grid {
     /// (Lx/Nx = Ly/Ny) to within round-off.
     pub fn with_lengths(nx: usize, ny: usize, length_x: f64, length_y: f64) -> Result<Self> {
         let grid = Self::new(nx, ny, length_x)?;
-        positive("length", length_y)?;
+        crate::check::scale("length", length_y)?;
         let dy = length_y / ny as f64;
         if (dy - grid.pixel_size).abs() > 1e-9 * grid.pixel_size {
             return Err(Error::param(

@@ -64,14 +64,14 @@ impl Material {
         fracture_energies: Vec<f64>,
         geometry_factor: f64,
     ) -> Result<Self> {
-        positive("youngs_modulus", youngs_modulus)?;
+        crate::check::scale("youngs_modulus", youngs_modulus)?;
         if !(poisson_ratio > -1.0 && poisson_ratio < 0.5) {
             return Err(Error::param(
                 "poisson_ratio",
                 format!("{poisson_ratio} is outside (−1, 0.5); use e.g. 0.3"),
             ));
         }
-        positive("shear_strength", shear_strength)?;
+        crate::check::scale("shear_strength", shear_strength)?;
         for &g in &fracture_energies {
             positive("fracture_energies", g)?;
         }

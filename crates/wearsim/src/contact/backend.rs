@@ -249,7 +249,13 @@ pub(crate) trait ContactBackend: Send + Sync {
     /// free pixels.
     fn direction(&mut self, mean: f64, beta: f64, pm: f64) -> (f64, f64);
 
-    /// r = 𝒦 t_f with t_f = t − `shift` where t ≠ 0 (else 0); returns Σ r·t_f over those pixels.
+    /// A power of two near 𝒦ᵢᵢ: [`ContactBackend::response`] returns its sum divided by it, since
+    /// Σ r·t_f itself scales as L³/E* and leaves double precision for boxes far from unit size
+    /// (division by a power of two is exact, so nothing else changes).
+    fn response_scale(&self) -> f64;
+
+    /// r = 𝒦 t_f with t_f = t − `shift` where t ≠ 0 (else 0); returns Σ (r / response_scale)·t_f
+    /// over those pixels.
     fn response(&mut self, shift: f64) -> f64;
 
     /// The update pass (copying p first, for [`ContactBackend::undo`]): with `shift` finite, free

@@ -35,14 +35,18 @@ pub(crate) struct CpuBackend {
     row_partials: Vec<f64>,
     /// Rows per rayon task in the element-wise passes.
     min_len: usize,
+    /// [`ContactBackend::response_scale`].
+    response_scale: f64,
 }
 
 impl CpuBackend {
     pub fn new(grid: Grid, effective_modulus: f64, boundary: Boundary) -> Result<Self> {
         let (nx, ny) = (grid.nx(), grid.ny());
+        let influence = Influence::new(grid, effective_modulus, boundary)?;
+        let response_scale = 2f64.powi(influence.self_influence().log2().floor() as i32);
         Ok(Self {
             ny,
-            influence: Influence::new(grid, effective_modulus, boundary)?,
+            influence,
             heights: vec![0.0; nx * ny],
             pressure: vec![0.0; nx * ny],
             u: vec![0.0; nx * ny],
@@ -54,6 +58,7 @@ impl CpuBackend {
             sums: vec![[0.0; 2]; nx],
             row_partials: vec![0.0; nx],
             min_len: (8192 / ny).max(1),
+            response_scale,
         })
     }
 }
@@ -65,6 +70,10 @@ impl ContactBackend for CpuBackend {
 
     fn self_influence(&self) -> f64 {
         self.influence.self_influence()
+    }
+
+    fn response_scale(&self) -> f64 {
+        self.response_scale
     }
 
     fn apply_influence(&mut self, input: &[f64], out: &mut [f64]) {
@@ -268,7 +277,7 @@ impl ContactBackend for CpuBackend {
     /// whose t is exactly 0 is left out consistently here and in the update).
     fn response(&mut self, shift: f64) -> f64 {
         let n = self.ny;
-        let t = &self.t;
+        let (t, scale) = (&self.t, self.response_scale);
         self.influence.apply_with(
             &self.t,
             |_, row| {
@@ -283,7 +292,7 @@ impl ContactBackend for CpuBackend {
                 let mut s = 0.0;
                 for (&r, &tv) in row.iter().zip(&t[i * n..(i + 1) * n]) {
                     if tv != 0.0 {
-                        s += r * (tv - shift);
+                        s += (r / scale) * (tv - shift);
                     }
                 }
                 s

@@ -545,11 +545,12 @@ impl ContactSolver {
         let n_free = state.stats.n_free;
         let shift = if n_free > 0.0 { sum_t / n_free } else { 0.0 };
 
-        // r = 𝒦 t_f with t_f = t − shift on free pixels (zero mean there), and Σ_free r·t_f.
+        // r = 𝒦 t_f with t_f = t − shift on free pixels (zero mean there), and Σ_free r·t_f (scaled).
         let curvature = self.backend.response(shift);
         state.convolutions += 1;
         let (tau, cg_step) = if n_free > 0.0 && curvature > 0.0 && sum_dt > 0.0 {
-            (sum_dt / curvature, true)
+            // Σ r·t_f = curvature × response_scale, both exact: τ = Σ (g − ḡ)t / Σ r·t_f.
+            (sum_dt / curvature / self.backend.response_scale(), true)
         } else {
             (1.0 / self.backend.self_influence(), false)
         };

@@ -24,7 +24,20 @@ fn claim_path(dir: &Path, index: usize) -> PathBuf {
 
 /// Writes a job's result file atomically (the file whose presence marks the job done).
 pub fn write_result(dir: &Path, result: &JobResult) -> Result<()> {
-    write_text(&job_path(dir, result.index), &result.to_json())
+    let path = job_path(dir, result.index);
+    let text = result.to_json();
+    // JSON has no NaN or infinity (serde writes null): a result holding one would be read back
+    // as a file cut short and recomputed on every rerun. Refuse it once, as the job's error.
+    if let Err(e) = JobResult::from_json(&text) {
+        return Err(Error::file(
+            &path,
+            format!(
+                "not written: the job's results hold a value that is not a finite number ({e}); this is a bug of \
+                 wearsim for inputs within its ranges, please report it with the study file"
+            ),
+        ));
+    }
+    write_text(&path, &text)
 }
 
 /// What a study folder holds for one job.
