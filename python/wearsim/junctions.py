@@ -30,7 +30,7 @@ class Junctions:
     @property
     def wrapping(self) -> np.ndarray:
         """Whether each junction wraps the periodic box (along x or y)."""
-        return self.wraps.any(axis=1) if self.wraps.size else np.zeros(self.pixels.size, dtype=bool)
+        return np.asarray(self.wraps.any(axis=1)) if self.wraps.size else np.zeros(self.pixels.size, dtype=bool)
 
     @property
     def count(self) -> int:

@@ -85,8 +85,8 @@ def curves(tidy: pd.DataFrame) -> List[Tuple[str, pd.DataFrame]]:
             else:
                 parts.append(f"{name} = {v:g}" if isinstance(v, (int, float, np.number)) else f"{name} = {v}")
         numeric = group.select_dtypes("number")
-        stats = numeric.drop(columns=["nominal_pressure"], errors="ignore").groupby(group["nominal_pressure"])
-        stats = stats.agg(["mean", "min", "max"])
+        by_pressure = numeric.drop(columns=["nominal_pressure"], errors="ignore").groupby(group["nominal_pressure"])
+        stats = by_pressure.agg(["mean", "min", "max"])
         stats.columns = ["_".join(map(str, pair)) for pair in stats.columns.to_flat_index()]
         out.append((", ".join(parts), stats.reset_index()))
     return out
