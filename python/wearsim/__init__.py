@@ -21,7 +21,12 @@ Long calls release the GIL and stop on Ctrl-C (KeyboardInterrupt).
 
 from . import contact, junctions, plot, study, surface, wear
 from ._wearsim import (
+    DEFAULT_CONNECTIVITY,
+    DEFAULT_DISTANCE,
     DEFAULT_MAX_ITERATIONS,
+    DEFAULT_RUNNING_IN,
+    DEFAULT_STEP,
+    DEFAULT_STEP_RUNNING_IN,
     DEFAULT_TOLERANCE,
     Material,
     NotConvergedError,
@@ -44,7 +49,12 @@ from .surface import (
 from .wear import ResolutionWarning, RunFile, load_run, slide, static_wear
 
 __all__ = [
+    "DEFAULT_CONNECTIVITY",
+    "DEFAULT_DISTANCE",
     "DEFAULT_MAX_ITERATIONS",
+    "DEFAULT_RUNNING_IN",
+    "DEFAULT_STEP",
+    "DEFAULT_STEP_RUNNING_IN",
     "DEFAULT_TOLERANCE",
     "ContactResult",
     "ContactSolver",

@@ -9,7 +9,12 @@ import numpy.typing as npt
 
 __all__ = [
     "ContactSolver",
+    "DEFAULT_CONNECTIVITY",
+    "DEFAULT_DISTANCE",
     "DEFAULT_MAX_ITERATIONS",
+    "DEFAULT_RUNNING_IN",
+    "DEFAULT_STEP",
+    "DEFAULT_STEP_RUNNING_IN",
     "DEFAULT_TOLERANCE",
     "Material",
     "NotConvergedError",
@@ -37,6 +42,11 @@ __all__ = [
 __version__: str
 DEFAULT_TOLERANCE: float
 DEFAULT_MAX_ITERATIONS: int
+DEFAULT_CONNECTIVITY: int
+DEFAULT_DISTANCE: float
+DEFAULT_RUNNING_IN: float
+DEFAULT_STEP_RUNNING_IN: int
+DEFAULT_STEP: int
 SERIES_COLUMNS: List[str]
 
 class WearsimError(Exception): ...
@@ -72,7 +82,7 @@ def preprocess_surface(heights: _F64Array, detrend: str = "plane", taper: float 
 def periodicity(heights: _F64Array) -> Tuple[float, float]: ...
 def fit_surface(heights: _F64Array, length: float) -> Dict[str, Any]: ...
 def label_junctions(
-    contact: npt.NDArray[np.bool_], connectivity: int = 4
+    contact: npt.NDArray[np.bool_], connectivity: int = ...
 ) -> Tuple[npt.NDArray[np.int64], npt.NDArray[np.uint64], npt.NDArray[np.bool_]]: ...
 def static_wear_model(junction_pixels: List[int], pixel_size: float, critical_diameter: float) -> Dict[str, float]: ...
 def slide(
@@ -84,11 +94,11 @@ def slide(
     modulus: str = "half-space",
     tolerance: float = ...,
     max_iterations: int = ...,
-    connectivity: int = 4,
-    distance: float = 0.5,
-    running_in: float = 0.25,
-    step_running_in: int = 4,
-    step: int = 1,
+    connectivity: int = ...,
+    distance: float = ...,
+    running_in: float = ...,
+    step_running_in: int = ...,
+    step: int = ...,
     threads: Optional[int] = None,
     progress: Optional[Callable[[int, int], None]] = None,
 ) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]: ...

@@ -68,7 +68,9 @@ class Junctions:
         )
 
 
-def label_junctions(contact: np.ndarray, *, connectivity: int = 4, pixel_size: float = 1.0) -> Junctions:
+def label_junctions(
+    contact: np.ndarray, *, connectivity: int = _wearsim.DEFAULT_CONNECTIVITY, pixel_size: float = 1.0
+) -> Junctions:
     """Labels the junctions of a contact map (bool, or numbers where > 0 is contact, e.g. a pressure
     field) with 4- or 8-connectivity and periodic boundaries.
 

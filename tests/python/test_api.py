@@ -1,6 +1,7 @@
 """The Python API (`import wearsim`): round trips against the CLI, physics checks, errors raised as
 Python exceptions with the library's messages, GIL release and Ctrl-C."""
 
+import inspect
 import json
 import re
 import signal
@@ -178,6 +179,38 @@ def test_slide_equals_the_cli(tmp_path, run_file, wearsim_bin):
     for _, g in series.groupby(["load", "fracture_energy"]):
         assert np.all(np.diff(g["volume"]) >= 0) and np.all(np.diff(g["n_formed"]) >= 0)
         assert np.all(g["n_shrunk"] == g["n_formed"] - g["n_critical"])
+
+
+def test_slide_defaults_are_the_library_constants(tmp_path):
+    # The Python signatures name the library's constants ...
+    schedule = {
+        "connectivity": wearsim.DEFAULT_CONNECTIVITY,
+        "distance": wearsim.DEFAULT_DISTANCE,
+        "running_in": wearsim.DEFAULT_RUNNING_IN,
+        "step_running_in": wearsim.DEFAULT_STEP_RUNNING_IN,
+        "step": wearsim.DEFAULT_STEP,
+    }
+    parameters = inspect.signature(wearsim.slide).parameters
+    for name, constant in schedule.items():
+        assert parameters[name].default == constant, name
+    assert inspect.signature(wearsim.label_junctions).parameters["connectivity"].default == wearsim.DEFAULT_CONNECTIVITY
+    # ... which are the paper's schedule (§3) and 4-connected junctions ...
+    assert schedule == {"connectivity": 4, "distance": 0.5, "running_in": 0.25, "step_running_in": 4, "step": 1}
+    # ... and what a run file that leaves them out gets.
+    path = tmp_path / "defaults.toml"
+    path.write_text(
+        "[surface]\ngrid = 32\nlambda_lower = 0.125\nlambda_upper = 0.5\nrms_height = 0.01\n"
+        "[material]\nyoungs_modulus = 1.0\npoisson_ratio = 0.3\nshear_strength = 0.01\n"
+        "fracture_energies = [0.25e-6]\n[sliding]\nloads = [2e-3]\n"
+    )
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", wearsim.ResolutionWarning)
+        _, summary = wearsim.load_run(path).slide()
+    inputs = summary["inputs"]
+    assert inputs["contact"]["connectivity"] == wearsim.DEFAULT_CONNECTIVITY
+    assert {k: inputs["sliding"][k] for k in schedule if k != "connectivity"} == {
+        k: v for k, v in schedule.items() if k != "connectivity"
+    }
 
 
 @pytest.mark.parametrize(

@@ -2,14 +2,14 @@
 //! odd-sized, tilted, not periodic, heights in µm, a header line) runs through `wearsim surface`,
 //! `contact` and `slide` with its units converted and its tilt removed; column files state their
 //! size; `wearsim surface fit` recovers the parameters of generated surfaces and writes a block that
-//! runs.
+//! runs; a study on measured maps keeps their warnings as `slide` does.
 
 mod common;
 
 use std::fmt::Write as _;
 use std::path::Path;
 
-use common::{run, s, stderr, stdout};
+use common::{run, s, stderr, stdout, write_npy};
 use wearsim::surface::pair_seeds;
 use wearsim::{Generation, Grid, SpectrumParams, Surface};
 
@@ -209,4 +209,67 @@ fn surface_fit_recovers_generated_parameters_and_its_block_runs() {
     let o = run(&["surface", s(&run_file), "--out", s(&dir.path().join("again"))]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stdout(&o).contains("256×128 pixels"));
+}
+
+#[test]
+fn a_study_on_maps_that_are_not_periodic_keeps_their_warnings_as_slide_does() {
+    let dir = tempfile::tempdir().unwrap();
+    // Two 64² maps with a tilt along x: a step across the border of 0.05 L against neighbouring
+    // steps of a few 1e-3 L, as a measured map has before levelling.
+    let grid = Grid::square(64, 1.0).unwrap();
+    let spectrum = SpectrumParams::paper_roughness(64, 1.0);
+    let (top_seed, bottom_seed) = pair_seeds(2);
+    for (name, seed) in [("top.npy", top_seed), ("bottom.npy", bottom_seed)] {
+        let h = Surface::generate(grid, &spectrum, seed).unwrap().into_heights();
+        let tilted: Vec<f64> = h
+            .iter()
+            .enumerate()
+            .map(|(k, h)| h + 0.05 * (k / 64) as f64 / 64.0)
+            .collect();
+        write_npy(&dir.path().join(name), &[64, 64], &tilted);
+    }
+    let run_file = dir.path().join("measured.toml");
+    std::fs::write(
+        &run_file,
+        "[surface]\ntop = \"top.npy\"\nbottom = \"bottom.npy\"\nlength = 1.0\n[material]\nyoungs_modulus = 1.0\n\
+         poisson_ratio = 0.3\nshear_strength = 0.01\nfracture_energies = [0.5e-6]\n[sliding]\nloads = [1e-3]\n",
+    )
+    .unwrap();
+    let read = |p: &Path| -> serde_json::Value { serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap() };
+    let o = run(&["slide", s(&run_file), "--out", s(&dir.path().join("slide")), "--quiet"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let slide = read(&dir.path().join("slide/summary.json"))["warnings"].clone();
+    let not_periodic = |w: &serde_json::Value| -> Vec<String> {
+        w.as_array()
+            .unwrap()
+            .iter()
+            .filter_map(|w| w.as_str())
+            .filter(|w| w.contains("is not periodic"))
+            .map(String::from)
+            .collect()
+    };
+    let from_slide = not_periodic(&slide);
+    assert_eq!(from_slide.len(), 2, "{slide}");
+    assert!(from_slide[0].contains("top.npy") && from_slide[1].contains("bottom.npy"));
+
+    // The same run file as a study of one job: its job file has every warning of `slide`, in order.
+    let study = dir.path().join("study");
+    let o = run(&["study", "run", s(&run_file), "--out", s(&study)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let job = read(&study.join("jobs/job-000000.json"));
+    assert_eq!(job["warnings"], slide);
+    assert_eq!(not_periodic(&job["warnings"]), from_slide);
+    // And the results table, whose warnings column holds those of each row.
+    let o = run(&["study", "collect", s(&study)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let table = std::fs::read_to_string(study.join("results.csv")).unwrap();
+    let mut reader = csv::Reader::from_reader(table.as_bytes());
+    let column = reader.headers().unwrap().iter().position(|c| c == "warnings").unwrap();
+    let row = reader.records().next().unwrap().unwrap();
+    // The row's warnings joined by "; " (which some warnings hold too).
+    assert!(
+        from_slide.iter().all(|w| row[column].contains(w.as_str())),
+        "{}",
+        &row[column]
+    );
 }

@@ -231,7 +231,7 @@ type Labelled<'py> = PyResult<(
 /// Labels of a contact map (−1 outside contact), the pixel count of every junction, and whether it
 /// wraps the periodic box along x and along y (one row per junction).
 #[pyfunction]
-#[pyo3(signature = (contact, connectivity = 4))]
+#[pyo3(signature = (contact, connectivity = wearsim::junctions::DEFAULT_CONNECTIVITY))]
 fn label_junctions<'py>(py: Python<'py>, contact: PyReadonlyArray2<'py, bool>, connectivity: u8) -> Labelled<'py> {
     wearsim::check::connectivity(connectivity).map_err(to_py)?;
     let ((rows, cols), flags) = field("contact", &contact)?;

@@ -116,6 +116,11 @@ fn _wearsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", wearsim::VERSION)?;
     m.add("DEFAULT_TOLERANCE", wearsim::contact::DEFAULT_TOLERANCE)?;
     m.add("DEFAULT_MAX_ITERATIONS", wearsim::contact::DEFAULT_MAX_ITERATIONS)?;
+    m.add("DEFAULT_CONNECTIVITY", wearsim::junctions::DEFAULT_CONNECTIVITY)?;
+    m.add("DEFAULT_DISTANCE", wearsim::sliding::DEFAULT_DISTANCE)?;
+    m.add("DEFAULT_RUNNING_IN", wearsim::sliding::DEFAULT_RUNNING_IN)?;
+    m.add("DEFAULT_STEP_RUNNING_IN", wearsim::sliding::DEFAULT_STEP_RUNNING_IN)?;
+    m.add("DEFAULT_STEP", wearsim::sliding::DEFAULT_STEP)?;
     m.add(
         "SERIES_COLUMNS",
         wearsim::output::columns::<wearsim::output::SeriesRow>(),

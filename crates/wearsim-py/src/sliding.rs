@@ -1,17 +1,17 @@
 //! The sliding model: on arrays, or as a run file describes it.
 
 use std::path::PathBuf;
-use std::time::Instant;
 
 use numpy::PyReadonlyArray2;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use wearsim::config::RunConfig;
-use wearsim::output::{series_rows, sliding_summary, SlidingInputs, Table};
-use wearsim::sliding::SlidingConfig;
-use wearsim::sliding::{run_sliding, schedule, LoadRun, SlidingSetup};
-use wearsim::{ModulusConvention, SolverOptions};
+use wearsim::config::{RunConfig, SurfacePair, SurfaceSource, Units};
+use wearsim::junctions::DEFAULT_CONNECTIVITY;
+use wearsim::output::Table;
+use wearsim::run::{SlidingOutcome, SlidingRun};
+use wearsim::sliding::{SlidingConfig, DEFAULT_DISTANCE, DEFAULT_RUNNING_IN, DEFAULT_STEP, DEFAULT_STEP_RUNNING_IN};
+use wearsim::{Boundary, SolverOptions};
 
 use crate::contact::PyMaterial;
 use crate::error::{interruptible, interruptible_with_progress, to_py};
@@ -19,14 +19,17 @@ use crate::surface::surface_pair;
 use crate::{json_to_py, table_to_py, to_array, Pair};
 use numpy::PyArray2;
 
-/// Series columns (name → 1-D array) of a sliding run, the columns of `series.csv`.
-fn series_columns<'py>(py: Python<'py>, runs: &[LoadRun]) -> PyResult<Bound<'py, PyDict>> {
-    table_to_py(py, &Table::of(&series_rows(runs)))
+/// Series columns (name → 1-D array) and summary of a sliding run.
+fn series_and_summary<'py>(
+    py: Python<'py>,
+    outcome: &SlidingOutcome,
+) -> PyResult<(Bound<'py, PyDict>, serde_json::Value)> {
+    Ok((table_to_py(py, &Table::of(&outcome.series_rows()))?, outcome.summary()))
 }
 
 /// Sliding model on two given surfaces. Returns (series columns, summary).
 #[pyfunction]
-#[pyo3(signature = (top, bottom, length, material, loads, modulus = "half-space", tolerance = wearsim::contact::DEFAULT_TOLERANCE, max_iterations = wearsim::contact::DEFAULT_MAX_ITERATIONS, connectivity = 4, distance = 0.5, running_in = 0.25, step_running_in = 4, step = 1, threads = None, progress = None))]
+#[pyo3(signature = (top, bottom, length, material, loads, modulus = "half-space", tolerance = wearsim::contact::DEFAULT_TOLERANCE, max_iterations = wearsim::contact::DEFAULT_MAX_ITERATIONS, connectivity = DEFAULT_CONNECTIVITY, distance = DEFAULT_DISTANCE, running_in = DEFAULT_RUNNING_IN, step_running_in = DEFAULT_STEP_RUNNING_IN, step = DEFAULT_STEP, threads = None, progress = None))]
 #[allow(clippy::too_many_arguments)]
 fn slide<'py>(
     py: Python<'py>,
@@ -47,46 +50,33 @@ fn slide<'py>(
     progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
     let (t, b) = surface_pair(&top, &bottom, length)?;
-    let n = t.nx();
+    let grid = t.grid();
     let solver = SolverOptions::new(tolerance, max_iterations).map_err(to_py)?;
     wearsim::check::connectivity(connectivity).map_err(to_py)?;
-    let convention: ModulusConvention = modulus.parse().map_err(to_py)?;
-    let sliding = SlidingConfig::new(loads, distance, running_in, step_running_in, step, Some(n)).map_err(to_py)?;
-    let start = Instant::now();
-    let runs = interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, steps| {
-        let setup = SlidingSetup {
-            material: &material.inner,
-            effective_modulus: material.inner.effective_modulus(convention),
-            solver,
-            device: Default::default(),
-            connectivity,
-            sliding: &sliding,
-            interrupt: interrupt.clone(),
-        };
-        run_sliding(&t, &b, &setup, |view| steps.set(view.done, view.total))
-    })?;
-    let seconds = start.elapsed().as_secs_f64();
-    let inputs = SlidingInputs {
-        units: Default::default(),
-        surfaces: serde_json::json!({
-            "source": "arrays",
-            "grid": if t.grid().is_square() { serde_json::json!(n) } else { serde_json::json!([n, t.ny()]) },
-            "length": if t.grid().is_square() { serde_json::json!(length) } else { serde_json::json!([length, t.grid().length_y()]) },
-        }),
-        material: &material.inner,
-        modulus: convention,
+    // The run these arrays and settings describe, built in memory as a run file would be.
+    let config = RunConfig {
+        units: Units::Reduced,
+        surfaces: SurfaceSource::Arrays { grid, length },
+        material: material.inner.clone(),
+        modulus: modulus.parse().map_err(to_py)?,
         solver,
         connectivity,
-        sliding: &sliding,
-        // Arrays may be measured maps: a border jump the periodic solution would see is reported.
-        warnings: [("top", &t), ("bottom", &b)]
-            .into_iter()
-            .filter_map(|(name, s)| wearsim::topography::periodicity(s.heights(), s.nx(), s.ny()).warning(name))
-            .collect(),
+        boundary: Boundary::Periodic,
+        device: Default::default(),
+        sliding: Some(
+            SlidingConfig::new(loads, distance, running_in, step_running_in, step, Some(grid.nx())).map_err(to_py)?,
+        ),
     };
-    let mut summary = sliding_summary(&inputs, &runs, t.pixel_size(), seconds, schedule(n, &sliding).len());
+    let pair = SurfacePair::of_arrays(t, b);
+    let outcome = interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, steps| {
+        SlidingRun::with_surfaces(&config, pair)?
+            .interrupted_by(interrupt)
+            .run(|view| steps.set(view.done, view.total))
+    })?;
+    let (series, mut summary) = series_and_summary(py, &outcome)?;
+    // Arrays carry no unit system: their summary names none.
     summary.as_object_mut().expect("an object").remove("units");
-    Ok((series_columns(py, &runs)?, json_to_py(py, &summary)?))
+    Ok((series, json_to_py(py, &summary)?))
 }
 
 /// A parsed and validated run file.
@@ -167,26 +157,19 @@ impl PyRunFile {
         progress: Option<Bound<'py, PyAny>>,
     ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
         let config = &self.config;
-        let Some(sliding) = config.sliding.as_ref() else {
+        if config.sliding.is_none() {
             return Err(PyValueError::new_err(format!(
                 "{}: a [sliding] table with `loads` is needed to slide",
                 self.path.display()
             )));
-        };
-        let start = Instant::now();
-        let (runs, n, pixel_size, warnings) =
-            interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, steps| {
-                let pair = config.surface_pair()?;
-                let mut setup = SlidingSetup::from_run(config, sliding);
-                setup.interrupt = interrupt.clone();
-                let runs = run_sliding(&pair.top, &pair.bottom, &setup, |view| steps.set(view.done, view.total))?;
-                Ok((runs, pair.top.nx(), pair.top.pixel_size(), pair.warnings))
-            })?;
-        let seconds = start.elapsed().as_secs_f64();
-        let mut inputs = SlidingInputs::of_run(config, sliding);
-        inputs.warnings.extend(warnings);
-        let summary = sliding_summary(&inputs, &runs, pixel_size, seconds, schedule(n, sliding).len());
-        Ok((series_columns(py, &runs)?, json_to_py(py, &summary)?))
+        }
+        let outcome = interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, steps| {
+            SlidingRun::prepare(config)?
+                .interrupted_by(interrupt)
+                .run(|view| steps.set(view.done, view.total))
+        })?;
+        let (series, summary) = series_and_summary(py, &outcome)?;
+        Ok((series, json_to_py(py, &summary)?))
     }
 }
 

@@ -11,8 +11,11 @@ use crate::error::{Error, Interrupt, Result};
 use crate::grid::Grid;
 use crate::influence::Boundary;
 use crate::io::{parent_or_dot, read_text};
+use crate::junctions::DEFAULT_CONNECTIVITY;
 use crate::material::{Material, ModulusConvention};
-use crate::sliding::{SlidingConfig, SlidingSetup};
+use crate::sliding::{
+    SlidingConfig, SlidingSetup, DEFAULT_DISTANCE, DEFAULT_RUNNING_IN, DEFAULT_STEP, DEFAULT_STEP_RUNNING_IN,
+};
 use crate::surface::{pair_seeds, Generation, SpectrumParams, Surface};
 use crate::topography::{metres_per, Detrend, FileSurface, Preprocess};
 
@@ -129,6 +132,9 @@ pub enum SurfaceSource {
         lateral_unit: Option<String>,
         preprocess: Preprocess,
     },
+    /// Two height arrays the caller holds (the Python `slide` on arrays), on `grid`, whose side
+    /// along x is `length` as the caller gave it; nothing to generate or read.
+    Arrays { grid: Grid, length: f64 },
 }
 
 /// One value for a square grid, `[x, y]` for a rectangular one (as a run file writes it).
@@ -180,6 +186,15 @@ impl serde::Serialize for SurfaceSource {
                     map.serialize_entry("taper", &preprocess.taper)?;
                 }
             }
+            SurfaceSource::Arrays { grid, length } => {
+                map.serialize_entry("source", "arrays")?;
+                map.serialize_entry("grid", &per_side(grid.nx(), grid.ny()))?;
+                if grid.is_square() {
+                    map.serialize_entry("length", length)?;
+                } else {
+                    map.serialize_entry("length", &[*length, grid.length_y()])?;
+                }
+            }
         }
         map.end()
     }
@@ -192,6 +207,24 @@ pub struct SurfacePair {
     pub bottom: Surface,
     pub notes: Vec<String>,
     pub warnings: Vec<String>,
+}
+
+impl SurfacePair {
+    /// Two surfaces handed over as arrays (a [`SurfaceSource::Arrays`] run). They may be measured
+    /// maps, so each is checked for periodicity as a file is, named "top" and "bottom" in the
+    /// warnings.
+    pub fn of_arrays(top: Surface, bottom: Surface) -> Self {
+        let warnings = [("top", &top), ("bottom", &bottom)]
+            .into_iter()
+            .filter_map(|(name, s)| crate::topography::periodicity(s.heights(), s.nx(), s.ny()).warning(name))
+            .collect();
+        Self {
+            top,
+            bottom,
+            notes: Vec::new(),
+            warnings,
+        }
+    }
 }
 
 /// Whether the surface files a run names must exist when it is read: for a run about to be
@@ -333,7 +366,7 @@ impl RunConfig {
             c.tolerance.unwrap_or(defaults.tolerance()),
             c.max_iterations.unwrap_or(defaults.max_iterations()),
         )?;
-        let connectivity = c.connectivity.unwrap_or(4);
+        let connectivity = c.connectivity.unwrap_or(DEFAULT_CONNECTIVITY);
         check_connectivity(connectivity)?;
         let boundary = c.boundary.unwrap_or_default();
         if boundary == Boundary::Free && raw.sliding.is_some() {
@@ -351,15 +384,15 @@ impl RunConfig {
             None => None,
             Some(sl) => {
                 let grid = match &surfaces {
-                    SurfaceSource::Generated { grid, .. } => Some(grid.nx()),
+                    SurfaceSource::Generated { grid, .. } | SurfaceSource::Arrays { grid, .. } => Some(grid.nx()),
                     SurfaceSource::Files { .. } => None,
                 };
                 Some(SlidingConfig::new(
                     sl.loads,
-                    sl.distance.unwrap_or(0.5),
-                    sl.running_in.unwrap_or(0.25),
-                    sl.step_running_in.unwrap_or(4),
-                    sl.step.unwrap_or(1),
+                    sl.distance.unwrap_or(DEFAULT_DISTANCE),
+                    sl.running_in.unwrap_or(DEFAULT_RUNNING_IN),
+                    sl.step_running_in.unwrap_or(DEFAULT_STEP_RUNNING_IN),
+                    sl.step.unwrap_or(DEFAULT_STEP),
                     grid,
                 )?)
             }
@@ -367,7 +400,7 @@ impl RunConfig {
         // The apparent area, where the run file fixes it (a file's y side may come from its shape,
         // checked when the run starts).
         let area = match &surfaces {
-            SurfaceSource::Generated { grid, .. } => Some(grid.area()),
+            SurfaceSource::Generated { grid, .. } | SurfaceSource::Arrays { grid, .. } => Some(grid.area()),
             SurfaceSource::Files {
                 length,
                 length_y: Some(ly),
@@ -501,9 +534,13 @@ impl RunConfig {
     }
 
     /// The top and bottom surfaces with notes on how files were read and prepared, and warnings
-    /// about them (a measured surface far from periodic).
+    /// about them (a measured surface far from periodic). Arrays held by the caller are not the
+    /// run's to make: an error.
     pub fn surface_pair(&self) -> Result<SurfacePair> {
         match &self.surfaces {
+            SurfaceSource::Arrays { .. } => Err(Error::run_file(
+                "[surface] the surfaces are arrays held by the caller, neither generated nor read from files",
+            )),
             SurfaceSource::Generated { grid, spectrum, seed } => {
                 crate::check::memory(
                     "generating the surface pair",
@@ -554,7 +591,8 @@ impl RunConfig {
         }
     }
 
-    /// How the run's surface files are read (units and preparation); an error for generated surfaces.
+    /// How the run's surface files are read (units and preparation); an error for surfaces not read
+    /// from files.
     fn file_surface(&self) -> Result<FileSurface> {
         let SurfaceSource::Files {
             length,
@@ -565,9 +603,7 @@ impl RunConfig {
             ..
         } = &self.surfaces
         else {
-            return Err(Error::run_file(
-                "[surface] the surfaces are generated, not read from files",
-            ));
+            return Err(Error::run_file("[surface] the surfaces are not read from files"));
         };
         let height_scale = match (self.units, height_unit) {
             (Units::Si, Some(u)) => metres_per("height_unit", u)?,
@@ -586,7 +622,7 @@ impl RunConfig {
     /// header, or by reading a text file), after cropping to even sides.
     pub fn grid(&self) -> Result<Grid> {
         match &self.surfaces {
-            SurfaceSource::Generated { grid, .. } => Ok(*grid),
+            SurfaceSource::Generated { grid, .. } | SurfaceSource::Arrays { grid, .. } => Ok(*grid),
             SurfaceSource::Files { top, .. } => crate::topography::probe_grid(top, &self.file_surface()?),
         }
     }
@@ -615,7 +651,7 @@ impl RunConfig {
     pub fn length(&self) -> f64 {
         match &self.surfaces {
             SurfaceSource::Generated { grid, .. } => grid.length_x(),
-            SurfaceSource::Files { length, .. } => *length,
+            SurfaceSource::Files { length, .. } | SurfaceSource::Arrays { length, .. } => *length,
         }
     }
 
@@ -674,6 +710,13 @@ impl RunConfig {
                 record.rms_height = Some(spectrum.rms_height);
                 record.seed = Some(*seed);
                 record.generation = (spectrum.generation != Generation::default()).then_some(spectrum.generation);
+            }
+            SurfaceSource::Arrays { grid, .. } => {
+                record.grid = Some(grid.nx());
+                if !grid.is_square() {
+                    record.grid_y = Some(grid.ny());
+                    record.length_y = Some(grid.length_y());
+                }
             }
             SurfaceSource::Files {
                 top,

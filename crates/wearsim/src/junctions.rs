@@ -15,6 +15,10 @@
 /// Label of a pixel not in contact.
 pub const NO_JUNCTION: u32 = u32::MAX;
 
+/// The junction connectivity when none is given: 4, pixels joined through their edges only (the
+/// paper's junctions, §2); 8 also joins pixels touching at a corner.
+pub const DEFAULT_CONNECTIVITY: u8 = 4;
+
 /// One junction: pixel count and the geometry derived from it (paper §3: circular junctions,
 /// spherical particles).
 #[derive(Debug, Clone, Copy, PartialEq)]

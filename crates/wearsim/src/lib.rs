@@ -16,6 +16,7 @@
 //! - [`sliding`]: the sliding simulation, step by step, and its schedule;
 //! - [`config`]: run files turned into validated inputs;
 //! - [`output`]: every result document (summaries, series, job files, tables);
+//! - [`run`]: one sliding run from a validated run to its results, the path every front end takes;
 //! - [`study`]: study files expanded into jobs, run resumably, collected.
 //!
 //! Figures are drawn by the front ends (the `wearsim` CLI, the Python package).
@@ -69,7 +70,7 @@
 //! ```
 //! use std::path::Path;
 //! use wearsim::config::RunConfig;
-//! use wearsim::sliding::{run_sliding, SlidingSetup};
+//! use wearsim::run::SlidingRun;
 //!
 //! let run = RunConfig::from_toml(
 //!     r#"
@@ -91,12 +92,16 @@
 //!     "#,
 //!     Path::new("."),
 //! )?;
-//! let (top, bottom) = run.surfaces()?;
-//! let sliding = run.sliding.as_ref().expect("the run file has a [sliding] table");
-//! let runs = run_sliding(&top, &bottom, &SlidingSetup::from_run(&run, sliding), |_step| {})?;
-//! let result = &runs[0].results[0];
-//! assert_eq!(runs[0].load, 2e-3);
+//! // The surfaces, the setup and the warnings known before the run (here d* of under 4 pixels) ...
+//! let prepared = SlidingRun::prepare(&run)?;
+//! assert!(!prepared.warnings().is_empty());
+//! // ... then every load slid, an observer seeing each step (progress, fields).
+//! let outcome = prepared.run(|_step| {})?;
+//! let result = &outcome.runs[0].results[0];
+//! assert_eq!(outcome.runs[0].load, 2e-3);
 //! assert!(result.wear_rate.is_none_or(|w| w >= 0.0));
+//! // The documents `wearsim slide` writes: series.csv and summary.json, with every warning once.
+//! assert_eq!(outcome.summary()["warnings"], serde_json::json!(outcome.warnings));
 //! # Ok::<(), wearsim::Error>(())
 //! ```
 //!
@@ -146,6 +151,7 @@ pub mod io;
 pub mod junctions;
 pub mod material;
 pub mod output;
+pub mod run;
 pub mod sliding;
 pub mod stats;
 pub mod study;

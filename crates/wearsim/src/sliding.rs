@@ -23,15 +23,28 @@ use crate::wear::{static_wear, CarriedBookkeeping, InitialContactMemory, Sliding
 pub struct SlidingConfig {
     /// Normal loads F_N (E·L² reduced, N in SI).
     pub loads: Vec<f64>,
-    /// Total sliding distance as a fraction of Lx (default ½).
+    /// Total sliding distance as a fraction of Lx ([`DEFAULT_DISTANCE`] when not given).
     pub distance: f64,
-    /// Running-in distance as a fraction of Lx (default ¼).
+    /// Running-in distance as a fraction of Lx ([`DEFAULT_RUNNING_IN`]).
     pub running_in: f64,
-    /// Step during running-in, in pixels (default 4).
+    /// Step during running-in, in pixels ([`DEFAULT_STEP_RUNNING_IN`]).
     pub step_running_in: usize,
-    /// Step after running-in, in pixels (default 1).
+    /// Step after running-in, in pixels ([`DEFAULT_STEP`]).
     pub step: usize,
 }
+
+/// The paper's sliding distance (§3): half the box side, s up to Lx/2.
+pub const DEFAULT_DISTANCE: f64 = 0.5;
+
+/// The paper's running-in distance (§3): a quarter of the box side, the safety margin it takes for
+/// the memory of the initial contact to fade; the wear rate is fitted from there.
+pub const DEFAULT_RUNNING_IN: f64 = 0.25;
+
+/// The step during running-in, in pixels (§3: coarser steps while the fit does not yet count).
+pub const DEFAULT_STEP_RUNNING_IN: usize = 4;
+
+/// The step after running-in, in pixels (§3: every pixel of the fit window).
+pub const DEFAULT_STEP: usize = 1;
 
 impl SlidingConfig {
     /// A validated schedule; `grid`, when known, bounds the steps and must leave at least two steps
@@ -789,14 +802,15 @@ mod tests {
             loads: vec![1e-3],
             distance,
             running_in,
-            step_running_in: 4,
+            step_running_in: DEFAULT_STEP_RUNNING_IN,
             step,
         }
     }
 
     #[test]
     fn paper_schedule_has_1280_offsets_at_4096_and_160_at_512() {
-        let cfg = schedule(0.5, 0.25, 1);
+        // The defaults are the paper's schedule (§3).
+        let cfg = schedule(DEFAULT_DISTANCE, DEFAULT_RUNNING_IN, DEFAULT_STEP);
         let s = cfg.offsets(4096);
         assert_eq!(s.len(), 1280);
         assert_eq!(&s[..3], &[0, 4, 8]);

@@ -1,6 +1,6 @@
 //! The library's modules import one way only: each module may use the modules listed before it in
 //! `LAYERS`, never one after it (the data flow of the model: parameters → surfaces → contact →
-//! junctions → wear → sliding → run files → outputs → studies). A new module gets a place in this
+//! junctions → wear → sliding → run files → outputs → a run → studies). A new module gets a place in this
 //! list. Inside a folder module the submodules are layered the same way (`SUBLAYERS`).
 //!
 //! Paths are resolved as the compiler resolves them: `crate::a::b` names module `a` (and its
@@ -11,7 +11,7 @@
 use std::collections::BTreeSet;
 use std::path::Path;
 
-const LAYERS: [&str; 17] = [
+const LAYERS: [&str; 18] = [
     "error",
     "check",
     "io",
@@ -28,6 +28,7 @@ const LAYERS: [&str; 17] = [
     "sliding",
     "config",
     "output",
+    "run",
     "study",
 ];
 

@@ -9,7 +9,7 @@ use crate::progress::Progress;
 use anyhow::{anyhow, Context, Result};
 use plotters::prelude::*;
 use wearsim::junctions::NO_JUNCTION;
-use wearsim::sliding::{run_sliding, SlidingSetup};
+use wearsim::run::SlidingRun;
 use wearsim::wear::JunctionState;
 
 use super::load_run;
@@ -37,7 +37,7 @@ pub fn run(args: &Args) -> Result<()> {
     let (run, out, load_index, energy_index, delay_ms) =
         (&args.run, &args.out, args.load_index, args.energy_index, args.delay);
     register_font();
-    let config = load_run(run)?;
+    let mut config = load_run(run)?;
     let mut sliding = config
         .sliding
         .clone()
@@ -63,16 +63,14 @@ pub fn run(args: &Args) -> Result<()> {
             "invalid `--delay {delay_ms}`: a GIF frame lasts 10 ms to 655350 ms (it is stored in hundredths of a second)"
         );
     }
-    let pair = config.surface_pair()?;
-    super::report_surfaces(&pair, true);
-    let (top, bottom) = (pair.top, pair.bottom);
-    let (nx, ny) = (top.nx(), top.ny());
+    config.sliding = Some(sliding);
+    let prepared = SlidingRun::prepare(&config)?.interrupted_by(super::interrupt());
+    super::report_surfaces(prepared.surfaces(), true);
+    let (nx, ny) = (prepared.grid().nx(), prepared.grid().ny());
     let n = nx.max(ny);
     let scale = (512 / n).max(1) as u32; // frames of at least 512 px where the grid is smaller
     let step_px = (n / 512).max(1); // and at most about 1024 px where it is larger
     let (width, height) = ((nx / step_px) as u32 * scale, (ny / step_px) as u32 * scale);
-    let mut setup = SlidingSetup::from_run(&config, &sliding);
-    setup.interrupt = super::interrupt().clone();
     let d_star = config
         .material
         .critical_diameter(config.material.fracture_energies[energy_index]);
@@ -86,7 +84,7 @@ pub fn run(args: &Args) -> Result<()> {
         )
         .into_drawing_area();
         let progress = Progress::new("animate", "frames", 0);
-        let ran = run_sliding(&top, &bottom, &setup, |view| {
+        let ran = prepared.run(|view| {
             progress.set(view.done as u64, view.total as u64, "");
             if frame_error.is_some() {
                 return;

@@ -7,7 +7,11 @@ use std::time::Instant;
 
 use anyhow::{Context, Result};
 use serde_json::json;
+use wearsim::config::{RunConfig, SurfaceSource, Units};
 use wearsim::fft::{radial_kernel, FftPlan};
+use wearsim::junctions::DEFAULT_CONNECTIVITY;
+use wearsim::run::SlidingRun;
+use wearsim::sliding::{SlidingConfig, DEFAULT_DISTANCE, DEFAULT_RUNNING_IN, DEFAULT_STEP, DEFAULT_STEP_RUNNING_IN};
 use wearsim::surface::pair_seeds;
 use wearsim::{ContactSolver, Material, ModulusConvention, SpectrumParams, Surface};
 
@@ -181,30 +185,37 @@ pub fn run_slide(args: &SlideArgs) -> Result<()> {
     if args.warm_n > 0 {
         check_size(args.warm_n).context("--warm-n")?;
     }
-    use wearsim::sliding::SlidingConfig;
-    use wearsim::sliding::{run_sliding, schedule, SlidingSetup};
     let threads = rayon::current_num_threads();
     let material = Material::new(1.0, 0.3, 0.010, vec![0.25e-6, 0.5e-6, 0.75e-6, 1.0e-6], 3.0)?;
-    let e_star = material.effective_modulus(ModulusConvention::HalfSpace);
-    let sliding = SlidingConfig {
-        loads: vec![2.5e-4, 5e-4, 1e-3, 2e-3],
-        distance: 0.5,
-        running_in: 0.25,
-        step_running_in: 4,
-        step: 1,
-    };
-    let (top, bottom) = paper_pair(args.n)?;
-    let setup = SlidingSetup {
-        material: &material,
-        effective_modulus: e_star,
+    let sliding = SlidingConfig::new(
+        vec![2.5e-4, 5e-4, 1e-3, 2e-3],
+        DEFAULT_DISTANCE,
+        DEFAULT_RUNNING_IN,
+        DEFAULT_STEP_RUNNING_IN,
+        DEFAULT_STEP,
+        Some(args.n),
+    )?;
+    // The benchmark's surface pair (`paper_pair`) as a run: generated, seed 1.
+    let config = RunConfig {
+        units: Units::Reduced,
+        surfaces: SurfaceSource::Generated {
+            grid: wearsim::Grid::square(args.n, 1.0)?,
+            spectrum: SpectrumParams::paper_roughness(args.n, 1.0),
+            seed: 1,
+        },
+        material,
+        modulus: ModulusConvention::HalfSpace,
         solver: Default::default(),
+        connectivity: DEFAULT_CONNECTIVITY,
+        boundary: Default::default(),
         device: args.device,
-        connectivity: 4,
-        sliding: &sliding,
-        interrupt: Default::default(),
+        sliding: Some(sliding),
     };
+    let (material, e_star) = (&config.material, config.effective_modulus());
+    let prepared = SlidingRun::prepare(&config)?;
+    let sliding = prepared.sliding();
     let t = Instant::now();
-    let runs = run_sliding(&top, &bottom, &setup, |_| {})?;
+    let runs = prepared.run(|_| {})?.runs;
     let total = t.elapsed().as_secs_f64();
     let steps: usize = runs.iter().map(|r| r.steps.len()).sum();
     let (solve, label, book) = runs.iter().fold((0.0, 0.0, 0.0), |a, r| {
@@ -220,7 +231,7 @@ pub fn run_slide(args: &SlideArgs) -> Result<()> {
         "sliding run N = {}: {} loads × {} offsets × {} fracture energies, {steps} contact solves in {total:.2} s ({:.2} ms/step; {:.1} iterations/step)",
         args.n,
         sliding.loads.len(),
-        schedule(args.n, &sliding).len(),
+        sliding.offsets(args.n).len(),
         material.fracture_energies.len(),
         total / steps as f64 * 1e3,
         iterations as f64 / steps as f64
@@ -238,7 +249,7 @@ pub fn run_slide(args: &SlideArgs) -> Result<()> {
         let (top, bottom) = paper_pair(n)?;
         let grid = wearsim::Grid::square(n, 1.0)?;
         let mut solver = ContactSolver::on_device(args.device, grid, e_star, wearsim::Boundary::Periodic)?;
-        let mut labeller = wearsim::junctions::JunctionLabeller::new(n, n, 4);
+        let mut labeller = wearsim::junctions::JunctionLabeller::new(n, n, DEFAULT_CONNECTIVITY);
         solver.compose(&top, &bottom, 0)?;
         solver.solve_in_place(1e-3, material.flow_pressure())?;
         let (mut solve_s, mut label_s, mut iters) = (0.0, 0.0, 0);
@@ -254,7 +265,7 @@ pub fn run_slide(args: &SlideArgs) -> Result<()> {
             iters += info.iterations;
         }
         let per_step = (solve_s + label_s) / args.warm_steps as f64;
-        let offsets = schedule(n, &sliding).len();
+        let offsets = sliding.offsets(n).len();
         println!(
             "warm steps at N = {n} (F_N = 1e-3): {:.3} s/step ({:.1} iterations, labelling {:.1} ms); × {offsets} offsets = {:.1} min per load; peak memory {:.0} MiB",
             per_step,

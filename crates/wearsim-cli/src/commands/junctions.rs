@@ -13,7 +13,7 @@ pub struct Args {
     /// pressure.npy written by `wearsim contact`).
     map: PathBuf,
     /// 4 or 8.
-    #[arg(long, default_value_t = 4)]
+    #[arg(long, default_value_t = wearsim::junctions::DEFAULT_CONNECTIVITY)]
     connectivity: u8,
     /// Output folder (created if missing; an earlier `junctions` there is replaced whole).
     #[arg(long)]

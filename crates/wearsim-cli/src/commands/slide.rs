@@ -1,13 +1,13 @@
 //! `wearsim slide`: the sliding wear model on every load of a run file.
 
 use std::path::PathBuf;
-use std::time::Instant;
 
 use anyhow::{bail, Result};
 use wearsim::config::Units;
 use wearsim::io::{write_json, write_text, OutputDir};
-use wearsim::output::{series_csv, sliding_summary, unit_of, FieldSelection, FieldsWriter, SlidingInputs};
-use wearsim::sliding::{run_sliding_resumable, Checkpointing, Resumed, SlidingSetup};
+use wearsim::output::{unit_of, FieldSelection, FieldsWriter};
+use wearsim::run::SlidingRun;
+use wearsim::sliding::{Checkpointing, Resumed};
 
 use super::load_run;
 use crate::progress::Progress;
@@ -76,19 +76,19 @@ fn maybe(units: Units, quantity: &str, value: Option<f64>) -> String {
 pub fn run(args: &Args) -> Result<()> {
     let run = &args.run;
     let config = load_run(run)?;
-    let Some(sliding) = config.sliding.clone() else {
+    if config.sliding.is_none() {
         bail!(
             "run file {}: a [sliding] table with `loads` is needed for `slide`",
             run.display()
         );
-    };
+    }
     // The output folder is made (and checked) before any work.
     let out = OutputDir::begin(&args.out, "slide", args.overwrite, &super::run_inputs(run, &config))?;
-    let pair = config.surface_pair()?;
-    super::report_surfaces(&pair, false);
-    let (top, bottom) = (&pair.top, &pair.bottom);
-    let n = top.nx();
-    sliding.check_grid(n)?;
+    let interrupt = super::interrupt();
+    let prepared = SlidingRun::prepare(&config)?.interrupted_by(interrupt);
+    super::report_surfaces(prepared.surfaces(), false);
+    let sliding = prepared.sliding();
+    let grid = prepared.grid();
     let units = config.units;
     eprintln!(
         "flow pressure p_m = {}",
@@ -104,19 +104,16 @@ pub fn run(args: &Args) -> Result<()> {
             "𝒢 = {}: critical diameter d* = {} ({:.1} px)",
             with_unit(units, "fracture_energy", *g),
             with_unit(units, "critical_diameter", d),
-            d / top.pixel_size()
+            d / grid.pixel_size()
         );
     }
-    let offsets = sliding.offsets(n);
+    let offsets = prepared.offsets();
     let steps_per_load = offsets.len();
-    let mut inputs = SlidingInputs::of_run(&config, &sliding);
-    inputs.warnings.extend(pair.warnings.iter().cloned());
     let mut fields = if args.save_fields {
         let selection = FieldSelection {
             loads: args.fields_loads.clone(),
             every: args.fields_every,
         };
-        let grid = top.grid();
         let raw = FieldsWriter::raw_bytes(grid, sliding.loads.len(), steps_per_load, &selection);
         eprintln!(
             "fields: {:.1} MB before compression (13 bytes per pixel and kept step), into {}",
@@ -130,28 +127,25 @@ pub fn run(args: &Args) -> Result<()> {
             &sliding.loads,
             &offsets,
             &selection,
-            inputs.to_json(),
+            prepared.inputs().to_json(),
         )?)
     } else {
         None
     };
-    let mut setup = SlidingSetup::from_run(&config, &sliding);
-    setup.interrupt = super::interrupt().clone();
-    let progress = Progress::new("slide", "steps", (steps_per_load * sliding.loads.len()) as u64);
-    let start = Instant::now();
+    let progress = Progress::new("slide", "steps", prepared.total_steps() as u64);
     let mut fields_error = None;
     let checkpointing = (!args.save_fields).then(|| Checkpointing {
         path: checkpoint_path(out.target()),
         every: args.checkpoint_every,
     });
-    let runs = run_sliding_resumable(top, bottom, &setup, checkpointing.as_ref(), report_resume, |view| {
+    let outcome = prepared.run_resumable(checkpointing.as_ref(), report_resume, |view| {
         let note = format!("load {}/{}", view.load_index + 1, sliding.loads.len());
         progress.set(view.done as u64, view.total as u64, &note);
         if let (Some(f), None) = (fields.as_mut(), fields_error.as_ref()) {
             if let Err(e) = f.record(view.load_index, view.step_index, view.pressure, view.labeller.labels()) {
                 // Stop the run: its outputs could not all be written.
                 fields_error = Some(e);
-                setup.interrupt.request();
+                interrupt.request();
             }
         }
     });
@@ -159,20 +153,19 @@ pub fn run(args: &Args) -> Result<()> {
     if let Some(e) = fields_error {
         return Err(e.into());
     }
-    let runs = runs?;
+    let outcome = outcome?;
     if let Some(f) = fields {
         f.finish()?;
     }
-    let seconds = start.elapsed().as_secs_f64();
-    let summary = sliding_summary(&inputs, &runs, top.pixel_size(), seconds, steps_per_load);
-    write_text(&out.join("series.csv"), &series_csv(&runs))?;
-    write_json(&out.join("summary.json"), &summary)?;
+    write_text(&out.join("series.csv"), &outcome.series_csv())?;
+    write_json(&out.join("summary.json"), &outcome.summary())?;
     out.commit()?;
     // The results are in place: the state they were resumed from is no longer needed.
     if let Some(c) = &checkpointing {
         let _ = std::fs::remove_file(&c.path);
     }
-    for r in &runs {
+    let runs = &outcome.runs;
+    for r in runs {
         for w in &r.results {
             println!(
                 "F_N = {}, d* = {}: W = {} (R² = {}), k = {}, dN*₊/ds = {}, V₀ = {}, k_static = {:.4} (s = 0), {:.4} ± {:.4} \
@@ -190,14 +183,13 @@ pub fn run(args: &Args) -> Result<()> {
             );
         }
     }
-    if let Some(warnings) = summary["warnings"].as_array() {
-        for w in warnings.iter().filter_map(|w| w.as_str()) {
-            eprintln!("warning: {w}");
-        }
+    for w in &outcome.warnings {
+        eprintln!("warning: {w}");
     }
     println!(
-        "{} steps in {seconds:.1} s; wrote {}",
+        "{} steps in {:.1} s; wrote {}",
         steps_per_load * runs.len(),
+        outcome.seconds,
         args.out.display()
     );
     Ok(())

@@ -22,8 +22,8 @@ pub use jobs::{
 };
 pub use provenance::{Provenance, DEPENDENCY_VERSIONS};
 pub use summary::{
-    contact_summary, junctions_summary, run_warnings, series_csv, series_rows, sliding_summary, surface_fit_summary,
-    surface_summary, ContactRecord, SeriesRow, SlidingInputs, SurfaceStatistics, PSD_CONVENTION, RESIDUAL_DEFINITION,
+    contact_summary, junctions_summary, series_csv, series_rows, sliding_summary, surface_fit_summary, surface_summary,
+    ContactRecord, SeriesRow, SlidingInputs, SurfaceStatistics, PSD_CONVENTION, RESIDUAL_DEFINITION,
 };
 pub use tables::{columns, Cell, Table};
 pub use units::{unit_of, units_map};

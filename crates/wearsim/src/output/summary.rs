@@ -101,12 +101,10 @@ pub struct SlidingInputs<'a> {
     pub solver: SolverOptions,
     pub connectivity: u8,
     pub sliding: &'a SlidingConfig,
-    /// Warnings about the inputs (e.g. λ_l of a few pixels), reported with the results'.
-    pub warnings: Vec<String>,
 }
 
 impl<'a> SlidingInputs<'a> {
-    /// The inputs of a run file with a sliding schedule.
+    /// The inputs of a run (from a file, or built in memory) with a sliding schedule.
     pub fn of_run(config: &'a RunConfig, sliding: &'a SlidingConfig) -> Self {
         Self {
             units: config.units,
@@ -116,7 +114,6 @@ impl<'a> SlidingInputs<'a> {
             solver: config.solver,
             connectivity: config.connectivity,
             sliding,
-            warnings: config.warnings(),
         }
     }
 
@@ -129,15 +126,6 @@ impl<'a> SlidingInputs<'a> {
             "sliding": self.sliding,
         })
     }
-}
-
-/// Every warning of a sliding run: about its inputs, d* against the pixel size, and each load's
-/// results.
-pub fn run_warnings(inputs: &SlidingInputs, pixel_size: f64, runs: &[LoadRun]) -> Vec<String> {
-    let mut all = inputs.warnings.clone();
-    all.extend(crate::sliding::resolution_warnings(inputs.material, pixel_size));
-    all.extend(runs.iter().flat_map(|r| r.warnings.iter().cloned()));
-    all
 }
 
 fn surface_source(source: &SurfaceSource) -> Value {
@@ -159,11 +147,12 @@ pub const RESIDUAL_DEFINITION: &str = "max over pixels of the violation of the o
 free, max(0,-(g+c)) on non-contact, max(0,g+c) on plastic pixels) divided by std(h)";
 
 /// `summary.json` of a sliding run: provenance, inputs, derived quantities, solver statistics and
-/// the results per load and fracture energy, with the conventions they follow.
+/// the results per load and fracture energy, with the conventions they follow, and `warnings`, every
+/// warning of the run (its inputs, its surfaces, d* against the pixel size, each load's results).
 pub fn sliding_summary(
     inputs: &SlidingInputs,
     runs: &[LoadRun],
-    pixel_size: f64,
+    warnings: &[String],
     seconds: f64,
     steps_per_load: usize,
 ) -> Value {
@@ -210,7 +199,7 @@ pub fn sliding_summary(
         "results": results,
         "units_of_results": units_map(inputs.units, columns::<WearResult>().iter().map(String::as_str).chain(["load", "flow_pressure", "effective_modulus"])),
         "units_of_series": units_map(inputs.units, columns::<SeriesRow>().iter().map(String::as_str)),
-        "warnings": run_warnings(inputs, pixel_size, runs),
+        "warnings": warnings,
         "seconds": seconds,
     })
 }

@@ -7,7 +7,8 @@ use std::sync::Mutex;
 
 use crate::error::{Error, Interrupt, Result};
 use crate::output::{JobResult, Provenance, StepRow};
-use crate::sliding::{run_sliding_resumable, Checkpointing, SlidingSetup};
+use crate::run::SlidingRun;
+use crate::sliding::Checkpointing;
 use crate::study::expand::Job;
 use crate::study::store::{stored_result, write_result, Claim, Stored, CLAIM_REFRESH};
 
@@ -30,24 +31,23 @@ pub fn job_steps(job: &Job) -> usize {
 }
 
 /// [`run_job`], calling `on_step` after every sliding step (progress of a long job), saving its
-/// state and resuming from it as `checkpointing` says.
+/// state and resuming from it as `checkpointing` says. The job is a sliding run like any other
+/// ([`SlidingRun`]), and its job file keeps every warning of it, its surfaces' included.
 pub fn run_job_observed(
     job: &Job,
     interrupt: &Interrupt,
     checkpointing: Option<&Checkpointing>,
     on_step: impl Fn(),
 ) -> Result<JobResult> {
-    let start = std::time::Instant::now();
     let run = &job.run;
-    let sliding = run
-        .sliding
-        .as_ref()
-        .ok_or_else(|| Error::param("loads", "job without [sliding]"))?;
-    let (top, bottom) = run.surfaces()?;
-    let mut setup = SlidingSetup::from_run(run, sliding);
-    setup.interrupt = interrupt.clone();
-    let mut runs = run_sliding_resumable(&top, &bottom, &setup, checkpointing, |_| {}, |_| on_step())?;
-    let r = runs.pop().ok_or_else(|| Error::param("loads", "job without a load"))?;
+    let mut outcome =
+        SlidingRun::prepare(run)?
+            .interrupted_by(interrupt)
+            .run_resumable(checkpointing, |_| {}, |_| on_step())?;
+    let r = outcome
+        .runs
+        .pop()
+        .ok_or_else(|| Error::param("loads", "job without a load"))?;
     Ok(JobResult {
         format: crate::output::JOB_FORMAT,
         provenance: Provenance::current(),
@@ -60,13 +60,8 @@ pub fn run_job_observed(
         results: r.results,
         steps: r.steps.iter().map(StepRow::from).collect(),
         total_iterations: r.total_iterations,
-        seconds: start.elapsed().as_secs_f64(),
-        warnings: {
-            let mut w = run.warnings();
-            w.extend(crate::sliding::resolution_warnings(&run.material, top.pixel_size()));
-            w.extend(r.warnings);
-            w
-        },
+        seconds: outcome.seconds,
+        warnings: outcome.warnings,
     })
 }
 
