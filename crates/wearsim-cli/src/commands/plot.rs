@@ -12,7 +12,7 @@ use plotters::prelude::*;
 use wearsim::config::Units;
 use wearsim::output::{unit_of, JobResult, Table, TidyRow};
 use wearsim::sliding::WearResult;
-use wearsim::stats::line_fit;
+use wearsim::stats::{line_fit, power_law_fit};
 use wearsim::study::findings::{findings, markdown};
 use wearsim::study::{load_results, Job};
 
@@ -596,8 +596,8 @@ struct Severity {
 
 impl Severity {
     /// The contact severity S_c of the library's table (appendix F) against W, for every job and
-    /// fracture energy with W > 0 and S_c defined (generated surfaces), and the least-squares fit
-    /// of ln W against ln S_c.
+    /// fracture energy with W > 0 and S_c defined (generated surfaces), and the library's fit
+    /// W = α S_cⁿ ([`power_law_fit`]).
     fn of(data: &Data) -> Option<Self> {
         let mut points = Vec::new();
         for r in &data.results {
@@ -608,13 +608,13 @@ impl Severity {
                 }
             }
         }
-        let xs: Vec<f64> = points.iter().map(|p| p.2.ln()).collect();
-        let ys: Vec<f64> = points.iter().map(|p| p.3.ln()).collect();
-        let fit = line_fit(&xs, &ys)?;
+        let s_c: Vec<f64> = points.iter().map(|p| p.2).collect();
+        let w: Vec<f64> = points.iter().map(|p| p.3).collect();
+        let fit = power_law_fit(&s_c, &w)?;
         Some(Self {
             points,
-            alpha: fit.intercept.exp(),
-            n_exp: fit.slope,
+            alpha: fit.prefactor,
+            n_exp: fit.exponent,
             r2: fit.r2,
             units: data.units,
         })
@@ -623,9 +623,9 @@ impl Severity {
     /// The fit of one material's points: (α, n), when it has two distinct S_c.
     fn of_material(&self, m: usize) -> Option<(f64, f64)> {
         let mine: Vec<&(usize, String, f64, f64)> = self.points.iter().filter(|p| p.0 == m).collect();
-        let xs: Vec<f64> = mine.iter().map(|p| p.2.ln()).collect();
-        let ys: Vec<f64> = mine.iter().map(|p| p.3.ln()).collect();
-        line_fit(&xs, &ys).map(|f| (f.intercept.exp(), f.slope))
+        let s_c: Vec<f64> = mine.iter().map(|p| p.2).collect();
+        let w: Vec<f64> = mine.iter().map(|p| p.3).collect();
+        power_law_fit(&s_c, &w).map(|f| (f.prefactor, f.exponent))
     }
 }
 
