@@ -13,31 +13,37 @@ __all__ = [
     "DEFAULT_TOLERANCE",
     "Material",
     "NotConvergedError",
+    "RESOLVED_PARTICLES",
     "RunFile",
     "SERIES_COLUMNS",
     "Study",
     "WearsimError",
     "__version__",
+    "aggregate",
     "collect_study",
     "composite_heights",
+    "curves",
     "fit_surface",
     "generate_surface",
     "label_junctions",
     "metres_per",
     "pair_seeds",
     "periodicity",
+    "power_law_fit",
     "preprocess_surface",
     "radial_psd",
     "read_surface",
     "slide",
     "static_wear_model",
     "surface_statistics",
+    "unit_of",
 ]
 
 __version__: str
 DEFAULT_TOLERANCE: float
 DEFAULT_MAX_ITERATIONS: int
 SERIES_COLUMNS: List[str]
+RESOLVED_PARTICLES: float
 
 class WearsimError(Exception): ...
 class NotConvergedError(WearsimError): ...
@@ -93,6 +99,10 @@ def slide(
     progress: Optional[Callable[[int, int], None]] = None,
 ) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]: ...
 def collect_study(out: Path) -> Tuple[int, int]: ...
+def curves(columns: Dict[str, List[Any]]) -> Tuple[List[int], List[str]]: ...
+def aggregate(columns: Dict[str, List[Any]]) -> Dict[str, Any]: ...
+def unit_of(units: str, quantity: str) -> str: ...
+def power_law_fit(x: List[float], y: List[float]) -> Optional[Tuple[float, float, Optional[float]]]: ...
 
 @final
 class Material:

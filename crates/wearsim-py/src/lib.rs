@@ -3,7 +3,7 @@
 //! (`error`), long calls run with the GIL released on a worker thread while the calling thread
 //! watches for Ctrl-C. One module per concept: `surface`, `topography` (measured height maps),
 //! `contact` (material, solver, junctions),
-//! `sliding`, `study`. The public Python API, with docstrings and units, is the pure-Python package
+//! `sliding`, `study`, `tables` (what the library derives from a study's tables for figures). The public Python API, with docstrings and units, is the pure-Python package
 //! `wearsim` around this module.
 
 use numpy::ndarray::Array2;
@@ -18,6 +18,7 @@ mod error;
 mod sliding;
 mod study;
 mod surface;
+mod tables;
 mod topography;
 
 /// Two arrays returned together (a surface pair, labels and sizes, a spectrum).
@@ -127,5 +128,6 @@ fn _wearsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     contact::register(m)?;
     sliding::register(m)?;
     study::register(m)?;
+    tables::register(m)?;
     Ok(())
 }
