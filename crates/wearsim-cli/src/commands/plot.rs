@@ -13,7 +13,7 @@ use wearsim::config::Units;
 use wearsim::output::{unit_of, JobResult, Table, TidyRow};
 use wearsim::sliding::WearResult;
 use wearsim::stats::{line_fit, power_law_fit};
-use wearsim::study::findings::{findings, markdown};
+use wearsim::study::findings::{findings, markdown, RESOLVED_PARTICLES};
 use wearsim::study::{load_results, Job};
 
 use crate::figures::{color, layout, legend, number, pretty, save, Axis, Entry, Figure, Marker, Panel, Swatch};
@@ -114,19 +114,13 @@ type Quantity = fn(&WearResult) -> Option<f64>;
 /// Points (x, y) of a series.
 type Points = Vec<(f64, f64)>;
 
-/// Particles in a fit window (per surface pair, mean over the pairs) below which a point of a
-/// sliding quantity is drawn hollow: too few for the fitted rate to be resolved.
-const RESOLVED_PARTICLES: f64 = 20.0;
-
 impl Curve {
-    /// Per load: the mean over surface pairs of the particles formed in the fit window.
+    /// Per load: the particles formed in the fit window, summed over the surface pairs (what the
+    /// findings judge against [`RESOLVED_PARTICLES`]).
     fn particles(&self) -> Vec<(f64, f64)> {
         self.points
             .values()
-            .map(|(load, results)| {
-                let n = results.iter().map(|r| r.particles_in_fit as f64).sum::<f64>();
-                (*load, n / results.len().max(1) as f64)
-            })
+            .map(|(load, results)| (*load, results.iter().map(|r| r.particles_in_fit as f64).sum::<f64>()))
             .collect()
     }
 
@@ -326,7 +320,9 @@ impl Figure for LoadFigure<'_> {
         }
         if self.fitted && particles.iter().flatten().any(|p| p.1 < RESOLVED_PARTICLES) {
             entries.push(Entry {
-                label: format!("hollow: < {RESOLVED_PARTICLES} particles per surface pair in the fit window"),
+                label: format!(
+                    "hollow: < {RESOLVED_PARTICLES} particles in the fit window (summed over surface pairs)"
+                ),
                 color: RGBColor(90, 90, 90),
                 swatch: Swatch::Hollow(Marker::Circle),
             });
