@@ -2,7 +2,7 @@
 //! in and out as NumPy arrays, library errors as Python exceptions carrying the library's message
 //! (`error`), long calls run with the GIL released on a worker thread while the calling thread
 //! watches for Ctrl-C. One module per concept: `surface`, `topography` (measured height maps),
-//! `contact` (material, solver, junctions),
+//! `contact` (material, solver, junctions), `junctions` (their geometry),
 //! `sliding`, `study`, `tables` (what the library derives from a study's tables for figures). The public Python API, with docstrings and units, is the pure-Python package
 //! `wearsim` around this module.
 
@@ -15,6 +15,7 @@ use wearsim::output::{Cell, Table};
 
 mod contact;
 mod error;
+mod junctions;
 mod sliding;
 mod study;
 mod surface;
@@ -129,5 +130,6 @@ fn _wearsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     sliding::register(m)?;
     study::register(m)?;
     tables::register(m)?;
+    junctions::register(m)?;
     Ok(())
 }
