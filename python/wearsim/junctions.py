@@ -31,7 +31,9 @@ class Junctions:
     @property
     def wrapping(self) -> np.ndarray:
         """Whether each junction wraps the periodic box (along x or y)."""
-        return self.wraps.any(axis=1) if self.wraps.size else np.zeros(self.pixels.size, dtype=bool)
+        if not self.wraps.size:
+            return np.zeros(self.pixels.size, dtype=bool)
+        return np.asarray(self.wraps.any(axis=1))
 
     @property
     def count(self) -> int:

@@ -283,20 +283,21 @@ def junction_counts(tidy: pd.DataFrame) -> Any:
 
 
 def constant_critical_diameter(tidy: pd.DataFrame, tolerance: float = 0.15) -> List[Any]:
-    """Paper Figs. 4c/5c: W, k and dN*₊/ds for settings whose d* agree within ``tolerance``; one
-    figure per such group (none when the study has no two)."""
+    """Paper Figs. 4c/5c: W, k and dN*₊/ds for settings whose d* agree within ``tolerance`` and differ in
+    τ̃ or 𝒢 (the library's grouping); one figure per such group (none when the study has no two)."""
     figures = []
-    diameters = sorted(tidy["critical_diameter"].unique())
-    groups: List[List[float]] = []
-    for d in diameters:
-        if groups and d <= (1 + tolerance) * groups[-1][0]:
-            groups[-1].append(d)
-        else:
-            groups.append([d])
-    for group in groups:
-        rows = tidy[tidy["critical_diameter"].isin(group)]
-        if rows[["material.shear_strength", "fracture_energy"]].drop_duplicates().shape[0] < 2:
-            continue
+    curve_of_row, _ = _wearsim.curves(_columns(tidy))
+    materials = [
+        (
+            float(s["critical_diameter_mean"].iloc[0]),
+            float(s["material.shear_strength"].iloc[0]),
+            float(s["fracture_energy"].iloc[0]),
+        )
+        for _, s in curves(tidy)
+    ]
+    for group in _wearsim.equal_critical_diameter(materials, tolerance):
+        rows = tidy[np.isin(curve_of_row, group)]
+        d_star = materials[group[0]][0]
         figures.append(
             _load_figure(
                 rows,
@@ -305,7 +306,7 @@ def constant_critical_diameter(tidy: pd.DataFrame, tolerance: float = 0.15) -> L
                     ("wear_coefficient", "$k = W p_m / F_N$", True),
                     ("particle_rate", "$dN^*_+/ds$ (1/{length})", True),
                 ],
-                f"nearly equal d* ≈ {group[0]:.3g}",
+                f"nearly equal d* ≈ {d_star:.3g}",
                 fitted=True,
             )
         )

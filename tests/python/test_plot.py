@@ -109,3 +109,17 @@ def test_unfitted_figures_draw_no_hollow_markers():
     assert not any(line.get_markerfacecolor() == "none" and len(line.get_xdata()) for line in fig.axes[0].lines)
     assert not any("hollow" in t for t in _legend_texts(fig))
     plt.close(fig)
+
+
+def test_settings_of_equal_critical_diameter_by_the_library():
+    import matplotlib.pyplot as plt
+
+    tidy = _tidy()
+    # d* 0.01 and 0.005: nothing to compare; both 0.01 (τ̃ differs): one figure of both curves.
+    assert wearsim.plot.constant_critical_diameter(tidy) == []
+    tidy["critical_diameter"] = 0.01
+    figures = wearsim.plot.constant_critical_diameter(tidy)
+    assert len(figures) == 1
+    assert sum(r"$\tilde{\tau}$" in t for t in _legend_texts(figures[0])) == 2
+    assert _wearsim.equal_critical_diameter([(0.01, 0.008, 1e-6), (0.0114, 0.012, 1e-6)], 0.15) == [[0, 1]]
+    plt.close(figures[0])

@@ -1,5 +1,5 @@
 //! What the library derives from a study's tables, for the figures of `wearsim.plot`: the curves
-//! of a table, its aggregation over surface pairs, the units of its columns and the power-law fit
+//! of a table, its aggregation over surface pairs, the curves of equal d*, the units of its columns and the power-law fit
 //! of appendix F. Tables come from Python as a dict of column lists (a DataFrame's
 //! `{c: df[c].tolist()}`).
 
@@ -7,7 +7,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyString};
 use wearsim::config::Units;
-use wearsim::output::{Cell, Table};
+use wearsim::output::{Cell, CurveMaterial, Table};
 
 use crate::table_to_py;
 
@@ -73,6 +73,21 @@ fn aggregate<'py>(py: Python<'py>, columns: &Bound<'py, PyDict>) -> PyResult<Bou
     table_to_py(py, &wearsim::output::aggregate(&table_of(columns)?))
 }
 
+/// The groups of curves of (nearly) equal d* that Figs. 4c and 5c compare, from (d*, τ̃, 𝒢) per
+/// curve: indices of the curves, each group by increasing d*.
+#[pyfunction]
+fn equal_critical_diameter(curves: Vec<(f64, f64, f64)>, tolerance: f64) -> Vec<Vec<usize>> {
+    let curves: Vec<CurveMaterial> = curves
+        .into_iter()
+        .map(|(critical_diameter, shear_strength, fracture_energy)| CurveMaterial {
+            critical_diameter,
+            shear_strength,
+            fracture_energy,
+        })
+        .collect();
+    wearsim::output::equal_critical_diameter(&curves, tolerance)
+}
+
 /// The unit of a column or quantity in the unit system `units` ("reduced" or "si").
 #[pyfunction]
 fn unit_of(units: &str, quantity: &str) -> PyResult<&'static str> {
@@ -107,6 +122,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(curves, m)?)?;
     m.add_function(wrap_pyfunction!(aggregate, m)?)?;
     m.add_function(wrap_pyfunction!(unit_of, m)?)?;
+    m.add_function(wrap_pyfunction!(equal_critical_diameter, m)?)?;
     m.add_function(wrap_pyfunction!(power_law_fit, m)?)?;
     Ok(())
 }

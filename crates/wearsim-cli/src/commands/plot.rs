@@ -10,7 +10,7 @@ use anyhow::{anyhow, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use wearsim::config::Units;
-use wearsim::output::{unit_of, JobResult, Table, TidyRow};
+use wearsim::output::{equal_critical_diameter, unit_of, CurveMaterial, JobResult, Table, TidyRow};
 use wearsim::sliding::WearResult;
 use wearsim::stats::{line_fit, power_law_fit};
 use wearsim::study::findings::{findings, markdown, RESOLVED_PARTICLES};
@@ -705,24 +705,20 @@ impl Figure for Note {
     }
 }
 
-/// Groups of curves of (nearly) equal d* (within 15 %) and different τ̃ or 𝒢, for Figs. 4c/5c.
+/// Groups of curves of (nearly) equal d* (within 15 %) and different τ̃ or 𝒢, for Figs. 4c/5c: the
+/// library's grouping ([`equal_critical_diameter`]).
 fn equal_d_star(curves: &[Curve]) -> Vec<Vec<&Curve>> {
-    let mut sorted: Vec<&Curve> = curves.iter().collect();
-    sorted.sort_by(|a, b| a.critical_diameter.total_cmp(&b.critical_diameter));
-    let mut groups: Vec<Vec<&Curve>> = Vec::new();
-    for c in sorted {
-        match groups.last_mut() {
-            Some(g) if c.critical_diameter <= 1.15 * g[0].critical_diameter => g.push(c),
-            _ => groups.push(vec![c]),
-        }
-    }
-    groups
-        .into_iter()
-        .filter(|g| {
-            g.len() >= 2
-                && g.iter()
-                    .any(|c| c.shear_strength != g[0].shear_strength || c.fracture_energy != g[0].fracture_energy)
+    let materials: Vec<CurveMaterial> = curves
+        .iter()
+        .map(|c| CurveMaterial {
+            critical_diameter: c.critical_diameter,
+            shear_strength: c.shear_strength,
+            fracture_energy: c.fracture_energy,
         })
+        .collect();
+    equal_critical_diameter(&materials, 0.15)
+        .into_iter()
+        .map(|g| g.into_iter().map(|i| &curves[i]).collect())
         .collect()
 }
 

@@ -214,6 +214,40 @@ pub fn curves(table: &Table) -> Curves {
     Curves { index, settings }
 }
 
+/// What Figs. 4c and 5c of the paper compare of a curve: its d*, τ̃ and 𝒢.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CurveMaterial {
+    pub critical_diameter: f64,
+    pub shear_strength: f64,
+    pub fracture_energy: f64,
+}
+
+/// The groups of curves of (nearly) equal d* that Figs. 4c and 5c of the paper compare: curves
+/// sorted by d*, a group holding those within `1 + tolerance` of its smallest d*, kept when it has
+/// two curves or more that differ in τ̃ or 𝒢. Indices into `curves`, each group by increasing d*.
+pub fn equal_critical_diameter(curves: &[CurveMaterial], tolerance: f64) -> Vec<Vec<usize>> {
+    let mut sorted: Vec<usize> = (0..curves.len()).collect();
+    sorted.sort_by(|&a, &b| curves[a].critical_diameter.total_cmp(&curves[b].critical_diameter));
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    for i in sorted {
+        match groups.last_mut() {
+            Some(g) if curves[i].critical_diameter <= (1.0 + tolerance) * curves[g[0]].critical_diameter => g.push(i),
+            _ => groups.push(vec![i]),
+        }
+    }
+    groups
+        .into_iter()
+        .filter(|g| {
+            let first = curves[g[0]];
+            g.len() >= 2
+                && g.iter().any(|&i| {
+                    curves[i].shear_strength != first.shear_strength
+                        || curves[i].fracture_energy != first.fracture_energy
+                })
+        })
+        .collect()
+}
+
 /// One setting of a tidy table: its key cells, its curve and the rows of its surface pairs.
 type Setting<'a> = (Vec<Cell>, usize, Vec<&'a Vec<Cell>>);
 
@@ -430,6 +464,27 @@ mod tests {
             ..job(0, 0.01, 0.01)
         });
         assert_eq!(measured[0].contact_severity, None);
+    }
+
+    #[test]
+    fn equal_critical_diameters_group_within_the_tolerance() {
+        let curve = |critical_diameter: f64, shear_strength: f64, fracture_energy: f64| CurveMaterial {
+            critical_diameter,
+            shear_strength,
+            fracture_energy,
+        };
+        let curves = [
+            curve(0.0100, 0.012, 1e-6),
+            curve(0.0050, 0.008, 1e-6),
+            curve(0.0114, 0.008, 2e-6),
+            // Within 15 % of 0.005 but of the same τ̃ and 𝒢 as its neighbour: no comparison.
+            curve(0.0056, 0.008, 1e-6),
+            // 16 % above 0.01: a group of its own.
+            curve(0.0116, 0.010, 1e-6),
+        ];
+        assert_eq!(equal_critical_diameter(&curves, 0.15), [vec![0, 2]]);
+        assert_eq!(equal_critical_diameter(&curves, 0.2), [vec![0, 2, 4]]);
+        assert!(equal_critical_diameter(&curves, 0.0).is_empty());
     }
 
     #[test]
