@@ -18,25 +18,32 @@ __all__ = [
     "DEFAULT_TOLERANCE",
     "Material",
     "NotConvergedError",
+    "RESOLVED_PARTICLES",
     "RunFile",
     "SERIES_COLUMNS",
     "Study",
     "WearsimError",
     "__version__",
+    "aggregate",
     "collect_study",
     "composite_heights",
+    "curves",
+    "equal_critical_diameter",
     "fit_surface",
     "generate_surface",
+    "junction_geometry",
     "label_junctions",
     "metres_per",
     "pair_seeds",
     "periodicity",
+    "power_law_fit",
     "preprocess_surface",
     "radial_psd",
     "read_surface",
     "slide",
     "static_wear_model",
     "surface_statistics",
+    "unit_of",
 ]
 
 __version__: str
@@ -48,6 +55,7 @@ DEFAULT_RUNNING_IN: float
 DEFAULT_STEP_RUNNING_IN: int
 DEFAULT_STEP: int
 SERIES_COLUMNS: List[str]
+RESOLVED_PARTICLES: float
 
 class WearsimError(Exception): ...
 class NotConvergedError(WearsimError): ...
@@ -103,6 +111,12 @@ def slide(
     progress: Optional[Callable[[int, int], None]] = None,
 ) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]: ...
 def collect_study(out: Path) -> Tuple[int, int]: ...
+def junction_geometry(pixels: List[int], pixel_size: float) -> Tuple[_F64Array, _F64Array, _F64Array]: ...
+def curves(columns: Dict[str, List[Any]]) -> Tuple[List[int], List[str]]: ...
+def aggregate(columns: Dict[str, List[Any]]) -> Dict[str, Any]: ...
+def equal_critical_diameter(curves: List[Tuple[float, float, float]], tolerance: float) -> List[List[int]]: ...
+def unit_of(units: str, quantity: str) -> str: ...
+def power_law_fit(x: List[float], y: List[float]) -> Optional[Tuple[float, float, Optional[float]]]: ...
 
 @final
 class Material:

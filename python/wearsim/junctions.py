@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import warnings
 from dataclasses import dataclass, field
+from typing import Tuple
 
 import numpy as np
 import pandas as pd
@@ -30,38 +31,44 @@ class Junctions:
     @property
     def wrapping(self) -> np.ndarray:
         """Whether each junction wraps the periodic box (along x or y)."""
-        return np.asarray(self.wraps.any(axis=1)) if self.wraps.size else np.zeros(self.pixels.size, dtype=bool)
+        if not self.wraps.size:
+            return np.zeros(self.pixels.size, dtype=bool)
+        return np.asarray(self.wraps.any(axis=1))
 
     @property
     def count(self) -> int:
         """Number of junctions."""
         return int(self.pixels.size)
 
+    def _geometry(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+        return _wearsim.junction_geometry(self.pixels.tolist(), self.pixel_size)
+
     @property
     def areas(self) -> np.ndarray:
-        """A_i = pixels·Δx²."""
-        return self.pixels.astype(np.float64) * self.pixel_size**2
+        """A_i = pixels·Δx² (the library's, as the wear model uses it)."""
+        return self._geometry()[0]
 
     @property
     def diameters(self) -> np.ndarray:
         """Equivalent diameters d_i = 2√(A_i/π) (circular junctions, paper §3)."""
-        return 2.0 * np.sqrt(self.areas / np.pi)
+        return self._geometry()[1]
 
     @property
     def volumes(self) -> np.ndarray:
         """Volumes of the spherical particles they would form, v_i = π d_i³/6."""
-        return np.pi * self.diameters**3 / 6.0
+        return self._geometry()[2]
 
     def table(self) -> pd.DataFrame:
         """One row per junction: pixels, area, diameter, volume, and whether it wraps the box along x
         and y (such a junction is no particle of the model)."""
         wraps = self.wraps if self.wraps.size else np.zeros((self.pixels.size, 2), dtype=bool)
+        area, diameter, volume = self._geometry()
         return pd.DataFrame(
             {
                 "pixels": self.pixels,
-                "area": self.areas,
-                "diameter": self.diameters,
-                "volume": self.volumes,
+                "area": area,
+                "diameter": diameter,
+                "volume": volume,
                 "wraps_x": wraps[:, 0],
                 "wraps_y": wraps[:, 1],
             }

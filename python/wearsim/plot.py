@@ -23,13 +23,16 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 import numpy as np
 import pandas as pd
 
+from . import _wearsim
+
 #: Kim et al. (1986), rolling experiments: k = 6e-7 … 1.5e-3 (paper §4.3, Fig. 6c).
 KIM_RANGE = (6e-7, 1.5e-3)
 
-# Neither a study axis nor a result: the job, the seed, the load and the nominal pressure (along a
-# curve), the fracture energy (labelled apart) and the warnings.
-_NOT_SETTINGS = {"job", "surface.seed", "load", "nominal_pressure", "fracture_energy", "warnings"}
 _MARKERS = "o^sDvP*X"
+
+#: Particles in the fit window of a point, summed over its surface pairs, below which its fitted
+#: rates rest on too few events to be judged: drawn hollow (the rule of the paper's findings).
+RESOLVED_PARTICLES = _wearsim.RESOLVED_PARTICLES
 
 
 def _pyplot() -> Any:
@@ -40,56 +43,69 @@ def _pyplot() -> Any:
     return plt
 
 
+def _unit(tidy: pd.DataFrame, quantity: str) -> str:
+    """The unit of a column or quantity: the table's own (``attrs["units"]``, from
+    ``results.units.json``, as :func:`wearsim.study.collect` attaches it), else the library's rule for
+    the table's unit system (a table read with ``pandas.read_csv``)."""
+    known = tidy.attrs.get("units", {})
+    if quantity in known:
+        return str(known[quantity])
+    system = str(tidy["units"].iloc[0]) if "units" in tidy.columns and len(tidy) else "reduced"
+    return _wearsim.unit_of(system, quantity)
+
+
 def _units(tidy: pd.DataFrame) -> Dict[str, str]:
-    si = "units" in tidy.columns and (tidy["units"] == "si").any()
-    if si:
-        return {"load": "N", "length": "m", "area": "m²", "volume": "m³", "energy": "J/m²", "stress": "Pa"}
-    return {"load": "E L²", "length": "L", "area": "L²", "volume": "L³", "energy": "E L", "stress": "E"}
+    """The units that figure labels name, by the quantity that carries each."""
+    return {
+        "area": _unit(tidy, "wear_rate"),
+        "length": _unit(tidy, "surface.length"),
+        "volume": _unit(tidy, "volume"),
+        "stress": _unit(tidy, "material.shear_strength"),
+        "energy": _unit(tidy, "fracture_energy"),
+        "pressure": _unit(tidy, "nominal_pressure"),
+    }
 
 
-def _result_columns(tidy: pd.DataFrame) -> List[str]:
-    first_result = (
-        list(tidy.columns).index("critical_diameter") if "critical_diameter" in tidy.columns else len(tidy.columns)
-    )
-    return list(tidy.columns[first_result:])
+def _columns(table: pd.DataFrame) -> Dict[str, List[Any]]:
+    return {str(c): table[c].tolist() for c in table.columns}
 
 
-def _varying(tidy: pd.DataFrame) -> List[str]:
-    """Input columns that take more than one value (the study's axes), the seed aside."""
-    results = set(_result_columns(tidy))
-    return [
-        c
-        for c in tidy.columns
-        if c not in results and c not in _NOT_SETTINGS and tidy[c].astype(str).nunique(dropna=False) > 1
-    ]
+def _label(column: str, value: Any, row: pd.Series, units: Dict[str, str]) -> str:
+    """How a setting that tells curves apart is named in legends, with the paper's symbols."""
+    name = column.rsplit(".", 1)[-1]
+    if column == "material":
+        return str(value)
+    if name == "shear_strength":
+        return rf"$\tilde{{\tau}}$ = {value:g} {units['stress']}"
+    if column == "fracture_energy":
+        d = row["critical_diameter_mean"]
+        return rf"$\mathcal{{G}}$ = {value:.3g} {units['energy']} ($d^*$ = {d:.3g} {units['length']})"
+    if name == "rms_height":
+        return rf"$h_\mathrm{{rms}}$ = {value:g} {units['length']}"
+    return f"{name} = {value:g}" if isinstance(value, (int, float, np.number)) else f"{name} = {value}"
 
 
 def curves(tidy: pd.DataFrame) -> List[Tuple[str, pd.DataFrame]]:
-    """The curves of a tidy table: (label, per-load DataFrame with the mean, min and max over surface
-    pairs of every result column, as ``<column>_mean`` …), one per setting and fracture energy."""
+    """The curves of a tidy table: (label, per-load DataFrame of the library's aggregated table, with
+    the nominal pressure, the surface pairs and the mean, min and max over them of every result
+    column, as ``<column>_mean`` …), one per setting and fracture energy. The grouping, the
+    statistics and which settings name a curve are the library's (those of
+    ``results_aggregated.csv``)."""
     units = _units(tidy)
-    keys = _varying(tidy) + ["fracture_energy"]
+    aggregated = pd.DataFrame(_wearsim.aggregate(_columns(tidy)))
+    _, settings = _wearsim.curves(_columns(tidy))
+    named = [c for c in settings if c != "fracture_energy"] + ["fracture_energy"]
     out = []
-    for values, group in tidy.groupby(keys, sort=False, dropna=False):
-        chosen: Tuple[Any, ...] = tuple(values) if isinstance(values, tuple) else (values,)
-        parts = []
-        for k, v in zip(keys, chosen):
-            name = k.rsplit(".", 1)[-1]
-            if k == "material":
-                parts.append(str(v))
-            elif name == "shear_strength":
-                parts.append(rf"$\tilde{{\tau}}$ = {v:g} {units['stress']}")
-            elif k == "fracture_energy":
-                d = group["critical_diameter"].iloc[0]
-                parts.append(rf"$\mathcal{{G}}$ = {v:.3g} {units['energy']} (d* = {d:.3g} {units['length']})")
-            else:
-                parts.append(f"{name} = {v:g}" if isinstance(v, (int, float, np.number)) else f"{name} = {v}")
-        numeric = group.select_dtypes("number")
-        by_pressure = numeric.drop(columns=["nominal_pressure"], errors="ignore").groupby(group["nominal_pressure"])
-        stats = by_pressure.agg(["mean", "min", "max"])
-        stats.columns = ["_".join(map(str, pair)) for pair in stats.columns.to_flat_index()]
-        out.append((", ".join(parts), stats.reset_index()))
+    for _, group in aggregated.groupby("curve", sort=True):
+        first = group.iloc[0]
+        label = ", ".join(_label(c, first[c], first, units) for c in named if c in group.columns)
+        out.append((label, group.sort_values("nominal_pressure").reset_index(drop=True)))
     return out
+
+
+def _particles(stats: pd.DataFrame) -> np.ndarray:
+    """Per point, the particles in the fit window summed over its surface pairs."""
+    return (stats["particles_in_fit_mean"] * stats["surface_pairs"]).round().to_numpy()
 
 
 def _load_figure(
@@ -98,40 +114,115 @@ def _load_figure(
     title: str,
     band: Optional[Tuple[float, float, str]] = None,
     by_material: bool = False,
+    fitted: bool = False,
 ) -> Any:
+    """Quantities against the nominal pressure, one panel each, as the CLI draws them: means over
+    surface pairs with min–max bars (a minimum of zero drawn to the axis), points of fitted rates
+    resting on fewer than :data:`RESOLVED_PARTICLES` particles hollow with their counts in the
+    legend, settings without wear as markers on the axis."""
     plt = _pyplot()
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
     units = _units(tidy)
     fig, axes = plt.subplots(1, len(panels), figsize=(6.5 * len(panels) + 3.5, 5.0), squeeze=False)
     materials = list(dict.fromkeys(tidy["material"]))
     data = curves(tidy)
+    material_of = [str(stats["material"].iloc[0]) for _, stats in data]
+    styles = []
+    for i, material in enumerate(material_of):
+        if by_material:
+            within = material_of[:i].count(material)
+            styles.append((f"C{materials.index(material)}", _MARKERS[within % len(_MARKERS)]))
+        else:
+            styles.append((f"C{i}", _MARKERS[materials.index(material) % len(_MARKERS)]))
+    thin = [fitted & (_particles(stats) < RESOLVED_PARTICLES) for _, stats in data]
+    zeros_drawn = False
     for p, (ax, (column, label, log)) in enumerate(zip(axes[0], panels)):
-        if band is not None and p == len(panels) - 1:
-            ax.axhspan(band[0], band[1], color="tab:blue", alpha=0.15, label=band[2])
-        for i, (name, stats) in enumerate(data):
-            if f"{column}_mean" not in stats:
-                continue
-            m = materials.index(name.split(",")[0]) if by_material and name.split(",")[0] in materials else 0
-            color = f"C{m if by_material else i}"
-            y = stats[f"{column}_mean"]
-            err = [y - stats[f"{column}_min"], stats[f"{column}_max"] - y]
-            ax.errorbar(
-                stats["nominal_pressure"],
-                y,
-                yerr=err,
-                color=color,
-                marker=_MARKERS[m % len(_MARKERS)],
-                capsize=2,
-                label=name,
-            )
         ax.set_xscale("log")
         if log:
             ax.set_yscale("log")
-        ax.set_xlabel(f"nominal pressure p_N = F_N/(Lx·Ly) ({units['stress']})")
+        shown = band if p == len(panels) - 1 else None
+        if shown is not None:
+            ax.axhspan(shown[0], shown[1], color="tab:blue", alpha=0.15)
+        present = [(i, stats) for i, (_, stats) in enumerate(data) if f"{column}_mean" in stats]
+        values = np.concatenate(
+            [stats[[f"{column}_{s}" for s in ("mean", "min", "max")]].to_numpy().ravel() for _, stats in present]
+            + [np.array(shown[:2] if shown is not None else [])]
+        )
+        values = values[np.isfinite(values) & ((values > 0) if log else True)]
+        if log and len(values):
+            bottom, top = values.min() / 1.4, values.max() * 1.4
+            ax.set_ylim(bottom, top)
+        elif len(values):
+            bottom = min(values.min(), 0.0)
+            ax.set_ylim(bottom, values.max() + 0.08 * (values.max() - bottom or 1.0))
+        for i, stats in present:
+            color, marker = styles[i]
+            x = stats["nominal_pressure"].to_numpy()
+            y = stats[f"{column}_mean"].to_numpy()
+            lo, hi = stats[f"{column}_min"].to_numpy(), stats[f"{column}_max"].to_numpy()
+            drawn = np.isfinite(y) & ((y > 0) if log else True)
+            ax.plot(x[drawn], y[drawn], "-", color=color, lw=2)
+            hollow = drawn & thin[i]
+            ax.plot(x[drawn & ~hollow], y[drawn & ~hollow], marker, color=color, linestyle="none")
+            ax.plot(x[hollow], y[hollow], marker, color=color, markerfacecolor="none", mew=1.5, linestyle="none")
+            # Bars from min to max over the surface pairs; a minimum of zero reaches the axis.
+            floor = ax.get_ylim()[0]
+            lower = np.where(log & (lo <= 0), floor, lo)
+            ax.vlines(x[drawn], lower[drawn], hi[drawn], color=color, lw=1)
+            # No wear in any surface pair: zero has no place on a log axis, so it sits on the axis.
+            none = np.isfinite(hi) & (hi <= 0)
+            if log and none.any():
+                zeros_drawn = True
+                ax.plot(
+                    x[none],
+                    np.zeros(none.sum()),
+                    "v",
+                    color=color,
+                    ms=9,
+                    clip_on=False,
+                    linestyle="none",
+                    transform=ax.get_xaxis_transform(),
+                    gid="no-wear",
+                )
+        ax.set_xlabel(rf"nominal pressure $p_N = F_N/(L_x L_y)$ ({units['pressure']})")
         ax.set_ylabel(label.format(**units))
         ax.grid(True, which="major", color="0.9")
-    axes[0][0].set_title(title, loc="left", fontsize=10)
-    handles, labels = axes[0][-1].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="center right", fontsize=8, frameon=False)
+        letter = f"({chr(ord('a') + p)})" if len(panels) > 1 else ""
+        ax.set_title(" ".join(t for t in (letter, title if p == 0 else "") if t), loc="left", fontsize=10)
+    handles: List[Any] = []
+    for i, (name, stats) in enumerate(data):
+        color, marker = styles[i]
+        counts = _particles(stats)[thin[i]]
+        note = f" — hollow: {', '.join(f'{n:g}' for n in counts)} particles" if len(counts) else ""
+        handles.append(Line2D([], [], color=color, marker=marker, lw=2, label=f"{name}{note}"))
+    if any(t.any() for t in thin):
+        handles.append(
+            Line2D(
+                [],
+                [],
+                color="0.35",
+                marker="o",
+                markerfacecolor="none",
+                linestyle="none",
+                label=f"hollow: < {RESOLVED_PARTICLES:g} particles in the fit window (summed over surface pairs)",
+            )
+        )
+    if zeros_drawn:
+        handles.append(
+            Line2D([], [], color="0.35", marker="v", linestyle="none", label="on the axis: no wear in any surface pair")
+        )
+    if band is not None:
+        handles.append(Patch(color="tab:blue", alpha=0.15, label=band[2]))
+    fig.legend(
+        handles=handles,
+        loc="center right",
+        fontsize=8,
+        frameon=False,
+        title="mean over surface pairs; bars: min–max",
+        title_fontsize=8,
+    )
     fig.tight_layout(rect=(0, 0, 0.72, 1))
     return fig
 
@@ -141,8 +232,8 @@ def static_model(tidy: pd.DataFrame) -> Any:
     return _load_figure(
         tidy,
         [
-            ("static_wear_rate_mean", "static wear rate W_static/ω ({area})", True),
-            ("static_wear_coefficient_mean", "static wear coefficient k_static", False),
+            ("static_wear_rate_mean", r"static wear rate $W_\mathrm{{static}}/\omega$ ({area})", True),
+            ("static_wear_coefficient_mean", r"static wear coefficient $k_\mathrm{{static}}$", False),
         ],
         "static model, mean over every offset",
     )
@@ -153,22 +244,30 @@ def sliding_wear(tidy: pd.DataFrame) -> Any:
     return _load_figure(
         tidy,
         [
-            ("wear_rate", "sliding wear rate W = dV/ds ({area})", True),
-            ("wear_coefficient", "wear coefficient k = W p_m / F_N", True),
+            ("wear_rate", "sliding wear rate $W = dV/ds$ ({area})", True),
+            ("wear_coefficient", "wear coefficient $k = W p_m / F_N$", True),
         ],
         "sliding model",
+        fitted=True,
     )
 
 
 def particle_rate(tidy: pd.DataFrame) -> Any:
     """Paper Fig. 5: particles emitted per sliding distance."""
-    return _load_figure(tidy, [("particle_rate", "particle rate dN*₊/ds (1/{length})", True)], "particle rate")
+    return _load_figure(
+        tidy,
+        [("particle_rate", "particle rate $dN^*_+/ds$ (1/{length})", True)],
+        "particle rate",
+        fitted=True,
+    )
 
 
 def kim_comparison(tidy: pd.DataFrame) -> Any:
     """Paper Fig. 6c: k per material against Kim et al.'s rolling experiments."""
     band = (KIM_RANGE[0], KIM_RANGE[1], "Kim et al. 1986, rolling experiments")
-    return _load_figure(tidy, [("wear_coefficient", "wear coefficient k", True)], "k per material", band, True)
+    return _load_figure(
+        tidy, [("wear_coefficient", "wear coefficient $k$", True)], "k per material", band, True, fitted=True
+    )
 
 
 def junction_counts(tidy: pd.DataFrame) -> Any:
@@ -176,37 +275,39 @@ def junction_counts(tidy: pd.DataFrame) -> Any:
     return _load_figure(
         tidy,
         [
-            ("junctions_mean", "junctions N", True),
-            ("critical_junctions_mean", "junctions ≥ d*, N*", True),
+            ("junctions_mean", "junctions $N$", True),
+            ("critical_junctions_mean", "junctions ≥ $d^*$, $N^*$", True),
         ],
         "numbers of junctions",
     )
 
 
 def constant_critical_diameter(tidy: pd.DataFrame, tolerance: float = 0.15) -> List[Any]:
-    """Paper Figs. 4c/5c: W, k and dN*₊/ds for settings whose d* agree within ``tolerance``; one
-    figure per such group (none when the study has no two)."""
+    """Paper Figs. 4c/5c: W, k and dN*₊/ds for settings whose d* agree within ``tolerance`` and differ in
+    τ̃ or 𝒢 (the library's grouping); one figure per such group (none when the study has no two)."""
     figures = []
-    diameters = sorted(tidy["critical_diameter"].unique())
-    groups: List[List[float]] = []
-    for d in diameters:
-        if groups and d <= (1 + tolerance) * groups[-1][0]:
-            groups[-1].append(d)
-        else:
-            groups.append([d])
-    for group in groups:
-        rows = tidy[tidy["critical_diameter"].isin(group)]
-        if rows[["material.shear_strength", "fracture_energy"]].drop_duplicates().shape[0] < 2:
-            continue
+    curve_of_row, _ = _wearsim.curves(_columns(tidy))
+    materials = [
+        (
+            float(s["critical_diameter_mean"].iloc[0]),
+            float(s["material.shear_strength"].iloc[0]),
+            float(s["fracture_energy"].iloc[0]),
+        )
+        for _, s in curves(tidy)
+    ]
+    for group in _wearsim.equal_critical_diameter(materials, tolerance):
+        rows = tidy[np.isin(curve_of_row, group)]
+        d_star = materials[group[0]][0]
         figures.append(
             _load_figure(
                 rows,
                 [
-                    ("wear_rate", "W ({area})", True),
-                    ("wear_coefficient", "k", True),
-                    ("particle_rate", "dN*₊/ds (1/{length})", True),
+                    ("wear_rate", "$W$ ({area})", True),
+                    ("wear_coefficient", "$k = W p_m / F_N$", True),
+                    ("particle_rate", "$dN^*_+/ds$ (1/{length})", True),
                 ],
-                f"nearly equal d* ≈ {group[0]:.3g}",
+                f"nearly equal d* ≈ {d_star:.3g}",
+                fitted=True,
             )
         )
     return figures
@@ -226,36 +327,53 @@ def equation_5(tidy: pd.DataFrame) -> Any:
     if values:
         lo, hi = min(values) / 1.5, max(values) * 1.5
         ax.plot([lo, hi], [lo, hi], "k--", lw=1, label="Eq. 5 = W")
-    ax.set(xscale="log", yscale="log", xlabel=f"wear rate W ({units['area']})", ylabel="Eq. 5: ω d*³ dN*₊/ds")
+    ax.set(
+        xscale="log",
+        yscale="log",
+        xlabel=f"wear rate $W$ ({units['area']})",
+        ylabel=rf"Eq. 5: $\omega\, d^{{*3}}\, dN^*_+/ds$ ({units['area']})",
+    )
     fig.legend(loc="center right", fontsize=8, frameon=False)
     fig.tight_layout(rect=(0, 0, 0.62, 1))
     return fig
 
 
 def contact_severity(tidy: pd.DataFrame) -> Any:
-    """Paper appendix F: W = α S_cⁿ with S_c = p_N √h_rms / K_Ic, fitted in log–log, with R²."""
+    """Paper appendix F: W = α S_cⁿ with S_c = p_N √h_rms / K_Ic, the library's least-squares fit in
+    log–log with its R², over all materials and per material (when there are several)."""
     plt = _pyplot()
     units = _units(tidy)
     # S_c = p_N √h_rms / K_Ic is a column of the library's table (empty on measured surfaces).
     rows = tidy[(tidy["wear_rate"] > 0) & tidy["contact_severity"].notna()]
-    s_c = rows["contact_severity"]
+    s_c, w = rows["contact_severity"], rows["wear_rate"]
     fig, ax = plt.subplots(figsize=(8.5, 5.0))
-    for i, material in enumerate(dict.fromkeys(rows["material"])):
+    materials = list(dict.fromkeys(rows["material"]))
+    grid = np.geomspace(s_c.min(), s_c.max(), 50) if len(rows) else np.array([])
+    for i, material in enumerate(materials):
         mine = rows["material"] == material
-        ax.scatter(s_c[mine], rows["wear_rate"][mine], color=f"C{i}", marker=_MARKERS[i % 8], label=material)
-    if len(rows) >= 2:
-        x, y = np.log(s_c.to_numpy()), np.log(rows["wear_rate"].to_numpy())
-        n, ln_alpha = np.polyfit(x, y, 1)
-        r2 = 1 - np.sum((y - (n * x + ln_alpha)) ** 2) / np.sum((y - y.mean()) ** 2)
-        grid = np.geomspace(s_c.min(), s_c.max(), 50)
+        ax.scatter(s_c[mine], w[mine], color=f"C{i}", marker=_MARKERS[i % 8], label=material)
+        fit = _wearsim.power_law_fit(s_c[mine].tolist(), w[mine].tolist()) if len(materials) > 1 else None
+        if fit is not None:
+            alpha, n, _ = fit
+            ax.plot(grid, alpha * grid**n, "-", color=f"C{i}", lw=1, label=f"{material}: α = {alpha:.3g}, n = {n:.2f}")
+    fit = _wearsim.power_law_fit(s_c.tolist(), w.tolist())
+    if fit is not None:
+        alpha, n, r2 = fit
+        r2_text = "undefined" if r2 is None else f"{r2:.3f}"
         ax.plot(
             grid,
-            np.exp(ln_alpha) * grid**n,
+            alpha * grid**n,
             "k--",
             lw=1,
-            label=f"fit: α = {np.exp(ln_alpha):.3g}, n = {n:.3f}, R² = {r2:.3f}",
+            label=f"all materials: α = {alpha:.3g} {units['area']}, n = {n:.3f}, R² = {r2_text}",
         )
-    ax.set(xscale="log", yscale="log", xlabel="S_c = p_N √h_rms / K_Ic", ylabel=f"W ({units['area']})")
+    ax.set(
+        xscale="log",
+        yscale="log",
+        xlabel=r"contact severity $S_c = p_N \sqrt{h_\mathrm{rms}} / K_\mathrm{Ic}$",
+        ylabel=f"wear rate $W$ ({units['area']})",
+    )
+    ax.set_title(r"$W = \alpha S_c^n$, least-squares fit in log–log", loc="left", fontsize=10)
     ax.legend(fontsize=8)
     fig.tight_layout()
     return fig
@@ -339,7 +457,7 @@ def study_figures(
         job = int(tidy["job"].to_numpy()[tidy["particles_in_fit"].to_numpy().argmax()])
     row = tidy[tidy["job"] == job].iloc[0]
     running_in = row["sliding.running_in"] * row["surface.length"]
-    unit = _units(tidy)["length"]
+    unit = _unit(tidy, "surface.length")
     series = study.job_series(out, job)
     figures: Dict[str, Any] = {
         "fig2_static_model": static_model(tidy),

@@ -2,8 +2,8 @@
 //! in and out as NumPy arrays, library errors as Python exceptions carrying the library's message
 //! (`error`), long calls run with the GIL released on a worker thread while the calling thread
 //! watches for Ctrl-C. One module per concept: `surface`, `topography` (measured height maps),
-//! `contact` (material, solver, junctions),
-//! `sliding`, `study`. The public Python API, with docstrings and units, is the pure-Python package
+//! `contact` (material, solver, junctions), `junctions` (their geometry),
+//! `sliding`, `study`, `tables` (what the library derives from a study's tables for figures). The public Python API, with docstrings and units, is the pure-Python package
 //! `wearsim` around this module.
 
 use numpy::ndarray::Array2;
@@ -15,9 +15,11 @@ use wearsim::output::{Cell, Table};
 
 mod contact;
 mod error;
+mod junctions;
 mod sliding;
 mod study;
 mod surface;
+mod tables;
 mod topography;
 
 /// Two arrays returned together (a surface pair, labels and sizes, a spectrum).
@@ -132,5 +134,7 @@ fn _wearsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     contact::register(m)?;
     sliding::register(m)?;
     study::register(m)?;
+    tables::register(m)?;
+    junctions::register(m)?;
     Ok(())
 }

@@ -1,5 +1,5 @@
-//! Small statistics shared by the wear fits and the spectrum fits: least-squares lines and
-//! mean ± standard deviation.
+//! Small statistics shared by the wear fits, the spectrum fits and the contact-severity fit:
+//! least-squares lines, power laws fitted in log–log, and mean ± standard deviation.
 
 /// A least-squares line y = slope·x + intercept and its coefficient of determination R² (absent
 /// when y does not vary, where R² is undefined).
@@ -52,6 +52,36 @@ fn power_of_two_scale(values: &[f64]) -> f64 {
     }
 }
 
+/// A power law y = prefactor · xⁿ fitted by least squares in log–log (ln y = ln prefactor + n ln x),
+/// with the R² of that fit (absent when ln y does not vary).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PowerLawFit {
+    pub prefactor: f64,
+    pub exponent: f64,
+    pub r2: Option<f64>,
+}
+
+/// The least-squares power law through the points (x, y) with x > 0 and y > 0 (others cannot lie
+/// on a power law and are left out): the fit W = α S_cⁿ of the wear rate against the contact
+/// severity (paper, appendix F). `None` with fewer than two such points or a single x.
+pub fn power_law_fit(x: &[f64], y: &[f64]) -> Option<PowerLawFit> {
+    if x.len() != y.len() {
+        return None;
+    }
+    let (ln_x, ln_y): (Vec<f64>, Vec<f64>) = x
+        .iter()
+        .zip(y)
+        .filter(|(a, b)| **a > 0.0 && **b > 0.0 && a.is_finite() && b.is_finite())
+        .map(|(a, b)| (a.ln(), b.ln()))
+        .unzip();
+    let fit = line_fit(&ln_x, &ln_y)?;
+    Some(PowerLawFit {
+        prefactor: fit.intercept.exp(),
+        exponent: fit.slope,
+        r2: fit.r2,
+    })
+}
+
 /// Mean and (population) standard deviation.
 pub fn mean_std(values: impl Iterator<Item = f64> + Clone) -> (f64, f64) {
     let n = values.clone().count().max(1) as f64;
@@ -97,5 +127,27 @@ mod tests {
             assert!((f.intercept / sy / unit.intercept - 1.0).abs() < 1e-12, "{sx:e} {sy:e}");
             assert!((f.r2.unwrap() - unit.r2.unwrap()).abs() < 1e-12, "{sx:e} {sy:e}");
         }
+    }
+
+    #[test]
+    fn power_law_fit_recovers_a_power_law_and_skips_non_positive_points() {
+        // y = 3 x^1.5 exactly, with points that no power law holds (x or y ≤ 0) mixed in.
+        let x = [0.1, 0.2, 0.5, 1.0, 0.0, 2.0, 0.3];
+        let y: Vec<f64> = x
+            .iter()
+            .enumerate()
+            .map(|(i, v)| if i == 6 { 0.0 } else { 3.0 * f64::powf(*v, 1.5) })
+            .collect();
+        let f = power_law_fit(&x, &y).unwrap();
+        assert!((f.prefactor - 3.0).abs() < 1e-12 && (f.exponent - 1.5).abs() < 1e-12);
+        assert!((f.r2.unwrap() - 1.0).abs() < 1e-12);
+        // Scatter lowers R² below 1; by hand: ln y = (0, ln 2, ln 2) at ln x = (0, ln 2, 2 ln 2)
+        // gives n = 1/2, and R² = 3/4.
+        let g = power_law_fit(&[1.0, 2.0, 4.0], &[1.0, 2.0, 2.0]).unwrap();
+        assert!((g.exponent - 0.5).abs() < 1e-12 && (g.r2.unwrap() - 0.75).abs() < 1e-12);
+        assert!((g.prefactor - 2f64.powf(1.0 / 6.0)).abs() < 1e-12);
+        // One usable point, or one x: no fit.
+        assert!(power_law_fit(&[1.0, 2.0], &[1.0, 0.0]).is_none());
+        assert!(power_law_fit(&[2.0, 2.0], &[1.0, 3.0]).is_none());
     }
 }

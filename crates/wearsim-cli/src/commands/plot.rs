@@ -1,40 +1,22 @@
 //! `wearsim study plot DIR`: the figures of a finished study, as PNG and SVG in `DIR/figures`, in the
 //! layout of the paper (Brink, Frérot & Molinari 2021), and the paper's findings checked on the study
-//! (`findings.md`, also printed):
-//!
-//! | name | figure |
-//! |---|---|
-//! | `fig2` | static model over every offset: W_static/ω and k_static against F_N (paper Fig. 2) |
-//! | `fig3` | V(s) of one job with the fitted lines and the running-in region (Fig. 3) |
-//! | `fig4` | sliding W and k against F_N, min–max bars over surface pairs (Fig. 4a–b) |
-//! | `fig4c` | W, k and dN*₊/ds for settings of (nearly) equal d* (Figs. 4c, 5c) |
-//! | `fig5` | dN*₊/ds against F_N (Fig. 5) |
-//! | `fig6` | k against F_N per material beside Kim et al.'s experimental range (Fig. 6) |
-//! | `appB` | N*₊, N*, N*₋ against s of one job (appendix B, Fig. B.9a) |
-//! | `appB-eq5` | Eq. 5, ω d*³ dN*₊/ds, against the summed W (Fig. B.9b) |
-//! | `appC` | junctions N and critical junctions N* against F_N (appendix C) |
-//! | `appF` | the contact-severity fit W = α S_cⁿ with its R² (appendix F) |
-//! | `memory` | the memory of the initial contact N₀(s) of one job with its exponential fit (§3) |
+//! (`findings.md`, also printed). The figures are the entries of one registry, [`FIGURES`] (name,
+//! what it shows, how it is drawn); `--figures` takes their names and `--help` lists them.
 
 use std::collections::BTreeMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
-use anyhow::{anyhow, bail, Result};
+use anyhow::{anyhow, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use wearsim::config::Units;
-use wearsim::output::{unit_of, JobResult, Table, TidyRow};
+use wearsim::output::{equal_critical_diameter, unit_of, CurveMaterial, JobResult, Table, TidyRow};
 use wearsim::sliding::WearResult;
-use wearsim::stats::line_fit;
-use wearsim::study::findings::{findings, markdown};
+use wearsim::stats::{line_fit, power_law_fit};
+use wearsim::study::findings::{findings, markdown, RESOLVED_PARTICLES};
 use wearsim::study::{load_results, Job};
 
 use crate::figures::{color, layout, legend, number, pretty, save, Axis, Entry, Figure, Marker, Panel, Swatch};
-
-/// Every figure, in the order drawn.
-const FIGURES: [&str; 11] = [
-    "fig2", "fig3", "fig4", "fig4c", "fig5", "fig6", "appB", "appB-eq5", "appC", "appF", "memory",
-];
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -44,9 +26,8 @@ pub struct Args {
     /// job that formed the most particles after running-in).
     #[arg(long)]
     job: Option<usize>,
-    /// Figures to draw, comma-separated (default: all): fig2, fig3, fig4, fig4c, fig5, fig6, appB,
-    /// appB-eq5, appC, appF, memory.
-    #[arg(long, value_delimiter = ',')]
+    /// Figures to draw, comma-separated (default: all).
+    #[arg(long, value_delimiter = ',', value_parser = figure_names())]
     figures: Option<Vec<String>>,
 }
 
@@ -133,19 +114,13 @@ type Quantity = fn(&WearResult) -> Option<f64>;
 /// Points (x, y) of a series.
 type Points = Vec<(f64, f64)>;
 
-/// Particles in a fit window (per surface pair, mean over the pairs) below which a point of a
-/// sliding quantity is drawn hollow: too few for the fitted rate to be resolved.
-const RESOLVED_PARTICLES: f64 = 20.0;
-
 impl Curve {
-    /// Per load: the mean over surface pairs of the particles formed in the fit window.
+    /// Per load: the particles formed in the fit window, summed over the surface pairs (what the
+    /// findings judge against [`RESOLVED_PARTICLES`]).
     fn particles(&self) -> Vec<(f64, f64)> {
         self.points
             .values()
-            .map(|(load, results)| {
-                let n = results.iter().map(|r| r.particles_in_fit as f64).sum::<f64>();
-                (*load, n / results.len().max(1) as f64)
-            })
+            .map(|(load, results)| (*load, results.iter().map(|r| r.particles_in_fit as f64).sum::<f64>()))
             .collect()
     }
 
@@ -345,7 +320,9 @@ impl Figure for LoadFigure<'_> {
         }
         if self.fitted && particles.iter().flatten().any(|p| p.1 < RESOLVED_PARTICLES) {
             entries.push(Entry {
-                label: format!("hollow: < {RESOLVED_PARTICLES} particles per surface pair in the fit window"),
+                label: format!(
+                    "hollow: < {RESOLVED_PARTICLES} particles in the fit window (summed over surface pairs)"
+                ),
                 color: RGBColor(90, 90, 90),
                 swatch: Swatch::Hollow(Marker::Circle),
             });
@@ -615,8 +592,8 @@ struct Severity {
 
 impl Severity {
     /// The contact severity S_c of the library's table (appendix F) against W, for every job and
-    /// fracture energy with W > 0 and S_c defined (generated surfaces), and the least-squares fit
-    /// of ln W against ln S_c.
+    /// fracture energy with W > 0 and S_c defined (generated surfaces), and the library's fit
+    /// W = α S_cⁿ ([`power_law_fit`]).
     fn of(data: &Data) -> Option<Self> {
         let mut points = Vec::new();
         for r in &data.results {
@@ -627,13 +604,13 @@ impl Severity {
                 }
             }
         }
-        let xs: Vec<f64> = points.iter().map(|p| p.2.ln()).collect();
-        let ys: Vec<f64> = points.iter().map(|p| p.3.ln()).collect();
-        let fit = line_fit(&xs, &ys)?;
+        let s_c: Vec<f64> = points.iter().map(|p| p.2).collect();
+        let w: Vec<f64> = points.iter().map(|p| p.3).collect();
+        let fit = power_law_fit(&s_c, &w)?;
         Some(Self {
             points,
-            alpha: fit.intercept.exp(),
-            n_exp: fit.slope,
+            alpha: fit.prefactor,
+            n_exp: fit.exponent,
             r2: fit.r2,
             units: data.units,
         })
@@ -642,9 +619,9 @@ impl Severity {
     /// The fit of one material's points: (α, n), when it has two distinct S_c.
     fn of_material(&self, m: usize) -> Option<(f64, f64)> {
         let mine: Vec<&(usize, String, f64, f64)> = self.points.iter().filter(|p| p.0 == m).collect();
-        let xs: Vec<f64> = mine.iter().map(|p| p.2.ln()).collect();
-        let ys: Vec<f64> = mine.iter().map(|p| p.3.ln()).collect();
-        line_fit(&xs, &ys).map(|f| (f.intercept.exp(), f.slope))
+        let s_c: Vec<f64> = mine.iter().map(|p| p.2).collect();
+        let w: Vec<f64> = mine.iter().map(|p| p.3).collect();
+        power_law_fit(&s_c, &w).map(|f| (f.prefactor, f.exponent))
     }
 }
 
@@ -728,24 +705,20 @@ impl Figure for Note {
     }
 }
 
-/// Groups of curves of (nearly) equal d* (within 15 %) and different τ̃ or 𝒢, for Figs. 4c/5c.
+/// Groups of curves of (nearly) equal d* (within 15 %) and different τ̃ or 𝒢, for Figs. 4c/5c: the
+/// library's grouping ([`equal_critical_diameter`]).
 fn equal_d_star(curves: &[Curve]) -> Vec<Vec<&Curve>> {
-    let mut sorted: Vec<&Curve> = curves.iter().collect();
-    sorted.sort_by(|a, b| a.critical_diameter.total_cmp(&b.critical_diameter));
-    let mut groups: Vec<Vec<&Curve>> = Vec::new();
-    for c in sorted {
-        match groups.last_mut() {
-            Some(g) if c.critical_diameter <= 1.15 * g[0].critical_diameter => g.push(c),
-            _ => groups.push(vec![c]),
-        }
-    }
-    groups
-        .into_iter()
-        .filter(|g| {
-            g.len() >= 2
-                && g.iter()
-                    .any(|c| c.shear_strength != g[0].shear_strength || c.fracture_energy != g[0].fracture_energy)
+    let materials: Vec<CurveMaterial> = curves
+        .iter()
+        .map(|c| CurveMaterial {
+            critical_diameter: c.critical_diameter,
+            shear_strength: c.shear_strength,
+            fracture_energy: c.fracture_energy,
         })
+        .collect();
+    equal_critical_diameter(&materials, 0.15)
+        .into_iter()
+        .map(|g| g.into_iter().map(|i| &curves[i]).collect())
         .collect()
 }
 
@@ -773,199 +746,305 @@ fn series_job(data: &Data, asked: Option<usize>) -> Result<(&Job, &JobResult)> {
     }
 }
 
-pub fn run(args: &Args) -> Result<()> {
-    let dir = &args.dir;
-    let wanted: Vec<String> = args
-        .figures
-        .clone()
-        .unwrap_or_else(|| FIGURES.iter().map(|s| s.to_string()).collect());
-    for w in &wanted {
-        if !FIGURES.contains(&w.as_str()) {
-            bail!("invalid `--figures {w}`: the figures are {}", FIGURES.join(", "));
+/// What every figure is drawn from: the study, the job whose series are shown, and the folder the
+/// files go to.
+struct Context<'a> {
+    data: &'a Data,
+    series: (&'a Job, &'a JobResult),
+    out: &'a Path,
+}
+
+impl<'a> Context<'a> {
+    /// Quantities against load for every curve of the study, one panel each.
+    fn by_load(&self, panels: Vec<(Quantity, String, bool)>, fitted: bool, title: &str) -> LoadFigure<'a> {
+        LoadFigure {
+            curves: self.data.curves.iter().collect(),
+            panels,
+            x_label: self.data.load_label(),
+            band: None,
+            by_material: false,
+            fitted,
+            title: title.into(),
         }
     }
-    let wants = |name: &str| wanted.iter().any(|w| w == name);
+
+    fn save(&self, name: &str, size: (u32, u32), figure: &impl Figure) -> Result<()> {
+        save(self.out, name, size, figure)
+    }
+}
+
+/// One figure of `wearsim study plot`: the name `--figures` takes, what it shows (listed by
+/// `--help`), and how it is drawn. A new figure is one entry of [`FIGURES`] and its drawing code.
+struct Plot {
+    name: &'static str,
+    about: &'static str,
+    draw: fn(&Context) -> Result<()>,
+}
+
+/// Every figure, in the order drawn.
+const FIGURES: [Plot; 11] = [
+    Plot {
+        name: "fig2",
+        about: "static model over every offset: W_static/ω and k_static against p_N (paper Fig. 2)",
+        draw: fig2,
+    },
+    Plot {
+        name: "fig3",
+        about: "V(s) of one job with the fitted lines and the running-in region (Fig. 3)",
+        draw: fig3,
+    },
+    Plot {
+        name: "fig4",
+        about: "sliding W and k against p_N, min–max bars over surface pairs (Fig. 4a–b)",
+        draw: fig4,
+    },
+    Plot {
+        name: "fig4c",
+        about: "W, k and dN*₊/ds for settings of (nearly) equal d* (Figs. 4c, 5c)",
+        draw: fig4c,
+    },
+    Plot {
+        name: "fig5",
+        about: "dN*₊/ds against p_N (Fig. 5)",
+        draw: fig5,
+    },
+    Plot {
+        name: "fig6",
+        about: "k against p_N per material beside Kim et al.'s experimental range (Fig. 6)",
+        draw: fig6,
+    },
+    Plot {
+        name: "appB",
+        about: "N*₊, N*, N*₋ against s of one job (appendix B, Fig. B.9a)",
+        draw: app_b,
+    },
+    Plot {
+        name: "appB-eq5",
+        about: "Eq. 5, ω d*³ dN*₊/ds, against the summed W (Fig. B.9b)",
+        draw: app_b_eq5,
+    },
+    Plot {
+        name: "appC",
+        about: "junctions N and critical junctions N* against p_N (appendix C)",
+        draw: app_c,
+    },
+    Plot {
+        name: "appF",
+        about: "the contact-severity fit W = α S_cⁿ with its R² (appendix F)",
+        draw: app_f,
+    },
+    Plot {
+        name: "memory",
+        about: "the memory of the initial contact N₀(s) of one job with its exponential fit (§3)",
+        draw: memory,
+    },
+];
+
+/// The values `--figures` takes: the names of [`FIGURES`], each with what it shows.
+fn figure_names() -> clap::builder::PossibleValuesParser {
+    clap::builder::PossibleValuesParser::new(
+        FIGURES
+            .iter()
+            .map(|f| clap::builder::PossibleValue::new(f.name).help(f.about)),
+    )
+}
+
+fn fig2(cx: &Context) -> Result<()> {
+    let area = cx.data.units.area();
+    let fig = cx.by_load(
+        vec![
+            (
+                |w| Some(w.static_wear_rate_mean),
+                format!("static wear rate W_static/ω ({area})"),
+                true,
+            ),
+            (
+                |w| Some(w.static_wear_coefficient_mean),
+                "static wear coefficient k_static".into(),
+                false,
+            ),
+        ],
+        false,
+        "static model, mean over every offset of the sliding run",
+    );
+    cx.save("fig2_static_model", WIDE, &fig)
+}
+
+fn fig4(cx: &Context) -> Result<()> {
+    let area = cx.data.units.area();
+    let fig = cx.by_load(
+        vec![
+            (|w| w.wear_rate, format!("sliding wear rate W = dV/ds ({area})"), true),
+            (|w| w.wear_coefficient, "wear coefficient k = W p_m / F_N".into(), true),
+        ],
+        true,
+        "sliding model",
+    );
+    cx.save("fig4_sliding_wear", WIDE, &fig)
+}
+
+fn fig5(cx: &Context) -> Result<()> {
+    let fig = cx.by_load(
+        vec![(
+            |w| w.particle_rate,
+            format!("particle rate dN*₊/ds (1/{})", cx.data.units.length()),
+            true,
+        )],
+        true,
+        "wear particles emitted per sliding distance",
+    );
+    cx.save("fig5_particle_rate", NARROW, &fig)
+}
+
+fn fig4c(cx: &Context) -> Result<()> {
+    let (u, area) = (cx.data.units, cx.data.units.area());
+    let groups = equal_d_star(&cx.data.curves);
+    if groups.is_empty() {
+        let note = "Fig. 4c compares settings of equal d* (within 15 %) with different τ̃ or 𝒢; this study has none";
+        println!("fig4c: {note}");
+        cx.save("fig4c_constant_d_star", NARROW, &Note(note))?;
+    }
+    for (g, group) in groups.iter().enumerate() {
+        let fig = LoadFigure {
+            curves: group.clone(),
+            panels: vec![
+                (|w| w.wear_rate, format!("W ({area})"), true),
+                (|w| w.wear_coefficient, "k = W p_m / F_N".into(), true),
+                (|w| w.particle_rate, format!("dN*₊/ds (1/{})", u.length()), true),
+            ],
+            x_label: cx.data.load_label(),
+            band: None,
+            by_material: false,
+            fitted: true,
+            title: format!(
+                "settings of nearly equal d* ≈ {}",
+                u.show_length(group[0].critical_diameter)
+            ),
+        };
+        let name = if groups.len() == 1 {
+            "fig4c_constant_d_star".to_string()
+        } else {
+            format!("fig4c_constant_d_star_{}", g + 1)
+        };
+        cx.save(&name, (2100, 640), &fig)?;
+    }
+    Ok(())
+}
+
+fn fig6(cx: &Context) -> Result<()> {
+    // Kim et al. (1986): rolling wear coefficients 6e-7 … 1.5e-3 (paper §4.3, Fig. 6c). k is
+    // dimensionless, so the comparison is drawn for studies in any units.
+    let fig = LoadFigure {
+        band: Some((
+            6e-7,
+            1.5e-3,
+            "Kim et al. 1986, rolling experiments: k = 6×10⁻⁷ … 1.5×10⁻³",
+        )),
+        // One colour and marker per material where the study has several (Kim et al.'s ceramics).
+        by_material: cx.data.materials.len() > 1,
+        ..cx.by_load(
+            vec![(|w| w.wear_coefficient, "wear coefficient k".into(), true)],
+            true,
+            "simulated sliding k per material against the experimental range",
+        )
+    };
+    cx.save("fig6_kim_comparison", NARROW, &fig)
+}
+
+fn app_c(cx: &Context) -> Result<()> {
+    let fig = LoadFigure {
+        curves: cx.data.curves.iter().filter(|c| c.energy == 0).collect(),
+        ..cx.by_load(
+            vec![(
+                |w| Some(w.junctions_mean),
+                "junctions N (mean after running-in)".into(),
+                true,
+            )],
+            false,
+            "number of junctions",
+        )
+    };
+    let critical = cx.by_load(
+        vec![(
+            |w| Some(w.critical_junctions_mean),
+            "junctions ≥ d*, N* (mean after running-in)".into(),
+            true,
+        )],
+        false,
+        "number of critical junctions",
+    );
+    cx.save("appC_junctions", NARROW, &fig)?;
+    cx.save("appC_critical_junctions", NARROW, &critical)
+}
+
+fn app_b_eq5(cx: &Context) -> Result<()> {
+    let fig = Eq5Figure {
+        curves: cx.data.curves.iter().collect(),
+        units: cx.data.units,
+    };
+    cx.save("appB_eq5_against_w", NARROW, &fig)
+}
+
+fn app_f(cx: &Context) -> Result<()> {
+    match Severity::of(cx.data) {
+        Some(severity) => {
+            cx.save("appF_contact_severity", NARROW, &severity)?;
+            println!(
+                "contact severity fit: W = α S_cⁿ with α = {} {}, n = {:.3}, R² = {}",
+                number(severity.alpha),
+                cx.data.units.area(),
+                severity.n_exp,
+                severity.r2.map_or("undefined".into(), |r| format!("{r:.3}"))
+            );
+        }
+        None => println!("appF: fewer than two jobs with W > 0 on generated surfaces; not drawn"),
+    }
+    Ok(())
+}
+
+/// A series figure of the chosen job.
+fn series(cx: &Context, file: &str, kind: SeriesKind) -> Result<()> {
+    let (job, result) = cx.series;
+    let fig = SeriesFigure {
+        job,
+        result,
+        kind,
+        units: cx.data.units,
+    };
+    cx.save(file, (1400, 640), &fig)
+}
+
+fn fig3(cx: &Context) -> Result<()> {
+    series(cx, "fig3_wear_volume", SeriesKind::Volume)
+}
+
+fn app_b(cx: &Context) -> Result<()> {
+    series(cx, "appB_particle_counts", SeriesKind::Counts)
+}
+
+fn memory(cx: &Context) -> Result<()> {
+    series(cx, "memory_of_initial_contact", SeriesKind::Memory)
+}
+
+/// Sizes of figures of two panels and of one.
+const WIDE: (u32, u32) = (1700, 640);
+const NARROW: (u32, u32) = (1150, 640);
+
+pub fn run(args: &Args) -> Result<()> {
+    let dir = &args.dir;
     let (study, results) = load_results(dir)?;
     let data = Data::new(study.jobs, results)?;
     let series = series_job(&data, args.job)?;
     let figures = wearsim::io::OutputDir::begin(&dir.join("figures"), "study plot", false, &[])?;
     let out = figures.join("");
-    let (u, curves) = (data.units, &data.curves);
-    let all: Vec<&Curve> = curves.iter().collect();
-    let area = u.area();
-    let by_load = |panels: Vec<(Quantity, String, bool)>, fitted: bool, title: &str| LoadFigure {
-        curves: all.clone(),
-        panels,
-        x_label: data.load_label(),
-        band: None,
-        by_material: false,
-        fitted,
-        title: title.into(),
+    let cx = Context {
+        data: &data,
+        series,
+        out: &out,
     };
-    let wide = (1700, 640);
-    if wants("fig2") {
-        let fig = by_load(
-            vec![
-                (
-                    |w| Some(w.static_wear_rate_mean),
-                    format!("static wear rate W_static/ω ({area})"),
-                    true,
-                ),
-                (
-                    |w| Some(w.static_wear_coefficient_mean),
-                    "static wear coefficient k_static".into(),
-                    false,
-                ),
-            ],
-            false,
-            "static model, mean over every offset of the sliding run",
-        );
-        save(&out, "fig2_static_model", wide, &fig)?;
-    }
-    if wants("fig4") {
-        let fig = by_load(
-            vec![
-                (|w| w.wear_rate, format!("sliding wear rate W = dV/ds ({area})"), true),
-                (|w| w.wear_coefficient, "wear coefficient k = W p_m / F_N".into(), true),
-            ],
-            true,
-            "sliding model",
-        );
-        save(&out, "fig4_sliding_wear", wide, &fig)?;
-    }
-    if wants("fig5") {
-        let fig = by_load(
-            vec![(
-                |w| w.particle_rate,
-                format!("particle rate dN*₊/ds (1/{})", u.length()),
-                true,
-            )],
-            true,
-            "wear particles emitted per sliding distance",
-        );
-        save(&out, "fig5_particle_rate", (1150, 640), &fig)?;
-    }
-    if wants("fig4c") {
-        let groups = equal_d_star(curves);
-        if groups.is_empty() {
-            let note = "Fig. 4c compares settings of equal d* (within 15 %) with different τ̃ or 𝒢; this study has none";
-            println!("fig4c: {note}");
-            save(&out, "fig4c_constant_d_star", (1150, 640), &Note(note))?;
-        }
-        for (g, group) in groups.iter().enumerate() {
-            let fig = LoadFigure {
-                curves: group.clone(),
-                panels: vec![
-                    (|w| w.wear_rate, format!("W ({area})"), true),
-                    (|w| w.wear_coefficient, "k = W p_m / F_N".into(), true),
-                    (|w| w.particle_rate, format!("dN*₊/ds (1/{})", u.length()), true),
-                ],
-                x_label: data.load_label(),
-                band: None,
-                by_material: false,
-                fitted: true,
-                title: format!(
-                    "settings of nearly equal d* ≈ {}",
-                    u.show_length(group[0].critical_diameter)
-                ),
-            };
-            let name = if groups.len() == 1 {
-                "fig4c_constant_d_star".to_string()
-            } else {
-                format!("fig4c_constant_d_star_{}", g + 1)
-            };
-            save(&out, &name, (2100, 640), &fig)?;
-        }
-    }
-    if wants("fig6") {
-        // Kim et al. (1986): rolling wear coefficients 6e-7 … 1.5e-3 (paper §4.3, Fig. 6c). k is
-        // dimensionless, so the comparison is drawn for studies in any units.
-        let fig = LoadFigure {
-            curves: all.clone(),
-            panels: vec![(|w| w.wear_coefficient, "wear coefficient k".into(), true)],
-            x_label: data.load_label(),
-            band: Some((
-                6e-7,
-                1.5e-3,
-                "Kim et al. 1986, rolling experiments: k = 6×10⁻⁷ … 1.5×10⁻³",
-            )),
-            // One colour and marker per material where the study has several (Kim et al.'s ceramics).
-            by_material: data.materials.len() > 1,
-            fitted: true,
-            title: "simulated sliding k per material against the experimental range".into(),
-        };
-        save(&out, "fig6_kim_comparison", (1150, 640), &fig)?;
-    }
-    if wants("appC") {
-        let first_energy: Vec<&Curve> = curves.iter().filter(|c| c.energy == 0).collect();
-        let fig = LoadFigure {
-            curves: first_energy,
-            panels: vec![(
-                |w| Some(w.junctions_mean),
-                "junctions N (mean after running-in)".into(),
-                true,
-            )],
-            x_label: data.load_label(),
-            band: None,
-            by_material: false,
-            fitted: false,
-            title: "number of junctions".into(),
-        };
-        let critical = by_load(
-            vec![(
-                |w| Some(w.critical_junctions_mean),
-                "junctions ≥ d*, N* (mean after running-in)".into(),
-                true,
-            )],
-            false,
-            "number of critical junctions",
-        );
-        save(&out, "appC_junctions", (1150, 640), &fig)?;
-        save(&out, "appC_critical_junctions", (1150, 640), &critical)?;
-    }
-    if wants("appB-eq5") {
-        save(
-            &out,
-            "appB_eq5_against_w",
-            (1150, 640),
-            &Eq5Figure {
-                curves: all.clone(),
-                units: u,
-            },
-        )?;
-    }
-    if wants("appF") {
-        match Severity::of(&data) {
-            Some(severity) => {
-                save(&out, "appF_contact_severity", (1150, 640), &severity)?;
-                println!(
-                    "contact severity fit: W = α S_cⁿ with α = {} {area}, n = {:.3}, R² = {}",
-                    number(severity.alpha),
-                    severity.n_exp,
-                    severity.r2.map_or("undefined".into(), |r| format!("{r:.3}"))
-                );
-            }
-            None => println!("appF: fewer than two jobs with W > 0 on generated surfaces; not drawn"),
-        }
-    }
-    let (job, result) = series;
-    for (name, file, kind) in [
-        ("fig3", "fig3_wear_volume", SeriesKind::Volume),
-        ("appB", "appB_particle_counts", SeriesKind::Counts),
-        ("memory", "memory_of_initial_contact", SeriesKind::Memory),
-    ] {
-        if wants(name) {
-            save(
-                &out,
-                file,
-                (1400, 640),
-                &SeriesFigure {
-                    job,
-                    result,
-                    kind,
-                    units: u,
-                },
-            )?;
+    for figure in &FIGURES {
+        if args.figures.as_ref().is_none_or(|w| w.iter().any(|n| n == figure.name)) {
+            (figure.draw)(&cx)?;
         }
     }
     // The paper's findings on this study.
@@ -984,7 +1063,7 @@ pub fn run(args: &Args) -> Result<()> {
     println!(
         "wrote figures and findings.md to {} (series of job {})",
         dir.join("figures").display(),
-        result.index
+        cx.series.1.index
     );
     Ok(())
 }

@@ -164,35 +164,119 @@ pub const NOT_A_SETTING: [&str; 3] = ["job", "surface.seed", "warnings"];
 /// the load and what follows from it with the setting's other inputs.
 pub const ALONG_A_CURVE: [&str; 3] = ["load", "nominal_pressure", "contact_severity"];
 
+/// The curves of a table of settings (tidy or aggregated): the grouping of every figure of the
+/// paper that draws a quantity against load.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Curves {
+    /// Per row of the table, the index of its curve: its setting (every column but those
+    /// [`NOT_A_SETTING`], the results and those [`ALONG_A_CURVE`]), numbered in order of first
+    /// appearance.
+    pub index: Vec<usize>,
+    /// The setting columns that tell the curves apart (take more than one value), in table order:
+    /// the study's axes but the load, what a curve's label names.
+    pub settings: Vec<String>,
+}
+
+/// Whether a column of a tidy or aggregated table is a setting that names a curve: neither
+/// [`NOT_A_SETTING`] nor [`ALONG_A_CURVE`], nor a result (`results` lists them), nor a column the
+/// aggregation adds.
+fn names_a_curve(column: &str, results: &[String]) -> bool {
+    let added = ["curve", "surface_pairs", "pairs_with_warnings"];
+    !NOT_A_SETTING.contains(&column)
+        && !ALONG_A_CURVE.contains(&column)
+        && !added.contains(&column)
+        && !results
+            .iter()
+            .any(|r| column == r || ["_mean", "_min", "_max"].iter().any(|s| column == format!("{r}{s}")))
+}
+
+/// The curves of a tidy or aggregated table ([`Curves`]).
+pub fn curves(table: &Table) -> Curves {
+    let results = result_columns();
+    let keys: Vec<usize> = (0..table.columns.len())
+        .filter(|&i| names_a_curve(&table.columns[i], &results))
+        .collect();
+    let mut numbers: BTreeMap<Vec<String>, usize> = BTreeMap::new();
+    let index = table
+        .rows
+        .iter()
+        .map(|row| {
+            let key: Vec<String> = keys.iter().map(|&k| row[k].text()).collect();
+            let next = numbers.len();
+            *numbers.entry(key).or_insert(next)
+        })
+        .collect();
+    let settings = keys
+        .into_iter()
+        .filter(|&k| table.rows.iter().any(|r| r[k] != table.rows[0][k]))
+        .map(|k| table.columns[k].clone())
+        .collect();
+    Curves { index, settings }
+}
+
+/// What Figs. 4c and 5c of the paper compare of a curve: its d*, τ̃ and 𝒢.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CurveMaterial {
+    pub critical_diameter: f64,
+    pub shear_strength: f64,
+    pub fracture_energy: f64,
+}
+
+/// The groups of curves of (nearly) equal d* that Figs. 4c and 5c of the paper compare: curves
+/// sorted by d*, a group holding those within `1 + tolerance` of its smallest d*, kept when it has
+/// two curves or more that differ in τ̃ or 𝒢. Indices into `curves`, each group by increasing d*.
+pub fn equal_critical_diameter(curves: &[CurveMaterial], tolerance: f64) -> Vec<Vec<usize>> {
+    let mut sorted: Vec<usize> = (0..curves.len()).collect();
+    sorted.sort_by(|&a, &b| curves[a].critical_diameter.total_cmp(&curves[b].critical_diameter));
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    for i in sorted {
+        match groups.last_mut() {
+            Some(g) if curves[i].critical_diameter <= (1.0 + tolerance) * curves[g[0]].critical_diameter => g.push(i),
+            _ => groups.push(vec![i]),
+        }
+    }
+    groups
+        .into_iter()
+        .filter(|g| {
+            let first = curves[g[0]];
+            g.len() >= 2
+                && g.iter().any(|&i| {
+                    curves[i].shear_strength != first.shear_strength
+                        || curves[i].fracture_energy != first.fracture_energy
+                })
+        })
+        .collect()
+}
+
+/// One setting of a tidy table: its key cells, its curve and the rows of its surface pairs.
+type Setting<'a> = (Vec<Cell>, usize, Vec<&'a Vec<Cell>>);
+
 /// The aggregated table of a tidy table: one row per setting (every column but the job index, the
-/// seed and the results), then `curve`, the index of the row's curve (its setting but the load, in
-/// order of first appearance: the one grouping every figure uses), the number of surface pairs and
-/// the mean, min and max over them of every result column, and the number of surface pairs with a
-/// warning. Rows keep the order in which settings first appear; undefined results (empty cells) are
-/// left out of the statistics.
+/// seed and the results), then `curve`, the index of the row's curve ([`curves`]: its setting but
+/// the load, the one grouping every figure uses), the number of surface pairs and the mean, min and
+/// max over them of every result column, and the number of surface pairs with a warning. Rows keep
+/// the order in which settings first appear; undefined results (empty cells) are left out of the
+/// statistics.
 pub fn aggregate(tidy: &Table) -> Table {
     let values = result_columns();
     let value_index: Vec<usize> = values.iter().filter_map(|c| tidy.column(c)).collect();
     let key_index: Vec<usize> = (0..tidy.columns.len())
         .filter(|i| !value_index.contains(i) && !NOT_A_SETTING.contains(&tidy.columns[*i].as_str()))
         .collect();
+    let curve_of_row = curves(tidy).index;
     let mut order: BTreeMap<Vec<String>, usize> = BTreeMap::new();
-    let mut groups: Vec<(Vec<Cell>, Vec<&Vec<Cell>>)> = Vec::new();
-    for row in &tidy.rows {
+    let mut groups: Vec<Setting> = Vec::new();
+    for (row, &curve) in tidy.rows.iter().zip(&curve_of_row) {
         let key: Vec<Cell> = key_index.iter().map(|&i| row[i].clone()).collect();
         let text: Vec<String> = key.iter().map(Cell::text).collect();
         let g = *order.entry(text).or_insert_with(|| {
-            groups.push((key, Vec::new()));
+            groups.push((key, curve, Vec::new()));
             groups.len() - 1
         });
-        groups[g].1.push(row);
+        groups[g].2.push(row);
     }
     let warnings = tidy.column("warnings");
     let mut columns: Vec<String> = key_index.iter().map(|&i| tidy.columns[i].clone()).collect();
-    let curve_part: Vec<usize> = (0..key_index.len())
-        .filter(|&k| !ALONG_A_CURVE.contains(&columns[k].as_str()))
-        .collect();
-    let mut curves: BTreeMap<Vec<String>, usize> = BTreeMap::new();
     columns.push("curve".into());
     columns.push("surface_pairs".into());
     columns.push("pairs_with_warnings".into());
@@ -202,10 +286,7 @@ pub fn aggregate(tidy: &Table) -> Table {
     }
     let rows = groups
         .into_iter()
-        .map(|(key, members)| {
-            let curve_key: Vec<String> = curve_part.iter().map(|&k| key[k].text()).collect();
-            let next = curves.len();
-            let curve = *curves.entry(curve_key).or_insert(next);
+        .map(|(key, curve, members)| {
             let mut line = key;
             line.push(Cell::Int(curve as i64));
             line.push(Cell::Int(members.len() as i64));
@@ -386,6 +467,27 @@ mod tests {
     }
 
     #[test]
+    fn equal_critical_diameters_group_within_the_tolerance() {
+        let curve = |critical_diameter: f64, shear_strength: f64, fracture_energy: f64| CurveMaterial {
+            critical_diameter,
+            shear_strength,
+            fracture_energy,
+        };
+        let curves = [
+            curve(0.0100, 0.012, 1e-6),
+            curve(0.0050, 0.008, 1e-6),
+            curve(0.0114, 0.008, 2e-6),
+            // Within 15 % of 0.005 but of the same τ̃ and 𝒢 as its neighbour: no comparison.
+            curve(0.0056, 0.008, 1e-6),
+            // 16 % above 0.01: a group of its own.
+            curve(0.0116, 0.010, 1e-6),
+        ];
+        assert_eq!(equal_critical_diameter(&curves, 0.15), [vec![0, 2]]);
+        assert_eq!(equal_critical_diameter(&curves, 0.2), [vec![0, 2, 4]]);
+        assert!(equal_critical_diameter(&curves, 0.0).is_empty());
+    }
+
+    #[test]
     fn a_curve_is_a_setting_against_load() {
         let rows: Vec<TidyRow> = [job(0, 0.01, 0.01), job(1, 0.02, 0.01), job(2, 0.01, 0.02)]
             .iter()
@@ -395,5 +497,14 @@ mod tests {
         let curve = agg.column("curve").unwrap();
         let curves: Vec<Cell> = agg.rows.iter().map(|r| r[curve].clone()).collect();
         assert_eq!(curves, [Cell::Int(0), Cell::Int(0), Cell::Int(1)]);
+        // The same curves from the tidy table (one row per job here) and from the aggregated one,
+        // told apart by τ̃ alone
+        // (the load runs along a curve, the results do not name one).
+        let tidy = Table::of(&rows);
+        let (of_tidy, of_aggregated) = (super::curves(&tidy), super::curves(&agg));
+        assert_eq!(of_tidy.index, [0, 0, 1]);
+        assert_eq!(of_aggregated.index, of_tidy.index);
+        assert_eq!(of_tidy.settings, ["material.shear_strength"]);
+        assert_eq!(of_aggregated.settings, of_tidy.settings);
     }
 }

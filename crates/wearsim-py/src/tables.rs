@@ -1,0 +1,128 @@
+//! What the library derives from a study's tables, for the figures of `wearsim.plot`: the curves
+//! of a table, its aggregation over surface pairs, the curves of equal d*, the units of its columns and the power-law fit
+//! of appendix F. Tables come from Python as a dict of column lists (a DataFrame's
+//! `{c: df[c].tolist()}`).
+
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyString};
+use wearsim::config::Units;
+use wearsim::output::{Cell, CurveMaterial, Table};
+
+use crate::table_to_py;
+
+/// A table from a dict of equally long column lists: None and NaN are empty cells, whole numbers
+/// integers, other numbers floats, everything else text.
+fn table_of(columns: &Bound<'_, PyDict>) -> PyResult<Table> {
+    let mut names = Vec::new();
+    let mut cells: Vec<Vec<Cell>> = Vec::new();
+    for (name, values) in columns.iter() {
+        let name: String = name.extract()?;
+        let column = values
+            .try_iter()?
+            .map(|v| {
+                let v = v?;
+                Ok(if v.is_none() {
+                    Cell::Empty
+                } else if v.is_instance_of::<PyBool>() || v.is_instance_of::<PyString>() {
+                    Cell::Text(v.str()?.to_string())
+                } else if v.is_instance_of::<PyInt>() {
+                    Cell::Int(v.extract()?)
+                } else if v.is_instance_of::<PyFloat>() {
+                    let f: f64 = v.extract()?;
+                    if f.is_nan() {
+                        Cell::Empty
+                    } else {
+                        Cell::Float(f)
+                    }
+                } else {
+                    Cell::Text(v.str()?.to_string())
+                })
+            })
+            .collect::<PyResult<Vec<Cell>>>()?;
+        if let Some(first) = cells.first() {
+            if first.len() != column.len() {
+                return Err(PyValueError::new_err(format!(
+                    "invalid table: column `{name}` has {} rows, `{}` has {}",
+                    column.len(),
+                    names[0],
+                    first.len()
+                )));
+            }
+        }
+        names.push(name);
+        cells.push(column);
+    }
+    let rows = (0..cells.first().map_or(0, Vec::len))
+        .map(|r| cells.iter().map(|c| c[r].clone()).collect())
+        .collect();
+    Ok(Table { columns: names, rows })
+}
+
+/// The curves of a tidy or aggregated table: per row the index of its curve, and the setting
+/// columns that tell the curves apart.
+#[pyfunction]
+fn curves(columns: &Bound<'_, PyDict>) -> PyResult<(Vec<usize>, Vec<String>)> {
+    let c = wearsim::output::curves(&table_of(columns)?);
+    Ok((c.index, c.settings))
+}
+
+/// The aggregated table of a tidy table (what `results_aggregated.csv` holds), as columns.
+#[pyfunction]
+fn aggregate<'py>(py: Python<'py>, columns: &Bound<'py, PyDict>) -> PyResult<Bound<'py, PyDict>> {
+    table_to_py(py, &wearsim::output::aggregate(&table_of(columns)?))
+}
+
+/// The groups of curves of (nearly) equal d* that Figs. 4c and 5c compare, from (d*, τ̃, 𝒢) per
+/// curve: indices of the curves, each group by increasing d*.
+#[pyfunction]
+fn equal_critical_diameter(curves: Vec<(f64, f64, f64)>, tolerance: f64) -> Vec<Vec<usize>> {
+    let curves: Vec<CurveMaterial> = curves
+        .into_iter()
+        .map(|(critical_diameter, shear_strength, fracture_energy)| CurveMaterial {
+            critical_diameter,
+            shear_strength,
+            fracture_energy,
+        })
+        .collect();
+    wearsim::output::equal_critical_diameter(&curves, tolerance)
+}
+
+/// The unit of a column or quantity in the unit system `units` ("reduced" or "si").
+#[pyfunction]
+fn unit_of(units: &str, quantity: &str) -> PyResult<&'static str> {
+    let system = match units {
+        "reduced" => Units::Reduced,
+        "si" => Units::Si,
+        other => {
+            return Err(PyValueError::new_err(format!(
+                "invalid `units`: {other:?} is neither \"reduced\" nor \"si\""
+            )))
+        }
+    };
+    Ok(wearsim::output::unit_of(system, quantity))
+}
+
+/// The least-squares power law y = prefactor · xⁿ in log–log over the points with x, y > 0:
+/// (prefactor, exponent, R² or None), or None with fewer than two such points.
+#[pyfunction]
+fn power_law_fit(x: Vec<f64>, y: Vec<f64>) -> PyResult<Option<(f64, f64, Option<f64>)>> {
+    if x.len() != y.len() {
+        return Err(PyValueError::new_err(format!(
+            "invalid `y`: {} values for {} values of `x`",
+            y.len(),
+            x.len()
+        )));
+    }
+    Ok(wearsim::stats::power_law_fit(&x, &y).map(|f| (f.prefactor, f.exponent, f.r2)))
+}
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("RESOLVED_PARTICLES", wearsim::study::findings::RESOLVED_PARTICLES)?;
+    m.add_function(wrap_pyfunction!(curves, m)?)?;
+    m.add_function(wrap_pyfunction!(aggregate, m)?)?;
+    m.add_function(wrap_pyfunction!(unit_of, m)?)?;
+    m.add_function(wrap_pyfunction!(equal_critical_diameter, m)?)?;
+    m.add_function(wrap_pyfunction!(power_law_fit, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,125 @@
+"""The figures of `wearsim.plot` on a small hand-made tidy table: the library's curves, statistics, units
+and power-law fit; points resting on few particles drawn hollow with their counts in the legend;
+settings without wear drawn on the axis; min–max bars whose minimum is zero reaching the axis."""
+
+import numpy as np
+import pandas as pd
+import pytest
+import wearsim
+from wearsim import _wearsim
+
+matplotlib = pytest.importorskip("matplotlib", reason="matplotlib not installed")
+matplotlib.use("Agg")
+
+# Two settings (τ̃ = 0.008 and 0.012) at two nominal pressures, two surface pairs each.
+P1, P2 = 2.5e-4, 1e-3
+
+
+def _tidy() -> pd.DataFrame:
+    rows = []
+    job = 0
+    for tau, per_load in [
+        # τ̃ = 0.008: no wear in either pair at the lower load, resolved at the higher one.
+        (0.008, {P1: [(0.0, 0), (0.0, 0)], P2: [(3e-4, 15), (5e-4, 25)]}),
+        # τ̃ = 0.012: 5 + 6 = 11 particles at the lower load (hollow); one pair without wear at the higher.
+        (0.012, {P1: [(1e-4, 5), (2e-4, 6)], P2: [(0.0, 12), (4e-4, 30)]}),
+    ]:
+        for p, pairs in per_load.items():
+            for seed, (w, n) in enumerate(pairs, start=1):
+                rows.append(
+                    {
+                        "job": job,
+                        "material": "m",
+                        "units": "reduced",
+                        "surface.seed": seed,
+                        "material.shear_strength": tau,
+                        "load": p * 0.0156,
+                        "nominal_pressure": p,
+                        "fracture_energy": 5e-7,
+                        "critical_diameter": 0.01 if tau == 0.008 else 0.005,
+                        "wear_rate": w,
+                        "wear_coefficient": w * 10,
+                        "particles_in_fit": n,
+                        "warnings": "",
+                    }
+                )
+                job += 1
+    return pd.DataFrame(rows)
+
+
+def _legend_texts(fig):
+    return [t.get_text() for legend in fig.legends for t in legend.get_texts()]
+
+
+def test_curves_come_from_the_library():
+    tidy = _tidy()
+    data = wearsim.plot.curves(tidy)
+    # One curve per τ̃ (the seed and the load do not name one), its statistics over the two pairs.
+    assert len(data) == 2
+    assert all(r"$\tilde{\tau}$ = " in label and "seed" not in label for label, _ in data)
+    _, stats = data[1]
+    assert list(stats["nominal_pressure"]) == [P1, P2]
+    assert list(stats["surface_pairs"]) == [2, 2]
+    assert stats["wear_rate_min"].iloc[1] == 0.0 and stats["wear_rate_max"].iloc[1] == 4e-4
+    assert np.isclose(stats["wear_rate_mean"].iloc[0], 1.5e-4)
+    # Units from the table's attrs where it has them, else the library's rule for its unit system.
+    assert wearsim.plot._unit(tidy, "wear_rate") == "L²"
+    tidy.attrs["units"] = {"wear_rate": "m²"}
+    assert wearsim.plot._unit(tidy, "wear_rate") == "m²"
+    assert _wearsim.unit_of("si", "nominal_pressure") == "Pa"
+
+
+def test_power_law_fit_of_the_library():
+    alpha, n, r2 = _wearsim.power_law_fit([1.0, 2.0, 4.0], [1.0, 2.0, 2.0])
+    assert np.isclose(n, 0.5) and np.isclose(r2, 0.75) and np.isclose(alpha, 2 ** (1 / 6))
+    assert _wearsim.power_law_fit([1.0, 2.0], [1.0, 0.0]) is None
+
+
+def test_few_particles_hollow_and_no_wear_on_the_axis():
+    import matplotlib.pyplot as plt
+
+    fig = wearsim.plot.sliding_wear(_tidy())
+    ax = fig.axes[0]
+    # The τ̃ = 0.012 point at the lower load rests on 11 particles: a hollow marker, its count in the legend.
+    hollow = [line for line in ax.lines if line.get_markerfacecolor() == "none" and len(line.get_xdata())]
+    assert [list(line.get_xdata()) for line in hollow] == [[P1]]
+    texts = _legend_texts(fig)
+    assert any(r"$\tilde{\tau}$ = 0.012" in t and "hollow: 11 particles" in t for t in texts), texts
+    assert any(t.startswith("hollow: < 20 particles") for t in texts)
+    # τ̃ = 0.008 wears nothing at the lower load: a marker on the axis (y = 0 in axes coordinates).
+    at_axis = [line for line in ax.lines if line.get_gid() == "no-wear"]
+    assert len(at_axis) == 1 and list(at_axis[0].get_xdata()) == [P1] and list(at_axis[0].get_ydata()) == [0.0]
+    assert any("no wear" in t for t in texts)
+    # The τ̃ = 0.012 bar at the higher load has a minimum of zero: it reaches the axis bottom.
+    bottom = ax.get_ylim()[0]
+    lows = [seg[0][1] for c in ax.collections for seg in c.get_segments()]
+    assert any(np.isclose(low, bottom) for low in lows), (lows, bottom)
+    # Panel letters as in the paper.
+    assert ax.get_title(loc="left").startswith("(a)") and fig.axes[1].get_title(loc="left") == "(b)"
+    plt.close(fig)
+
+
+def test_unfitted_figures_draw_no_hollow_markers():
+    import matplotlib.pyplot as plt
+
+    tidy = _tidy()
+    tidy["junctions_mean"] = 10.0
+    tidy["critical_junctions_mean"] = 2.0
+    fig = wearsim.plot.junction_counts(tidy)
+    assert not any(line.get_markerfacecolor() == "none" and len(line.get_xdata()) for line in fig.axes[0].lines)
+    assert not any("hollow" in t for t in _legend_texts(fig))
+    plt.close(fig)
+
+
+def test_settings_of_equal_critical_diameter_by_the_library():
+    import matplotlib.pyplot as plt
+
+    tidy = _tidy()
+    # d* 0.01 and 0.005: nothing to compare; both 0.01 (τ̃ differs): one figure of both curves.
+    assert wearsim.plot.constant_critical_diameter(tidy) == []
+    tidy["critical_diameter"] = 0.01
+    figures = wearsim.plot.constant_critical_diameter(tidy)
+    assert len(figures) == 1
+    assert sum(r"$\tilde{\tau}$" in t for t in _legend_texts(figures[0])) == 2
+    assert _wearsim.equal_critical_diameter([(0.01, 0.008, 1e-6), (0.0114, 0.012, 1e-6)], 0.15) == [[0, 1]]
+    plt.close(figures[0])
