@@ -12,7 +12,7 @@ if [ "$which" = rust ] || [ "$which" = all ]; then
     echo "Rust API reference: target/doc/wearsim/index.html"
 fi
 if [ "$which" = python ] || [ "$which" = all ]; then
-    python=$(realpath "${2:-.venv/bin/python}")
+    python=$(realpath -s "${2:-.venv/bin/python}") # -s: a venv's python is a link; keep its path
     out="$PWD/target/api-python"
     rm -rf "$out"
     # From /tmp, so that the installed package is documented, not the source folder.
