@@ -255,7 +255,7 @@ def test_arguments_of_the_wrong_kind_name_the_argument_and_the_fix():
     spectrum = dict(lambda_lower=0.0625, lambda_upper=0.25, rms_height=0.005)
     # A float grid was a multi-line enum extraction failure; a negative seed an OverflowError.
     for grid in (64.0, "64", (64, 32, 16), 0, True):
-        with pytest.raises(ValueError, match=r"invalid `grid`: .* e\.g\. 64"):
+        with pytest.raises(ValueError, match=r"invalid `grid`: .* \(e\.g\. 64\)"):
             wearsim.generate_pair(grid, **spectrum)
     for seed in (-1, 2**64, 1.5):
         with pytest.raises(ValueError, match=r"invalid `seed`: .*from 0 to 2\*\*64 - 1"):

@@ -115,7 +115,7 @@ def test_the_psd_fit_of_a_topography_gives_a_block_that_generates_similar_surfac
 
 def test_read_surface_takes_csv_as_spreadsheets_write_it(tmp_path):
     rng = np.random.default_rng(3)
-    h = rng.normal(scale=1e-3, size=(6, 5))
+    h = rng.normal(scale=1e-3, size=(32, 20))
     # Lines are scans along x: the file holds the transpose of the map.
     lines = [[f"{v:.6f}" for v in row] for row in h.T]
     plain = tmp_path / "plain.csv"
