@@ -124,10 +124,13 @@ pub fn fit(surface: &Surface) -> Result<SpectrumFit> {
     } else {
         all[first].q + 0.5 - held(first) - held(first - 1)
     };
+    // Within the square of stored modes the band ends at the Nyquist wavenumber Nx/2 at most (two
+    // pixels); only a band that runs into the corners of the spectrum reaches beyond.
+    let nyquist = surface.nx() as f64 / 2.0;
     let q_short = if last + 1 == all.len() {
         all[last].q
     } else {
-        all[last].q - 0.5 + held(last) + held(last + 1)
+        (all[last].q - 0.5 + held(last) + held(last + 1)).min(all[last].q.max(nyquist))
     };
     let length = surface.length();
     let k = 2.0 * PI / length;
