@@ -186,12 +186,26 @@ def periodicity(heights: Any) -> Tuple[float, float]:
     return _wearsim.periodicity(h)
 
 
-def fit_surface(heights: Any, length: Optional[float] = None) -> Dict[str, float]:
-    """Self-affine parameters of a surface from its radially averaged PSD: ``hurst`` H (from the
-    power-law slope −2(1+H)), ``lambda_lower`` and ``lambda_upper`` (where the power law ends at
-    short and long wavelengths), ``rms_height``, with ``r2`` of the log–log fit and the number of
-    ``shells`` it used. Pass them to :func:`generate_pair` to get periodic surfaces with the
-    measured statistics (the paper's model assumes periodic self-affine surfaces)."""
+def fit_surface(heights: Any, length: Optional[float] = None) -> Dict[str, Any]:
+    """Self-affine parameters of a surface from its radially averaged PSD C(q) (paper §4.1:
+    C(q) ∝ q^(−2(1+H)) between q = 2π/λ_u and 2π/λ_l).
+
+    The floor of the PSD is left out first: shells below 1e-12 of the peak (round-off) and shells
+    within a factor 10 of the median PSD over the outermost half octave of wavenumbers (round-off
+    beyond λ_l of a band-limited surface, white noise of a measurement). The power law is fitted on
+    the widest band of at least 6 shells over an octave that follows one line in log–log, falls
+    faster than q⁻¹ and lies under no longer wavelength (the leakage of a levelled map beyond λ_l
+    does), so that a floor is never read as the self-affine band. A spectrum without such a band
+    raises ``ValueError``.
+
+    Returns ``hurst`` H (from the slope −2(1+H)), ``lambda_lower`` and ``lambda_upper`` (where the
+    PSD leaves the power law at short and long wavelengths), ``rms_height``, ``r2`` of the log–log
+    fit, the number of ``shells`` it used and their wavenumbers ``fitted_q`` (first and last,
+    q = 2π/λ in radians per unit length), the shells left out at longer wavelengths than λ_u
+    (``shells_longer``) and at shorter wavelengths than λ_l (``shells_shorter``), and ``floor``, the
+    floor's level relative to the power law at λ_l. Pass the parameters to :func:`generate_pair` to
+    get periodic surfaces with the measured statistics (the paper's model assumes periodic
+    self-affine surfaces)."""
     h, lx = as_heights("heights", heights, length)
     return _wearsim.fit_surface(h, lx)
 

@@ -113,6 +113,28 @@ def test_the_psd_fit_of_a_topography_gives_a_block_that_generates_similar_surfac
     assert fit["rms_height"] == pytest.approx(1.5e-6, rel=0.02)
 
 
+@pytest.mark.parametrize("generation", ["random-phase", "filtered-noise"])
+def test_the_psd_fit_leaves_out_the_floor_beyond_the_cut_off_of_a_levelled_generated_surface(generation):
+    # Beyond λ_l a generated surface holds round-off, and levelling it adds leakage far under the band.
+    h = wearsim.generate_surface(
+        512, hurst=0.8, lambda_lower=1 / 64, lambda_upper=1 / 4, rms_height=0.01, seed=3, generation=generation
+    )
+    fit = wearsim.fit_surface(wearsim.preprocess_surface(h, detrend="plane"), 1.0)
+    assert fit["hurst"] == pytest.approx(0.8, abs=0.05)
+    assert 1 / 64 / 1.25 < fit["lambda_lower"] < 1 / 64 * 1.25
+    assert 1 / 4 / 1.25 < fit["lambda_upper"] < 1 / 4 * 1.25
+    # The result says which band was fitted and what was left out.
+    q_first, q_last = fit["fitted_q"]
+    assert 2 * np.pi * 4 <= q_first < q_last <= 2 * np.pi * 64
+    assert fit["shells_shorter"] > 200 and fit["floor"] < 1e-6
+
+
+def test_a_psd_without_a_power_law_band_is_an_error():
+    white = np.random.default_rng(1).normal(size=(64, 64))
+    with pytest.raises(ValueError, match="H cannot be fitted"):
+        wearsim.fit_surface(white, 1.0)
+
+
 def test_read_surface_takes_csv_as_spreadsheets_write_it(tmp_path):
     rng = np.random.default_rng(3)
     h = rng.normal(scale=1e-3, size=(32, 20))

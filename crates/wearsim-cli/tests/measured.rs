@@ -273,3 +273,70 @@ fn a_study_on_maps_that_are_not_periodic_keeps_their_warnings_as_slide_does() {
         &row[column]
     );
 }
+
+/// `surface fit` on surfaces `wearsim surface` generated, levelled by a plane as by default: beyond
+/// λ_l such a surface holds only round-off and the leakage of the levelling, far under the band; the
+/// fit leaves that floor out and recovers H, λ_l and λ_u, for both generation methods.
+#[test]
+fn surface_fit_leaves_out_the_floor_beyond_the_cut_off_of_generated_surfaces() {
+    let dir = tempfile::tempdir().unwrap();
+    for (generation, hurst, lower, seed) in [
+        ("random-phase", 0.8, 1.0 / 64.0, 1),
+        ("random-phase", 0.5, 1.0 / 32.0, 2),
+        ("filtered-noise", 0.7, 1.0 / 64.0, 3),
+        ("filtered-noise", 0.8, 1.0 / 32.0, 1),
+    ] {
+        let case = format!("{generation} H {hurst} λ_l {lower} seed {seed}");
+        let run_file = dir.path().join(format!("{generation}-{seed}.toml"));
+        std::fs::write(
+            &run_file,
+            format!(
+                "[surface]\ngrid = 512\nlength = 1.0\nhurst = {hurst}\nlambda_lower = {lower}\nlambda_upper = 0.25\n\
+                 rms_height = 0.01\nseed = {seed}\ngeneration = \"{generation}\"\n[material]\nyoungs_modulus = 1.0\n\
+                 poisson_ratio = 0.3\nshear_strength = 0.01\nfracture_energies = [1e-7]\n"
+            ),
+        )
+        .unwrap();
+        let generated = dir.path().join(format!("{generation}-{seed}"));
+        assert!(run(&["surface", s(&run_file), "--out", s(&generated)]).status.success());
+        let out = dir.path().join(format!("{generation}-{seed}-fit"));
+        let o = run(&[
+            "surface",
+            "fit",
+            s(&generated.join("top.npy")),
+            "--length",
+            "1.0",
+            "--out",
+            s(&out),
+        ]);
+        let text = stdout(&o);
+        assert!(o.status.success(), "{case}: {}", stderr(&o));
+        let value = |key: &str| -> f64 {
+            let line = text.lines().find(|l| l.starts_with(&format!("{key} = "))).unwrap();
+            line[key.len() + 3..].parse().unwrap()
+        };
+        let within = |v: f64, truth: f64| v / truth < 1.25 && truth / v < 1.25;
+        assert!((value("hurst") - hurst).abs() <= 0.05, "{case}:\n{text}");
+        assert!(
+            within(value("lambda_lower"), lower) && within(value("lambda_upper"), 0.25),
+            "{case}:\n{text}"
+        );
+        // The output says which band was fitted and that the floor beyond it was left out.
+        assert!(
+            text.contains("fitted C(q) ∝ q^−2(1+H) over q = ") && text.contains("left out: "),
+            "{text}"
+        );
+        let record: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("fit.json")).unwrap()).unwrap();
+        let f = &record["fit"];
+        let q = f["fitted_q"].as_array().unwrap();
+        assert!(
+            q[1].as_f64().unwrap() <= 2.0 * std::f64::consts::PI / lower,
+            "{case}: {f}"
+        );
+        assert!(
+            f["shells_shorter"].as_u64().unwrap() > 200 && f["floor"].as_f64().unwrap() < 1e-6,
+            "{case}: {f}"
+        );
+    }
+}

@@ -362,6 +362,14 @@ impl Surface {
     /// (m ≥ 1, q in units of 2π/Lx), the mean variance per Fourier mode ⟨|ĥ(q)|²⟩/(NxNy)² (length²),
     /// so that Σ over all modes equals h_rms². Returns `(q, psd)` pairs for non-empty shells.
     pub fn radial_psd(&self) -> Vec<(f64, f64)> {
+        self.radial_psd_shells().into_iter().map(|s| (s.q, s.psd)).collect()
+    }
+
+    /// The shells of [`radial_psd`](Self::radial_psd) with the number of Fourier modes each averages
+    /// (of the full spectrum, so conjugate pairs count twice): a shell of n modes holds n/2
+    /// independent complex amplitudes, and its mean scatters by √(2/n) of itself for a Gaussian
+    /// surface.
+    pub fn radial_psd_shells(&self) -> Vec<PsdShell> {
         let (nx, ny) = (self.nx(), self.ny());
         let mut plan = FftPlan::new(nx, ny);
         plan.forward(&self.heights);
@@ -380,9 +388,24 @@ impl Surface {
         let n4 = ((nx * ny) as f64).powi(2);
         (1..shells)
             .filter(|&m| count[m] > 0.0)
-            .map(|m| (m as f64, sum[m] / count[m] / n4))
+            .map(|m| PsdShell {
+                q: m as f64,
+                psd: sum[m] / count[m] / n4,
+                modes: count[m],
+            })
             .collect()
     }
+}
+
+/// One wavenumber shell of the radially averaged PSD ([`Surface::radial_psd_shells`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PsdShell {
+    /// The shell's wavenumber m (|q| ∈ [m − ½, m + ½)), in units of 2π/Lx.
+    pub q: f64,
+    /// Mean variance per Fourier mode of the shell (length²).
+    pub psd: f64,
+    /// Fourier modes averaged (of the full spectrum).
+    pub modes: f64,
 }
 
 /// Visits every mode of the half spectrum with its weight in the full spectrum (2 for the modes whose

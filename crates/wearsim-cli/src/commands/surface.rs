@@ -30,9 +30,10 @@ pub struct Args {
 
 #[derive(clap::Subcommand)]
 enum Action {
-    /// Estimate H, λ_l, λ_u and h_rms of a measured height map from its radially averaged PSD;
-    /// print (and with --out write) the `[surface]` block of a run file that generates periodic
-    /// surfaces with them, and with --generate the synthetic pair itself.
+    /// Estimate H, λ_l, λ_u and h_rms of a measured height map from its radially averaged PSD (the
+    /// power law C(q) ∝ q^−2(1+H) fitted on the band above the floor of round-off or noise, λ_l and
+    /// λ_u where the PSD leaves it); print (and with --out write) the `[surface]` block of a run file
+    /// that generates periodic surfaces with them, and with --generate the synthetic pair itself.
     Fit(FitArgs),
 }
 
@@ -174,10 +175,16 @@ fn run_fit(args: &FitArgs) -> Result<()> {
         .map_or_else(|| args.file.display().to_string(), |n| n.to_string_lossy().into());
     let block = topography::surface_block(&grid, &spectrum, args.seed, &source, unit.trim_matches(['(', ')']));
     println!(
-        "fitted over {} wavenumber shells, R² = {} (log–log PSD); periodicity of the prepared map: border jumps {:.1} \
-         (x) and {:.1} (y) typical steps",
+        "fitted C(q) ∝ q^−2(1+H) over q = {:.4e} … {:.4e} (2π/λ, {} shells), R² = {} (log–log PSD); left out: {} shells \
+         at longer wavelengths than λ_u and {} at shorter than λ_l, down to the floor (round-off or noise) at {:.1e} of \
+         the power law at λ_l; periodicity of the prepared map: border jumps {:.1} (x) and {:.1} (y) typical steps",
+        fit.fitted_q[0],
+        fit.fitted_q[1],
         fit.shells,
         fit.r2.map_or("undefined".into(), |r| format!("{r:.4}")),
+        fit.shells_longer,
+        fit.shells_shorter,
+        fit.floor,
         loaded.periodicity.border_step_x,
         loaded.periodicity.border_step_y
     );
