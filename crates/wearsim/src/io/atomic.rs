@@ -22,10 +22,31 @@ pub fn temporary_sibling(path: &Path) -> Result<std::path::PathBuf> {
     let k = TMP_COUNTER.fetch_add(1, Ordering::Relaxed);
     Ok(parent_or_dot(path).join(format!(
         ".{}.{}.{}-{k}.tmp",
-        name.to_string_lossy(),
+        sibling_stem(&name.to_string_lossy()),
         host_name(),
         std::process::id()
     )))
+}
+
+/// Longest file name, in bytes, that a temporary sibling or claim embeds whole: with the host name
+/// (≤ 64 bytes), the process and counter, the sibling stays within the 255 bytes file systems allow.
+const STEM_BYTES: usize = 160;
+
+/// The part of a file name that its siblings' names embed: the name itself, or for a long one (a
+/// legal 250-byte name) its first bytes and a hash of the whole, so that the sibling's name stays
+/// legal and two long names sharing a beginning keep distinct siblings.
+fn sibling_stem(name: &str) -> String {
+    if name.len() <= STEM_BYTES {
+        return name.to_string();
+    }
+    let mut cut = STEM_BYTES - 17;
+    while !name.is_char_boundary(cut) {
+        cut -= 1;
+    }
+    let hash = name.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
+        (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
+    });
+    format!("{}~{hash:016x}", &name[..cut])
 }
 
 /// This machine's name, as written in claims and temporary names.
@@ -51,7 +72,7 @@ pub fn process_gone(pid: &str) -> Option<bool> {
 /// Those of another host, or of a live process, are never touched.
 pub fn remove_abandoned_siblings(path: &Path) {
     let Some(name) = path.file_name() else { return };
-    let prefix = format!(".{}.", name.to_string_lossy());
+    let prefix = format!(".{}.", sibling_stem(&name.to_string_lossy()));
     let host = host_name();
     let Ok(entries) = std::fs::read_dir(parent_or_dot(path)) else {
         return;
@@ -114,7 +135,7 @@ impl OutputClaim {
         let name = target
             .file_name()
             .ok_or_else(|| Error::file(target, "not a folder name"))?;
-        let path = parent_or_dot(target).join(format!(".{}.claim", name.to_string_lossy()));
+        let path = parent_or_dot(target).join(format!(".{}.claim", sibling_stem(&name.to_string_lossy())));
         for _ in 0..2 {
             match std::fs::OpenOptions::new().write(true).create_new(true).open(&path) {
                 Ok(mut f) => {
@@ -400,6 +421,34 @@ pub fn write_texts_together(files: &[(&Path, &str)]) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn files_and_folders_with_the_longest_legal_names_are_written() {
+        let dir = tempfile::tempdir().unwrap();
+        // 250 bytes, two-byte characters included: legal, but too long to embed whole in a sibling.
+        let name = format!("{}{}", "ü".repeat(60), "a".repeat(130));
+        assert_eq!(name.len(), 250);
+        let file = dir.path().join(&name);
+        write_text(&file, "whole").unwrap();
+        assert_eq!(std::fs::read_to_string(&file).unwrap(), "whole");
+        let out = dir.path().join(format!("{}{}", "ü".repeat(60), "c".repeat(130)));
+        let staged = OutputDir::begin(&out, "test", false, &[]).unwrap();
+        write_text(&staged.join("summary.json"), "{}").unwrap();
+        staged.commit().unwrap();
+        assert!(out.join("summary.json").is_file());
+        // Two long names that share their first 150 bytes keep distinct siblings.
+        let other = format!("{}{}", "ü".repeat(60), "b".repeat(130));
+        assert_ne!(sibling_stem(&name), sibling_stem(&other));
+        assert!(sibling_stem(&name).len() <= STEM_BYTES);
+        assert_eq!(sibling_stem("short.npy"), "short.npy");
+        // Nothing but the two results is left beside them.
+        let left: Vec<_> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .flatten()
+            .map(|e| e.file_name())
+            .collect();
+        assert_eq!(left.len(), 2, "{left:?}");
+    }
 
     #[test]
     fn failed_write_leaves_nothing() {
