@@ -91,7 +91,8 @@ pub struct Npy2 {
 
 /// Parsed `.npy` header: element type, memory order, shape, and where the data starts.
 struct NpyHeader {
-    dtype: NpyType,
+    /// The element type, or the header's `descr` when wearsim reads no such type.
+    dtype: std::result::Result<NpyType, String>,
     fortran_order: bool,
     shape: Vec<usize>,
     data_offset: usize,
@@ -123,10 +124,8 @@ fn parse_npy_header(bytes: &[u8]) -> std::result::Result<NpyHeader, String> {
         .strip_prefix('\'')
         .and_then(|d| d.split('\'').next())
         .ok_or("malformed 'descr' in the .npy header")?;
-    let dtype = NpyType::from_descr(descr).ok_or(format!(
-        "element type '{descr}' is not supported; save the array as float64, float32, an integer type or bool \
-         (little-endian)"
-    ))?;
+    // An unknown type is refused by the reader, which knows what the array is for and which types fit it.
+    let dtype = NpyType::from_descr(descr).ok_or_else(|| descr.to_string());
     let fortran_order = field("fortran_order")?.starts_with("True");
     let shape_text = field("shape")?;
     let shape_text = shape_text
@@ -238,16 +237,28 @@ fn read_npy_data(
             ),
         ));
     }
-    if !accepted.contains(&h.dtype) {
-        let names: Vec<&str> = accepted.iter().map(|t| t.name()).collect();
-        return Err(Error::file(
-            path,
-            format!("{what} is {}; expected {}", h.dtype.name(), names.join(" or ")),
-        ));
-    }
+    let names = || accepted.iter().map(|t| t.name()).collect::<Vec<_>>().join(" or ");
+    let dtype = match &h.dtype {
+        Ok(t) if accepted.contains(t) => *t,
+        Ok(t) => {
+            return Err(Error::file(
+                path,
+                format!("{what} is {}; expected {}", t.name(), names()),
+            ))
+        }
+        Err(descr) => {
+            return Err(Error::file(
+                path,
+                format!(
+                    "{what} has element type '{descr}', which wearsim does not read; save it as {} (little-endian)",
+                    names()
+                ),
+            ))
+        }
+    };
     let (rows, cols) = (h.shape[0], h.shape[1]);
     let count = rows.checked_mul(cols);
-    let bytes = count.and_then(|c| c.checked_mul(h.dtype.size()));
+    let bytes = count.and_then(|c| c.checked_mul(dtype.size()));
     let available = size.saturating_sub(h.data_offset as u64);
     match bytes {
         Some(b) if (b as u64) <= available => {}
@@ -257,7 +268,7 @@ fn read_npy_data(
                 format!(
                     "the .npy header promises a {rows}×{cols} {} array, but the file holds only {available} bytes of \
                      data; the file is truncated or corrupt",
-                    h.dtype.name()
+                    dtype.name()
                 ),
             ))
         }
@@ -268,8 +279,8 @@ fn read_npy_data(
     if got != bytes {
         return Err(Error::file(path, "the .npy data is cut short"));
     }
-    let size = h.dtype.size();
-    let mut values: Vec<f64> = data.chunks_exact(size).map(|b| h.dtype.decode(b)).collect();
+    let size = dtype.size();
+    let mut values: Vec<f64> = data.chunks_exact(size).map(|b| dtype.decode(b)).collect();
     if h.fortran_order && rows > 1 && cols > 1 {
         let column_major = std::mem::take(&mut values);
         values = (0..rows * cols)
@@ -279,7 +290,7 @@ fn read_npy_data(
     Ok(Npy2 {
         rows,
         cols,
-        dtype: h.dtype,
+        dtype,
         values,
     })
 }
@@ -320,6 +331,30 @@ fn write_npy<T: ndarray_npy::WritableElement>(path: &Path, rows: usize, cols: us
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_element_type_wearsim_does_not_read_is_refused_with_the_types_that_fit_the_array() {
+        // A complex height map: the advice lists the height types, not bool (which heights refuse).
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("c.npy");
+        let mut header = "{'descr': '<c16', 'fortran_order': False, 'shape': (2, 2), }".to_string();
+        while (10 + header.len() + 1) % 64 != 0 {
+            header.push(' ');
+        }
+        header.push('\n');
+        let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+        bytes.extend((header.len() as u16).to_le_bytes());
+        bytes.extend(header.as_bytes());
+        bytes.extend([0u8; 64]);
+        std::fs::write(&path, bytes).unwrap();
+        let e = read_npy_2d(&path, &[NpyType::Float64, NpyType::Float32], "a height map")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("'<c16'") && e.contains("float64 or float32") && !e.contains("bool"),
+            "{e}"
+        );
+    }
 
     #[test]
     fn npy_round_trip_and_orders() {
