@@ -11,7 +11,8 @@ that are not the model's, or with no word that they are not).
 The second round (``--second-round`` runs it alone) adds: spreadsheet CSV (a byte-order mark,
 decimal commas), full contact (a junction around the periodic box), study axes (repeated values,
 two-number grids), arguments (--jobs 0, three or negative --length), messages of the first round's
-unclear errors, and `surface fit` on surfaces wearsim generated.
+unclear errors, `surface fit` on surfaces wearsim generated, and the same dimensionless run at extreme SI
+length scales.
 
     cargo build --release -p wearsim-cli && python bench/reliability_trials.py [--quick | --second-round]
 """
@@ -28,6 +29,7 @@ import subprocess
 import tempfile
 import time
 from pathlib import Path
+from typing import Optional, Tuple
 
 ROOT = Path(__file__).resolve().parents[1]
 WEARSIM = os.environ.get("WEARSIM_BIN", str(ROOT / "target" / "release" / "wearsim"))
@@ -386,6 +388,46 @@ def second_round(tmp: Path, tally: dict) -> None:
     if "1-0" in o.detail or "K/0" in o.detail:
         o = Outcome("unclear error", o.detail)
     tally[("arguments and messages", o.kind)].append(f"Slurm count 0: {o.detail}")
+
+    # Extreme SI scales: the same dimensionless run at L = 1e-80 … 1e80 m gives the scaled results
+    # (W/L², k, dN*₊/ds·L); beyond the representable range it is refused.
+    def scaled_run(length: float) -> str:
+        return (
+            f'units = "si"\n[surface]\ngrid = 64\nlength = {length:e}\nhurst = 0.7\nlambda_lower = {length / 16:e}\n'
+            f"lambda_upper = {length / 4:e}\nrms_height = {0.005 * length:e}\nseed = 1\n[material]\n"
+            f"youngs_modulus = 1.0\npoisson_ratio = 0.3\nshear_strength = 0.01\n"
+            f"fracture_energies = [{2.5e-7 * length:e}]\n"
+            f"[sliding]\nloads = [{1e-3 * length * length:e}]\n"
+        )
+
+    def reduced(length: float) -> Optional[Tuple[float, ...]]:
+        path = tmp / "scale.toml"
+        path.write_text(scaled_run(length))
+        out = tmp / "scale"
+        p = run(["slide", str(path), "--out", str(out)], timeout=300)
+        if p.returncode != 0:
+            return None
+        r = json.loads((out / "summary.json").read_text())["results"][0]
+        subprocess.run(["rm", "-rf", str(out)])
+        if r["wear_rate"] is None or r["wear_rate_r2"] is None:
+            return (float("nan"),)
+        return (r["wear_rate"] / length**2, r["wear_rate_r2"], r["wear_coefficient"], r["particle_rate"] * length)
+
+    unit = reduced(1.0)
+    for length in [1e-80, 1e-40, 1e40, 1e80]:
+        got = reduced(length)
+        same = unit is not None and got is not None and all(abs(a - b) <= 1e-9 * abs(a) for a, b in zip(unit, got))
+        tally[("extreme SI scales", "accepted" if same else "silently wrong")].append(f"L = {length:e} m: {got}")
+    for length in [1e-95, 1e95]:
+        path = tmp / "scale.toml"
+        path.write_text(scaled_run(length))
+        o = classify(run(["slide", str(path), "--out", str(tmp / "scale")], timeout=300))
+        if o.kind == "clear error" and "1e-90" not in o.detail:
+            o = Outcome("unclear error", o.detail)
+        elif o.kind == "accepted":
+            o = Outcome("silently wrong", f"L = {length:e} m ran")
+        tally[("extreme SI scales", o.kind)].append(f"L = {length:e} m: {o.detail}")
+        subprocess.run(["rm", "-rf", str(tmp / "scale")])
     # surface fit on surfaces wearsim generated (512², both methods): H within ±0.05, cut-offs ×1.2.
     for generation in ["random-phase", "filtered-noise"]:
         for hurst, lower in [("0.8", "0.015625"), ("0.7", "0.03125"), ("0.5", "0.015625")]:
