@@ -385,20 +385,55 @@ def _one_load(series: pd.DataFrame, load: Optional[float]) -> pd.DataFrame:
     return series[np.isclose(series["load"], load, rtol=1e-12, atol=0)]
 
 
+Results = Union[pd.DataFrame, Sequence[Dict[str, Any]]]
+
+
+def _result_of(results: Results, load: float, fracture_energy: Optional[float] = None) -> Optional[pd.Series]:
+    """The library's results (a row of ``summary["results"]`` or of the tidy table) of one load and,
+    when given, one fracture energy; None when ``results`` holds none."""
+    table = pd.DataFrame(results) if not isinstance(results, pd.DataFrame) else results
+    mine = np.isclose(table["load"].astype(float), load, rtol=1e-12, atol=0)
+    if fracture_energy is not None:
+        mine &= np.isclose(table["fracture_energy"].astype(float), fracture_energy, rtol=1e-12, atol=0)
+    rows = table[mine]
+    return None if rows.empty else rows.iloc[0]
+
+
+def _defined(value: Any) -> bool:
+    return value is not None and not pd.isna(value)
+
+
 def wear_volume(
-    series: pd.DataFrame, *, running_in: float, load: Optional[float] = None, length_unit: str = "L"
+    series: pd.DataFrame,
+    *,
+    running_in: float,
+    load: Optional[float] = None,
+    length_unit: str = "L",
+    results: Optional[Results] = None,
 ) -> Any:
-    """Paper Fig. 3: V(s) of one load (default: the last) per fracture energy, with the line fitted
-    after ``running_in`` (a sliding distance, in the series' length unit), drawn in the curve's colour."""
+    """Paper Fig. 3: V(s) of one load (default: the last) per fracture energy, with the line
+    V ≈ W s + b fitted after ``running_in`` (a sliding distance, in the series' length unit), drawn in
+    the curve's colour. The line is the library's: ``wear_rate`` and ``wear_volume_intercept`` of
+    ``results`` (``summary["results"]`` of :func:`wearsim.slide`, or the job's rows of the tidy table);
+    without ``results`` the library's least-squares line is fitted to the series' points after
+    ``running_in``."""
     plt = _pyplot()
     rows = _one_load(series, load)
     fig, ax = plt.subplots(figsize=(9.5, 5.0))
     ax.axvspan(0, running_in, color="0.85", label="running-in (not fitted)")
     for i, (g, group) in enumerate(rows.groupby("fracture_energy", sort=False)):
         ax.plot(group["s"], group["volume"], color=f"C{i}", lw=2, label=rf"V, $\mathcal{{G}}$ = {g:.3g}")
-        fit = group[group["s"] >= running_in - 1e-12]
-        if len(fit) >= 2:
-            slope, intercept = np.polyfit(fit["s"], fit["volume"], 1)
+        line: Optional[Tuple[float, float]] = None
+        if results is not None:
+            r = _result_of(results, float(group["load"].iloc[0]), float(group["fracture_energy"].iloc[0]))
+            if r is not None and _defined(r["wear_rate"]) and _defined(r["wear_volume_intercept"]):
+                line = (float(r["wear_rate"]), float(r["wear_volume_intercept"]))
+        else:
+            fit = group[group["s"] >= running_in - 1e-12]
+            fitted = _wearsim.line_fit(fit["s"].tolist(), fit["volume"].tolist())
+            line = None if fitted is None else (fitted[0], fitted[1])
+        if line is not None:
+            slope, intercept = line
             s = np.array([0, group["s"].max()])
             ax.plot(s, intercept + slope * s, "--", color=f"C{i}", lw=1, label=f"fit: W = {slope:.3g}")
     ax.set(xlabel=f"sliding distance s ({length_unit})", ylabel=f"wear volume V ({length_unit}³)")
@@ -422,18 +457,35 @@ def particle_counts(series: pd.DataFrame, *, load: Optional[float] = None, lengt
     return fig
 
 
-def memory(series: pd.DataFrame, *, load: Optional[float] = None, length_unit: str = "L") -> Any:
+def memory(
+    series: pd.DataFrame,
+    *,
+    load: Optional[float] = None,
+    length_unit: str = "L",
+    results: Optional[Results] = None,
+) -> Any:
     """The memory of the initial contact (paper §3): junctions descending from s = 0, N₀(s), with its
-    exponential fit."""
+    exponential fit N₀(0) e^(−s/ℓ). The fit is the library's: ``memory_decay_length`` and
+    ``memory_fit_initial_junctions`` of ``results`` (``summary["results"]`` of :func:`wearsim.slide`,
+    or the job's rows of the tidy table); without ``results`` the library's least-squares line is
+    fitted to ln N₀ over the steps where N₀ > 0."""
     plt = _pyplot()
     rows = _one_load(series, load).drop_duplicates("s")
     fig, ax = plt.subplots(figsize=(9.5, 5.0))
     ax.plot(rows["s"], rows["initial_junctions"], lw=2, label="N₀(s)")
-    live = rows[rows["initial_junctions"] > 0]
-    if len(live) >= 2:
-        slope, intercept = np.polyfit(live["s"], np.log(live["initial_junctions"]), 1)
-        if slope < 0:
-            ax.plot(rows["s"], np.exp(intercept + slope * rows["s"]), "--", label=f"fit: ℓ = {-1 / slope:.3g}")
+    curve: Optional[Tuple[float, float]] = None
+    if results is not None:
+        r = _result_of(results, float(rows["load"].iloc[0])) if len(rows) else None
+        if r is not None and _defined(r["memory_decay_length"]) and _defined(r["memory_fit_initial_junctions"]):
+            curve = (float(r["memory_decay_length"]), float(r["memory_fit_initial_junctions"]))
+    else:
+        live = rows[rows["initial_junctions"] > 0]
+        fitted = _wearsim.line_fit(live["s"].tolist(), np.log(live["initial_junctions"]).tolist())
+        if fitted is not None and fitted[0] < 0:
+            curve = (-1 / fitted[0], float(np.exp(fitted[1])))
+    if curve is not None:
+        decay_length, initial = curve
+        ax.plot(rows["s"], initial * np.exp(-rows["s"] / decay_length), "--", label=f"fit: ℓ = {decay_length:.3g}")
     ax.set(yscale="log", xlabel=f"sliding distance s ({length_unit})", ylabel="N₀")
     ax.legend(fontsize=8)
     fig.tight_layout()
@@ -459,9 +511,10 @@ def study_figures(
     running_in = row["sliding.running_in"] * row["surface.length"]
     unit = _unit(tidy, "surface.length")
     series = study.job_series(out, job)
+    results = tidy[tidy["job"] == job]
     figures: Dict[str, Any] = {
         "fig2_static_model": static_model(tidy),
-        "fig3_wear_volume": wear_volume(series, running_in=running_in, length_unit=unit),
+        "fig3_wear_volume": wear_volume(series, running_in=running_in, length_unit=unit, results=results),
         "fig4_sliding_wear": sliding_wear(tidy),
         "fig5_particle_rate": particle_rate(tidy),
         "fig6_kim_comparison": kim_comparison(tidy),
@@ -469,7 +522,7 @@ def study_figures(
         "appB_eq5_against_w": equation_5(tidy),
         "appC_junction_counts": junction_counts(tidy),
         "appF_contact_severity": contact_severity(tidy),
-        "memory_of_initial_contact": memory(series, length_unit=unit),
+        "memory_of_initial_contact": memory(series, length_unit=unit, results=results),
     }
     for i, fig in enumerate(constant_critical_diameter(tidy)):
         figures[f"fig4c_constant_d_star_{i + 1}"] = fig

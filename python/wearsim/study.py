@@ -212,31 +212,9 @@ def collect(out: PathLike) -> Tuple[pd.DataFrame, pd.DataFrame]:
 
 
 def job_series(out: PathLike, job: int) -> pd.DataFrame:
-    """The series of one finished job of a study folder: one row per step and fracture energy, with
-    the columns of ``series.csv`` that job files keep (load, fracture_energy, s, junctions,
-    contact_area, n_critical, n_formed, n_shrunk, volume, initial_junctions, static_wear_coefficient).
-    Lengths in the study's unit."""
-    path = Path(out) / "jobs" / f"job-{int(job):06d}.json"
-    try:
-        result = json.loads(path.read_text())
-    except OSError as e:
-        raise OSError(f"{path}: no result for job {job} ({e.strerror or e})") from e
-    rows = []
-    for i, w in enumerate(result["results"]):
-        for step in result["steps"]:
-            rows.append(
-                {
-                    "load": result["load"],
-                    "fracture_energy": w["fracture_energy"],
-                    "s": step["s"],
-                    "junctions": step["junctions"],
-                    "contact_area": step["contact_area"],
-                    "n_critical": step["n_critical"][i],
-                    "n_formed": step["n_formed"][i],
-                    "n_shrunk": step["n_formed"][i] - step["n_critical"][i],
-                    "volume": step["volume"][i],
-                    "initial_junctions": step["initial_junctions"],
-                    "static_wear_coefficient": step["static_wear_coefficient"][i],
-                }
-            )
-    return pd.DataFrame(rows)
+    """The series of one finished job of a study folder: one row per step and fracture energy, the
+    library's rows of its job file (load, fracture_energy, s, junctions, contact_area, n_critical,
+    n_formed, n_shrunk = N*₊ − N*, volume, initial_junctions, static_wear_coefficient,
+    wrapping_junctions: the columns of ``series.csv`` that job files keep). Lengths in the study's
+    unit."""
+    return pd.DataFrame(_wearsim.job_series(Path(out), int(job)))

@@ -121,3 +121,58 @@ def test_figures_from_python_and_job_series(tmp_path, study_file):
         assert name in names and (out / "figures-python" / f"{name}.png").stat().st_size > 1000
     labels = [label for label, _ in wearsim.plot.curves(tidy)]
     assert len(labels) == 4 and all(r"$\tilde{\tau}$ = " in label and r"$\mathcal{G}$ = " in label for label in labels)
+
+
+def test_job_series_is_the_librarys_series_of_the_job_file(tmp_path, study_file):
+    import json
+
+    out = tmp_path / "out"
+    wearsim.study.run(study_file, out=out)
+    series = wearsim.study.job_series(out, 3)
+    # The columns of a sliding run's series that job files keep, in the library's order.
+    kept = [c for c in wearsim.wear.SERIES_COLUMNS if c not in ("static_wear_rate", "iterations", "residual")]
+    assert list(series.columns) == kept
+    job = json.loads((out / "jobs" / "job-000003.json").read_text())
+    expected = [
+        (job["load"], w["fracture_energy"], st["s"], st["junctions"], st["n_critical"][e], st["n_formed"][e],
+         st["volume"][e], st["initial_junctions"], st["static_wear_coefficient"][e], st["wrapping_junctions"])
+        for e, w in enumerate(job["results"])
+        for st in job["steps"]
+    ]  # fmt: skip
+    columns = ["load", "fracture_energy", "s", "junctions", "n_critical", "n_formed", "volume",
+               "initial_junctions", "static_wear_coefficient", "wrapping_junctions"]  # fmt: skip
+    assert list(series[columns].itertuples(index=False, name=None)) == expected
+    assert (series["n_shrunk"] == series["n_formed"] - series["n_critical"]).all()
+    with pytest.raises(OSError, match="job-000099.json"):
+        wearsim.study.job_series(out, 99)
+
+
+def test_series_figures_draw_the_librarys_fits(tmp_path):
+    pytest.importorskip("matplotlib", reason="matplotlib not installed")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    top, bottom = wearsim.generate_pair(64, lambda_lower=0.125, lambda_upper=0.25, rms_height=0.005, seed=1)
+    material = wearsim.Material(youngs_modulus=1.0, poisson_ratio=0.3, shear_strength=0.008, fracture_energies=[0.5e-6])
+    with pytest.warns(wearsim.ResolutionWarning):  # a small, coarse run: under-resolved d*, not run in
+        series, summary = wearsim.slide(top, bottom, material, [1e-3], distance=0.25, running_in=0.125)
+    r = summary["results"][0]
+    fig = wearsim.plot.wear_volume(series, running_in=0.125, results=summary["results"])
+    line = [ln for ln in fig.axes[0].get_lines() if ln.get_linestyle() == "--"]
+    assert r["wear_rate"] is not None and r["wear_volume_intercept"] is not None
+    s, v = line[0].get_data()
+    assert np.allclose(v, r["wear_volume_intercept"] + r["wear_rate"] * np.asarray(s), rtol=1e-12)
+    # Without the results, the library's line fit to the points after running-in: the same line.
+    fallback = wearsim.plot.wear_volume(series, running_in=0.125)
+    _, v2 = [ln for ln in fallback.axes[0].get_lines() if ln.get_linestyle() == "--"][0].get_data()
+    assert np.allclose(v2, v, rtol=1e-9)
+    fig = wearsim.plot.memory(series, results=summary["results"])
+    curve = [ln for ln in fig.axes[0].get_lines() if ln.get_linestyle() == "--"]
+    assert r["memory_decay_length"] is not None and r["memory_fit_initial_junctions"] is not None
+    s, n0 = curve[0].get_data()
+    expected = r["memory_fit_initial_junctions"] * np.exp(-np.asarray(s) / r["memory_decay_length"])
+    assert np.allclose(n0, expected, rtol=1e-12)
+    _, n0_fallback = [ln for ln in wearsim.plot.memory(series).axes[0].get_lines() if ln.get_linestyle() == "--"][
+        0
+    ].get_data()
+    assert np.allclose(n0_fallback, n0, rtol=1e-9)

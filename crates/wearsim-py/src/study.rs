@@ -180,8 +180,17 @@ fn collect_study(out: PathBuf) -> PyResult<(usize, usize)> {
     study::collect(&out).map_err(to_py)
 }
 
+/// The series of finished job `job` of a study folder as columns (name → values): the library's
+/// rows of its job file, one per fracture energy and step.
+#[pyfunction]
+fn job_series<'py>(py: Python<'py>, out: PathBuf, job: usize) -> PyResult<Bound<'py, PyDict>> {
+    let result = wearsim::output::read_job_file(&study::job_path(&out, job)).map_err(to_py)?;
+    table_to_py(py, &Table::of(&result.series_rows()))
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyStudy>()?;
     m.add_function(wrap_pyfunction!(collect_study, m)?)?;
+    m.add_function(wrap_pyfunction!(job_series, m)?)?;
     Ok(())
 }

@@ -117,6 +117,20 @@ fn power_law_fit(x: Vec<f64>, y: Vec<f64>) -> PyResult<Option<(f64, f64, Option<
     Ok(wearsim::stats::power_law_fit(&x, &y).map(|f| (f.prefactor, f.exponent, f.r2)))
 }
 
+/// The least-squares line y = slope · x + intercept: (slope, intercept, R² or None), or None with
+/// fewer than two points or x without spread.
+#[pyfunction]
+fn line_fit(x: Vec<f64>, y: Vec<f64>) -> PyResult<Option<(f64, f64, Option<f64>)>> {
+    if x.len() != y.len() {
+        return Err(PyValueError::new_err(format!(
+            "invalid `y`: {} values for {} values of `x`",
+            y.len(),
+            x.len()
+        )));
+    }
+    Ok(wearsim::stats::line_fit(&x, &y).map(|f| (f.slope, f.intercept, f.r2)))
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("RESOLVED_PARTICLES", wearsim::study::findings::RESOLVED_PARTICLES)?;
     m.add_function(wrap_pyfunction!(curves, m)?)?;
@@ -124,5 +138,6 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(unit_of, m)?)?;
     m.add_function(wrap_pyfunction!(equal_critical_diameter, m)?)?;
     m.add_function(wrap_pyfunction!(power_law_fit, m)?)?;
+    m.add_function(wrap_pyfunction!(line_fit, m)?)?;
     Ok(())
 }

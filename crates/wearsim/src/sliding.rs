@@ -193,6 +193,10 @@ pub struct WearResult {
     pub wear_rate: Option<f64>,
     /// R² of the wear-rate fit; absent where V does not change after running-in (no particle).
     pub wear_rate_r2: Option<f64>,
+    /// Intercept b of the line V(s) ≈ W s + b fitted after running-in (volume), the dashed line of
+    /// the paper's Fig. 3; absent with W. Absent in job files written before it existed.
+    #[serde(default)]
+    pub wear_volume_intercept: Option<f64>,
     /// k = W p̃ / F_N (Archard, paper Eq. 2).
     pub wear_coefficient: Option<f64>,
     /// dN*₊/ds fitted after running-in (particles per sliding distance).
@@ -222,6 +226,10 @@ pub struct WearResult {
     pub memory_decay_length: Option<f64>,
     /// R² of that fit (in ln N₀).
     pub memory_decay_r2: Option<f64>,
+    /// N₀(0) of that fit, e^b of the line ln N₀ ≈ b − s/ℓ: with ℓ, the fitted curve of the memory
+    /// of the initial contact; absent with ℓ. Absent in job files written before it existed.
+    #[serde(default)]
+    pub memory_fit_initial_junctions: Option<f64>,
     /// Steps of the load at which a junction wrapped the periodic box (full contact near p_m, a
     /// contact band across the box). Such a junction is no particle of the model (paper §3 needs
     /// finite junctions), yet it is counted as one, so results with steps here are not the model's;
@@ -691,9 +699,12 @@ fn results_of_load(
             .map(|r| (r.initial_junctions as f64).ln())
             .collect::<Vec<_>>(),
     );
-    let (memory_decay_length, memory_decay_r2) = match memory {
-        Some(f) if f.slope < 0.0 => (finite(-1.0 / f.slope), f.r2),
-        _ => (None, None),
+    let (memory_decay_length, memory_decay_r2, memory_fit_initial_junctions) = match memory {
+        Some(f) if f.slope < 0.0 => {
+            let length = finite(-1.0 / f.slope);
+            (length, f.r2, length.and(finite(f.intercept.exp())))
+        }
+        _ => (None, None, None),
     };
     let fit_start = fitted.first().map_or(0.0, |r| r.s);
     let running_in_decay_lengths = match (memory_decay_length, memory) {
@@ -737,6 +748,7 @@ fn results_of_load(
             let wear_fit = line_fit(&s, &v);
             let particle_fit = line_fit(&s, &nf);
             let wear_rate = wear_fit.and_then(|f| finite(f.slope));
+            let wear_volume_intercept = wear_fit.filter(|_| wear_rate.is_some()).and_then(|f| finite(f.intercept));
             let particle_rate = particle_fit.and_then(|f| finite(f.slope));
             let particles_in_fit = match (fitted.first(), fitted.last()) {
                 (Some(a), Some(b)) => b.wear[e].n_formed - a.wear[e].n_formed,
@@ -766,6 +778,7 @@ fn results_of_load(
                 critical_diameter: d,
                 wear_rate,
                 wear_rate_r2,
+                wear_volume_intercept,
                 wear_coefficient: wear_rate.and_then(|w| finite(w * pm / load)),
                 particle_rate,
                 wear_rate_estimate: particle_rate
@@ -783,6 +796,7 @@ fn results_of_load(
                 box_wrapping_steps: wrapping.len(),
                 memory_decay_length,
                 memory_decay_r2,
+                memory_fit_initial_junctions,
                 running_in_decay_lengths,
                 critical_residence: particle_rate
                     .filter(|r| *r > 0.0)

@@ -8,6 +8,7 @@ use serde_json::json;
 use crate::config::{InputRecord, Units};
 use crate::error::{Error, Result};
 use crate::sliding::{StepRecord, WearResult};
+use crate::wear::StepWear;
 
 use super::provenance::Provenance;
 use super::tables::{columns, Cell, Table};
@@ -85,6 +86,79 @@ impl JobResult {
     /// Parses a job file's text.
     pub fn from_json(text: &str) -> std::result::Result<Self, serde_json::Error> {
         serde_json::from_str(text)
+    }
+}
+
+/// One row of the series of a study job (`wearsim.study.job_series`): one step for one fracture
+/// energy, with the columns of [`SeriesRow`](super::summary::SeriesRow) that a job file keeps (it keeps
+/// neither the solver's iterations and residual nor W_static/ω per step).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct JobSeriesRow {
+    /// Normal load F_N.
+    pub load: f64,
+    /// Fracture energy 𝒢.
+    pub fracture_energy: f64,
+    /// Sliding distance s in the study's length unit.
+    pub s: f64,
+    /// Number of junctions N.
+    pub junctions: usize,
+    /// Real contact area as a fraction of the apparent area Lx·Ly.
+    pub contact_area: f64,
+    /// N*: junctions with d_i ≥ d* at this step.
+    pub n_critical: usize,
+    /// N*₊: particles formed so far, s = 0 included.
+    pub n_formed: usize,
+    /// N*₋ = N*₊ − N* (paper appendix B).
+    pub n_shrunk: i64,
+    /// V: wear volume so far, s = 0 included.
+    pub volume: f64,
+    /// Junctions descending from a junction present at s = 0 (the memory of the initial contact,
+    /// paper §3).
+    pub initial_junctions: usize,
+    /// Static model on this step's contact map: k_static (paper §2).
+    pub static_wear_coefficient: f64,
+    /// Junctions that wrap the periodic box at this step (paper §3); 0 in job files written before
+    /// it was recorded.
+    pub wrapping_junctions: usize,
+}
+
+impl JobResult {
+    /// The job's series: fracture energy by fracture energy, then step, as the series of a sliding
+    /// run is ordered.
+    pub fn series_rows(&self) -> Vec<JobSeriesRow> {
+        let mut rows = Vec::new();
+        for (e, w) in self.results.iter().enumerate() {
+            for st in &self.steps {
+                let (Some(&n_critical), Some(&n_formed), Some(&volume), Some(&k)) = (
+                    st.n_critical.get(e),
+                    st.n_formed.get(e),
+                    st.volume.get(e),
+                    st.static_wear_coefficient.get(e),
+                ) else {
+                    continue;
+                };
+                let wear = StepWear {
+                    n_critical,
+                    n_formed,
+                    volume,
+                };
+                rows.push(JobSeriesRow {
+                    load: self.load,
+                    fracture_energy: w.fracture_energy,
+                    s: st.s,
+                    junctions: st.junctions,
+                    contact_area: st.contact_area,
+                    n_critical,
+                    n_formed,
+                    n_shrunk: wear.n_shrunk(),
+                    volume,
+                    initial_junctions: st.initial_junctions,
+                    static_wear_coefficient: k,
+                    wrapping_junctions: st.wrapping_junctions,
+                });
+            }
+        }
+        rows
     }
 }
 
@@ -464,6 +538,52 @@ mod tests {
             ..job(0, 0.01, 0.01)
         });
         assert_eq!(measured[0].contact_severity, None);
+    }
+
+    #[test]
+    fn a_jobs_series_is_one_row_per_fracture_energy_and_step() {
+        let step = |s: f64, n_critical: Vec<usize>, n_formed: Vec<usize>| StepRow {
+            s,
+            junctions: 7,
+            wrapping_junctions: 0,
+            contact_area: 0.1,
+            initial_junctions: 5,
+            volume: n_formed.iter().map(|&n| n as f64 * 1e-6).collect(),
+            static_wear_coefficient: vec![0.3, 0.2],
+            n_critical,
+            n_formed,
+        };
+        let result = JobResult {
+            results: vec![
+                WearResult {
+                    fracture_energy: 1e-6,
+                    ..WearResult::default()
+                },
+                WearResult {
+                    fracture_energy: 2e-6,
+                    ..WearResult::default()
+                },
+            ],
+            steps: vec![step(0.0, vec![2, 1], vec![2, 1]), step(0.5, vec![1, 0], vec![4, 2])],
+            ..job(0, 0.01, 0.01)
+        };
+        let rows = result.series_rows();
+        let key: Vec<(f64, f64, i64, f64)> = rows
+            .iter()
+            .map(|r| (r.fracture_energy, r.s, r.n_shrunk, r.static_wear_coefficient))
+            .collect();
+        assert_eq!(
+            key,
+            [
+                (1e-6, 0.0, 0, 0.3),
+                (1e-6, 0.5, 3, 0.3),
+                (2e-6, 0.0, 0, 0.2),
+                (2e-6, 0.5, 2, 0.2)
+            ]
+        );
+        assert!(rows.iter().all(|r| r.load == 0.01 && r.initial_junctions == 5));
+        assert_eq!(rows[3].volume, 2e-6);
+        assert_eq!(columns::<JobSeriesRow>().len(), 12);
     }
 
     #[test]

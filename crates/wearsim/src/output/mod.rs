@@ -18,7 +18,7 @@ mod units;
 pub use fields::{FieldSelection, FieldsWriter};
 pub use jobs::{
     aggregate, curves, equal_critical_diameter, read_job_file, write_results_tables, CurveMaterial, Curves, JobResult,
-    StepRow, TidyRow, ALONG_A_CURVE, JOB_FORMAT, NOT_A_SETTING,
+    JobSeriesRow, StepRow, TidyRow, ALONG_A_CURVE, JOB_FORMAT, NOT_A_SETTING,
 };
 pub use provenance::{Provenance, DEPENDENCY_VERSIONS};
 pub use summary::{

@@ -35,7 +35,7 @@ pub fn unit_of(units: Units, quantity: &str) -> &'static str {
         | "gap"
         | "displacement" => pick("L", "m"),
         "wear_rate" | "wear_rate_estimate" | "static_wear_rate" => pick("L²", "m²"),
-        "volume" | "initial_volume" => pick("L³", "m³"),
+        "volume" | "initial_volume" | "wear_volume_intercept" => pick("L³", "m³"),
         "particle_rate" => pick("1/L", "1/m"),
         "contact_area" => "1 (fraction of Lx·Ly)",
         "contact_severity"
