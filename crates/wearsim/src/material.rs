@@ -169,7 +169,9 @@ mod tests {
             .to_string();
         assert!(e.contains("youngs_modulus") && e.contains("1e-90 … 1e90"), "{e}");
         // A derived d* that underflows.
-        let e = Material::new(1.0, 0.3, 0.01, vec![1e-320], 3.0).unwrap_err().to_string();
+        let e = Material::new(1.0, 0.3, 0.01, vec![1e-320], 3.0)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("fracture_energies") && e.contains("d*"), "{e}");
     }
 }
