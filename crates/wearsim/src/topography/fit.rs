@@ -68,7 +68,7 @@ const UNDER: f64 = 10.0;
 ///    of ln q: grown from every shell while each new shell stays within a factor 2 of the run's
 ///    least-squares line (or 3 standard deviations √(2/n) of a shell average over n modes, where
 ///    that is wider), then kept only if every shell of the run does, it has at least
-///    [`MIN_SHELLS`] shells over at least an octave, it falls faster than q⁻¹ (a roll-off plateau or
+///    six shells (`MIN_SHELLS`) over at least an octave, it falls faster than q⁻¹ (a roll-off plateau or
 ///    a white floor does not) and no shell at a longer wavelength lies a factor 10 above its line (a
 ///    run under the band, such as the leakage of a levelled periodic map beyond λ_l, is not the band).
 /// 3. H comes from the slope of the line over the band less its two end shells (which straddle the
