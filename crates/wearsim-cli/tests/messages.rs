@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{file, run, s, stderr, GENERATED};
+use common::{file, run, s, stderr, wearsim, GENERATED};
 
 /// Runs `wearsim args` expecting failure; returns its one-line error.
 fn fails(args: &[&str]) -> String {
@@ -21,6 +21,27 @@ fn zero_jobs_at_once_is_refused_before_any_work() {
     let out = dir.path().join("o");
     let e = fails(&["study", "run", s(&study), "--out", s(&out), "--jobs", "0"]);
     assert!(e.contains("`jobs`") && e.contains("1 or more"), "{e}");
+    assert!(!out.join("jobs").exists());
+}
+
+#[test]
+fn a_slurm_array_of_zero_tasks_names_the_variable_and_the_fix_not_an_empty_range() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = file(dir.path(), "s.toml", &format!("{GENERATED}[sliding]\nloads = [1e-3]\n"));
+    let out = dir.path().join("o");
+    let o = wearsim()
+        .args(["study", "run", s(&study), "--out", s(&out)])
+        .env("SLURM_ARRAY_TASK_ID", "1")
+        .env("SLURM_ARRAY_TASK_COUNT", "0")
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    let e = stderr(&o);
+    assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+    assert!(
+        e.contains("SLURM_ARRAY_TASK_COUNT = 0") && e.contains("--shard") && !e.contains("1-0"),
+        "{e}"
+    );
     assert!(!out.join("jobs").exists());
 }
 
