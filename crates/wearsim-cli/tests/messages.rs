@@ -46,6 +46,18 @@ fn a_slurm_array_of_zero_tasks_names_the_variable_and_the_fix_not_an_empty_range
 }
 
 #[test]
+fn an_animation_into_a_missing_folder_names_the_folder_not_a_temporary_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let run_file = file(dir.path(), "r.toml", &format!("{GENERATED}[sliding]\nloads = [1e-3]\n"));
+    let gif = dir.path().join("missing").join("x.gif");
+    let e = fails(&["animate", s(&run_file), "--out", s(&gif)]);
+    assert!(
+        e.contains("missing") && e.contains("does not exist") && !e.contains(".x.gif") && !e.contains("Os {"),
+        "{e}"
+    );
+}
+
+#[test]
 fn surface_fit_lengths_one_or_two_and_positive() {
     let dir = tempfile::tempdir().unwrap();
     let map = dir.path().join("h.npy");

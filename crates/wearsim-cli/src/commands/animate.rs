@@ -37,6 +37,15 @@ pub fn run(args: &Args) -> Result<()> {
     let (run, out, load_index, energy_index, delay_ms) =
         (&args.run, &args.out, args.load_index, args.energy_index, args.delay);
     register_font();
+    // The GIF is written beside its name: a folder that is not there is said before any work.
+    let folder = wearsim::io::parent_or_dot(out);
+    if !folder.is_dir() {
+        anyhow::bail!(
+            "cannot write {}: the folder {} does not exist; create it or give another --out",
+            out.display(),
+            folder.display()
+        );
+    }
     let mut config = load_run(run)?;
     let mut sliding = config
         .sliding
@@ -80,7 +89,7 @@ pub fn run(args: &Args) -> Result<()> {
     {
         let root = crate::raster::Raster::new(
             BitMapBackend::gif(&tmp, (width.max(560), height + 40), delay_ms)
-                .map_err(|e| anyhow!("cannot write {}: {e}", tmp.display()))?,
+                .map_err(|e| anyhow!("cannot write {}: {e}", out.display()))?,
         )
         .into_drawing_area();
         let progress = Progress::new("animate", "frames", 0);
