@@ -42,6 +42,7 @@ __all__ = [
     "preprocess_surface",
     "radial_psd",
     "read_surface",
+    "series_job",
     "slide",
     "static_wear_model",
     "surface_statistics",
@@ -121,6 +122,7 @@ def equal_critical_diameter(curves: List[Tuple[float, float, float]], tolerance:
 def unit_of(units: str, quantity: str) -> str: ...
 def power_law_fit(x: List[float], y: List[float]) -> Optional[Tuple[float, float, Optional[float]]]: ...
 def line_fit(x: List[float], y: List[float]) -> Optional[Tuple[float, float, Optional[float]]]: ...
+def series_job(job: List[int], particles_in_fit: List[int]) -> Optional[int]: ...
 
 @final
 class Material:

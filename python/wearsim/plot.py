@@ -104,8 +104,9 @@ def curves(tidy: pd.DataFrame) -> List[Tuple[str, pd.DataFrame]]:
 
 
 def _particles(stats: pd.DataFrame) -> np.ndarray:
-    """Per point, the particles in the fit window summed over its surface pairs."""
-    return (stats["particles_in_fit_mean"] * stats["surface_pairs"]).round().to_numpy()
+    """Per point, the particles in the fit window summed over its surface pairs (the library's
+    ``particles_in_fit_total``)."""
+    return stats["particles_in_fit_total"].to_numpy()
 
 
 def _load_figure(
@@ -139,6 +140,8 @@ def _load_figure(
     thin = [fitted & (_particles(stats) < RESOLVED_PARTICLES) for _, stats in data]
     zeros_drawn = False
     for p, (ax, (column, label, log)) in enumerate(zip(axes[0], panels)):
+        # Per load, the no-wear markers drawn so far: the next stacks above them.
+        stacked: Dict[float, int] = {}
         ax.set_xscale("log")
         if log:
             ax.set_yscale("log")
@@ -175,9 +178,13 @@ def _load_figure(
             none = np.isfinite(hi) & (hi <= 0)
             if log and none.any():
                 zeros_drawn = True
+                levels = []
+                for at in x[none]:
+                    levels.append(stacked.get(float(at), 0))
+                    stacked[float(at)] = levels[-1] + 1
                 ax.plot(
                     x[none],
-                    np.zeros(none.sum()),
+                    0.045 * np.array(levels, dtype=float),
                     "v",
                     color=color,
                     ms=9,
@@ -194,7 +201,8 @@ def _load_figure(
     handles: List[Any] = []
     for i, (name, stats) in enumerate(data):
         color, marker = styles[i]
-        counts = _particles(stats)[thin[i]]
+        # A point without any particle has no wear: it is the marker on the axis, not a hollow one.
+        counts = _particles(stats)[thin[i] & (_particles(stats) > 0)]
         note = f" — hollow: {', '.join(f'{n:g}' for n in counts)} particles" if len(counts) else ""
         handles.append(Line2D([], [], color=color, marker=marker, lw=2, label=f"{name}{note}"))
     if any(t.any() for t in thin):
@@ -211,7 +219,14 @@ def _load_figure(
         )
     if zeros_drawn:
         handles.append(
-            Line2D([], [], color="0.35", marker="v", linestyle="none", label="on the axis: no wear in any surface pair")
+            Line2D(
+                [],
+                [],
+                color="0.35",
+                marker="v",
+                linestyle="none",
+                label="on the axis (stacked per load): no wear in any surface pair",
+            )
         )
     if band is not None:
         handles.append(Patch(color="tab:blue", alpha=0.15, label=band[2]))
@@ -406,19 +421,27 @@ def _defined(value: Any) -> bool:
 def wear_volume(
     series: pd.DataFrame,
     *,
-    running_in: float,
+    running_in: Optional[float] = None,
     load: Optional[float] = None,
     length_unit: str = "L",
     results: Optional[Results] = None,
 ) -> Any:
     """Paper Fig. 3: V(s) of one load (default: the last) per fracture energy, with the line
-    V ≈ W s + b fitted after ``running_in`` (a sliding distance, in the series' length unit), drawn in
-    the curve's colour. The line is the library's: ``wear_rate`` and ``wear_volume_intercept`` of
-    ``results`` (``summary["results"]`` of :func:`wearsim.slide`, or the job's rows of the tidy table);
-    without ``results`` the library's least-squares line is fitted to the series' points after
-    ``running_in``."""
+    V ≈ W s + b fitted over the fit window, drawn in the curve's colour. The line and the window are
+    the library's: ``wear_rate``, ``wear_volume_intercept`` and ``fit_window_start`` of ``results``
+    (``summary["results"]`` of :func:`wearsim.slide`, or the job's rows of the tidy table). Without
+    ``results``, pass ``running_in`` (where the fit window starts, a sliding distance in the series'
+    length unit): the library's least-squares line is then fitted to the series' points from there."""
     plt = _pyplot()
     rows = _one_load(series, load)
+    if running_in is None:
+        first = None if results is None else _result_of(results, float(rows["load"].iloc[0]))
+        if first is None or not _defined(first.get("fit_window_start")):
+            raise ValueError(
+                "invalid `running_in`: pass where the fit window starts (a sliding distance), or `results` of this "
+                "load holding `fit_window_start` (a run of this version of wearsim)"
+            )
+        running_in = float(first["fit_window_start"])
     fig, ax = plt.subplots(figsize=(9.5, 5.0))
     ax.axvspan(0, running_in, color="0.85", label="running-in (not fitted)")
     for i, (g, group) in enumerate(rows.groupby("fracture_energy", sort=False)):
@@ -497,7 +520,7 @@ def study_figures(
 ) -> List[Path]:
     """Draws every figure of a finished study folder ``out`` as PNG into ``folder`` (default:
     ``out/figures-python``); the series figures show ``job`` (default: the one that formed the most
-    particles after running-in). Returns the files written."""
+    particles after running-in, the lowest index among equals). Returns the files written."""
     from . import study
 
     plt = _pyplot()
@@ -506,15 +529,15 @@ def study_figures(
     folder.mkdir(parents=True, exist_ok=True)
     tidy, _ = study.collect(out)
     if job is None:
-        job = int(tidy["job"].to_numpy()[tidy["particles_in_fit"].to_numpy().argmax()])
-    row = tidy[tidy["job"] == job].iloc[0]
-    running_in = row["sliding.running_in"] * row["surface.length"]
+        job = _wearsim.series_job(tidy["job"].astype(int).tolist(), tidy["particles_in_fit"].astype(int).tolist())
+        if job is None:
+            raise ValueError(f"invalid `out`: {out} holds no job results")
     unit = _unit(tidy, "surface.length")
     series = study.job_series(out, job)
     results = tidy[tidy["job"] == job]
     figures: Dict[str, Any] = {
         "fig2_static_model": static_model(tidy),
-        "fig3_wear_volume": wear_volume(series, running_in=running_in, length_unit=unit, results=results),
+        "fig3_wear_volume": wear_volume(series, length_unit=unit, results=results),
         "fig4_sliding_wear": sliding_wear(tidy),
         "fig5_particle_rate": particle_rate(tidy),
         "fig6_kim_comparison": kim_comparison(tidy),

@@ -213,8 +213,7 @@ def collect(out: PathLike) -> Tuple[pd.DataFrame, pd.DataFrame]:
 
 def job_series(out: PathLike, job: int) -> pd.DataFrame:
     """The series of one finished job of a study folder: one row per step and fracture energy, the
-    library's rows of its job file (load, fracture_energy, s, junctions, contact_area, n_critical,
-    n_formed, n_shrunk = N*₊ − N*, volume, initial_junctions, static_wear_coefficient,
-    wrapping_junctions: the columns of ``series.csv`` that job files keep). Lengths in the study's
-    unit."""
+    library's rows of its job file, with the columns of a sliding run's series
+    (:data:`wearsim.wear.SERIES_COLUMNS`); ``static_wear_rate``, ``iterations`` and ``residual``,
+    which job files do not keep, are empty. Lengths in the study's unit."""
     return pd.DataFrame(_wearsim.job_series(Path(out), int(job)))

@@ -99,6 +99,24 @@ def test_few_particles_hollow_and_no_wear_on_the_axis():
     plt.close(fig)
 
 
+def test_settings_without_wear_at_one_load_stack_their_markers():
+    import matplotlib.pyplot as plt
+
+    tidy = _tidy()
+    # A third setting (τ̃ = 0.010) that wears nothing at the lower load either: its marker sits above
+    # τ̃ = 0.008's, not on it.
+    extra = tidy[tidy["material.shear_strength"] == 0.008].copy()
+    extra["material.shear_strength"] = 0.010
+    extra["job"] += 100
+    fig = wearsim.plot.sliding_wear(pd.concat([tidy, extra], ignore_index=True))
+    at_axis = [line for line in fig.axes[0].lines if line.get_gid() == "no-wear"]
+    assert [list(line.get_xdata()) for line in at_axis] == [[P1], [P1]]
+    heights = sorted(float(line.get_ydata()[0]) for line in at_axis)
+    assert heights[0] == 0.0 and heights[1] > 0.0
+    assert at_axis[0].get_color() != at_axis[1].get_color()
+    plt.close(fig)
+
+
 def test_unfitted_figures_draw_no_hollow_markers():
     import matplotlib.pyplot as plt
 

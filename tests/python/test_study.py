@@ -129,9 +129,9 @@ def test_job_series_is_the_librarys_series_of_the_job_file(tmp_path, study_file)
     out = tmp_path / "out"
     wearsim.study.run(study_file, out=out)
     series = wearsim.study.job_series(out, 3)
-    # The columns of a sliding run's series that job files keep, in the library's order.
-    kept = [c for c in wearsim.wear.SERIES_COLUMNS if c not in ("static_wear_rate", "iterations", "residual")]
-    assert list(series.columns) == kept
+    # The columns of a sliding run's series, in the library's order; those job files do not keep empty.
+    assert list(series.columns) == list(wearsim.wear.SERIES_COLUMNS)
+    assert series[["static_wear_rate", "iterations", "residual"]].isna().all().all()
     job = json.loads((out / "jobs" / "job-000003.json").read_text())
     expected = [
         (job["load"], w["fracture_energy"], st["s"], st["junctions"], st["n_critical"][e], st["n_formed"][e],
@@ -157,7 +157,9 @@ def test_series_figures_draw_the_librarys_fits(tmp_path):
     with pytest.warns(wearsim.ResolutionWarning):  # a small, coarse run: under-resolved d*, not run in
         series, summary = wearsim.slide(top, bottom, material, [1e-3], distance=0.25, running_in=0.125)
     r = summary["results"][0]
-    fig = wearsim.plot.wear_volume(series, running_in=0.125, results=summary["results"])
+    # The fit window starts at the first step at or past running-in (8 of 64 px here).
+    assert r["fit_window_start"] == 0.125
+    fig = wearsim.plot.wear_volume(series, results=summary["results"])
     line = [ln for ln in fig.axes[0].get_lines() if ln.get_linestyle() == "--"]
     assert r["wear_rate"] is not None and r["wear_volume_intercept"] is not None
     s, v = line[0].get_data()
@@ -166,6 +168,8 @@ def test_series_figures_draw_the_librarys_fits(tmp_path):
     fallback = wearsim.plot.wear_volume(series, running_in=0.125)
     _, v2 = [ln for ln in fallback.axes[0].get_lines() if ln.get_linestyle() == "--"][0].get_data()
     assert np.allclose(v2, v, rtol=1e-9)
+    with pytest.raises(ValueError, match="running_in"):
+        wearsim.plot.wear_volume(series)
     fig = wearsim.plot.memory(series, results=summary["results"])
     curve = [ln for ln in fig.axes[0].get_lines() if ln.get_linestyle() == "--"]
     assert r["memory_decay_length"] is not None and r["memory_fit_initial_junctions"] is not None

@@ -444,19 +444,19 @@ impl<'a, DB: DrawingBackend + 'a> Panel<'a, DB> {
         Ok(())
     }
 
-    /// A value of zero on a log axis: a downward triangle resting on the x axis at each x.
-    pub fn zeros_at_axis(&mut self, xs: &[f64], color: RGBColor) -> Result<()> {
+    /// A value of zero on a log axis: a downward triangle resting on the x axis at each x, the
+    /// `level`-th of several at one x stacked that many triangles higher.
+    pub fn zeros_at_axis(&mut self, at: &[(f64, usize)], color: RGBColor) -> Result<()> {
         let y = self.y.map(self.y.lo);
-        let pts: Vec<(f64, f64)> = xs
+        let pts: Vec<((f64, f64), i32)> = at
             .iter()
-            .filter(|x| self.x.shows(**x))
-            .map(|x| (self.x.map(*x), y))
+            .filter(|(x, _)| self.x.shows(*x))
+            .map(|&(x, level)| ((self.x.map(x), y), 13 * level as i32))
             .collect();
         self.chart
-            .draw_series(
-                pts.into_iter()
-                    .map(|p| EmptyElement::at(p) + Polygon::new(vec![(-6, -12), (6, -12), (0, 0)], color.filled())),
-            )
+            .draw_series(pts.into_iter().map(|(p, up)| {
+                EmptyElement::at(p) + Polygon::new(vec![(-6, -12 - up), (6, -12 - up), (0, -up)], color.filled())
+            }))
             .map_err(drawing)?;
         Ok(())
     }

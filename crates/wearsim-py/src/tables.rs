@@ -131,6 +131,21 @@ fn line_fit(x: Vec<f64>, y: Vec<f64>) -> PyResult<Option<(f64, f64, Option<f64>)
     Ok(wearsim::stats::line_fit(&x, &y).map(|f| (f.slope, f.intercept, f.r2)))
 }
 
+/// The job whose series a study's figures show when none is asked for, from the tidy table's
+/// `job` and `particles_in_fit` columns: the most particles in the fit window, the lowest job
+/// among equals; None without rows.
+#[pyfunction]
+fn series_job(job: Vec<usize>, particles_in_fit: Vec<usize>) -> PyResult<Option<usize>> {
+    if job.len() != particles_in_fit.len() {
+        return Err(PyValueError::new_err(format!(
+            "invalid `particles_in_fit`: {} values for {} values of `job`",
+            particles_in_fit.len(),
+            job.len()
+        )));
+    }
+    Ok(wearsim::output::series_job(job.into_iter().zip(particles_in_fit)))
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("RESOLVED_PARTICLES", wearsim::study::findings::RESOLVED_PARTICLES)?;
     m.add_function(wrap_pyfunction!(curves, m)?)?;
@@ -139,5 +154,6 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(equal_critical_diameter, m)?)?;
     m.add_function(wrap_pyfunction!(power_law_fit, m)?)?;
     m.add_function(wrap_pyfunction!(line_fit, m)?)?;
+    m.add_function(wrap_pyfunction!(series_job, m)?)?;
     Ok(())
 }

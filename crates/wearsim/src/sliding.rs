@@ -197,6 +197,10 @@ pub struct WearResult {
     /// the paper's Fig. 3; absent with W. Absent in job files written before it existed.
     #[serde(default)]
     pub wear_volume_intercept: Option<f64>,
+    /// Sliding distance at which the fit window starts (run's length unit): the first step at or
+    /// past the running-in distance, where the fits of W and dN*₊/ds and the means over the fit
+    /// window begin; the running-in (not fitted) part of the paper's Fig. 3 ends here.
+    pub fit_window_start: f64,
     /// k = W p̃ / F_N (Archard, paper Eq. 2).
     pub wear_coefficient: Option<f64>,
     /// dN*₊/ds fitted after running-in (particles per sliding distance).
@@ -539,8 +543,8 @@ pub enum Resumed {
     Ignored(String),
 }
 
-/// Version of the checkpoint layout.
-const CHECKPOINT_FORMAT: u32 = 1;
+/// Version of the checkpoint layout (2: finished loads' results hold `fit_window_start`).
+const CHECKPOINT_FORMAT: u32 = 2;
 
 /// First bytes of a checkpoint file; then the length of the JSON state (u64, little-endian), the
 /// state, and the contact pressure (Nx·Ny f64, little-endian, exact).
@@ -779,6 +783,7 @@ fn results_of_load(
                 wear_rate,
                 wear_rate_r2,
                 wear_volume_intercept,
+                fit_window_start: fit_start,
                 wear_coefficient: wear_rate.and_then(|w| finite(w * pm / load)),
                 particle_rate,
                 wear_rate_estimate: particle_rate

@@ -85,6 +85,9 @@ fn bookkeeping_invariants_and_initial_volume() {
             assert!(res.static_wear_coefficient_std >= 0.0 && res.static_wear_coefficient_std <= hi - lo);
             // Appendix C counts are means over the fit window.
             let window: Vec<&wearsim::sliding::StepRecord> = r.steps.iter().filter(|st| st.s >= 0.25 - 1e-12).collect();
+            // The fit window starts at its first step (16 of 64 px), as the results say.
+            assert_eq!(res.fit_window_start, window[0].s);
+            assert_eq!(res.fit_window_start, 0.25);
             let n_star = window.iter().map(|st| st.wear[e].n_critical as f64).sum::<f64>() / window.len() as f64;
             assert!((res.critical_junctions_mean - n_star).abs() < 1e-12);
             assert!(res.junctions_mean >= res.critical_junctions_mean);

@@ -12,7 +12,7 @@ use plotters::prelude::*;
 use wearsim::config::Units;
 use wearsim::output::{equal_critical_diameter, unit_of, CurveMaterial, JobResult, Table, TidyRow};
 use wearsim::sliding::WearResult;
-use wearsim::stats::{line_fit, power_law_fit};
+use wearsim::stats::power_law_fit;
 use wearsim::study::findings::{findings, markdown, RESOLVED_PARTICLES};
 use wearsim::study::{load_results, Job};
 
@@ -23,7 +23,7 @@ pub struct Args {
     /// Study folder.
     dir: PathBuf,
     /// The job whose series fig3, appB and memory show (its index, as in results.csv; default: the
-    /// job that formed the most particles after running-in).
+    /// job that formed the most particles after running-in, the lowest index among equals).
     #[arg(long)]
     job: Option<usize>,
     /// Figures to draw, comma-separated (default: all).
@@ -275,6 +275,9 @@ impl Figure for LoadFigure<'_> {
                 (false, _) => self.title.clone(),
             };
             let mut panel = Panel::new(area, &caption, x, y)?;
+            // Per load, the no-wear markers drawn so far: the next stacks above them, so that
+            // curves without wear at the same load stay visible side by side.
+            let mut zeros_at: BTreeMap<u64, usize> = BTreeMap::new();
             if let Some((lo, hi, _)) = band {
                 panel.band(lo, hi, RGBColor(86, 180, 233).mix(0.25))?;
             }
@@ -288,18 +291,27 @@ impl Figure for LoadFigure<'_> {
                 // No wear in any surface pair: zero has no place on a log axis, so it is marked on
                 // the axis itself.
                 if *log {
-                    let zeros: Vec<f64> = s.iter().filter(|p| p.3 <= 0.0).map(|p| p.0).collect();
+                    let zeros: Vec<(f64, usize)> = s
+                        .iter()
+                        .filter(|p| p.3 <= 0.0)
+                        .map(|p| {
+                            let level = zeros_at.entry(p.0.to_bits()).or_insert(0);
+                            *level += 1;
+                            (p.0, *level - 1)
+                        })
+                        .collect();
                     zeros_drawn |= !zeros.is_empty();
                     panel.zeros_at_axis(&zeros, col)?;
                 }
                 panel.bars(&s.iter().map(|p| (p.0, p.2, p.3)).collect::<Vec<_>>(), col)?;
             }
         }
-        // Each curve's legend entry: its label, and the particle counts of its hollow points.
+        // Each curve's legend entry: its label, and the particle counts of its hollow points (a
+        // point without any particle has no wear: it is the marker on the axis, not a hollow one).
         let thin_counts = |i: usize| -> String {
             let counts: Vec<String> = particles[i]
                 .iter()
-                .filter(|p| self.fitted && p.1 < RESOLVED_PARTICLES)
+                .filter(|p| self.fitted && p.1 < RESOLVED_PARTICLES && p.1 > 0.0)
                 .map(|p| number((p.1 * 10.0).round() / 10.0))
                 .collect();
             if counts.is_empty() {
@@ -329,7 +341,7 @@ impl Figure for LoadFigure<'_> {
         }
         if zeros_drawn {
             entries.push(Entry {
-                label: "on the axis: zero (no wear) in every surface pair".into(),
+                label: "on the axis (stacked per load): zero (no wear) in every surface pair".into(),
                 color: RGBColor(90, 90, 90),
                 swatch: Swatch::AtAxis,
             });
@@ -364,12 +376,8 @@ struct SeriesFigure<'a> {
 impl Figure for SeriesFigure<'_> {
     fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()> {
         let (job, r, u) = (self.job, self.result, self.units);
-        let sliding = job
-            .run
-            .sliding
-            .as_ref()
-            .ok_or_else(|| anyhow!("job without [sliding]"))?;
-        let running_in = sliding.running_in * job.run.length();
+        // The fit window of the results (the same for every fracture energy).
+        let fit_start = r.results.first().map_or(0.0, |w| w.fit_window_start);
         let s: Vec<f64> = r.steps.iter().map(|st| st.s).collect();
         let seed = job
             .inputs()
@@ -396,7 +404,7 @@ impl Figure for SeriesFigure<'_> {
                 let ys = r.steps.iter().flat_map(|st| st.volume.iter().copied());
                 let y = Axis::spanning(format!("wear volume V ({})", u.volume()), false, ys, (0.0, 1.0));
                 let mut panel = Panel::new(&panels[0], &format!("wear volume V(s) — {who}"), x, y)?;
-                panel.x_band(0.0, running_in, RGBColor(200, 200, 200).mix(0.35))?;
+                panel.x_band(0.0, fit_start, RGBColor(200, 200, 200).mix(0.35))?;
                 entries.push(Entry {
                     label: "running-in (not fitted)".into(),
                     color: RGBColor(200, 200, 200),
@@ -415,22 +423,14 @@ impl Figure for SeriesFigure<'_> {
                         color: col,
                         swatch: Swatch::Line { dashed: false },
                     });
-                    // The fitted line W·s + b over s ≥ running-in, as in the results.
-                    let fit: Vec<(f64, f64)> = v.iter().copied().filter(|p| p.0 >= running_in - 1e-12).collect();
-                    let xs: Vec<f64> = fit.iter().map(|p| p.0).collect();
-                    let ys: Vec<f64> = fit.iter().map(|p| p.1).collect();
-                    if let Some(f) = line_fit(&xs, &ys) {
+                    // The results' line W·s + b, fitted over the fit window.
+                    if let (Some(slope), Some(intercept)) = (w.wear_rate, w.wear_volume_intercept) {
                         let s_max = *s.last().unwrap_or(&1.0);
-                        panel.line(
-                            &[(0.0, f.intercept), (s_max, f.intercept + f.slope * s_max)],
-                            col,
-                            true,
-                            1,
-                        )?;
+                        panel.line(&[(0.0, intercept), (s_max, intercept + slope * s_max)], col, true, 1)?;
                         entries.push(Entry {
                             label: format!(
                                 "fit: W = {} {}, R² = {}",
-                                number(f.slope),
+                                number(slope),
                                 u.area(),
                                 w.wear_rate_r2
                                     .map_or("undefined (no particle)".into(), |x| format!("{x:.3}"))
@@ -497,18 +497,28 @@ impl Figure for SeriesFigure<'_> {
                     color: color(0),
                     swatch: Swatch::Line { dashed: false },
                 });
-                let live: Vec<&(f64, f64)> = n0.iter().filter(|p| p.1 > 0.0).collect();
-                let xs: Vec<f64> = live.iter().map(|p| p.0).collect();
-                let ys: Vec<f64> = live.iter().map(|p| p.1.ln()).collect();
-                if let Some(f) = line_fit(&xs, &ys).filter(|f| f.slope < 0.0) {
-                    let curve: Vec<(f64, f64)> = s.iter().map(|&x| (x, (f.intercept + f.slope * x).exp())).collect();
+                // The results' fit of the memory (the same for every fracture energy).
+                let fit = r.results.first().and_then(|w| {
+                    Some((
+                        w.memory_decay_length?,
+                        w.memory_fit_initial_junctions?,
+                        w.memory_decay_r2,
+                    ))
+                });
+                if let Some((decay_length, initial, r2)) = fit {
+                    // Drawn while it expects one junction or more.
+                    let curve: Vec<(f64, f64)> = s
+                        .iter()
+                        .map(|&x| (x, initial * (-x / decay_length).exp()))
+                        .take_while(|p| p.1 >= 1.0)
+                        .collect();
                     panel.line(&curve, color(1), true, 2)?;
                     entries.push(Entry {
                         label: format!(
                             "fit N₀(0) e^(−s/ℓ): ℓ = {} {}, R² = {}",
-                            number(-1.0 / f.slope),
+                            number(decay_length),
                             u.length(),
-                            f.r2.map_or("undefined".into(), |x| format!("{x:.3}"))
+                            r2.map_or("undefined".into(), |x| format!("{x:.3}"))
                         ),
                         color: color(1),
                         swatch: Swatch::Line { dashed: true },
@@ -737,12 +747,18 @@ fn series_job(data: &Data, asked: Option<usize>) -> Result<(&Job, &JobResult)> {
                     data.jobs.len().saturating_sub(1)
                 )
             }),
-        None => data
-            .jobs
-            .iter()
-            .zip(&data.results)
-            .max_by_key(|(_, r)| r.results.iter().map(|w| w.particles_in_fit).max().unwrap_or(0))
-            .ok_or_else(|| anyhow!("the study has no jobs")),
+        None => {
+            let particles = data
+                .results
+                .iter()
+                .flat_map(|r| r.results.iter().map(move |w| (r.index, w.particles_in_fit)));
+            let index = wearsim::output::series_job(particles).ok_or_else(|| anyhow!("the study has no jobs"))?;
+            data.jobs
+                .iter()
+                .zip(&data.results)
+                .find(|(j, _)| j.index == index)
+                .ok_or_else(|| anyhow!("the study has no job {index}"))
+        }
     }
 }
 

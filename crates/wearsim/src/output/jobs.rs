@@ -11,12 +11,14 @@ use crate::sliding::{StepRecord, WearResult};
 use crate::wear::StepWear;
 
 use super::provenance::Provenance;
+use super::summary::SeriesRow;
 use super::tables::{columns, Cell, Table};
 use super::units::units_map;
 
 /// The format of the job files this version writes; raised whenever what identifies a job or what
-/// a job file holds changes.
-pub const JOB_FORMAT: u32 = 2;
+/// a job file holds changes (3: results hold `fit_window_start`, `wear_volume_intercept` and
+/// `memory_fit_initial_junctions`).
+pub const JOB_FORMAT: u32 = 3;
 
 /// What a study's job file holds: which job it is (checked when the file is read back, so that a
 /// file can never be attributed to another job), and its results.
@@ -89,43 +91,11 @@ impl JobResult {
     }
 }
 
-/// One row of the series of a study job (`wearsim.study.job_series`): one step for one fracture
-/// energy, with the columns of [`SeriesRow`](super::summary::SeriesRow) that a job file keeps (it keeps
-/// neither the solver's iterations and residual nor W_static/ω per step).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
-pub struct JobSeriesRow {
-    /// Normal load F_N.
-    pub load: f64,
-    /// Fracture energy 𝒢.
-    pub fracture_energy: f64,
-    /// Sliding distance s in the study's length unit.
-    pub s: f64,
-    /// Number of junctions N.
-    pub junctions: usize,
-    /// Real contact area as a fraction of the apparent area Lx·Ly.
-    pub contact_area: f64,
-    /// N*: junctions with d_i ≥ d* at this step.
-    pub n_critical: usize,
-    /// N*₊: particles formed so far, s = 0 included.
-    pub n_formed: usize,
-    /// N*₋ = N*₊ − N* (paper appendix B).
-    pub n_shrunk: i64,
-    /// V: wear volume so far, s = 0 included.
-    pub volume: f64,
-    /// Junctions descending from a junction present at s = 0 (the memory of the initial contact,
-    /// paper §3).
-    pub initial_junctions: usize,
-    /// Static model on this step's contact map: k_static (paper §2).
-    pub static_wear_coefficient: f64,
-    /// Junctions that wrap the periodic box at this step (paper §3); 0 in job files written before
-    /// it was recorded.
-    pub wrapping_junctions: usize,
-}
-
 impl JobResult {
-    /// The job's series: fracture energy by fracture energy, then step, as the series of a sliding
-    /// run is ordered.
-    pub fn series_rows(&self) -> Vec<JobSeriesRow> {
+    /// The job's series (`wearsim.study.job_series`): fracture energy by fracture energy, then
+    /// step, as the series of a sliding run is ordered, with its columns; those a job file does not
+    /// keep (W_static/ω, the solver's iterations and residual per step) are empty.
+    pub fn series_rows(&self) -> Vec<SeriesRow> {
         let mut rows = Vec::new();
         for (e, w) in self.results.iter().enumerate() {
             for st in &self.steps {
@@ -142,7 +112,7 @@ impl JobResult {
                     n_formed,
                     volume,
                 };
-                rows.push(JobSeriesRow {
+                rows.push(SeriesRow {
                     load: self.load,
                     fracture_energy: w.fracture_energy,
                     s: st.s,
@@ -154,6 +124,9 @@ impl JobResult {
                     volume,
                     initial_junctions: st.initial_junctions,
                     static_wear_coefficient: k,
+                    static_wear_rate: None,
+                    iterations: None,
+                    residual: None,
                     wrapping_junctions: st.wrapping_junctions,
                 });
             }
@@ -247,7 +220,8 @@ pub struct Curves {
     /// appearance.
     pub index: Vec<usize>,
     /// The setting columns that tell the curves apart (take more than one value), in table order:
-    /// the study's axes but the load, what a curve's label names.
+    /// the study's axes but the load, what a curve's label names; a named material's properties
+    /// (`material.*` columns with one value per material) are left to its name.
     pub settings: Vec<String>,
 }
 
@@ -259,9 +233,12 @@ fn names_a_curve(column: &str, results: &[String]) -> bool {
     !NOT_A_SETTING.contains(&column)
         && !ALONG_A_CURVE.contains(&column)
         && !added.contains(&column)
-        && !results
-            .iter()
-            .any(|r| column == r || ["_mean", "_min", "_max"].iter().any(|s| column == format!("{r}{s}")))
+        && !results.iter().any(|r| {
+            column == r
+                || ["_mean", "_min", "_max", "_total"]
+                    .iter()
+                    .any(|s| column == format!("{r}{s}"))
+        })
 }
 
 /// The curves of a tidy or aggregated table ([`Curves`]).
@@ -280,10 +257,26 @@ pub fn curves(table: &Table) -> Curves {
             *numbers.entry(key).or_insert(next)
         })
         .collect();
-    let settings = keys
+    let varying: Vec<usize> = keys
         .into_iter()
         .filter(|&k| table.rows.iter().any(|r| r[k] != table.rows[0][k]))
-        .map(|k| table.columns[k].clone())
+        .collect();
+    // A named material stands for its properties: a `material.*` column that takes one value per
+    // material does not tell its curves apart beyond the name.
+    let material = table.column("material").filter(|m| varying.contains(m));
+    let by_material = |k: usize| {
+        material.is_some_and(|m| {
+            table.columns[k].starts_with("material.")
+                && table
+                    .rows
+                    .iter()
+                    .all(|r| table.rows.iter().filter(|o| o[m] == r[m]).all(|o| o[k] == r[k]))
+        })
+    };
+    let settings = varying
+        .iter()
+        .filter(|&&k| !by_material(k))
+        .map(|&k| table.columns[k].clone())
         .collect();
     Curves { index, settings }
 }
@@ -322,13 +315,31 @@ pub fn equal_critical_diameter(curves: &[CurveMaterial], tolerance: f64) -> Vec<
         .collect()
 }
 
+/// The job whose series a study's figures show when none is asked for (Fig. 3, appendix B, the
+/// memory of the initial contact): the one that formed the most particles in its fit window, for
+/// any fracture energy, the lowest job index among equals. `particles` holds (job index,
+/// particles in the fit window) per job and fracture energy, as the tidy table's rows do; `None`
+/// without rows.
+pub fn series_job(particles: impl IntoIterator<Item = (usize, usize)>) -> Option<usize> {
+    particles
+        .into_iter()
+        .min_by_key(|&(job, n)| (std::cmp::Reverse(n), job))
+        .map(|(job, _)| job)
+}
+
+/// Result columns that the aggregated table also sums over the surface pairs, as `{column}_total`:
+/// the particles in the fit window, whose total decides whether a setting is resolved (the
+/// findings and the figures compare with the 20 particles a resolved setting needs).
+pub const TOTALLED: [&str; 1] = ["particles_in_fit"];
+
 /// One setting of a tidy table: its key cells, its curve and the rows of its surface pairs.
 type Setting<'a> = (Vec<Cell>, usize, Vec<&'a Vec<Cell>>);
 
 /// The aggregated table of a tidy table: one row per setting (every column but the job index, the
 /// seed and the results), then `curve`, the index of the row's curve ([`curves`]: its setting but
 /// the load, the one grouping every figure uses), the number of surface pairs and the mean, min and
-/// max over them of every result column, and the number of surface pairs with a warning. Rows keep
+/// max over them of every result column (and the sum, `_total`, of those [`TOTALLED`]), and the
+/// number of surface pairs with a warning. Rows keep
 /// the order in which settings first appear; undefined results (empty cells) are left out of the
 /// statistics.
 pub fn aggregate(tidy: &Table) -> Table {
@@ -357,6 +368,9 @@ pub fn aggregate(tidy: &Table) -> Table {
     for &i in &value_index {
         let c = &tidy.columns[i];
         columns.extend([format!("{c}_mean"), format!("{c}_min"), format!("{c}_max")]);
+        if TOTALLED.contains(&c.as_str()) {
+            columns.push(format!("{c}_total"));
+        }
     }
     let rows = groups
         .into_iter()
@@ -367,15 +381,23 @@ pub fn aggregate(tidy: &Table) -> Table {
             let warned = warnings.map_or(0, |w| members.iter().filter(|m| !m[w].text().is_empty()).count());
             line.push(Cell::Int(warned as i64));
             for &i in &value_index {
+                let totalled = TOTALLED.contains(&tidy.columns[i].as_str());
                 let v: Vec<f64> = members.iter().map(|m| m[i].number()).filter(|x| !x.is_nan()).collect();
                 if v.is_empty() {
                     line.extend([Cell::Empty, Cell::Empty, Cell::Empty]);
+                    if totalled {
+                        line.push(Cell::Empty);
+                    }
                     continue;
                 }
-                let mean = v.iter().sum::<f64>() / v.len() as f64;
+                let sum = v.iter().sum::<f64>();
+                let mean = sum / v.len() as f64;
                 let min = v.iter().copied().fold(f64::INFINITY, f64::min);
                 let max = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
                 line.extend([Cell::Float(mean), Cell::Float(min), Cell::Float(max)]);
+                if totalled {
+                    line.push(Cell::Float(sum));
+                }
             }
             line
         })
@@ -421,7 +443,6 @@ pub fn read_job_file(path: &std::path::Path) -> Result<JobResult> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::output::summary::SeriesRow;
     use crate::output::units::unit_of;
 
     #[test]
@@ -466,6 +487,7 @@ mod tests {
             contact_severity: None,
             result: WearResult {
                 wear_rate,
+                particles_in_fit: 4 * job + 1,
                 ..WearResult::default()
             },
             flow_pressure: 0.05,
@@ -489,6 +511,21 @@ mod tests {
             (Cell::Float(2.0), Cell::Float(1.0), Cell::Float(3.0))
         );
         assert!(agg.column("surface.seed").is_none() && agg.column("job").is_none());
+        // The particles summed over the pairs (1 + 5 + 9), beside their statistics; no other totals.
+        assert_eq!(at("particles_in_fit_total"), Cell::Float(15.0));
+        assert_eq!(at("particles_in_fit_max"), Cell::Float(9.0));
+        assert_eq!(
+            agg.columns.iter().filter(|c| c.ends_with("_total")).count(),
+            TOTALLED.len()
+        );
+    }
+
+    #[test]
+    fn the_series_job_has_the_most_particles_and_the_lowest_index_among_equals() {
+        assert_eq!(series_job([(0, 3), (0, 7), (1, 2), (2, 7), (3, 1)]), Some(0));
+        assert_eq!(series_job([(5, 0), (4, 0)]), Some(4));
+        assert_eq!(series_job([(0, 1), (1, 8), (1, 0)]), Some(1));
+        assert_eq!(series_job(std::iter::empty()), None);
     }
 
     /// A job file of a 2 × 1 L box (E = 1, ν = 0.5, h_rms = 0.04) under F_N = 0.01 with 𝒢 = 3e-6.
@@ -583,7 +620,9 @@ mod tests {
         );
         assert!(rows.iter().all(|r| r.load == 0.01 && r.initial_junctions == 5));
         assert_eq!(rows[3].volume, 2e-6);
-        assert_eq!(columns::<JobSeriesRow>().len(), 12);
+        assert!(rows
+            .iter()
+            .all(|r| r.static_wear_rate.is_none() && r.iterations.is_none() && r.residual.is_none()));
     }
 
     #[test]
@@ -626,5 +665,18 @@ mod tests {
         assert_eq!(of_aggregated.index, of_tidy.index);
         assert_eq!(of_tidy.settings, ["material.shear_strength"]);
         assert_eq!(of_aggregated.settings, of_tidy.settings);
+        // Named materials: their properties go with the name, an axis within one material does not.
+        let named = |job: JobResult, material: &str| {
+            let mut rows = TidyRow::of_job(&job);
+            rows.iter_mut().for_each(|r| r.material = material.into());
+            rows
+        };
+        let mut rows = named(job(0, 0.01, 0.01), "A");
+        rows.extend(named(job(1, 0.01, 0.02), "B"));
+        assert_eq!(super::curves(&Table::of(&rows)).settings, ["material"]);
+        rows.extend(named(job(2, 0.01, 0.03), "B"));
+        let both = super::curves(&Table::of(&rows));
+        assert_eq!(both.settings, ["material", "material.shear_strength"]);
+        assert_eq!(both.index, [0, 1, 2]);
     }
 }

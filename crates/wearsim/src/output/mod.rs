@@ -17,8 +17,8 @@ mod units;
 
 pub use fields::{FieldSelection, FieldsWriter};
 pub use jobs::{
-    aggregate, curves, equal_critical_diameter, read_job_file, write_results_tables, CurveMaterial, Curves, JobResult,
-    JobSeriesRow, StepRow, TidyRow, ALONG_A_CURVE, JOB_FORMAT, NOT_A_SETTING,
+    aggregate, curves, equal_critical_diameter, read_job_file, series_job, write_results_tables, CurveMaterial, Curves,
+    JobResult, StepRow, TidyRow, ALONG_A_CURVE, JOB_FORMAT, NOT_A_SETTING, TOTALLED,
 };
 pub use provenance::{Provenance, DEPENDENCY_VERSIONS};
 pub use summary::{

@@ -42,13 +42,14 @@ pub struct SeriesRow {
     /// Junctions descending from a junction present at s = 0 (the memory of the initial contact,
     /// paper §3).
     pub initial_junctions: usize,
-    /// Static model on this step's contact map: k_static and W_static/ω (paper §2).
+    /// Static model on this step's contact map: k_static and W_static/ω (paper §2); a study's job
+    /// file keeps k_static only, so W_static/ω is empty in a job's series.
     pub static_wear_coefficient: f64,
-    pub static_wear_rate: f64,
-    /// Contact solver iterations of this step.
-    pub iterations: usize,
-    /// Contact solver residual of this step.
-    pub residual: f64,
+    pub static_wear_rate: Option<f64>,
+    /// Contact solver iterations of this step (empty in a job's series: job files do not keep it).
+    pub iterations: Option<usize>,
+    /// Contact solver residual of this step (empty in a job's series).
+    pub residual: Option<f64>,
     /// Junctions that wrap the periodic box at this step (full contact, a band across the box):
     /// no particles of the model (paper §3), yet counted in N, V and k_static.
     pub wrapping_junctions: usize,
@@ -73,9 +74,9 @@ pub fn series_rows(runs: &[LoadRun]) -> Vec<SeriesRow> {
                     volume: sw.volume,
                     initial_junctions: st.initial_junctions,
                     static_wear_coefficient: st.statics[e].wear_coefficient,
-                    static_wear_rate: st.statics[e].wear_rate_over_omega,
-                    iterations: st.iterations,
-                    residual: st.residual,
+                    static_wear_rate: Some(st.statics[e].wear_rate_over_omega),
+                    iterations: Some(st.iterations),
+                    residual: Some(st.residual),
                     wrapping_junctions: st.wrapping_junctions,
                 });
             }

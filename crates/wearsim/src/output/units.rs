@@ -31,6 +31,7 @@ pub fn unit_of(units: Units, quantity: &str) -> &'static str {
         | "approach"
         | "memory_decay_length"
         | "critical_residence"
+        | "fit_window_start"
         | "pixel_size"
         | "gap"
         | "displacement" => pick("L", "m"),

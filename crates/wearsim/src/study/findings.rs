@@ -132,7 +132,6 @@ struct Setting {
     /// Mean pressure F_N/(Lx Ly) of the box.
     pressure: f64,
     pixel_size: f64,
-    surface_pairs: f64,
     values: BTreeMap<String, f64>,
 }
 
@@ -143,7 +142,7 @@ impl Setting {
 
     /// Particles in the fit window, summed over the surface pairs.
     fn particles(&self) -> f64 {
-        self.get("particles_in_fit_mean") * self.surface_pairs
+        self.get("particles_in_fit_total")
     }
 
     fn resolved(&self) -> bool {
@@ -223,15 +222,11 @@ fn settings(tidy: &Table) -> Vec<Setting> {
         .map(|row| {
             let num = |name: &str| col(name).map_or(f64::NAN, |i| row[i].number());
             let length = num("surface.length");
-            // Ly is empty on square grids.
-            let length_y = Some(num("surface.length_y"))
-                .filter(|l| l.is_finite())
-                .unwrap_or(length);
             let grid = num("surface.grid");
             let mut family = Vec::new();
             let mut values = BTreeMap::new();
             for (c, cell) in agg.columns.iter().zip(row) {
-                if c.ends_with("_mean") || c.ends_with("_min") || c.ends_with("_max") {
+                if ["_mean", "_min", "_max", "_total"].iter().any(|s| c.ends_with(s)) {
                     values.insert(c.clone(), cell.number());
                 } else if !skip.contains(&c.as_str()) {
                     family.push(match cell {
@@ -245,9 +240,8 @@ fn settings(tidy: &Table) -> Vec<Setting> {
                 material: col("material").map_or("material".into(), |i| row[i].text()),
                 shear_strength: num("material.shear_strength"),
                 fracture_energy: num("fracture_energy"),
-                pressure: num("load") / (length * length_y),
+                pressure: num("nominal_pressure"),
                 pixel_size: length / grid,
-                surface_pairs: Some(num("surface_pairs")).filter(|n| *n >= 1.0).unwrap_or(1.0),
                 values,
             }
         })
@@ -822,6 +816,11 @@ mod tests {
 
     /// A hand-made study: two hardnesses, one 𝒢, two loads, two surface pairs.
     fn table(flip: bool) -> Table {
+        table_on(flip, None)
+    }
+
+    /// [`table`] on a box of 1 × `length_y` (square without).
+    fn table_on(flip: bool, length_y: Option<f64>) -> Table {
         let mut rows = Vec::new();
         for (job, (tau, load, seed)) in [
             (0.008, 1e-3, 1),
@@ -840,16 +839,19 @@ mod tests {
             let high = load == 2e-3;
             let k_static = if high { 0.8 } else { 0.4 } * if hard { 1.0 } else { 0.5 };
             let static_rate = k_static * load / (3.0 * 3f64.sqrt() * tau) * if flip && hard { 0.1 } else { 1.0 };
+            let inputs = InputRecord {
+                seed: Some(seed),
+                shear_strength: tau,
+                grid: Some(64),
+                length: 1.0,
+                length_y,
+                ..InputRecord::default()
+            };
             rows.push(TidyRow {
                 job,
                 material: "m".into(),
-                inputs: InputRecord {
-                    seed: Some(seed),
-                    shear_strength: tau,
-                    grid: Some(64),
-                    length: 1.0,
-                    ..InputRecord::default()
-                },
+                nominal_pressure: inputs.nominal_pressure(load),
+                inputs,
                 load,
                 result: WearResult {
                     fracture_energy: 0.5e-6,
@@ -857,6 +859,7 @@ mod tests {
                     wear_rate: Some(if hard { 1e-5 } else { 2e-5 } * if high { 2.0 } else { 1.0 }),
                     wear_rate_r2: Some(0.95),
                     wear_volume_intercept: Some(1e-4),
+                    fit_window_start: 0.25,
                     wear_coefficient: Some(0.05),
                     particle_rate: Some(if hard { 500.0 } else { 100.0 }),
                     wear_rate_estimate: Some(if hard { 0.9e-5 } else { 1.8e-5 } * if high { 2.0 } else { 1.0 }),
@@ -1008,10 +1011,7 @@ mod tests {
         let square = settings(&table(false));
         assert!(square.iter().all(|s| s.pressure == 1e-3 || s.pressure == 2e-3));
         // The same rows on a box of 1 × 0.5: twice the pressure.
-        let mut tidy = table(false);
-        let i = tidy.columns.iter().position(|c| c == "surface.length_y").unwrap();
-        tidy.rows.iter_mut().for_each(|r| r[i] = Cell::Float(0.5));
-        let oblong = settings(&tidy);
+        let oblong = settings(&table_on(false, Some(0.5)));
         assert!(oblong.iter().all(|s| s.pressure == 2e-3 || s.pressure == 4e-3));
     }
 }
