@@ -34,6 +34,7 @@ fn the_main_job_judges_its_settings_and_reproduces_the_papers_findings() {
         "sliding-k-below-0.1",
         "sliding-k-below-static",
         "equation-5-slightly-below-w",
+        "particle-size-near-critical-diameter",
         "initial-volume-much-larger-than-increments",
     ] {
         let f = get(key);
@@ -51,6 +52,7 @@ fn the_main_job_judges_its_settings_and_reproduces_the_papers_findings() {
         "static-k-below-one-and-rising",
         "volume-linear-after-running-in",
         "equation-5-slightly-below-w",
+        "particle-size-near-critical-diameter",
         "initial-volume-much-larger-than-increments",
         "memory-decays-exponentially",
         "running-in-sufficient",

@@ -653,6 +653,34 @@ fn equation_5_slightly_below_w(all: &[Setting]) -> Finding {
     )
 }
 
+/// §5: d* is a typical particle size, per setting: the particles' cube-mean diameter, the mean
+/// particle volume W/(dN*₊/ds) as a sphere of ω = π/6, within 1.0–1.2 d*.
+fn particle_size_near_critical_diameter(all: &[Setting]) -> Finding {
+    let mut tally = Tally::default();
+    for s in all {
+        if s.judgeable(&mut tally) {
+            let volume = s.get("wear_rate_mean") / s.get("particle_rate_mean");
+            let ratio = (volume / (std::f64::consts::PI / 6.0)).cbrt() / s.get("critical_diameter_mean");
+            let line = format!("{}: d̄/d* = {}", s.label(), fmt(ratio));
+            if (1.0..=1.2).contains(&ratio) {
+                tally.holds.push(line)
+            } else {
+                tally.contrary.push(line)
+            }
+        }
+    }
+    finding(
+        "particle-size-near-critical-diameter",
+        "§5: d* is a typical particle size, not only a minimum",
+        format!(
+            "per setting: the particles' cube-mean diameter d̄ = (W / (ω dN*₊/ds))^(1/3), ω = π/6 (means over \
+             pairs), in [1.0, 1.2] d*; judged with ≥ {RESOLVED_PARTICLES} particles and run in"
+        ),
+        "settings",
+        tally,
+    )
+}
+
 /// Sliding (§3, Fig. 3): V₀ much larger than the later increments, per setting.
 fn initial_volume_much_larger_than_increments(all: &[Setting]) -> Finding {
     let mut tally = Tally::default();
@@ -777,6 +805,7 @@ pub fn findings(tidy: &Table) -> Vec<Finding> {
         delayed_onset_for_large_g(&all),
         hardest_least_tough_emits_most_particles(&all),
         equation_5_slightly_below_w(&all),
+        particle_size_near_critical_diameter(&all),
         initial_volume_much_larger_than_increments(&all),
         memory_decays_exponentially(&all),
         running_in_sufficient(&all),
@@ -908,6 +937,21 @@ mod tests {
         );
         assert_eq!(verdict_of(&f, "equation-5-slightly-below-w"), Verdict::Reproduced);
         assert_eq!(verdict_of(&f, "running-in-sufficient"), Verdict::Reproduced);
+        // Mean particle volume W/(dN*₊/ds) as a sphere, over d*: (2e-5/500/(π/6))^(1/3)/0.004 = 1.061
+        // holds, (1e-5/500/(π/6))^(1/3)/0.004 = 0.842 is contrary; two of each.
+        let size = f
+            .iter()
+            .find(|x| x.key == "particle-size-near-critical-diameter")
+            .unwrap();
+        assert_eq!(size.verdict, Verdict::NotReproduced, "{}", size.observed);
+        for ratio in ["1.061", "0.842", "1.016", "0.806"] {
+            assert!(size.observed.contains(&format!("d̄/d* = {ratio}")), "{}", size.observed);
+        }
+        assert!(
+            size.observed.starts_with("holds in 2 of 4 settings"),
+            "{}",
+            size.observed
+        );
         // Four settings of 40 particles each (20 per pair, two pairs): every one counted.
         let linear = f.iter().find(|x| x.key == "volume-linear-after-running-in").unwrap();
         assert!(
