@@ -5,13 +5,16 @@
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use anyhow::{anyhow, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use wearsim::config::Units;
-use wearsim::output::{equal_critical_diameter, unit_of, CurveMaterial, JobResult, Table, TidyRow};
-use wearsim::sliding::WearResult;
+use wearsim::output::{
+    aggregate, curves as output_curves, equal_critical_diameter, unit_of, Cell, CurveMaterial, JobResult, Table,
+    TidyRow,
+};
 use wearsim::stats::power_law_fit;
 use wearsim::study::findings::{findings, markdown, RESOLVED_PARTICLES};
 use wearsim::study::{load_results, Job};
@@ -98,7 +101,8 @@ fn input_label(key: &str, value: &toml::Value, units: Units2) -> String {
 }
 
 /// One curve against load: a setting (material and varying inputs but the seed) and one fracture
-/// energy; per nominal pressure p_N = F_N/(Lx·Ly), the results over surface pairs.
+/// energy, as the library groups them (`output::curves`); per nominal pressure p_N = F_N/(Lx·Ly),
+/// its row of the library's aggregated table (`output::aggregate`: statistics over surface pairs).
 struct Curve {
     label: String,
     material: usize,
@@ -106,35 +110,48 @@ struct Curve {
     critical_diameter: f64,
     shear_strength: f64,
     fracture_energy: f64,
-    points: BTreeMap<u64, (f64, Vec<WearResult>)>,
+    /// The aggregated rows of this curve, by increasing nominal pressure.
+    rows: Vec<Vec<Cell>>,
+    /// The aggregated table's columns.
+    columns: Arc<Vec<String>>,
 }
 
-type Quantity = fn(&WearResult) -> Option<f64>;
+/// A result column of the tables (its `_mean`, `_min` and `_max` in the aggregated one).
+type Quantity = &'static str;
 
 /// Points (x, y) of a series.
 type Points = Vec<(f64, f64)>;
 
 impl Curve {
-    /// Per load: the particles formed in the fit window, summed over the surface pairs (what the
-    /// findings judge against [`RESOLVED_PARTICLES`]).
+    fn get(&self, row: &[Cell], column: &str) -> f64 {
+        self.columns
+            .iter()
+            .position(|c| c == column)
+            .map_or(f64::NAN, |i| row[i].number())
+    }
+
+    /// Per load: the particles formed in the fit window, summed over the surface pairs (the
+    /// library's `particles_in_fit_total`, what the findings judge against [`RESOLVED_PARTICLES`]).
     fn particles(&self) -> Vec<(f64, f64)> {
-        self.points
-            .values()
-            .map(|(load, results)| (*load, results.iter().map(|r| r.particles_in_fit as f64).sum::<f64>()))
+        self.rows
+            .iter()
+            .map(|r| (self.get(r, "nominal_pressure"), self.get(r, "particles_in_fit_total")))
             .collect()
     }
 
     /// Per load: (load, mean, min, max) of a quantity over the surface pairs where it is defined.
     fn stats(&self, q: Quantity) -> Vec<(f64, f64, f64, f64)> {
-        self.points
-            .values()
-            .filter_map(|(load, results)| {
-                let v: Vec<f64> = results.iter().filter_map(q).filter(|x| x.is_finite()).collect();
-                (!v.is_empty()).then(|| {
-                    let mean = v.iter().sum::<f64>() / v.len() as f64;
-                    let min = v.iter().copied().fold(f64::INFINITY, f64::min);
-                    let max = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-                    (*load, mean, min, max)
+        self.rows
+            .iter()
+            .filter_map(|r| {
+                let mean = self.get(r, &format!("{q}_mean"));
+                mean.is_finite().then(|| {
+                    (
+                        self.get(r, "nominal_pressure"),
+                        mean,
+                        self.get(r, &format!("{q}_min")),
+                        self.get(r, &format!("{q}_max")),
+                    )
                 })
             })
             .collect()
@@ -156,9 +173,26 @@ impl Data {
         let first = jobs.first().ok_or_else(|| anyhow!("the study has no jobs"))?;
         let units = Units2::of(first.run.units);
         let mut materials: Vec<String> = Vec::new();
+        // The library's tables: one tidy row per job and fracture energy, aggregated over pairs.
+        let mut tidy_rows = Vec::new();
+        let mut origin = Vec::new();
+        for (j, r) in results.iter().enumerate() {
+            for (e, row) in TidyRow::of_job(r).into_iter().enumerate() {
+                tidy_rows.push(row);
+                origin.push((j, e));
+            }
+        }
+        let tidy = Table::of(&tidy_rows);
+        let of_row = output_curves(&tidy).index;
+        let aggregated = aggregate(&tidy);
+        let columns = Arc::new(aggregated.columns.clone());
+        // Each curve named after the first job and fracture energy it holds.
         let mut curves: Vec<Curve> = Vec::new();
-        let mut index: BTreeMap<String, usize> = BTreeMap::new();
-        for (job, r) in jobs.iter().zip(&results) {
+        for (&c, &(j, e)) in of_row.iter().zip(&origin) {
+            if c < curves.len() {
+                continue;
+            }
+            let (job, w) = (&jobs[j], &results[j].results[e]);
             let m = materials.iter().position(|x| *x == job.material).unwrap_or_else(|| {
                 materials.push(job.material.clone());
                 materials.len() - 1
@@ -173,34 +207,40 @@ impl Data {
                     .filter(|(k, _)| k.as_str() != "surface.seed")
                     .map(|(k, v)| input_label(k, v, units)),
             );
-            let p_n = r.inputs.nominal_pressure(r.load);
-            for (e, w) in r.results.iter().enumerate() {
-                let label = format!(
+            curves.push(Curve {
+                label: format!(
                     "{}{}𝒢 = {} (d* = {})",
                     parts.join(", "),
                     if parts.is_empty() { "" } else { ", " },
                     units.show_energy(w.fracture_energy),
                     units.show_length(w.critical_diameter)
-                );
-                let i = *index.entry(label.clone()).or_insert_with(|| {
-                    curves.push(Curve {
-                        label: label.clone(),
-                        material: m,
-                        energy: e,
-                        critical_diameter: w.critical_diameter,
-                        shear_strength: job.run.material.shear_strength,
-                        fracture_energy: w.fracture_energy,
-                        points: BTreeMap::new(),
-                    });
-                    curves.len() - 1
-                });
-                curves[i]
-                    .points
-                    .entry(p_n.to_bits())
-                    .or_insert((p_n, Vec::new()))
-                    .1
-                    .push(w.clone());
-            }
+                ),
+                material: m,
+                energy: e,
+                critical_diameter: w.critical_diameter,
+                shear_strength: job.run.material.shear_strength,
+                fracture_energy: w.fracture_energy,
+                rows: Vec::new(),
+                columns: Arc::clone(&columns),
+            });
+        }
+        let curve = aggregated
+            .column("curve")
+            .ok_or_else(|| anyhow!("the aggregated table has no curve column"))?;
+        let pressure = aggregated
+            .column("nominal_pressure")
+            .ok_or_else(|| anyhow!("the aggregated table has no nominal_pressure column"))?;
+        for row in aggregated.rows {
+            let c = usize::try_from(row[curve].number() as i64).unwrap_or(usize::MAX);
+            curves
+                .get_mut(c)
+                .ok_or_else(|| anyhow!("aggregated row of an unknown curve {c}"))?
+                .rows
+                .push(row);
+        }
+        for c in &mut curves {
+            c.rows
+                .sort_by(|a, b| a[pressure].number().total_cmp(&b[pressure].number()));
         }
         Ok(Self {
             jobs,
@@ -259,7 +299,7 @@ impl Figure for LoadFigure<'_> {
         let thin = |i: usize, x: f64| self.fitted && particles[i].iter().any(|p| p.0 == x && p.1 < RESOLVED_PARTICLES);
         let mut zeros_drawn = false;
         for (p, (area, (q, label, log))) in self.panels.iter().enumerate().map(|(p, x)| (p, (&panels[p], x))) {
-            let stats: Vec<Vec<(f64, f64, f64, f64)>> = self.curves.iter().map(|c| c.stats(*q)).collect();
+            let stats: Vec<Vec<(f64, f64, f64, f64)>> = self.curves.iter().map(|c| c.stats(q)).collect();
             let xs = stats.iter().flatten().map(|s| s.0);
             let band = if p + 1 == self.panels.len() { self.band } else { None };
             let ys = stats
@@ -542,8 +582,8 @@ impl Figure for Eq5Figure<'_> {
             .curves
             .iter()
             .map(|c| {
-                let w = c.stats(|r| r.wear_rate);
-                let e = c.stats(|r| r.wear_rate_estimate);
+                let w = c.stats("wear_rate");
+                let e = c.stats("wear_rate_estimate");
                 w.iter()
                     .zip(&e)
                     .map(|(a, b)| (a.1, b.1))
@@ -870,12 +910,12 @@ fn fig2(cx: &Context) -> Result<()> {
     let fig = cx.by_load(
         vec![
             (
-                |w| Some(w.static_wear_rate_mean),
+                "static_wear_rate_mean",
                 format!("static wear rate W_static/ω ({area})"),
                 true,
             ),
             (
-                |w| Some(w.static_wear_coefficient_mean),
+                "static_wear_coefficient_mean",
                 "static wear coefficient k_static".into(),
                 false,
             ),
@@ -890,8 +930,8 @@ fn fig4(cx: &Context) -> Result<()> {
     let area = cx.data.units.area();
     let fig = cx.by_load(
         vec![
-            (|w| w.wear_rate, format!("sliding wear rate W = dV/ds ({area})"), true),
-            (|w| w.wear_coefficient, "wear coefficient k = W p_m / F_N".into(), true),
+            ("wear_rate", format!("sliding wear rate W = dV/ds ({area})"), true),
+            ("wear_coefficient", "wear coefficient k = W p_m / F_N".into(), true),
         ],
         true,
         "sliding model",
@@ -902,7 +942,7 @@ fn fig4(cx: &Context) -> Result<()> {
 fn fig5(cx: &Context) -> Result<()> {
     let fig = cx.by_load(
         vec![(
-            |w| w.particle_rate,
+            "particle_rate",
             format!("particle rate dN*₊/ds (1/{})", cx.data.units.length()),
             true,
         )],
@@ -924,9 +964,9 @@ fn fig4c(cx: &Context) -> Result<()> {
         let fig = LoadFigure {
             curves: group.clone(),
             panels: vec![
-                (|w| w.wear_rate, format!("W ({area})"), true),
-                (|w| w.wear_coefficient, "k = W p_m / F_N".into(), true),
-                (|w| w.particle_rate, format!("dN*₊/ds (1/{})", u.length()), true),
+                ("wear_rate", format!("W ({area})"), true),
+                ("wear_coefficient", "k = W p_m / F_N".into(), true),
+                ("particle_rate", format!("dN*₊/ds (1/{})", u.length()), true),
             ],
             x_label: cx.data.load_label(),
             band: None,
@@ -959,7 +999,7 @@ fn fig6(cx: &Context) -> Result<()> {
         // One colour and marker per material where the study has several (Kim et al.'s ceramics).
         by_material: cx.data.materials.len() > 1,
         ..cx.by_load(
-            vec![(|w| w.wear_coefficient, "wear coefficient k".into(), true)],
+            vec![("wear_coefficient", "wear coefficient k".into(), true)],
             true,
             "simulated sliding k per material against the experimental range",
         )
@@ -971,18 +1011,14 @@ fn app_c(cx: &Context) -> Result<()> {
     let fig = LoadFigure {
         curves: cx.data.curves.iter().filter(|c| c.energy == 0).collect(),
         ..cx.by_load(
-            vec![(
-                |w| Some(w.junctions_mean),
-                "junctions N (mean after running-in)".into(),
-                true,
-            )],
+            vec![("junctions_mean", "junctions N (mean after running-in)".into(), true)],
             false,
             "number of junctions",
         )
     };
     let critical = cx.by_load(
         vec![(
-            |w| Some(w.critical_junctions_mean),
+            "critical_junctions_mean",
             "junctions ≥ d*, N* (mean after running-in)".into(),
             true,
         )],

@@ -124,6 +124,8 @@ impl Tally {
 /// One setting of the study (every input but the surface pair), averaged over surface pairs.
 #[derive(Debug, Clone)]
 struct Setting {
+    /// Its curve against load (the aggregated table's `curve`).
+    curve: usize,
     /// Every input but the material's name, τ̃, 𝒢 and the load, as text: settings compare within a family.
     family: String,
     material: String,
@@ -236,6 +238,7 @@ fn settings(tidy: &Table) -> Vec<Setting> {
                 }
             }
             Setting {
+                curve: col("curve").map_or(0, |i| row[i].number() as usize),
                 family: family.join("|"),
                 material: col("material").map_or("material".into(), |i| row[i].text()),
                 shear_strength: num("material.shear_strength"),
@@ -267,17 +270,12 @@ fn fmt(x: f64) -> String {
     }
 }
 
-/// Curves of one material against load: settings grouped by family, τ̃ and 𝒢, sorted by load.
+/// Curves against load: settings grouped by the library's curve (`output::curves`, the aggregated
+/// table's `curve` column), in the order they first appear, each sorted by load.
 fn curves(all: &[Setting]) -> Vec<Vec<&Setting>> {
-    let mut groups: BTreeMap<String, Vec<&Setting>> = BTreeMap::new();
+    let mut groups: BTreeMap<usize, Vec<&Setting>> = BTreeMap::new();
     for s in all {
-        groups
-            .entry(format!(
-                "{}|{}|{:e}|{:e}",
-                s.family, s.material, s.shear_strength, s.fracture_energy
-            ))
-            .or_default()
-            .push(s);
+        groups.entry(s.curve).or_default().push(s);
     }
     groups
         .into_values()
