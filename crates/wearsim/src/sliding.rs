@@ -252,6 +252,40 @@ pub struct WearResult {
     pub critical_residence: Option<f64>,
 }
 
+impl WearResult {
+    /// The unit of every field, declared beside the fields so that a new result states its unit
+    /// where it is added: (field, reduced units, SI units); "" for counts, "1" for ratios. Read by
+    /// `output::unit_of` for every table and summary that holds the field (`_mean`, `_min`, …
+    /// of it included).
+    pub const UNITS: &'static [(&'static str, &'static str, &'static str)] = &[
+        ("fracture_energy", "E L", "J/m²"),
+        ("critical_diameter", "L", "m"),
+        ("wear_rate", "L²", "m²"),
+        ("wear_rate_r2", "1", "1"),
+        ("wear_volume_intercept", "L³", "m³"),
+        ("fit_window_start", "L", "m"),
+        ("wear_coefficient", "1", "1"),
+        ("particle_rate", "1/L", "1/m"),
+        ("wear_rate_estimate", "L²", "m²"),
+        ("particles_in_fit", "", ""),
+        ("initial_volume", "L³", "m³"),
+        ("static_wear_coefficient", "1", "1"),
+        ("static_wear_rate", "L²", "m²"),
+        ("static_wear_coefficient_mean", "1", "1"),
+        ("static_wear_coefficient_std", "1", "1"),
+        ("static_wear_rate_mean", "L²", "m²"),
+        ("static_wear_rate_std", "L²", "m²"),
+        ("junctions_mean", "", ""),
+        ("critical_junctions_mean", "", ""),
+        ("memory_decay_length", "L", "m"),
+        ("memory_decay_r2", "1", "1"),
+        ("memory_fit_initial_junctions", "", ""),
+        ("box_wrapping_steps", "", ""),
+        ("running_in_decay_lengths", "1", "1"),
+        ("critical_residence", "L", "m"),
+    ];
+}
+
 /// Decay lengths of the memory of the initial contact after which a run counts as run in: e^−3, so
 /// about 5 % of the junction lineages present at s = 0 are expected at the start of the fit window.
 /// The paper (§3) finds the decay length not predictable and takes L/4 as a safety margin; this rule

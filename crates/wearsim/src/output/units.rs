@@ -3,53 +3,45 @@
 use std::collections::BTreeMap;
 
 use crate::config::Units;
+use crate::sliding::WearResult;
 
 /// The unit of a quantity (a result field, a series or table column, an input) in a unit system:
 /// reduced units are multiples of E and L; SI units are Pa, m, N and J/m². Dimensionless numbers and
 /// counts have "" (counts) or "1" (ratios). Column suffixes `_mean`, `_std`, `_min`, `_max` and the
 /// `surface.`/`material.`/`contact.` prefixes are looked through.
 pub fn unit_of(units: Units, quantity: &str) -> &'static str {
+    let si = units == Units::Si;
+    let pick = |reduced: &'static str, si_unit: &'static str| if si { si_unit } else { reduced };
     let mut q = quantity.rsplit('.').next().unwrap_or(quantity);
+    // A result field (or a statistic of one over surface pairs): its unit is declared with it.
+    let mut field = q;
+    loop {
+        if let Some(&(_, reduced, si_unit)) = WearResult::UNITS.iter().find(|u| u.0 == field) {
+            return pick(reduced, si_unit);
+        }
+        match ["_mean", "_std", "_min", "_max", "_total"]
+            .iter()
+            .find_map(|s| field.strip_suffix(s))
+        {
+            Some(shorter) => field = shorter,
+            None => break,
+        }
+    }
     for suffix in ["_mean", "_std", "_min", "_max"] {
         q = q.strip_suffix(suffix).unwrap_or(q);
     }
-    let si = units == Units::Si;
-    let pick = |reduced: &'static str, si_unit: &'static str| if si { si_unit } else { reduced };
     match q {
         "load" => pick("E L²", "N"),
         "nominal_pressure" => pick("E", "Pa"),
-        "fracture_energy" | "fracture_energies" => pick("E L", "J/m²"),
+        "fracture_energies" => pick("E L", "J/m²"),
         "flow_pressure" | "effective_modulus" | "youngs_modulus" | "shear_strength" | "mean_pressure" | "pressure" => {
             pick("E", "Pa")
         }
-        "critical_diameter"
-        | "s"
-        | "length"
-        | "lambda_lower"
-        | "lambda_upper"
-        | "rms_height"
-        | "approach"
-        | "memory_decay_length"
-        | "critical_residence"
-        | "fit_window_start"
-        | "pixel_size"
-        | "gap"
+        "s" | "length" | "lambda_lower" | "lambda_upper" | "rms_height" | "approach" | "pixel_size" | "gap"
         | "displacement" => pick("L", "m"),
-        "wear_rate" | "wear_rate_estimate" | "static_wear_rate" => pick("L²", "m²"),
-        "volume" | "initial_volume" | "wear_volume_intercept" => pick("L³", "m³"),
-        "particle_rate" => pick("1/L", "1/m"),
+        "volume" => pick("L³", "m³"),
         "contact_area" => "1 (fraction of Lx·Ly)",
-        "contact_severity"
-        | "wear_coefficient"
-        | "static_wear_coefficient"
-        | "wear_rate_r2"
-        | "memory_decay_r2"
-        | "running_in_decay_lengths"
-        | "poisson_ratio"
-        | "geometry_factor"
-        | "hurst"
-        | "tolerance"
-        | "residual" => "1",
+        "contact_severity" | "poisson_ratio" | "geometry_factor" | "hurst" | "tolerance" | "residual" => "1",
         _ => "",
     }
 }
@@ -62,4 +54,24 @@ pub fn units_map<'a>(units: Units, columns: impl IntoIterator<Item = &'a str>) -
         .filter(|(_, u)| !u.is_empty())
         .map(|(c, u)| (c, u.to_string()))
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::output::tables::columns;
+
+    #[test]
+    fn every_result_field_states_its_unit_once_beside_its_declaration() {
+        let fields = columns::<WearResult>();
+        let declared: Vec<&str> = WearResult::UNITS.iter().map(|u| u.0).collect();
+        assert_eq!(declared, fields, "WearResult::UNITS lists the fields in their order");
+        // Statistics over pairs keep the unit; counts have none; other tables' columns keep theirs.
+        assert_eq!(unit_of(Units::Si, "critical_residence_max"), "m");
+        assert_eq!(unit_of(Units::Reduced, "static_wear_rate_mean_mean"), "L²");
+        assert_eq!(unit_of(Units::Reduced, "particles_in_fit_total"), "");
+        assert_eq!(unit_of(Units::Si, "fracture_energy"), "J/m²");
+        assert_eq!(unit_of(Units::Reduced, "surface.length"), "L");
+        assert_eq!(unit_of(Units::Reduced, "volume"), "L³");
+    }
 }
