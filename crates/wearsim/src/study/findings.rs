@@ -320,6 +320,24 @@ fn d_star_pairs(all: &[Setting]) -> Vec<(&Setting, &Setting, &'static str)> {
     out
 }
 
+/// Tallies a rule judged setting by setting: each setting unresolved or not run in when it is,
+/// else holding or contrary as `holds` says of its `value`, listed as "label: name = value".
+fn per_setting(all: &[Setting], name: &str, value: impl Fn(&Setting) -> f64, holds: impl Fn(f64) -> bool) -> Tally {
+    let mut tally = Tally::default();
+    for s in all {
+        if s.judgeable(&mut tally) {
+            let v = value(s);
+            let line = format!("{}: {name} = {}", s.label(), fmt(v));
+            if holds(v) {
+                tally.holds.push(line)
+            } else {
+                tally.contrary.push(line)
+            }
+        }
+    }
+    tally
+}
+
 /// Tallies a comparison of two settings: unresolved or not run in when either is, else holds or is
 /// contrary as `holds` says, with the pair's numbers.
 fn compare(tally: &mut Tally, a: &Setting, b: &Setting, what: &str, holds: bool, numbers: String) {
@@ -416,18 +434,7 @@ fn static_wear_grows_with_hardness(all: &[Setting]) -> Finding {
 
 /// Sliding (§3, Fig. 3): V(s) linear after running-in, per setting.
 fn volume_linear_after_running_in(all: &[Setting]) -> Finding {
-    let mut tally = Tally::default();
-    for s in all {
-        if s.judgeable(&mut tally) {
-            let r2 = s.get("wear_rate_r2_mean");
-            let line = format!("{}: R² = {}", s.label(), fmt(r2));
-            if r2 >= 0.9 {
-                tally.holds.push(line)
-            } else {
-                tally.contrary.push(line)
-            }
-        }
-    }
+    let tally = per_setting(all, "R²", |s| s.get("wear_rate_r2_mean"), |v| v >= 0.9);
     finding(
         "volume-linear-after-running-in",
         "sliding model (§3, Fig. 3): V(s) becomes linear after running-in",
@@ -442,18 +449,7 @@ fn volume_linear_after_running_in(all: &[Setting]) -> Finding {
 
 /// Sliding (§4.1, Fig. 4): k below about 0.1, per setting.
 fn sliding_k_below_0_1(all: &[Setting]) -> Finding {
-    let mut tally = Tally::default();
-    for s in all {
-        if s.judgeable(&mut tally) {
-            let k = s.get("wear_coefficient_mean");
-            let line = format!("{}: k = {}", s.label(), fmt(k));
-            if k < 0.12 {
-                tally.holds.push(line)
-            } else {
-                tally.contrary.push(line)
-            }
-        }
-    }
+    let tally = per_setting(all, "k", |s| s.get("wear_coefficient_mean"), |v| v < 0.12);
     finding(
         "sliding-k-below-0.1",
         "sliding model (§4.1, Fig. 4): k stays below around 0.1 in all cases",
@@ -468,21 +464,18 @@ fn sliding_k_below_0_1(all: &[Setting]) -> Finding {
 
 /// Sliding (§4.1, Fig. 4): k an order of magnitude below the static model's, per setting.
 fn sliding_k_below_static(all: &[Setting]) -> Finding {
-    let mut tally = Tally::default();
-    for s in all {
-        if s.judgeable(&mut tally) {
+    let tally = per_setting(
+        all,
+        "k_static/k",
+        |s| {
             let (ks, k) = (
                 s.get("static_wear_coefficient_mean_mean"),
                 s.get("wear_coefficient_mean"),
             );
-            let line = format!("{}: k_static/k = {}", s.label(), fmt(ks / k));
-            if ks / k >= 5.0 {
-                tally.holds.push(line)
-            } else {
-                tally.contrary.push(line)
-            }
-        }
-    }
+            ks / k
+        },
+        |v| v >= 5.0,
+    );
     finding(
         "sliding-k-below-static",
         "sliding model (§4.1, Fig. 4): wear rates and k an order of magnitude smaller than in the static model",
@@ -628,18 +621,12 @@ fn hardest_least_tough_emits_most_particles(all: &[Setting]) -> Finding {
 
 /// Appendix B (Fig. B.9b): Eq. 5 slightly underestimates W, per setting.
 fn equation_5_slightly_below_w(all: &[Setting]) -> Finding {
-    let mut tally = Tally::default();
-    for s in all {
-        if s.judgeable(&mut tally) {
-            let r = s.get("wear_rate_estimate_mean") / s.get("wear_rate_mean");
-            let line = format!("{}: Eq. 5 / W = {}", s.label(), fmt(r));
-            if (0.6..=1.0).contains(&r) {
-                tally.holds.push(line)
-            } else {
-                tally.contrary.push(line)
-            }
-        }
-    }
+    let tally = per_setting(
+        all,
+        "Eq. 5 / W",
+        |s| s.get("wear_rate_estimate_mean") / s.get("wear_rate_mean"),
+        |v| (0.6..=1.0).contains(&v),
+    );
     finding(
         "equation-5-slightly-below-w",
         "appendix B (Fig. B.9b): ω d*³ dN*₊/ds (Eq. 5) slightly underestimates the summed W",
@@ -654,19 +641,15 @@ fn equation_5_slightly_below_w(all: &[Setting]) -> Finding {
 /// §5: d* is a typical particle size, per setting: the particles' cube-mean diameter, the mean
 /// particle volume W/(dN*₊/ds) as a sphere of ω = π/6, within 1.0–1.2 d*.
 fn particle_size_near_critical_diameter(all: &[Setting]) -> Finding {
-    let mut tally = Tally::default();
-    for s in all {
-        if s.judgeable(&mut tally) {
+    let tally = per_setting(
+        all,
+        "d̄/d*",
+        |s| {
             let volume = s.get("wear_rate_mean") / s.get("particle_rate_mean");
-            let ratio = (volume / (std::f64::consts::PI / 6.0)).cbrt() / s.get("critical_diameter_mean");
-            let line = format!("{}: d̄/d* = {}", s.label(), fmt(ratio));
-            if (1.0..=1.2).contains(&ratio) {
-                tally.holds.push(line)
-            } else {
-                tally.contrary.push(line)
-            }
-        }
-    }
+            (volume / (std::f64::consts::PI / 6.0)).cbrt() / s.get("critical_diameter_mean")
+        },
+        |v| (1.0..=1.2).contains(&v),
+    );
     finding(
         "particle-size-near-critical-diameter",
         "§5: d* is a typical particle size, not only a minimum",
@@ -681,18 +664,12 @@ fn particle_size_near_critical_diameter(all: &[Setting]) -> Finding {
 
 /// Sliding (§3, Fig. 3): V₀ much larger than the later increments, per setting.
 fn initial_volume_much_larger_than_increments(all: &[Setting]) -> Finding {
-    let mut tally = Tally::default();
-    for s in all {
-        if s.judgeable(&mut tally) {
-            let r = s.get("initial_volume_mean") / (s.get("wear_rate_mean") * s.pixel_size);
-            let line = format!("{}: V₀/(W·Δx) = {}", s.label(), fmt(r));
-            if r >= 5.0 {
-                tally.holds.push(line)
-            } else {
-                tally.contrary.push(line)
-            }
-        }
-    }
+    let tally = per_setting(
+        all,
+        "V₀/(W·Δx)",
+        |s| s.get("initial_volume_mean") / (s.get("wear_rate_mean") * s.pixel_size),
+        |v| v >= 5.0,
+    );
     finding(
         "initial-volume-much-larger-than-increments",
         "sliding model (§3, Fig. 3): V₀ is much larger than the later increments δV",
