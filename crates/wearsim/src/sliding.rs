@@ -199,7 +199,9 @@ pub struct WearResult {
     pub wear_volume_intercept: Option<f64>,
     /// Sliding distance at which the fit window starts (run's length unit): the first step at or
     /// past the running-in distance, where the fits of W and dN*₊/ds and the means over the fit
-    /// window begin; the running-in (not fitted) part of the paper's Fig. 3 ends here.
+    /// window begin; the running-in (not fitted) part of the paper's Fig. 3 ends here. Read as 0
+    /// from job files of format 2 only so that the job-format check, not a parse error, refuses them.
+    #[serde(default)]
     pub fit_window_start: f64,
     /// k = W p̃ / F_N (Archard, paper Eq. 2).
     pub wear_coefficient: Option<f64>,
