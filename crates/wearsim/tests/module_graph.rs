@@ -33,10 +33,11 @@ const LAYERS: [&str; 18] = [
 ];
 
 /// The order of the submodules of each folder module; a submodule uses only those before it.
-const SUBLAYERS: [(&str, &[&str]); 5] = [
+const SUBLAYERS: [(&str, &[&str]); 6] = [
     ("io", &["atomic", "npy", "zarr"]),
     ("contact", &["backend", "cpu"]),
     ("topography", &["formats", "prepare", "load", "fit"]),
+    ("config", &["raw", "source", "record"]),
     (
         "output",
         &["provenance", "units", "tables", "summary", "jobs", "fields"],

@@ -1,11 +1,17 @@
 //! Run files: TOML parsed strictly (unknown keys are errors naming the key) and turned
 //! into a validated [`RunConfig`] before any work starts.
 
-use std::path::{Path, PathBuf};
+mod raw;
+mod record;
+mod source;
 
-use serde::Deserialize;
+pub use raw::Units;
+pub use record::InputRecord;
+pub use source::{SurfaceFiles, SurfacePair, SurfaceSource};
 
-use crate::check::{connectivity as check_connectivity, positive};
+use std::path::Path;
+
+use crate::check::connectivity as check_connectivity;
 use crate::contact::{Device, SolverOptions};
 use crate::error::{Error, Interrupt, Result};
 use crate::grid::Grid;
@@ -16,225 +22,11 @@ use crate::material::{Material, ModulusConvention};
 use crate::sliding::{
     SlidingConfig, SlidingSetup, DEFAULT_DISTANCE, DEFAULT_RUNNING_IN, DEFAULT_STEP, DEFAULT_STEP_RUNNING_IN,
 };
-use crate::surface::{pair_seeds, Generation, SpectrumParams, Surface};
-use crate::topography::{metres_per, Detrend, FileSurface, Preprocess};
+use crate::surface::{pair_seeds, Generation, Surface};
+use crate::topography::{metres_per, FileSurface, Preprocess};
 
-/// Unit system of a run file: reduced (E = 1, L = 1 by convention) or SI (Pa, m, J/m², N).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Units {
-    #[default]
-    Reduced,
-    Si,
-}
-
-impl Units {
-    /// Name of the length unit.
-    pub fn length_unit(self) -> &'static str {
-        match self {
-            Units::Reduced => "L",
-            Units::Si => "m",
-        }
-    }
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawRun {
-    #[serde(default)]
-    units: Units,
-    surface: RawSurface,
-    material: RawMaterial,
-    #[serde(default)]
-    contact: RawContact,
-    sliding: Option<RawSliding>,
-}
-
-/// A value per side: one for both (`grid = 512`) or `[x, y]` (`grid = [1024, 512]`).
-#[derive(Debug, Clone, Copy, Deserialize)]
-#[serde(untagged, expecting = "one number, or two as [along x, along y]")]
-enum PerSide<T> {
-    Both(T),
-    Each([T; 2]),
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawSurface {
-    grid: Option<PerSide<usize>>,
-    length: Option<PerSide<f64>>,
-    hurst: Option<f64>,
-    lambda_lower: Option<f64>,
-    lambda_upper: Option<f64>,
-    rms_height: Option<f64>,
-    seed: Option<u64>,
-    generation: Option<Generation>,
-    top: Option<PathBuf>,
-    bottom: Option<PathBuf>,
-    height_unit: Option<String>,
-    lateral_unit: Option<String>,
-    detrend: Option<Detrend>,
-    taper: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawMaterial {
-    youngs_modulus: f64,
-    poisson_ratio: f64,
-    shear_strength: f64,
-    #[serde(default)]
-    fracture_energies: Vec<f64>,
-    geometry_factor: Option<f64>,
-}
-
-#[derive(Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawContact {
-    modulus: Option<ModulusConvention>,
-    tolerance: Option<f64>,
-    max_iterations: Option<usize>,
-    connectivity: Option<u8>,
-    boundary: Option<Boundary>,
-    device: Option<Device>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawSliding {
-    loads: Vec<f64>,
-    distance: Option<f64>,
-    running_in: Option<f64>,
-    step_running_in: Option<usize>,
-    step: Option<usize>,
-}
-
-/// Where the two surfaces come from.
-#[derive(Debug, Clone, PartialEq)]
-pub enum SurfaceSource {
-    /// Generated from spectral parameters and one seed (top and bottom seeds derived from it).
-    Generated {
-        grid: Grid,
-        spectrum: SpectrumParams,
-        seed: u64,
-    },
-    /// Read from height-map files (paths resolved against the run file's folder), in any format
-    /// [`crate::topography::read`] knows.
-    Files {
-        top: PathBuf,
-        bottom: PathBuf,
-        /// Side along x in the run's length unit (given, or from the file's coordinates).
-        length: f64,
-        /// Side along y, when the run file gives it.
-        length_y: Option<f64>,
-        /// The file's height unit and x y coordinate unit as written in the run file.
-        height_unit: Option<String>,
-        lateral_unit: Option<String>,
-        preprocess: Preprocess,
-    },
-    /// Two height arrays the caller holds (the Python `slide` on arrays), on `grid`, whose side
-    /// along x is `length` as the caller gave it; nothing to generate or read.
-    Arrays { grid: Grid, length: f64 },
-}
-
-/// One value for a square grid, `[x, y]` for a rectangular one (as a run file writes it).
-fn per_side<T: serde::Serialize + PartialEq>(x: T, y: T) -> serde_json::Value {
-    if x == y {
-        serde_json::json!(x)
-    } else {
-        serde_json::json!([x, y])
-    }
-}
-
-impl serde::Serialize for SurfaceSource {
-    /// As a run file writes it: `grid` and `length` one value when square, `[x, y]` otherwise.
-    fn serialize<S: serde::Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
-        use serde::ser::SerializeMap;
-        let mut map = serializer.serialize_map(None)?;
-        match self {
-            SurfaceSource::Generated { grid, spectrum, seed } => {
-                map.serialize_entry("source", "generated")?;
-                map.serialize_entry("grid", &per_side(grid.nx(), grid.ny()))?;
-                map.serialize_entry("length", &per_side(grid.length_x(), grid.length_y()))?;
-                map.serialize_entry("spectrum", spectrum)?;
-                map.serialize_entry("seed", seed)?;
-            }
-            SurfaceSource::Files {
-                top,
-                bottom,
-                length,
-                length_y,
-                height_unit,
-                lateral_unit,
-                preprocess,
-            } => {
-                map.serialize_entry("source", "files")?;
-                map.serialize_entry("top", top)?;
-                map.serialize_entry("bottom", bottom)?;
-                match length_y {
-                    Some(ly) => map.serialize_entry("length", &[length, ly])?,
-                    None => map.serialize_entry("length", length)?,
-                }
-                if let Some(u) = height_unit {
-                    map.serialize_entry("height_unit", u)?;
-                }
-                if let Some(u) = lateral_unit {
-                    map.serialize_entry("lateral_unit", u)?;
-                }
-                if *preprocess != Preprocess::default() {
-                    map.serialize_entry("detrend", preprocess.detrend.name())?;
-                    map.serialize_entry("taper", &preprocess.taper)?;
-                }
-            }
-            SurfaceSource::Arrays { grid, length } => {
-                map.serialize_entry("source", "arrays")?;
-                map.serialize_entry("grid", &per_side(grid.nx(), grid.ny()))?;
-                if grid.is_square() {
-                    map.serialize_entry("length", length)?;
-                } else {
-                    map.serialize_entry("length", &[*length, grid.length_y()])?;
-                }
-            }
-        }
-        map.end()
-    }
-}
-
-/// The two surfaces of a run, with notes on how files were read and warnings about them.
-#[derive(Debug, Clone)]
-pub struct SurfacePair {
-    pub top: Surface,
-    pub bottom: Surface,
-    pub notes: Vec<String>,
-    pub warnings: Vec<String>,
-}
-
-impl SurfacePair {
-    /// Two surfaces handed over as arrays (a [`SurfaceSource::Arrays`] run). They may be measured
-    /// maps, so each is checked for periodicity as a file is, named "top" and "bottom" in the
-    /// warnings.
-    pub fn of_arrays(top: Surface, bottom: Surface) -> Self {
-        let warnings = [("top", &top), ("bottom", &bottom)]
-            .into_iter()
-            .filter_map(|(name, s)| crate::topography::periodicity(s.heights(), s.nx(), s.ny()).warning(name))
-            .collect();
-        Self {
-            top,
-            bottom,
-            notes: Vec::new(),
-            warnings,
-        }
-    }
-}
-
-/// Whether the surface files a run names must exist when it is read: for a run about to be
-/// computed they must; a finished study's stored runs are read back without them (its results are
-/// collected without the surfaces).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum SurfaceFiles {
-    MustExist,
-    Recorded,
-}
+use raw::{one_line, RawRun};
+use source::{lateral_scale, surface_source};
 
 /// A validated run file.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -251,32 +43,6 @@ pub struct RunConfig {
     /// Where the contact solver computes.
     pub device: Device,
     pub sliding: Option<SlidingConfig>,
-}
-
-/// Factor from the unit of a file's x y coordinates (`lateral_unit`, else `height_unit`) to the
-/// run's length unit: metres in SI runs, none in reduced runs.
-fn lateral_scale(units: Units, lateral_unit: &Option<String>, height_unit: &Option<String>) -> Result<f64> {
-    match (units, lateral_unit.as_ref().or(height_unit.as_ref())) {
-        (Units::Si, Some(u)) => metres_per("lateral_unit", u),
-        _ => Ok(1.0),
-    }
-}
-
-fn missing_length() -> Error {
-    missing(
-        "length",
-        "give the physical size of the height maps, length = Lx or [Lx, Ly] along their first and second axes (only \
-         x y z column files state it themselves)",
-    )
-}
-
-fn missing(field: &str, hint: &str) -> Error {
-    Error::run_file(format!("[surface] `{field}` is missing; {hint}"))
-}
-
-/// A TOML error message on one line (they come with a source excerpt over several lines).
-fn one_line(message: &str) -> String {
-    message.trim_end().replace('\n', " ")
 }
 
 impl RunConfig {
@@ -307,51 +73,7 @@ impl RunConfig {
     }
 
     fn from_raw(raw: RawRun, base: &Path, files: SurfaceFiles) -> Result<Self> {
-        let s = raw.surface;
-        let surfaces = match (&s.top, &s.bottom) {
-            (Some(top), Some(bottom)) => Self::files_source(&s, raw.units, base.join(top), base.join(bottom), files)?,
-            (None, None) => {
-                for (field, value) in [
-                    ("height_unit", s.height_unit.is_some()),
-                    ("lateral_unit", s.lateral_unit.is_some()),
-                    ("detrend", s.detrend.is_some()),
-                    ("taper", s.taper.is_some()),
-                ] {
-                    if value {
-                        return Err(Error::run_file(format!(
-                            "[surface] `{field}` applies to surfaces read from files (`top` and `bottom`); remove it"
-                        )));
-                    }
-                }
-                let grid = Self::generated_grid(
-                    s.grid
-                        .ok_or_else(|| missing("grid", "give the number of pixels per side, e.g. 512"))?,
-                    s.length.unwrap_or(PerSide::Both(1.0)),
-                )?;
-                let spectrum = SpectrumParams {
-                    hurst: s.hurst.unwrap_or(0.7),
-                    lambda_lower: s
-                        .lambda_lower
-                        .ok_or_else(|| missing("lambda_lower", "e.g. 16 pixels, 16·length/grid"))?,
-                    lambda_upper: s
-                        .lambda_upper
-                        .ok_or_else(|| missing("lambda_upper", "e.g. length/16"))?,
-                    rms_height: s.rms_height.ok_or_else(|| missing("rms_height", "e.g. 0.005·length"))?,
-                    generation: s.generation.unwrap_or_default(),
-                };
-                spectrum.validate(&grid)?;
-                SurfaceSource::Generated {
-                    grid,
-                    spectrum,
-                    seed: s.seed.unwrap_or(0),
-                }
-            }
-            _ => {
-                return Err(Error::run_file(
-                    "[surface] give both `top` and `bottom` files, or neither (to generate the surfaces)",
-                ))
-            }
-        };
+        let surfaces = surface_source(&raw.surface, raw.units, base, files)?;
         let m = raw.material;
         let material = Material::new(
             m.youngs_modulus,
@@ -423,108 +145,6 @@ impl RunConfig {
             boundary,
             device,
             sliding,
-        })
-    }
-
-    /// The grid of generated surfaces: `grid = N` with `length = L` (square) or `[Lx, Ly]` (Ny from
-    /// square pixels), or `grid = [Nx, Ny]` with `length = Lx` or `[Lx, Ly]`.
-    fn generated_grid(grid: PerSide<usize>, length: PerSide<f64>) -> Result<Grid> {
-        match (grid, length) {
-            (PerSide::Both(n), PerSide::Both(l)) => Grid::square(n, l),
-            (PerSide::Each([nx, ny]), PerSide::Both(lx)) => Grid::new(nx, ny, lx),
-            (PerSide::Each([nx, ny]), PerSide::Each([lx, ly])) => Grid::with_lengths(nx, ny, lx, ly),
-            (PerSide::Both(nx), PerSide::Each([lx, ly])) => {
-                positive("length", lx)?;
-                positive("length", ly)?;
-                let ny = nx as f64 * ly / lx;
-                if (ny - ny.round()).abs() > 1e-9 * ny {
-                    return Err(Error::param(
-                        "grid",
-                        format!(
-                            "{nx} pixels along x over length = [{lx}, {ly}] gives {ny} pixels along y, not a whole number; \
-                             give grid = [Nx, Ny] with Lx/Nx = Ly/Ny"
-                        ),
-                    ));
-                }
-                Grid::with_lengths(nx, ny.round() as usize, lx, ly)
-            }
-        }
-    }
-
-    /// The source of surfaces read from files: units converted to the run's, the size resolved
-    /// (from `length`, or the coordinates of a column file when the files exist).
-    fn files_source(
-        s: &RawSurface,
-        units: Units,
-        top: PathBuf,
-        bottom: PathBuf,
-        files: SurfaceFiles,
-    ) -> Result<SurfaceSource> {
-        for (field, value) in [
-            ("grid", s.grid.is_some()),
-            ("hurst", s.hurst.is_some()),
-            ("lambda_lower", s.lambda_lower.is_some()),
-            ("lambda_upper", s.lambda_upper.is_some()),
-            ("rms_height", s.rms_height.is_some()),
-            ("seed", s.seed.is_some()),
-            ("generation", s.generation.is_some()),
-        ] {
-            if value {
-                return Err(Error::run_file(format!(
-                    "[surface] `{field}` has no meaning when `top` and `bottom` are read from files; remove it"
-                )));
-            }
-        }
-        for (field, unit) in [("height_unit", &s.height_unit), ("lateral_unit", &s.lateral_unit)] {
-            if let Some(u) = unit {
-                metres_per(field, u)?;
-                if units != Units::Si {
-                    return Err(Error::run_file(format!(
-                        "[surface] `{field}` = \"{u}\" converts the file to metres, which needs units = \"si\"; in \
-                         reduced units give the heights in the unit of `length` and remove `{field}`"
-                    )));
-                }
-            }
-        }
-        let preprocess = Preprocess {
-            detrend: s.detrend.unwrap_or_default(),
-            taper: s.taper.unwrap_or(0.0),
-        };
-        preprocess.validate()?;
-        // One spelling per file, so that job files and the study's stored base agree however the
-        // study was named on the command line.
-        let (top, bottom) = (crate::io::canonical_path(&top), crate::io::canonical_path(&bottom));
-        for p in [&top, &bottom] {
-            if files == SurfaceFiles::MustExist && !p.is_file() {
-                return Err(Error::file(
-                    p,
-                    "surface file not found (paths are relative to the run file)",
-                ));
-            }
-        }
-        let (length, length_y) = match s.length {
-            Some(PerSide::Both(l)) => (l, None),
-            Some(PerSide::Each([lx, ly])) => {
-                positive("length", ly)?;
-                (lx, Some(ly))
-            }
-            // A column file states its size in its coordinates (a stored run whose files are gone
-            // cannot be asked).
-            None if top.is_file() => match crate::topography::file_span(&top)? {
-                Some((x, _)) => (x * lateral_scale(units, &s.lateral_unit, &s.height_unit)?, None),
-                None => return Err(missing_length()),
-            },
-            None => return Err(missing_length()),
-        };
-        positive("length", length)?;
-        Ok(SurfaceSource::Files {
-            top,
-            bottom,
-            length,
-            length_y,
-            height_unit: s.height_unit.clone(),
-            lateral_unit: s.lateral_unit.clone(),
-            preprocess,
         })
     }
 
@@ -757,87 +377,6 @@ impl<'a> SlidingSetup<'a> {
     }
 }
 
-/// Every input of a run as one flat record with the same fields for every run (absent ones empty):
-/// the input columns of a study's results table, and what identifies a study job in its job file.
-/// Field names are the run file's `section.key`.
-#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, Deserialize)]
-pub struct InputRecord {
-    pub units: Units,
-    #[serde(rename = "surface.grid")]
-    pub grid: Option<usize>,
-    /// Pixels along y, on rectangular grids only (square runs leave it empty).
-    #[serde(rename = "surface.grid_y", default)]
-    pub grid_y: Option<usize>,
-    #[serde(rename = "surface.length")]
-    pub length: f64,
-    /// Side along y, on rectangular grids only.
-    #[serde(rename = "surface.length_y", default)]
-    pub length_y: Option<f64>,
-    #[serde(rename = "surface.hurst")]
-    pub hurst: Option<f64>,
-    #[serde(rename = "surface.lambda_lower")]
-    pub lambda_lower: Option<f64>,
-    #[serde(rename = "surface.lambda_upper")]
-    pub lambda_upper: Option<f64>,
-    #[serde(rename = "surface.rms_height")]
-    pub rms_height: Option<f64>,
-    #[serde(rename = "surface.seed")]
-    pub seed: Option<u64>,
-    #[serde(rename = "surface.top")]
-    pub top: Option<String>,
-    #[serde(rename = "surface.bottom")]
-    pub bottom: Option<String>,
-    #[serde(rename = "surface.height_unit", default)]
-    pub height_unit: Option<String>,
-    #[serde(rename = "surface.detrend", default)]
-    pub detrend: Option<String>,
-    #[serde(rename = "surface.taper", default)]
-    pub taper: Option<f64>,
-    /// How generated heights are drawn, when not the default (random phases); absent in job files
-    /// written before it was recorded.
-    #[serde(rename = "surface.generation", default)]
-    pub generation: Option<Generation>,
-    /// Unit of a column file's x y coordinates, when given.
-    #[serde(rename = "surface.lateral_unit", default)]
-    pub lateral_unit: Option<String>,
-    #[serde(rename = "material.youngs_modulus")]
-    pub youngs_modulus: f64,
-    #[serde(rename = "material.poisson_ratio")]
-    pub poisson_ratio: f64,
-    #[serde(rename = "material.shear_strength")]
-    pub shear_strength: f64,
-    #[serde(rename = "material.geometry_factor")]
-    pub geometry_factor: f64,
-    #[serde(rename = "contact.modulus")]
-    pub modulus: ModulusConvention,
-    #[serde(rename = "contact.tolerance")]
-    pub tolerance: f64,
-    /// The solver's iteration limit, when not the default.
-    #[serde(rename = "contact.max_iterations", default)]
-    pub max_iterations: Option<usize>,
-    #[serde(rename = "contact.connectivity")]
-    pub connectivity: u8,
-    /// Where the contact solver computed, when not the CPU.
-    #[serde(rename = "contact.device", default)]
-    pub device: Option<Device>,
-    #[serde(rename = "sliding.distance")]
-    pub distance: Option<f64>,
-    #[serde(rename = "sliding.running_in")]
-    pub running_in: Option<f64>,
-    #[serde(rename = "sliding.step_running_in")]
-    pub step_running_in: Option<usize>,
-    #[serde(rename = "sliding.step")]
-    pub step: Option<usize>,
-}
-
-impl InputRecord {
-    /// The nominal pressure p_N = F_N/(Lx·Ly) under a normal load F_N: the load axis of the paper's
-    /// figures.
-    pub fn nominal_pressure(&self, load: f64) -> f64 {
-        load / (self.length * self.length_y.unwrap_or(self.length))
-    }
-}
-
 #[cfg(test)]
 mod tests {
     /// The field names serde reads for `T` (renamed as in files), without a value: a deserializer
@@ -877,10 +416,10 @@ mod tests {
         let columns = field_names::<super::InputRecord>();
         assert!(!columns.is_empty());
         let sections: [(&str, Vec<&str>); 4] = [
-            ("surface", field_names::<super::RawSurface>()),
-            ("material", field_names::<super::RawMaterial>()),
-            ("contact", field_names::<super::RawContact>()),
-            ("sliding", field_names::<super::RawSliding>()),
+            ("surface", field_names::<super::raw::RawSurface>()),
+            ("material", field_names::<super::raw::RawMaterial>()),
+            ("contact", field_names::<super::raw::RawContact>()),
+            ("sliding", field_names::<super::raw::RawSliding>()),
         ];
         // `contact.boundary` distinguishes no study jobs: a run with `[sliding]` (every study job) is
         // periodic, and a free boundary is refused there.

@@ -1,0 +1,107 @@
+//! The run file as written: the TOML tables parsed strictly (unknown keys are errors naming the
+//! key), before any value is checked.
+
+use std::path::PathBuf;
+
+use serde::Deserialize;
+
+use crate::contact::Device;
+use crate::influence::Boundary;
+use crate::material::ModulusConvention;
+use crate::surface::Generation;
+use crate::topography::Detrend;
+
+/// Unit system of a run file: reduced (E = 1, L = 1 by convention) or SI (Pa, m, J/m², N).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Units {
+    #[default]
+    Reduced,
+    Si,
+}
+
+impl Units {
+    /// Name of the length unit.
+    pub fn length_unit(self) -> &'static str {
+        match self {
+            Units::Reduced => "L",
+            Units::Si => "m",
+        }
+    }
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawRun {
+    #[serde(default)]
+    pub(super) units: Units,
+    pub(super) surface: RawSurface,
+    pub(super) material: RawMaterial,
+    #[serde(default)]
+    pub(super) contact: RawContact,
+    pub(super) sliding: Option<RawSliding>,
+}
+
+/// A value per side: one for both (`grid = 512`) or `[x, y]` (`grid = [1024, 512]`).
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(untagged, expecting = "one number, or two as [along x, along y]")]
+pub(super) enum PerSide<T> {
+    Both(T),
+    Each([T; 2]),
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawSurface {
+    pub(super) grid: Option<PerSide<usize>>,
+    pub(super) length: Option<PerSide<f64>>,
+    pub(super) hurst: Option<f64>,
+    pub(super) lambda_lower: Option<f64>,
+    pub(super) lambda_upper: Option<f64>,
+    pub(super) rms_height: Option<f64>,
+    pub(super) seed: Option<u64>,
+    pub(super) generation: Option<Generation>,
+    pub(super) top: Option<PathBuf>,
+    pub(super) bottom: Option<PathBuf>,
+    pub(super) height_unit: Option<String>,
+    pub(super) lateral_unit: Option<String>,
+    pub(super) detrend: Option<Detrend>,
+    pub(super) taper: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawMaterial {
+    pub(super) youngs_modulus: f64,
+    pub(super) poisson_ratio: f64,
+    pub(super) shear_strength: f64,
+    #[serde(default)]
+    pub(super) fracture_energies: Vec<f64>,
+    pub(super) geometry_factor: Option<f64>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawContact {
+    pub(super) modulus: Option<ModulusConvention>,
+    pub(super) tolerance: Option<f64>,
+    pub(super) max_iterations: Option<usize>,
+    pub(super) connectivity: Option<u8>,
+    pub(super) boundary: Option<Boundary>,
+    pub(super) device: Option<Device>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawSliding {
+    pub(super) loads: Vec<f64>,
+    pub(super) distance: Option<f64>,
+    pub(super) running_in: Option<f64>,
+    pub(super) step_running_in: Option<usize>,
+    pub(super) step: Option<usize>,
+}
+
+/// A TOML error message on one line (they come with a source excerpt over several lines).
+pub(super) fn one_line(message: &str) -> String {
+    message.trim_end().replace('\n', " ")
+}

@@ -1,0 +1,309 @@
+//! Where a run's two surfaces come from (generated, read from files, or arrays the caller holds),
+//! resolved from the `[surface]` table of a run file.
+
+use std::path::{Path, PathBuf};
+
+use crate::check::positive;
+use crate::error::{Error, Result};
+use crate::grid::Grid;
+use crate::surface::{SpectrumParams, Surface};
+use crate::topography::{metres_per, Preprocess};
+
+use super::raw::{PerSide, RawSurface, Units};
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum SurfaceSource {
+    /// Generated from spectral parameters and one seed (top and bottom seeds derived from it).
+    Generated {
+        grid: Grid,
+        spectrum: SpectrumParams,
+        seed: u64,
+    },
+    /// Read from height-map files (paths resolved against the run file's folder), in any format
+    /// [`crate::topography::read`] knows.
+    Files {
+        top: PathBuf,
+        bottom: PathBuf,
+        /// Side along x in the run's length unit (given, or from the file's coordinates).
+        length: f64,
+        /// Side along y, when the run file gives it.
+        length_y: Option<f64>,
+        /// The file's height unit and x y coordinate unit as written in the run file.
+        height_unit: Option<String>,
+        lateral_unit: Option<String>,
+        preprocess: Preprocess,
+    },
+    /// Two height arrays the caller holds (the Python `slide` on arrays), on `grid`, whose side
+    /// along x is `length` as the caller gave it; nothing to generate or read.
+    Arrays { grid: Grid, length: f64 },
+}
+
+/// One value for a square grid, `[x, y]` for a rectangular one (as a run file writes it).
+fn per_side<T: serde::Serialize + PartialEq>(x: T, y: T) -> serde_json::Value {
+    if x == y {
+        serde_json::json!(x)
+    } else {
+        serde_json::json!([x, y])
+    }
+}
+
+impl serde::Serialize for SurfaceSource {
+    /// As a run file writes it: `grid` and `length` one value when square, `[x, y]` otherwise.
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut map = serializer.serialize_map(None)?;
+        match self {
+            SurfaceSource::Generated { grid, spectrum, seed } => {
+                map.serialize_entry("source", "generated")?;
+                map.serialize_entry("grid", &per_side(grid.nx(), grid.ny()))?;
+                map.serialize_entry("length", &per_side(grid.length_x(), grid.length_y()))?;
+                map.serialize_entry("spectrum", spectrum)?;
+                map.serialize_entry("seed", seed)?;
+            }
+            SurfaceSource::Files {
+                top,
+                bottom,
+                length,
+                length_y,
+                height_unit,
+                lateral_unit,
+                preprocess,
+            } => {
+                map.serialize_entry("source", "files")?;
+                map.serialize_entry("top", top)?;
+                map.serialize_entry("bottom", bottom)?;
+                match length_y {
+                    Some(ly) => map.serialize_entry("length", &[length, ly])?,
+                    None => map.serialize_entry("length", length)?,
+                }
+                if let Some(u) = height_unit {
+                    map.serialize_entry("height_unit", u)?;
+                }
+                if let Some(u) = lateral_unit {
+                    map.serialize_entry("lateral_unit", u)?;
+                }
+                if *preprocess != Preprocess::default() {
+                    map.serialize_entry("detrend", preprocess.detrend.name())?;
+                    map.serialize_entry("taper", &preprocess.taper)?;
+                }
+            }
+            SurfaceSource::Arrays { grid, length } => {
+                map.serialize_entry("source", "arrays")?;
+                map.serialize_entry("grid", &per_side(grid.nx(), grid.ny()))?;
+                if grid.is_square() {
+                    map.serialize_entry("length", length)?;
+                } else {
+                    map.serialize_entry("length", &[*length, grid.length_y()])?;
+                }
+            }
+        }
+        map.end()
+    }
+}
+
+/// The two surfaces of a run, with notes on how files were read and warnings about them.
+#[derive(Debug, Clone)]
+pub struct SurfacePair {
+    pub top: Surface,
+    pub bottom: Surface,
+    pub notes: Vec<String>,
+    pub warnings: Vec<String>,
+}
+
+impl SurfacePair {
+    /// Two surfaces handed over as arrays (a [`SurfaceSource::Arrays`] run). They may be measured
+    /// maps, so each is checked for periodicity as a file is, named "top" and "bottom" in the
+    /// warnings.
+    pub fn of_arrays(top: Surface, bottom: Surface) -> Self {
+        let warnings = [("top", &top), ("bottom", &bottom)]
+            .into_iter()
+            .filter_map(|(name, s)| crate::topography::periodicity(s.heights(), s.nx(), s.ny()).warning(name))
+            .collect();
+        Self {
+            top,
+            bottom,
+            notes: Vec::new(),
+            warnings,
+        }
+    }
+}
+
+/// Whether the surface files a run names must exist when it is read: for a run about to be
+/// computed they must; a finished study's stored runs are read back without them (its results are
+/// collected without the surfaces).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SurfaceFiles {
+    MustExist,
+    Recorded,
+}
+
+/// Factor from the unit of a file's x y coordinates (`lateral_unit`, else `height_unit`) to the
+/// run's length unit: metres in SI runs, none in reduced runs.
+pub(super) fn lateral_scale(units: Units, lateral_unit: &Option<String>, height_unit: &Option<String>) -> Result<f64> {
+    match (units, lateral_unit.as_ref().or(height_unit.as_ref())) {
+        (Units::Si, Some(u)) => metres_per("lateral_unit", u),
+        _ => Ok(1.0),
+    }
+}
+
+fn missing_length() -> Error {
+    missing(
+        "length",
+        "give the physical size of the height maps, length = Lx or [Lx, Ly] along their first and second axes (only \
+         x y z column files state it themselves)",
+    )
+}
+
+pub(super) fn missing(field: &str, hint: &str) -> Error {
+    Error::run_file(format!("[surface] `{field}` is missing; {hint}"))
+}
+
+/// The grid of generated surfaces: `grid = N` with `length = L` (square) or `[Lx, Ly]` (Ny from
+/// square pixels), or `grid = [Nx, Ny]` with `length = Lx` or `[Lx, Ly]`.
+pub(super) fn generated_grid(grid: PerSide<usize>, length: PerSide<f64>) -> Result<Grid> {
+    match (grid, length) {
+        (PerSide::Both(n), PerSide::Both(l)) => Grid::square(n, l),
+        (PerSide::Each([nx, ny]), PerSide::Both(lx)) => Grid::new(nx, ny, lx),
+        (PerSide::Each([nx, ny]), PerSide::Each([lx, ly])) => Grid::with_lengths(nx, ny, lx, ly),
+        (PerSide::Both(nx), PerSide::Each([lx, ly])) => {
+            positive("length", lx)?;
+            positive("length", ly)?;
+            let ny = nx as f64 * ly / lx;
+            if (ny - ny.round()).abs() > 1e-9 * ny {
+                return Err(Error::param(
+                    "grid",
+                    format!(
+                        "{nx} pixels along x over length = [{lx}, {ly}] gives {ny} pixels along y, not a whole number; \
+                         give grid = [Nx, Ny] with Lx/Nx = Ly/Ny"
+                    ),
+                ));
+            }
+            Grid::with_lengths(nx, ny.round() as usize, lx, ly)
+        }
+    }
+}
+
+/// The source of surfaces read from files: units converted to the run's, the size resolved
+/// (from `length`, or the coordinates of a column file when the files exist).
+pub(super) fn files_source(
+    s: &RawSurface,
+    units: Units,
+    top: PathBuf,
+    bottom: PathBuf,
+    files: SurfaceFiles,
+) -> Result<SurfaceSource> {
+    for (field, value) in [
+        ("grid", s.grid.is_some()),
+        ("hurst", s.hurst.is_some()),
+        ("lambda_lower", s.lambda_lower.is_some()),
+        ("lambda_upper", s.lambda_upper.is_some()),
+        ("rms_height", s.rms_height.is_some()),
+        ("seed", s.seed.is_some()),
+        ("generation", s.generation.is_some()),
+    ] {
+        if value {
+            return Err(Error::run_file(format!(
+                "[surface] `{field}` has no meaning when `top` and `bottom` are read from files; remove it"
+            )));
+        }
+    }
+    for (field, unit) in [("height_unit", &s.height_unit), ("lateral_unit", &s.lateral_unit)] {
+        if let Some(u) = unit {
+            metres_per(field, u)?;
+            if units != Units::Si {
+                return Err(Error::run_file(format!(
+                    "[surface] `{field}` = \"{u}\" converts the file to metres, which needs units = \"si\"; in \
+                     reduced units give the heights in the unit of `length` and remove `{field}`"
+                )));
+            }
+        }
+    }
+    let preprocess = Preprocess {
+        detrend: s.detrend.unwrap_or_default(),
+        taper: s.taper.unwrap_or(0.0),
+    };
+    preprocess.validate()?;
+    // One spelling per file, so that job files and the study's stored base agree however the
+    // study was named on the command line.
+    let (top, bottom) = (crate::io::canonical_path(&top), crate::io::canonical_path(&bottom));
+    for p in [&top, &bottom] {
+        if files == SurfaceFiles::MustExist && !p.is_file() {
+            return Err(Error::file(
+                p,
+                "surface file not found (paths are relative to the run file)",
+            ));
+        }
+    }
+    let (length, length_y) = match s.length {
+        Some(PerSide::Both(l)) => (l, None),
+        Some(PerSide::Each([lx, ly])) => {
+            positive("length", ly)?;
+            (lx, Some(ly))
+        }
+        // A column file states its size in its coordinates (a stored run whose files are gone
+        // cannot be asked).
+        None if top.is_file() => match crate::topography::file_span(&top)? {
+            Some((x, _)) => (x * lateral_scale(units, &s.lateral_unit, &s.height_unit)?, None),
+            None => return Err(missing_length()),
+        },
+        None => return Err(missing_length()),
+    };
+    positive("length", length)?;
+    Ok(SurfaceSource::Files {
+        top,
+        bottom,
+        length,
+        length_y,
+        height_unit: s.height_unit.clone(),
+        lateral_unit: s.lateral_unit.clone(),
+        preprocess,
+    })
+}
+
+/// The source of a run's surfaces from its `[surface]` table: files (both `top` and `bottom`,
+/// resolved against `base`) or generated (neither), with the keys that do not belong to that choice
+/// refused by name.
+pub(super) fn surface_source(s: &RawSurface, units: Units, base: &Path, files: SurfaceFiles) -> Result<SurfaceSource> {
+    match (&s.top, &s.bottom) {
+        (Some(top), Some(bottom)) => files_source(s, units, base.join(top), base.join(bottom), files),
+        (None, None) => {
+            for (field, value) in [
+                ("height_unit", s.height_unit.is_some()),
+                ("lateral_unit", s.lateral_unit.is_some()),
+                ("detrend", s.detrend.is_some()),
+                ("taper", s.taper.is_some()),
+            ] {
+                if value {
+                    return Err(Error::run_file(format!(
+                        "[surface] `{field}` applies to surfaces read from files (`top` and `bottom`); remove it"
+                    )));
+                }
+            }
+            let grid = generated_grid(
+                s.grid
+                    .ok_or_else(|| missing("grid", "give the number of pixels per side, e.g. 512"))?,
+                s.length.unwrap_or(PerSide::Both(1.0)),
+            )?;
+            let spectrum = SpectrumParams {
+                hurst: s.hurst.unwrap_or(0.7),
+                lambda_lower: s
+                    .lambda_lower
+                    .ok_or_else(|| missing("lambda_lower", "e.g. 16 pixels, 16·length/grid"))?,
+                lambda_upper: s
+                    .lambda_upper
+                    .ok_or_else(|| missing("lambda_upper", "e.g. length/16"))?,
+                rms_height: s.rms_height.ok_or_else(|| missing("rms_height", "e.g. 0.005·length"))?,
+                generation: s.generation.unwrap_or_default(),
+            };
+            spectrum.validate(&grid)?;
+            Ok(SurfaceSource::Generated {
+                grid,
+                spectrum,
+                seed: s.seed.unwrap_or(0),
+            })
+        }
+        _ => Err(Error::run_file(
+            "[surface] give both `top` and `bottom` files, or neither (to generate the surfaces)",
+        )),
+    }
+}
