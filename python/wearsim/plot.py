@@ -92,6 +92,11 @@ def curves(tidy: pd.DataFrame) -> List[Tuple[str, pd.DataFrame]]:
     return out
 
 
+def _shown(label: str) -> str:
+    """A library label as matplotlib draws it: the script 𝒢, which its default font lacks, in mathtext."""
+    return label.replace("𝒢", r"$\mathcal{G}$")
+
+
 def _area(stats: pd.DataFrame) -> np.ndarray:
     """The nominal area Lx·Ly of each row's box (1 for a hand-made table without the box's size)."""
     if "surface.length" not in stats:
@@ -221,7 +226,7 @@ def _load_figure(
         # A point without any particle has no wear: it is the marker on the axis, not a hollow one.
         counts = _particles(stats)[thin[i] & (_particles(stats) > 0)]
         note = f" — hollow: {', '.join(f'{n:g}' for n in counts)} particles" if len(counts) else ""
-        handles.append(Line2D([], [], color=color, marker=marker, lw=2, label=f"{name}{note}"))
+        handles.append(Line2D([], [], color=color, marker=marker, lw=2, label=f"{_shown(name)}{note}"))
     if any(t.any() for t in thin):
         handles.append(
             Line2D(
@@ -267,7 +272,7 @@ def static_model(tidy: pd.DataFrame) -> Any:
             ("static_wear_rate_mean", r"$W_\mathrm{{static}}/\omega$", True, True),
             ("static_wear_coefficient_mean", r"static wear coefficient $k_\mathrm{{static}}$", False),
         ],
-        "static model, mean over every offset (the paper's Fig. 2 rows: 𝒢 varied, τ̃ varied)",
+        r"static model, mean over every offset (the paper's Fig. 2 rows: $\mathcal{G}$ varied, $\tilde{\tau}$ varied)",
     )
 
 
@@ -355,7 +360,7 @@ def equation_5(tidy: pd.DataFrame) -> Any:
     for i, (name, stats) in enumerate(curves(tidy)):
         w, e = stats["wear_rate_mean"], stats["wear_rate_estimate_mean"]
         keep = (w > 0) & (e > 0)
-        ax.scatter(w[keep], e[keep], color=f"C{i}", label=name)
+        ax.scatter(w[keep], e[keep], color=f"C{i}", label=_shown(name))
         values += list(w[keep]) + list(e[keep])
     if values:
         lo, hi = min(values) / 1.5, max(values) * 1.5

@@ -144,7 +144,8 @@ impl Tally {
             .map(|(line, needed)| match needed {
                 Some(n) => format!("{line}, {n} pairs would decide it"),
                 None => format!(
-                    "{line}, pairs to decide it not estimable (no effect, or fewer than two pairs with a value)"
+                    "{line}, no number of pairs decides it (an effect of about zero, none up to 100,000 pairs; or \
+                     fewer than two pairs with a value)"
                 ),
             })
             .collect();
