@@ -10,9 +10,10 @@
 //! - [`setting`]: the settings and their surface pairs, and the groupings the rules compare;
 //! - [`rules`]: one unit judged (per setting, two settings pair by pair or by a count test, a trend
 //!   over load per pair);
-//! - [`static_model`], [`sliding`], [`materials`], [`particles`]: one function per finding, its
-//!   rule beside it.
+//! - [`static_model`], [`sliding`], [`materials`], [`particles`], [`kim`]: one function per
+//!   finding, its rule beside it.
 
+mod kim;
 mod materials;
 mod particles;
 mod rules;
@@ -209,6 +210,8 @@ pub fn findings(tidy: &Table) -> Vec<Finding> {
         particles::hardest_least_tough_emits_most_wears_least(&all),
         particles::soft_tough_fewest_particles(&all),
         particles::severe_wear_from_large_particles(&all),
+        kim::kim_hierarchy(&all),
+        kim::kim_k_above_experiments(&all),
     ]
 }
 

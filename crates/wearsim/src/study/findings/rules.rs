@@ -128,6 +128,15 @@ pub(super) fn on_run_in_pairs(
     value: impl Fn(&Setting, &Pair) -> f64,
 ) -> Outcome {
     let run = s.run_in_pairs();
+    if s.pairs.len() < 2 {
+        // A study of one surface pair has no spread to measure: no interval, whatever the pair shows.
+        let v = run.first().map_or(f64::NAN, |p| value(s, p));
+        return Outcome::Judged {
+            side: Side::Undecided,
+            text: format!("{}: {what} = {} (one surface pair: no interval)", s.label(), fmt(v)),
+            needed: None,
+        };
+    }
     if run.len() < 2 {
         return Outcome::NotRunIn(format!("{}: {}", s.label(), s.run_in_note()));
     }
@@ -191,7 +200,10 @@ fn shared<'s>(a: &'s Setting, b: &'s Setting, run_in: bool) -> Vec<(&'s Pair, &'
 pub(super) fn compare(a: &Setting, b: &Setting, what: &str, q: Compared, region: Region, run_in: bool) -> Outcome {
     let label = format!("{} vs {} ({what})", a.label(), b.label());
     let pairs = shared(a, b, run_in);
-    if pairs.len() < 2 {
+    // One shared pair (a study of one surface pair) has no spread to measure; the count test of
+    // particle rates still applies to it.
+    let one_pair = pairs.len() == 1 && shared(a, b, false).len() == 1;
+    if pairs.is_empty() || pairs.len() < 2 && !one_pair {
         return Outcome::NotRunIn(format!("{label}: {}; {}", a.run_in_note(), b.run_in_note()));
     }
     // Pairs where the quantity is undefined in either setting (a particle volume without particles)

@@ -4,7 +4,7 @@
 
 use std::collections::BTreeMap;
 
-use crate::output::{settings as setting_groups, Cell, Table};
+use crate::output::{kim_material, settings as setting_groups, Cell, Table};
 use crate::sliding::RUN_IN_DECAY_LENGTHS;
 
 /// One surface pair of a setting: its seed and every numeric column of its row of the tidy table.
@@ -59,6 +59,8 @@ pub(super) struct Setting {
     pub pressure: f64,
     pub pixel_size: f64,
     pub critical_diameter: f64,
+    /// The ceramic of Kim et al. (the paper's Table 1) whose properties it carries, if any.
+    pub kim: Option<&'static str>,
     pub pairs: Vec<Pair>,
 }
 
@@ -170,6 +172,17 @@ pub(super) fn settings(tidy: &Table) -> Vec<Setting> {
                 pressure: num("nominal_pressure"),
                 pixel_size: num("surface.length") / num("surface.grid"),
                 critical_diameter: num("critical_diameter"),
+                kim: (col("units").is_some_and(|u| first[u].text() == "si"))
+                    .then(|| {
+                        kim_material(
+                            num("material.youngs_modulus"),
+                            num("material.poisson_ratio"),
+                            num("material.shear_strength"),
+                            num("fracture_energy"),
+                        )
+                    })
+                    .flatten()
+                    .map(|k| k.name),
                 pairs,
             }
         })

@@ -329,3 +329,68 @@ fn the_pressure_of_a_setting_is_the_load_over_the_box_area() {
     let oblong = setting::settings(&study(Some(0.5)));
     assert!(oblong.iter().all(|s| s.pressure == 2e-3 || s.pressure == 4e-3));
 }
+
+/// Kim's SiC and Al₂O₃ (Table 1's properties, SI units) over `seeds`, Al₂O₃ wearing three times more.
+fn kim(seeds: u64) -> Table {
+    let mut rows = Vec::new();
+    for (e, nu, tau, g, w) in [(392e9, 0.16, 4.8e9, 45.0, 1e-12), (343e9, 0.25, 3.37e9, 46.65, 3e-12)] {
+        for seed in 1..=seeds {
+            let spread = 1.0 + 0.05 * seed as f64;
+            let inputs = InputRecord {
+                units: crate::config::Units::Si,
+                seed: Some(seed),
+                youngs_modulus: e,
+                poisson_ratio: nu,
+                shear_strength: tau,
+                grid: Some(512),
+                length: 50e-6,
+                ..InputRecord::default()
+            };
+            rows.push(TidyRow {
+                job: rows.len(),
+                material: if tau == 4.8e9 { "SiC" } else { "Al2O3" }.into(),
+                nominal_pressure: inputs.nominal_pressure(0.625),
+                inputs,
+                load: 0.625,
+                result: WearResult {
+                    fracture_energy: g,
+                    critical_diameter: 2e-6,
+                    wear_rate: Some(w * spread),
+                    wear_coefficient: Some(0.05 * spread),
+                    particles_in_fit: 10,
+                    running_in_decay_lengths: Some(5.0),
+                    ..WearResult::default()
+                },
+                ..TidyRow::default()
+            });
+        }
+    }
+    Table::of(&rows)
+}
+
+#[test]
+fn kims_ceramics_are_judged_and_one_pair_gives_no_interval() {
+    let f = findings(&kim(3));
+    let hierarchy = get(&f, "kim-hierarchy");
+    assert_eq!(hierarchy.verdict, Verdict::Reproduced, "{}", hierarchy.observed);
+    assert!(
+        hierarchy.observed.contains("W ratio = 3 [3, 3] (paired, 3 pairs)"),
+        "{}",
+        hierarchy.observed
+    );
+    // k = 0.05 … against 100 × 1.5e-3 = 0.15: contrary in both.
+    assert_eq!(get(&f, "kim-k-above-experiments").verdict, Verdict::NotReproduced);
+    // One surface pair: no interval for a setting; two materials by the count test of their particles.
+    let one = findings(&kim(1));
+    let k = get(&one, "kim-k-above-experiments");
+    assert_eq!(k.counts, (0, 0, 2, 0), "{}", k.observed);
+    assert!(k.observed.contains("one surface pair: no interval"), "{}", k.observed);
+    let hierarchy = get(&one, "kim-hierarchy");
+    assert!(
+        hierarchy
+            .observed
+            .contains("count test: 10 vs 10 particles over 1 shared pairs"),
+        "{}",
+        hierarchy.observed
+    );
+}
