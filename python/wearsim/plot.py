@@ -119,9 +119,138 @@ def _particles(stats: pd.DataFrame) -> np.ndarray:
     return stats["particles_in_fit_total"].to_numpy()
 
 
+Panel = Union[Tuple[str, str, bool], Tuple[str, str, bool, bool]]
+Style = Tuple[str, str]
+
+
+def _styles(data: List[Tuple[str, pd.DataFrame]], materials: List[Any], by_material: bool) -> List[Style]:
+    """Colour and marker per curve: by curve (marker by material), or by material (marker by its
+    curves) for figures of several materials."""
+    material_of = [str(stats["material"].iloc[0]) for _, stats in data]
+    styles = []
+    for i, material in enumerate(material_of):
+        if by_material:
+            within = material_of[:i].count(material)
+            styles.append((f"C{materials.index(material)}", _MARKERS[within % len(_MARKERS)]))
+        else:
+            styles.append((f"C{i}", _MARKERS[materials.index(material) % len(_MARKERS)]))
+    return styles
+
+
+def _panel(
+    ax: Any,
+    tidy: pd.DataFrame,
+    spec: Panel,
+    data: List[Tuple[str, pd.DataFrame]],
+    styles: List[Style],
+    thin: List[np.ndarray],
+    shown: Optional[Tuple[float, float, str]],
+) -> bool:
+    """Draws one panel of :func:`_load_figure`; returns whether settings without wear were marked on
+    the axis."""
+    column, label, log = spec[0], spec[1], spec[2]
+    per_area = len(spec) > 3 and bool(spec[3])
+    units = _units(tidy)
+    if per_area:
+        label = per_area_label(label, tidy)
+    # Per load, the no-wear markers drawn so far: the next stacks above them.
+    stacked: Dict[float, int] = {}
+    zeros_drawn = False
+    ax.set_xscale("log")
+    if log:
+        ax.set_yscale("log")
+    if shown is not None:
+        ax.axhspan(shown[0], shown[1], color="tab:blue", alpha=0.15)
+    present = [(i, stats) for i, (_, stats) in enumerate(data) if f"{column}_mean" in stats]
+
+    def scaled(stats: pd.DataFrame, statistic: str) -> np.ndarray:
+        values = stats[f"{column}_{statistic}"].to_numpy(dtype=float)
+        return values / _area(stats) if per_area else values
+
+    values = np.concatenate(
+        [np.concatenate([scaled(stats, s) for s in ("mean", "ci_low", "ci_high")]) for _, stats in present]
+        + [np.array(shown[:2] if shown is not None else [])]
+    )
+    values = values[np.isfinite(values) & ((values > 0) if log else True)]
+    if log and len(values):
+        ax.set_ylim(values.min() / 1.4, values.max() * 1.4)
+    elif len(values):
+        bottom = min(values.min(), 0.0)
+        ax.set_ylim(bottom, values.max() + 0.08 * (values.max() - bottom or 1.0))
+    for i, stats in present:
+        color, marker = styles[i]
+        x = stats["nominal_pressure"].to_numpy()
+        y = scaled(stats, "mean")
+        lo, hi = scaled(stats, "ci_low"), scaled(stats, "ci_high")
+        most = stats[f"{column}_max"].to_numpy(dtype=float)
+        drawn = np.isfinite(y) & ((y > 0) if log else True)
+        ax.plot(x[drawn], y[drawn], "-", color=color, lw=2)
+        hollow = drawn & thin[i]
+        ax.plot(x[drawn & ~hollow], y[drawn & ~hollow], marker, color=color, linestyle="none")
+        ax.plot(x[hollow], y[hollow], marker, color=color, markerfacecolor="none", mew=1.5, linestyle="none")
+        # Bars of the 95 % interval of the mean; a lower end at or below zero reaches the axis.
+        floor = ax.get_ylim()[0]
+        lower = np.where(log & (lo <= 0), floor, lo)
+        bar = drawn & np.isfinite(lo) & np.isfinite(hi)
+        ax.vlines(x[bar], lower[bar], hi[bar], color=color, lw=1)
+        # No wear in any surface pair: zero has no place on a log axis, so it sits on the axis.
+        none = np.isfinite(most) & (most <= 0)
+        if log and none.any():
+            zeros_drawn = True
+            levels = []
+            for at in x[none]:
+                levels.append(stacked.get(float(at), 0))
+                stacked[float(at)] = levels[-1] + 1
+            ax.plot(
+                x[none],
+                0.045 * np.array(levels, dtype=float),
+                "v",
+                color=color,
+                ms=9,
+                clip_on=False,
+                linestyle="none",
+                transform=ax.get_xaxis_transform(),
+                gid="no-wear",
+            )
+    ax.set_xlabel(rf"nominal pressure $p_N = F_N/(L_x L_y)$ ({units['pressure']})")
+    ax.set_ylabel(label.format(**units))
+    ax.grid(True, which="major", color="0.9")
+    return zeros_drawn
+
+
+def _handles(
+    data: List[Tuple[str, pd.DataFrame]],
+    styles: List[Style],
+    thin: List[np.ndarray],
+    zeros_drawn: bool,
+    band: Optional[Tuple[float, float, str]],
+) -> List[Any]:
+    """The legend of :func:`_load_figure`: each curve with the particle counts of its hollow points,
+    then what the hollow points, the markers on the axis and the band are."""
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    handles: List[Any] = []
+    for i, (name, stats) in enumerate(data):
+        color, marker = styles[i]
+        # A point without any particle has no wear: it is the marker on the axis, not a hollow one.
+        counts = _particles(stats)[thin[i] & (_particles(stats) > 0)]
+        note = f" — hollow: {', '.join(f'{n:g}' for n in counts)} particles" if len(counts) else ""
+        handles.append(Line2D([], [], color=color, marker=marker, lw=2, label=f"{_shown(name)}{note}"))
+    if any(t.any() for t in thin):
+        label = f"hollow: < {RESOLVED_PARTICLES:g} particles in the fit window (summed over surface pairs)"
+        handles.append(Line2D([], [], color="0.35", linestyle="none", marker="o", markerfacecolor="none", label=label))
+    if zeros_drawn:
+        label = "on the axis (stacked per load): no wear in any surface pair"
+        handles.append(Line2D([], [], color="0.35", linestyle="none", marker="v", label=label))
+    if band is not None:
+        handles.append(Patch(color="tab:blue", alpha=0.15, label=band[2]))
+    return handles
+
+
 def _load_figure(
     tidy: pd.DataFrame,
-    panels: Sequence[Union[Tuple[str, str, bool], Tuple[str, str, bool, bool]]],
+    panels: Sequence[Panel],
     title: str,
     band: Optional[Tuple[float, float, str]] = None,
     by_material: bool = False,
@@ -133,133 +262,18 @@ def _load_figure(
     counts in the legend, settings without wear as markers on the axis. A panel is (column, label,
     log axis) or (column, label, log axis, per unit area)."""
     plt = _pyplot()
-    from matplotlib.lines import Line2D
-    from matplotlib.patches import Patch
-
-    units = _units(tidy)
     fig, axes = plt.subplots(1, len(panels), figsize=(6.5 * len(panels) + 3.5, 5.0), squeeze=False)
-    materials = list(dict.fromkeys(tidy["material"]))
     data = curves(tidy)
-    material_of = [str(stats["material"].iloc[0]) for _, stats in data]
-    styles = []
-    for i, material in enumerate(material_of):
-        if by_material:
-            within = material_of[:i].count(material)
-            styles.append((f"C{materials.index(material)}", _MARKERS[within % len(_MARKERS)]))
-        else:
-            styles.append((f"C{i}", _MARKERS[materials.index(material) % len(_MARKERS)]))
+    styles = _styles(data, list(dict.fromkeys(tidy["material"])), by_material)
     thin = [fitted & (_particles(stats) < RESOLVED_PARTICLES) for _, stats in data]
     zeros_drawn = False
     for p, (ax, spec) in enumerate(zip(axes[0], panels)):
-        column, label, log = spec[0], spec[1], spec[2]
-        per_area = len(spec) > 3 and bool(spec[3])
-        if per_area:
-            label = per_area_label(label, tidy)
-        # Per load, the no-wear markers drawn so far: the next stacks above them.
-        stacked: Dict[float, int] = {}
-        ax.set_xscale("log")
-        if log:
-            ax.set_yscale("log")
         shown = band if p == len(panels) - 1 else None
-        if shown is not None:
-            ax.axhspan(shown[0], shown[1], color="tab:blue", alpha=0.15)
-        present = [(i, stats) for i, (_, stats) in enumerate(data) if f"{column}_mean" in stats]
-
-        def scaled(stats: pd.DataFrame, statistic: str, column: str = column, per_area: bool = per_area) -> np.ndarray:
-            values = stats[f"{column}_{statistic}"].to_numpy(dtype=float)
-            return values / _area(stats) if per_area else values
-
-        values = np.concatenate(
-            [np.concatenate([scaled(stats, s) for s in ("mean", "ci_low", "ci_high")]) for _, stats in present]
-            + [np.array(shown[:2] if shown is not None else [])]
-        )
-        values = values[np.isfinite(values) & ((values > 0) if log else True)]
-        if log and len(values):
-            bottom, top = values.min() / 1.4, values.max() * 1.4
-            ax.set_ylim(bottom, top)
-        elif len(values):
-            bottom = min(values.min(), 0.0)
-            ax.set_ylim(bottom, values.max() + 0.08 * (values.max() - bottom or 1.0))
-        for i, stats in present:
-            color, marker = styles[i]
-            x = stats["nominal_pressure"].to_numpy()
-            y = scaled(stats, "mean")
-            lo, hi = scaled(stats, "ci_low"), scaled(stats, "ci_high")
-            most = stats[f"{column}_max"].to_numpy(dtype=float)
-            drawn = np.isfinite(y) & ((y > 0) if log else True)
-            ax.plot(x[drawn], y[drawn], "-", color=color, lw=2)
-            hollow = drawn & thin[i]
-            ax.plot(x[drawn & ~hollow], y[drawn & ~hollow], marker, color=color, linestyle="none")
-            ax.plot(x[hollow], y[hollow], marker, color=color, markerfacecolor="none", mew=1.5, linestyle="none")
-            # Bars of the 95 % interval of the mean; a lower end at or below zero reaches the axis.
-            floor = ax.get_ylim()[0]
-            lower = np.where(log & (lo <= 0), floor, lo)
-            bar = drawn & np.isfinite(lo) & np.isfinite(hi)
-            ax.vlines(x[bar], lower[bar], hi[bar], color=color, lw=1)
-            # No wear in any surface pair: zero has no place on a log axis, so it sits on the axis.
-            none = np.isfinite(most) & (most <= 0)
-            if log and none.any():
-                zeros_drawn = True
-                levels = []
-                for at in x[none]:
-                    levels.append(stacked.get(float(at), 0))
-                    stacked[float(at)] = levels[-1] + 1
-                ax.plot(
-                    x[none],
-                    0.045 * np.array(levels, dtype=float),
-                    "v",
-                    color=color,
-                    ms=9,
-                    clip_on=False,
-                    linestyle="none",
-                    transform=ax.get_xaxis_transform(),
-                    gid="no-wear",
-                )
-        ax.set_xlabel(rf"nominal pressure $p_N = F_N/(L_x L_y)$ ({units['pressure']})")
-        ax.set_ylabel(label.format(**units))
-        ax.grid(True, which="major", color="0.9")
+        zeros_drawn |= _panel(ax, tidy, spec, data, styles, thin, shown)
         # No panel letters: the paper's letters name its rows of settings (Figs. 2, 4, 5), not quantities.
         ax.set_title(title if p == 0 else "", loc="left", fontsize=10)
-    handles: List[Any] = []
-    for i, (name, stats) in enumerate(data):
-        color, marker = styles[i]
-        # A point without any particle has no wear: it is the marker on the axis, not a hollow one.
-        counts = _particles(stats)[thin[i] & (_particles(stats) > 0)]
-        note = f" — hollow: {', '.join(f'{n:g}' for n in counts)} particles" if len(counts) else ""
-        handles.append(Line2D([], [], color=color, marker=marker, lw=2, label=f"{_shown(name)}{note}"))
-    if any(t.any() for t in thin):
-        handles.append(
-            Line2D(
-                [],
-                [],
-                color="0.35",
-                marker="o",
-                markerfacecolor="none",
-                linestyle="none",
-                label=f"hollow: < {RESOLVED_PARTICLES:g} particles in the fit window (summed over surface pairs)",
-            )
-        )
-    if zeros_drawn:
-        handles.append(
-            Line2D(
-                [],
-                [],
-                color="0.35",
-                marker="v",
-                linestyle="none",
-                label="on the axis (stacked per load): no wear in any surface pair",
-            )
-        )
-    if band is not None:
-        handles.append(Patch(color="tab:blue", alpha=0.15, label=band[2]))
-    fig.legend(
-        handles=handles,
-        loc="center right",
-        fontsize=8,
-        frameon=False,
-        title=BARS,
-        title_fontsize=8,
-    )
+    handles = _handles(data, styles, thin, zeros_drawn, band)
+    fig.legend(handles=handles, loc="center right", fontsize=8, frameon=False, title=BARS, title_fontsize=8)
     fig.tight_layout(rect=(0, 0, 0.72, 1))
     return fig
 
