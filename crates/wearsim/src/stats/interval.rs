@@ -27,6 +27,9 @@ pub enum Method {
     /// Ratio of two Poisson counts over equal sliding distances, exact conditional binomial
     /// (Clopper–Pearson).
     CountRatio,
+    /// Welch's t on the log values of two independent sets of surface pairs, back-transformed (a
+    /// ratio of geometric means).
+    UnpairedRatio,
 }
 
 impl Method {
@@ -37,6 +40,7 @@ impl Method {
             Method::Poisson => "exact Poisson",
             Method::PairedRatio => "paired log-ratio over shared surface pairs, Student t",
             Method::CountRatio => "two Poisson counts, exact conditional test",
+            Method::UnpairedRatio => "ratio of geometric means of independent surface pairs, Welch t",
         }
     }
 }
@@ -68,6 +72,13 @@ impl Interval {
 /// for 4, 1.960 in the limit).
 pub fn t_critical(df: usize) -> f64 {
     let t = StudentsT::new(0.0, 1.0, df.max(1) as f64).expect("a positive number of degrees of freedom");
+    t.inverse_cdf(0.5 + LEVEL / 2.0)
+}
+
+/// The two-sided critical value of Student's t at [`LEVEL`] with a real number of degrees of
+/// freedom (Welch–Satterthwaite).
+pub fn t_critical_real(df: f64) -> f64 {
+    let t = StudentsT::new(0.0, 1.0, df.max(1.0)).expect("a positive number of degrees of freedom");
     t.inverse_cdf(0.5 + LEVEL / 2.0)
 }
 
@@ -139,6 +150,30 @@ pub fn paired_ratio(pairs: &[(f64, f64)]) -> Option<Interval> {
         }
         .map(f64::exp),
     )
+}
+
+/// Two settings on different surfaces (another box or grid: no pair is shared): the ratio of the
+/// geometric means of `a` and `b` with Welch's interval on the log values, back-transformed; `None`
+/// with fewer than two positive values on a side, or a value that is not positive.
+pub fn unpaired_ratio(a: &[f64], b: &[f64]) -> Option<Interval> {
+    if a.len() < 2 || b.len() < 2 || a.iter().chain(b).any(|&x| !(x > 0.0 && x.is_finite())) {
+        return None;
+    }
+    let (la, lb): (Vec<f64>, Vec<f64>) = (a.iter().map(|x| x.ln()).collect(), b.iter().map(|x| x.ln()).collect());
+    let (ma, sa) = mean_sd(&la);
+    let (mb, sb) = mean_sd(&lb);
+    let (va, vb) = (sa * sa / la.len() as f64, sb * sb / lb.len() as f64);
+    let se = (va + vb).sqrt();
+    let df = (va + vb).powi(2) / (va * va / (la.len() - 1) as f64 + vb * vb / (lb.len() - 1) as f64);
+    let half = if se > 0.0 { t_critical_real(df) * se } else { 0.0 };
+    let d = ma - mb;
+    Some(Interval {
+        estimate: d.exp(),
+        low: (d - half).exp(),
+        high: (d + half).exp(),
+        n: la.len() + lb.len(),
+        method: Method::UnpairedRatio,
+    })
 }
 
 /// The ratio of two Poisson rates observed as counts `a` and `b` over equal sliding distances
@@ -238,6 +273,19 @@ mod tests {
         assert!((two.low - 2.0).abs() < 1e-12 && (two.high - 2.0).abs() < 1e-12);
         // A pair without wear has no ratio.
         assert!(paired_ratio(&[(0.0, 1.0), (1.0, 1.0)]).is_none());
+    }
+
+    #[test]
+    fn unpaired_ratio_is_welchs_interval_on_the_logs() {
+        // Logs 0, 1 (sd 0.707) against 0, 0, 0 (sd 0): the second adds no variance, df = 1.
+        let e = std::f64::consts::E;
+        let i = unpaired_ratio(&[1.0, e], &[1.0, 1.0, 1.0]).unwrap();
+        let half = 12.706_204_7 * (0.5f64 / 2.0).sqrt();
+        assert!((i.estimate - 0.5f64.exp()).abs() < 1e-12);
+        assert!((i.high.ln() - 0.5 - half).abs() < 1e-6, "{i:?}");
+        assert_eq!(i.method, Method::UnpairedRatio);
+        assert!(unpaired_ratio(&[1.0], &[1.0, 2.0]).is_none());
+        assert!(unpaired_ratio(&[0.0, 1.0], &[1.0, 2.0]).is_none());
     }
 
     #[test]

@@ -3,7 +3,7 @@
 //! other side, and is undecided otherwise (a difference smaller than the spread between surface
 //! pairs decides nothing).
 
-use super::interval::{count_ratio, t_critical, Interval};
+use super::interval::{count_ratio, t_critical, t_critical_real, Interval};
 
 /// The paper's side of a rule's threshold.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -94,6 +94,34 @@ pub fn pairs_needed(values: &[f64], region: Region) -> Option<usize> {
         return None;
     }
     let decides = |k: usize| t_critical(k - 1) * sd / (k as f64).sqrt() < effect;
+    smallest(2, decides)
+}
+
+/// The number of surface pairs per side at which Welch's interval of two independent sets of values
+/// (`a` and `b`, on the scale `region` is stated in: logs of a ratio) would decide `region`, if each
+/// side kept its mean and spread; `None` when the difference lies on the threshold, a side has fewer
+/// than two values, or beyond [`MAX_PAIRS`].
+pub fn pairs_needed_unpaired(a: &[f64], b: &[f64], region: Region) -> Option<usize> {
+    let stats = |v: &[f64]| {
+        let n = v.len() as f64;
+        let m = v.iter().sum::<f64>() / n;
+        (m, v.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (n - 1.0))
+    };
+    if a.len() < 2 || b.len() < 2 {
+        return None;
+    }
+    let ((ma, va), (mb, vb)) = (stats(a), stats(b));
+    let effect = region.distance(ma - mb);
+    if effect <= 0.0 || !effect.is_finite() {
+        return None;
+    }
+    let decides = |k: usize| {
+        let n = k as f64;
+        let (sa, sb) = (va / n, vb / n);
+        let se = (sa + sb).sqrt();
+        let df = (sa + sb).powi(2) / ((sa * sa + sb * sb) / (n - 1.0));
+        se == 0.0 || t_critical_real(df) * se < effect
+    };
     smallest(2, decides)
 }
 

@@ -12,5 +12,7 @@ pub mod interval;
 pub mod judge;
 
 pub use fit::{line_fit, mean_std, power_law_fit, LineFit, PowerLawFit};
-pub use interval::{count_ratio, mean_interval, paired_ratio, poisson_interval, t_critical, Interval, Method, LEVEL};
-pub use judge::{pairs_needed, pairs_needed_for_counts, Region, Side, MAX_PAIRS};
+pub use interval::{
+    count_ratio, mean_interval, paired_ratio, poisson_interval, t_critical, unpaired_ratio, Interval, Method, LEVEL,
+};
+pub use judge::{pairs_needed, pairs_needed_for_counts, pairs_needed_unpaired, Region, Side, MAX_PAIRS};

@@ -10,9 +10,10 @@
 //! - [`setting`]: the settings and their surface pairs, and the groupings the rules compare;
 //! - [`rules`]: one unit judged (per setting, two settings pair by pair or by a count test, a trend
 //!   over load per pair);
-//! - [`static_model`], [`sliding`], [`materials`], [`particles`], [`kim`]: one function per
-//!   finding, its rule beside it.
+//! - [`static_model`], [`sliding`], [`materials`], [`particles`], [`kim`], [`appendix`]: one
+//!   function per finding, its rule beside it.
 
+mod appendix;
 mod kim;
 mod materials;
 mod particles;
@@ -212,6 +213,11 @@ pub fn findings(tidy: &Table) -> Vec<Finding> {
         particles::severe_wear_from_large_particles(&all),
         kim::kim_hierarchy(&all),
         kim::kim_k_above_experiments(&all),
+        appendix::appendix_a_discretization(&all),
+        appendix::appendix_c_box_size(&all),
+        appendix::appendix_c_more_spots_not_more_wear(&all),
+        appendix::appendix_d_lambda_lower(&all),
+        appendix::appendix_e_rms_height(&all),
     ]
 }
 

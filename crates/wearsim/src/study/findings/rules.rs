@@ -381,3 +381,71 @@ pub(super) fn all_of(label: &str, parts: Vec<Outcome>) -> Outcome {
         needed: needed.and_then(|n| n.into_iter().max()),
     }
 }
+
+/// Two settings on different surfaces (another box or grid: their pairs are independent): the
+/// ratio a/b of `q`'s geometric means over each one's run-in pairs, Welch's interval on the logs;
+/// where a pair has no particle, the count test on the particles summed over each one's run-in
+/// pairs, rates per sliding distance of the fit windows (for W times (d*_a/d*_b)³, Eq. 5).
+pub(super) fn compare_unpaired(a: &Setting, b: &Setting, what: &str, q: Compared, region: Region) -> Outcome {
+    let label = format!("{} vs {} ({what})", a.label(), b.label());
+    let (ra, rb) = (a.run_in_pairs(), b.run_in_pairs());
+    if ra.len() < 2 || rb.len() < 2 {
+        return Outcome::NotRunIn(format!("{label}: {}; {}", a.run_in_note(), b.run_in_note()));
+    }
+    let values = |r: &[&Pair]| -> Vec<f64> { r.iter().map(|p| q.value(p)).filter(|v| v.is_finite()).collect() };
+    let (va, vb) = (values(&ra), values(&rb));
+    if let Some(i) = crate::stats::unpaired_ratio(&va, &vb) {
+        let side = region.side(&i);
+        let logs = |v: &[f64]| -> Vec<f64> { v.iter().map(|x| x.ln()).collect() };
+        let needed = (side == Side::Undecided)
+            .then(|| crate::stats::pairs_needed_unpaired(&logs(&va), &logs(&vb), region.map(f64::ln)))
+            .flatten();
+        return Outcome::Judged {
+            side,
+            text: format!(
+                "{label}: {} ratio = {} (Welch, {} and {} pairs)",
+                q.name(),
+                show(&i),
+                va.len(),
+                vb.len()
+            ),
+            needed,
+        };
+    }
+    let (na, nb): (u64, u64) = (
+        ra.iter().map(|p| p.particles()).sum(),
+        rb.iter().map(|p| p.particles()).sum(),
+    );
+    // Rates per pair and per sliding distance of the fit window.
+    let exposure = |s: &Setting, n: usize| {
+        let d = if s.fit_distance > 0.0 { s.fit_distance } else { 1.0 };
+        d * n as f64
+    };
+    let mut scale = exposure(b, rb.len()) / exposure(a, ra.len());
+    if let Compared::WearRate = q {
+        scale *= (a.critical_diameter / b.critical_diameter).powi(3);
+    }
+    match (q, count_ratio(na, nb)) {
+        (Compared::WearRate | Compared::ParticleRate, Some(i)) => {
+            let i = i.map(|x| x * scale);
+            let side = region.side(&i);
+            Outcome::Judged {
+                side,
+                text: format!(
+                    "{label}: {} ratio = {} (count test: {na} vs {nb} particles over {} and {} pairs, per pair and \
+                     fit-window distance)",
+                    q.name(),
+                    show(&i),
+                    ra.len(),
+                    rb.len()
+                ),
+                needed: None,
+            }
+        }
+        _ => Outcome::Judged {
+            side: Side::Undecided,
+            text: format!("{label}: {} not positive in every pair; no interval", q.name()),
+            needed: None,
+        },
+    }
+}

@@ -52,6 +52,14 @@ pub(super) struct Setting {
     pub curve: usize,
     /// Every input but the material's name, τ̃, 𝒢 and the load, as text: settings compare within a family.
     pub family: String,
+    /// The same inputs by column, for comparisons across one study axis (a box, a grid, λ_l, h_rms).
+    pub family_cells: BTreeMap<String, String>,
+    /// The load F_N.
+    pub load: f64,
+    /// The box's side Lx and the sliding distance over which the fit window runs (from its start to
+    /// the end of the run): the exposure of the particle counts.
+    pub length: f64,
+    pub fit_distance: f64,
     pub material: String,
     pub shear_strength: f64,
     pub fracture_energy: f64,
@@ -142,6 +150,12 @@ pub(super) fn settings(tidy: &Table) -> Vec<Setting> {
         .map(|g| {
             let first = &tidy.rows[g.rows[0]];
             let num = |name: &str| col(name).map_or(f64::NAN, |i| first[i].number());
+            let family_cells: BTreeMap<String, String> = found
+                .key_columns
+                .iter()
+                .filter(|&&c| !not_family.contains(&tidy.columns[c].as_str()))
+                .map(|&c| (tidy.columns[c].clone(), first[c].text()))
+                .collect();
             let family: Vec<String> = found
                 .key_columns
                 .iter()
@@ -166,6 +180,10 @@ pub(super) fn settings(tidy: &Table) -> Vec<Setting> {
             Setting {
                 curve: g.curve,
                 family: family.join("|"),
+                family_cells,
+                load: num("load"),
+                length: num("surface.length"),
+                fit_distance: num("sliding.distance") * num("surface.length") - num("fit_window_start"),
                 material: col("material").map_or("material".into(), |i| first[i].text()),
                 shear_strength: num("material.shear_strength"),
                 fracture_energy: num("fracture_energy"),
@@ -223,6 +241,19 @@ pub(super) fn curves(all: &[Setting]) -> Vec<Vec<&Setting>> {
             c
         })
         .collect()
+}
+
+/// Whether two settings differ in the study axes `axes` (at least one of them) and in no other
+/// input but the material's name (a study may name its boxes as materials), at equal τ̃ and 𝒢.
+pub(super) fn differ_only_in(a: &Setting, b: &Setting, axes: &[&str]) -> bool {
+    let differs = |k: &str| a.family_cells.get(k) != b.family_cells.get(k);
+    a.shear_strength == b.shear_strength
+        && a.fracture_energy == b.fracture_energy
+        && axes.iter().any(|k| differs(k))
+        && a.family_cells
+            .keys()
+            .chain(b.family_cells.keys())
+            .all(|k| axes.contains(&k.as_str()) || k == "material" || !differs(k))
 }
 
 /// The study's distinct nominal pressures, sorted.

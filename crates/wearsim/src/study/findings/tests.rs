@@ -394,3 +394,52 @@ fn kims_ceramics_are_judged_and_one_pair_gives_no_interval() {
         hierarchy.observed
     );
 }
+
+/// One row of the appendix studies: a box of side `length` at 64 px per unit length, λ_l, W.
+fn axis_row(job: usize, seed: u64, length: f64, lambda_lower: f64, w: f64, junctions: f64) -> TidyRow {
+    let inputs = InputRecord {
+        seed: Some(seed),
+        shear_strength: 0.012,
+        grid: Some((64.0 * length) as usize),
+        length,
+        lambda_lower: Some(lambda_lower),
+        ..InputRecord::default()
+    };
+    let mut result = result(0.012, 0.5e-6, 1e-3, w, 30);
+    result.junctions_mean = junctions;
+    TidyRow {
+        job,
+        material: "m".into(),
+        nominal_pressure: inputs.nominal_pressure(1e-3),
+        inputs,
+        load: 1e-3,
+        result,
+        ..TidyRow::default()
+    }
+}
+
+#[test]
+fn appendix_axes_compare_boxes_as_independent_pairs_and_lambda_pair_by_pair() {
+    let mut rows = Vec::new();
+    for seed in 1..=3u64 {
+        let spread = 1.0 + 0.05 * seed as f64;
+        // Box 1 and box 0.5 at equal F_N: the smaller wears half as much with a third of the spots.
+        rows.push(axis_row(rows.len(), seed, 1.0, 0.01, 2e-5 * spread, 30.0 * spread));
+        rows.push(axis_row(rows.len(), seed, 0.5, 0.01, 1e-5 / spread, 10.0 / spread));
+        // λ_l doubled on box 1: W 10 % higher in every pair.
+        rows.push(axis_row(rows.len(), seed, 1.0, 0.02, 2.2e-5 * spread, 30.0 * spread));
+    }
+    let f = findings(&Table::of(&rows));
+    // At F_N/(Lx·Ly) = 10⁻³ E on the larger box (above 0.5×10⁻³): the smaller box falls behind.
+    let size = get(&f, "appendix-c-box-size");
+    assert_eq!(size.counts, (1, 0, 0, 0), "{}", size.observed);
+    assert!(size.observed.contains("(Welch, 3 and 3 pairs)"), "{}", size.observed);
+    // More spots, but also twice the wear: contrary.
+    let spots = get(&f, "appendix-c-more-spots-not-more-wear");
+    assert_eq!(spots.counts, (0, 1, 0, 0), "{}", spots.observed);
+    // λ_l: paired, 1/1.1 in every pair, within [0.8, 1.25].
+    let lambda = get(&f, "appendix-d-lambda-lower");
+    assert_eq!(lambda.verdict, Verdict::Reproduced, "{}", lambda.observed);
+    assert!(lambda.observed.contains("(paired, 3 pairs)"), "{}", lambda.observed);
+    assert_eq!(get(&f, "appendix-e-rms-height").verdict, Verdict::NotTestable);
+}
