@@ -16,8 +16,12 @@ __all__ = [
     "DEFAULT_STEP",
     "DEFAULT_STEP_RUNNING_IN",
     "DEFAULT_TOLERANCE",
+    "INTERVAL_LEVEL",
+    "KIM_EXPERIMENTAL_K",
+    "KIM_SEVERITY_FIT",
     "Material",
     "NotConvergedError",
+    "PAPER_SEVERITY_FIT",
     "RESOLVED_PARTICLES",
     "RunFile",
     "SERIES_COLUMNS",
@@ -27,22 +31,28 @@ __all__ = [
     "aggregate",
     "collect_study",
     "composite_heights",
+    "curve_labels",
     "curves",
     "equal_critical_diameter",
+    "findings",
     "fit_surface",
     "generate_surface",
+    "has_kim_materials",
     "job_series",
     "junction_geometry",
     "label_junctions",
     "line_fit",
+    "mean_interval",
     "metres_per",
     "pair_seeds",
     "periodicity",
+    "poisson_interval",
     "power_law_fit",
     "preprocess_surface",
     "radial_psd",
     "read_surface",
     "series_job",
+    "severity_fits",
     "slide",
     "static_wear_model",
     "surface_statistics",
@@ -58,6 +68,10 @@ DEFAULT_RUNNING_IN: float
 DEFAULT_STEP_RUNNING_IN: int
 DEFAULT_STEP: int
 SERIES_COLUMNS: List[str]
+INTERVAL_LEVEL: float
+KIM_EXPERIMENTAL_K: Tuple[float, float]
+KIM_SEVERITY_FIT: Tuple[float, float]
+PAPER_SEVERITY_FIT: Tuple[float, float]
 RESOLVED_PARTICLES: float
 
 class WearsimError(Exception): ...
@@ -123,6 +137,14 @@ def unit_of(units: str, quantity: str) -> str: ...
 def power_law_fit(x: List[float], y: List[float]) -> Optional[Tuple[float, float, Optional[float]]]: ...
 def line_fit(x: List[float], y: List[float]) -> Optional[Tuple[float, float, Optional[float]]]: ...
 def series_job(job: List[int], particles_in_fit: List[int]) -> Optional[int]: ...
+def mean_interval(values: List[float]) -> Optional[Tuple[float, float, float, int]]: ...
+def poisson_interval(count: int) -> Tuple[float, float, float]: ...
+def curve_labels(columns: Dict[str, List[Any]]) -> List[str]: ...
+def has_kim_materials(columns: Dict[str, List[Any]]) -> bool: ...
+def severity_fits(
+    columns: Dict[str, List[Any]],
+) -> Tuple[List[Dict[str, Any]], Optional[Tuple[float, float, Optional[float]]]]: ...
+def findings(columns: Dict[str, List[Any]]) -> Tuple[List[Dict[str, Any]], str]: ...
 
 @final
 class Material:

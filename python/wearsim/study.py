@@ -196,7 +196,9 @@ def _with_units(table: pd.DataFrame, units: Dict[str, str]) -> pd.DataFrame:
 def collect(out: PathLike) -> Tuple[pd.DataFrame, pd.DataFrame]:
     """Collects a finished result folder, writing ``results.csv`` and ``results_aggregated.csv``
     there as ``wearsim study collect`` does; returns both as DataFrames (tidy: one row per job and
-    fracture energy; aggregated: mean, min and max over surface pairs)."""
+    fracture energy; aggregated: mean, min, max and the 95 % confidence interval of the mean
+    (``_ci_low``, ``_ci_high``, Student t over the surface pairs; the method is the
+    ``interval_method`` column) of every result over the surface pairs)."""
     out = Path(out)
     _wearsim.collect_study(out)
     units = json.loads((out / "results.units.json").read_text())["columns"]
@@ -217,3 +219,12 @@ def job_series(out: PathLike, job: int) -> pd.DataFrame:
     (:data:`wearsim.wear.SERIES_COLUMNS`); ``static_wear_rate``, ``iterations`` and ``residual``,
     which job files do not keep, are empty. Lengths in the study's unit."""
     return pd.DataFrame(_wearsim.job_series(Path(out), int(job)))
+
+
+def findings(tidy: pd.DataFrame) -> Tuple[pd.DataFrame, str]:
+    """The paper's findings judged on a study's tidy table under the library's rules (95 % intervals
+    over surface pairs, per-pair run-in; the rules ``wearsim study plot`` writes to
+    ``figures/findings.md``): one row per finding (key, paper, rule, observed, verdict, counts as
+    (holds, contrary, inconclusive, not run in), pairs_to_decide), and the Markdown table."""
+    rows, markdown = _wearsim.findings({str(c): tidy[c].tolist() for c in tidy.columns})
+    return pd.DataFrame(rows), markdown

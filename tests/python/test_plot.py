@@ -1,6 +1,7 @@
-"""The figures of `wearsim.plot` on a small hand-made tidy table: the library's curves, statistics, units
-and power-law fit; points resting on few particles drawn hollow with their counts in the legend;
-settings without wear drawn on the axis; min–max bars whose minimum is zero reaching the axis."""
+"""The figures of `wearsim.plot` on a small hand-made tidy table: the library's curves, labels,
+statistics with their 95 % intervals, units and power-law fit; rates per unit nominal area; points
+resting on few particles drawn hollow with their counts in the legend; settings without wear drawn on
+the axis; interval bars whose lower end is at or below zero reaching the axis."""
 
 import numpy as np
 import pandas as pd
@@ -32,6 +33,7 @@ def _tidy() -> pd.DataFrame:
                         "material": "m",
                         "units": "reduced",
                         "surface.seed": seed,
+                        "surface.length": 0.5,
                         "material.shear_strength": tau,
                         "load": p * 0.0156,
                         "nominal_pressure": p,
@@ -56,17 +58,48 @@ def test_curves_come_from_the_library():
     data = wearsim.plot.curves(tidy)
     # One curve per τ̃ (the seed and the load do not name one), its statistics over the two pairs.
     assert len(data) == 2
-    assert all(r"$\tilde{\tau}$ = " in label and "seed" not in label for label, _ in data)
+    assert all("τ̃ = " in label and "𝒢 = " in label and "seed" not in label for label, _ in data)
     _, stats = data[1]
     assert list(stats["nominal_pressure"]) == [P1, P2]
     assert list(stats["surface_pairs"]) == [2, 2]
     assert stats["wear_rate_min"].iloc[1] == 0.0 and stats["wear_rate_max"].iloc[1] == 4e-4
     assert np.isclose(stats["wear_rate_mean"].iloc[0], 1.5e-4)
+    # The 95 % interval of the mean of 1e-4 and 2e-4: 1.5e-4 ± t(1) · sd/√2 with t(1) = 12.706 and
+    # sd = 7.07e-5 (known spread), the library's numbers in both languages.
+    half = 12.7062047 * np.std([1e-4, 2e-4], ddof=1) / np.sqrt(2)
+    assert np.isclose(stats["wear_rate_ci_high"].iloc[0], 1.5e-4 + half, rtol=1e-7)
+    assert np.isclose(stats["wear_rate_ci_low"].iloc[0], 1.5e-4 - half, rtol=1e-7)
+    assert "Student t" in stats["interval_method"].iloc[0]
     # Units from the table's attrs where it has them, else the library's rule for its unit system.
     assert wearsim.plot._unit(tidy, "wear_rate") == "L²"
     tidy.attrs["units"] = {"wear_rate": "m²"}
     assert wearsim.plot._unit(tidy, "wear_rate") == "m²"
     assert _wearsim.unit_of("si", "nominal_pressure") == "Pa"
+
+
+def test_intervals_of_the_library_on_data_of_a_known_spread():
+    # Five values of mean 10 and sample standard deviation 2: 10 ± t(4) · 2/√5, t(4) = 2.7764451.
+    a = 2 * np.sqrt(2)
+    mean, low, high, n = _wearsim.mean_interval([10 - a, 10, 10, 10, 10 + a])
+    assert n == 5 and np.isclose(mean, 10) and np.isclose(high - 10, 2.7764451 * 2 / np.sqrt(5), rtol=1e-7)
+    assert np.isclose(10 - low, high - 10)
+    assert _wearsim.mean_interval([1.0]) is None
+    # 15 particles: exact Poisson [8.395, 24.74].
+    count, low, high = _wearsim.poisson_interval(15)
+    assert count == 15 and np.isclose(low, 8.3954, atol=1e-3) and np.isclose(high, 24.7402, atol=1e-3)
+    assert _wearsim.INTERVAL_LEVEL == 0.95
+
+
+def test_rates_are_drawn_per_unit_area():
+    import matplotlib.pyplot as plt
+
+    fig = wearsim.plot.sliding_wear(_tidy())
+    ax = fig.axes[0]
+    assert "per unit nominal area" in ax.get_ylabel()
+    # The τ̃ = 0.012 curve at the lower load: mean 1.5e-4 over a box of 0.5 × 0.5.
+    means = [line for line in ax.lines if line.get_linestyle() == "-" and len(line.get_xdata()) == 2]
+    assert any(np.isclose(line.get_ydata()[0], 1.5e-4 / 0.25) for line in means)
+    plt.close(fig)
 
 
 def test_power_law_fit_of_the_library():
@@ -84,18 +117,20 @@ def test_few_particles_hollow_and_no_wear_on_the_axis():
     hollow = [line for line in ax.lines if line.get_markerfacecolor() == "none" and len(line.get_xdata())]
     assert [list(line.get_xdata()) for line in hollow] == [[P1]]
     texts = _legend_texts(fig)
-    assert any(r"$\tilde{\tau}$ = 0.012" in t and "hollow: 11 particles" in t for t in texts), texts
+    assert any("τ̃ = 0.012" in t and "hollow: 11 particles" in t for t in texts), texts
     assert any(t.startswith("hollow: < 20 particles") for t in texts)
     # τ̃ = 0.008 wears nothing at the lower load: a marker on the axis (y = 0 in axes coordinates).
     at_axis = [line for line in ax.lines if line.get_gid() == "no-wear"]
     assert len(at_axis) == 1 and list(at_axis[0].get_xdata()) == [P1] and list(at_axis[0].get_ydata()) == [0.0]
     assert any("no wear" in t for t in texts)
-    # The τ̃ = 0.012 bar at the higher load has a minimum of zero: it reaches the axis bottom.
+    # The τ̃ = 0.012 bar at the higher load (pairs 0 and 4e-4) has an interval reaching below zero:
+    # it reaches the axis bottom.
     bottom = ax.get_ylim()[0]
     lows = [seg[0][1] for c in ax.collections for seg in c.get_segments()]
     assert any(np.isclose(low, bottom) for low in lows), (lows, bottom)
-    # Panel letters as in the paper.
-    assert ax.get_title(loc="left").startswith("(a)") and fig.axes[1].get_title(loc="left") == "(b)"
+    # No panel letters (the paper's letters name rows of settings, not quantities); the bars are named.
+    assert ax.get_title(loc="left").startswith("sliding model") and fig.axes[1].get_title(loc="left") == ""
+    assert any("95 % confidence interval" in legend.get_title().get_text() for legend in fig.legends)
     plt.close(fig)
 
 
@@ -138,6 +173,6 @@ def test_settings_of_equal_critical_diameter_by_the_library():
     tidy["critical_diameter"] = 0.01
     figures = wearsim.plot.constant_critical_diameter(tidy)
     assert len(figures) == 1
-    assert sum(r"$\tilde{\tau}$" in t for t in _legend_texts(figures[0])) == 2
+    assert sum("τ̃" in t for t in _legend_texts(figures[0])) == 2
     assert _wearsim.equal_critical_diameter([(0.01, 0.008, 1e-6), (0.0114, 0.012, 1e-6)], 0.15) == [[0, 1]]
     plt.close(figures[0])

@@ -120,7 +120,10 @@ def test_figures_from_python_and_job_series(tmp_path, study_file):
     ]:
         assert name in names and (out / "figures-python" / f"{name}.png").stat().st_size > 1000
     labels = [label for label, _ in wearsim.plot.curves(tidy)]
-    assert len(labels) == 4 and all(r"$\tilde{\tau}$ = " in label and r"$\mathcal{G}$ = " in label for label in labels)
+    assert len(labels) == 4 and all("τ̃ = " in label and "𝒢 = " in label for label in labels)
+    assert (out / "figures-python" / "findings.md").read_text().count("| ") > 10
+    rows, markdown = wearsim.study.findings(tidy)
+    assert "archard-like" in set(rows["key"]) and "95 % confidence interval" in markdown
 
 
 def test_job_series_is_the_librarys_series_of_the_job_file(tmp_path, study_file):
@@ -164,11 +167,8 @@ def test_series_figures_draw_the_librarys_fits(tmp_path):
     assert r["wear_rate"] is not None and r["wear_volume_intercept"] is not None
     s, v = line[0].get_data()
     assert np.allclose(v, r["wear_volume_intercept"] + r["wear_rate"] * np.asarray(s), rtol=1e-12)
-    # Without the results, the library's line fit to the points after running-in: the same line.
-    fallback = wearsim.plot.wear_volume(series, running_in=0.125)
-    _, v2 = [ln for ln in fallback.axes[0].get_lines() if ln.get_linestyle() == "--"][0].get_data()
-    assert np.allclose(v2, v, rtol=1e-9)
-    with pytest.raises(ValueError, match="running_in"):
+    # Without the results there is no library fit to draw: the figure asks for them.
+    with pytest.raises(ValueError, match="results"):
         wearsim.plot.wear_volume(series)
     fig = wearsim.plot.memory(series, results=summary["results"])
     curve = [ln for ln in fig.axes[0].get_lines() if ln.get_linestyle() == "--"]
@@ -176,7 +176,5 @@ def test_series_figures_draw_the_librarys_fits(tmp_path):
     s, n0 = curve[0].get_data()
     expected = r["memory_fit_initial_junctions"] * np.exp(-np.asarray(s) / r["memory_decay_length"])
     assert np.allclose(n0, expected, rtol=1e-12)
-    _, n0_fallback = [ln for ln in wearsim.plot.memory(series).axes[0].get_lines() if ln.get_linestyle() == "--"][
-        0
-    ].get_data()
-    assert np.allclose(n0_fallback, n0, rtol=1e-9)
+    with pytest.raises(ValueError, match="results"):
+        wearsim.plot.memory(series)

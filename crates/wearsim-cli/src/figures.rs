@@ -301,60 +301,9 @@ impl Axis {
     }
 }
 
-/// A number as a short label: `0`, `0.25`, `12`, `2.5e-4`, `1e-3` (three significant digits at most,
-/// no trailing zeros).
-pub fn number(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() {
-        return if v == 0.0 { "0".into() } else { format!("{v}") };
-    }
-    let a = v.abs();
-    if (1e-3..1e4).contains(&a) {
-        // Three significant digits, no trailing zeros: 0.00901, 0.25, 12, 1500.
-        let decimals = (2 - a.log10().floor() as i32).max(0) as usize;
-        let s = format!("{v:.decimals$}");
-        return if s.contains('.') {
-            s.trim_end_matches('0').trim_end_matches('.').to_string()
-        } else {
-            s
-        };
-    }
-    let s = format!("{v:.2e}");
-    let (mantissa, exponent) = s.split_once('e').unwrap_or((&s, "0"));
-    let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
-    format!("{mantissa}e{exponent}")
-}
-
-/// A number with a ×10ⁿ exponent for legends (`2.5×10⁻⁷`), or plain when it needs none.
-pub fn pretty(v: f64) -> String {
-    let a = v.abs();
-    if v == 0.0 || (1e-3..1e4).contains(&a) {
-        return number(v);
-    }
-    let s = number(v);
-    let (mantissa, exponent) = s.split_once('e').unwrap_or((&s, "0"));
-    let sup: String = exponent
-        .chars()
-        .map(|c| match c {
-            '-' => '⁻',
-            '0' => '⁰',
-            '1' => '¹',
-            '2' => '²',
-            '3' => '³',
-            '4' => '⁴',
-            '5' => '⁵',
-            '6' => '⁶',
-            '7' => '⁷',
-            '8' => '⁸',
-            '9' => '⁹',
-            other => other,
-        })
-        .collect();
-    if mantissa == "1" {
-        format!("10{sup}")
-    } else {
-        format!("{mantissa}×10{sup}")
-    }
-}
+/// Numbers as legends and tick labels print them: the library's, so that both front ends print
+/// the same digits.
+pub use wearsim::output::{number, pretty};
 
 type Coords = Cartesian2d<Ticked, Ticked>;
 

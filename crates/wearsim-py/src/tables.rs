@@ -1,7 +1,8 @@
 //! What the library derives from a study's tables, for the figures of `wearsim.plot`: the curves
-//! of a table, its aggregation over surface pairs, the curves of equal d*, the units of its columns and the power-law fit
-//! of appendix F. Tables come from Python as a dict of column lists (a DataFrame's
-//! `{c: df[c].tolist()}`).
+//! of a table and their labels, its aggregation over surface pairs with 95 % intervals, the curves of
+//! equal d*, the units of its columns, the contact-severity fits of appendix F per material, Kim's
+//! ceramics, the intervals themselves and the paper's findings judged on the table. Tables come from
+//! Python as a dict of column lists (a DataFrame's `{c: df[c].tolist()}`).
 
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -146,7 +147,92 @@ fn series_job(job: Vec<usize>, particles_in_fit: Vec<usize>) -> PyResult<Option<
     Ok(wearsim::output::series_job(job.into_iter().zip(particles_in_fit)))
 }
 
+/// The mean of `values` (one per surface pair) with its 95 % Student-t interval: (mean, low, high,
+/// n), or None with fewer than two finite values. The function behind the aggregated table's
+/// `_ci_low` and `_ci_high` columns.
+#[pyfunction]
+fn mean_interval(values: Vec<f64>) -> Option<(f64, f64, f64, usize)> {
+    wearsim::stats::mean_interval(&values).map(|i| (i.estimate, i.low, i.high, i.n))
+}
+
+/// A particle count with its exact 95 % Poisson (Garwood) interval: (count, low, high).
+#[pyfunction]
+fn poisson_interval(count: u64) -> (f64, f64, f64) {
+    let i = wearsim::stats::poisson_interval(count);
+    (i.estimate, i.low, i.high)
+}
+
+/// The label of every curve of a tidy or aggregated table, by curve index.
+#[pyfunction]
+fn curve_labels(columns: &Bound<'_, PyDict>) -> PyResult<Vec<String>> {
+    Ok(wearsim::output::curve_labels(&table_of(columns)?))
+}
+
+/// Whether a tidy or aggregated table holds one of Kim et al.'s ceramics (the paper's Table 1).
+#[pyfunction]
+fn has_kim_materials(columns: &Bound<'_, PyDict>) -> PyResult<bool> {
+    Ok(wearsim::output::has_kim_materials(&table_of(columns)?))
+}
+
+/// Appendix F on a tidy table: per material a dict (material, points [(S_c, W)], fit (α, n, R²) or
+/// None, kim: the Kim ceramic's name or None), and the fit over all materials or None.
+#[pyfunction]
+#[allow(clippy::type_complexity)]
+fn severity_fits<'py>(
+    py: Python<'py>,
+    columns: &Bound<'py, PyDict>,
+) -> PyResult<(Vec<Bound<'py, PyDict>>, Option<(f64, f64, Option<f64>)>)> {
+    let (materials, all) = wearsim::output::severity_fits(&table_of(columns)?);
+    let fit = |f: wearsim::stats::PowerLawFit| (f.prefactor, f.exponent, f.r2);
+    let out = materials
+        .into_iter()
+        .map(|m| {
+            let d = PyDict::new(py);
+            d.set_item("material", m.material)?;
+            d.set_item("points", m.points)?;
+            d.set_item("fit", m.fit.map(fit))?;
+            d.set_item("kim", m.kim.map(|k| k.name))?;
+            Ok(d)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    Ok((out, all.map(fit)))
+}
+
+/// The paper's findings judged on a tidy table: one dict per finding (key, paper, rule, observed,
+/// verdict, counts (holds, contrary, inconclusive, not run in), pairs_to_decide), and the Markdown
+/// of `figures/findings.md`.
+#[pyfunction]
+fn findings<'py>(py: Python<'py>, columns: &Bound<'py, PyDict>) -> PyResult<(Vec<Bound<'py, PyDict>>, String)> {
+    let found = wearsim::study::findings::findings(&table_of(columns)?);
+    let markdown = wearsim::study::findings::markdown(&found);
+    let out = found
+        .into_iter()
+        .map(|f| {
+            let d = PyDict::new(py);
+            d.set_item("key", f.key)?;
+            d.set_item("paper", f.paper)?;
+            d.set_item("rule", f.rule)?;
+            d.set_item("observed", f.observed)?;
+            d.set_item("verdict", f.verdict.name())?;
+            d.set_item("counts", f.counts)?;
+            d.set_item("pairs_to_decide", f.pairs_to_decide)?;
+            Ok(d)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    Ok((out, markdown))
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("INTERVAL_LEVEL", wearsim::stats::LEVEL)?;
+    m.add("KIM_EXPERIMENTAL_K", wearsim::output::KIM_EXPERIMENTAL_K)?;
+    m.add("KIM_SEVERITY_FIT", wearsim::output::KIM_SEVERITY_FIT)?;
+    m.add("PAPER_SEVERITY_FIT", wearsim::output::PAPER_SEVERITY_FIT)?;
+    m.add_function(wrap_pyfunction!(mean_interval, m)?)?;
+    m.add_function(wrap_pyfunction!(poisson_interval, m)?)?;
+    m.add_function(wrap_pyfunction!(curve_labels, m)?)?;
+    m.add_function(wrap_pyfunction!(has_kim_materials, m)?)?;
+    m.add_function(wrap_pyfunction!(severity_fits, m)?)?;
+    m.add_function(wrap_pyfunction!(findings, m)?)?;
     m.add("RESOLVED_PARTICLES", wearsim::study::findings::RESOLVED_PARTICLES)?;
     m.add_function(wrap_pyfunction!(curves, m)?)?;
     m.add_function(wrap_pyfunction!(aggregate, m)?)?;

@@ -33,14 +33,23 @@ const LAYERS: [&str; 18] = [
 ];
 
 /// The order of the submodules of each folder module; a submodule uses only those before it.
-const SUBLAYERS: [(&str, &[&str]); 6] = [
+const SUBLAYERS: [(&str, &[&str]); 7] = [
     ("io", &["atomic", "npy", "zarr"]),
+    ("stats", &["fit", "interval", "judge"]),
     ("contact", &["backend", "cpu"]),
     ("topography", &["formats", "prepare", "load", "fit"]),
     ("config", &["raw", "source", "record"]),
     (
         "output",
-        &["provenance", "units", "tables", "summary", "jobs", "fields"],
+        &[
+            "provenance",
+            "units",
+            "tables",
+            "summary",
+            "jobs",
+            "figure_data",
+            "fields",
+        ],
     ),
     ("study", &["expand", "store", "run", "collect", "findings"]),
 ];

@@ -229,16 +229,13 @@ pub struct Curves {
 /// [`NOT_A_SETTING`] nor [`ALONG_A_CURVE`], nor a result (`results` lists them), nor a column the
 /// aggregation adds.
 fn names_a_curve(column: &str, results: &[String]) -> bool {
-    let added = ["curve", "surface_pairs", "pairs_with_warnings"];
+    let added = ["curve", "surface_pairs", "pairs_with_warnings", "interval_method"];
     !NOT_A_SETTING.contains(&column)
         && !ALONG_A_CURVE.contains(&column)
         && !added.contains(&column)
-        && !results.iter().any(|r| {
-            column == r
-                || ["_mean", "_min", "_max", "_total"]
-                    .iter()
-                    .any(|s| column == format!("{r}{s}"))
-        })
+        && !results
+            .iter()
+            .any(|r| column == r || AGGREGATE_SUFFIXES.iter().any(|s| column == format!("{r}{s}")))
 }
 
 /// The curves of a tidy or aggregated table ([`Curves`]).
@@ -327,78 +324,152 @@ pub fn series_job(particles: impl IntoIterator<Item = (usize, usize)>) -> Option
         .map(|(job, _)| job)
 }
 
-/// Result columns that the aggregated table also sums over the surface pairs, as `{column}_total`:
-/// the particles in the fit window, whose total decides whether a setting is resolved (the
-/// findings and the figures compare with the 20 particles a resolved setting needs).
+/// Result columns that the aggregated table also sums over the surface pairs, as `{column}_total`
+/// with its exact Poisson interval: the particles in the fit window, the count that a comparison of
+/// two settings with few particles tests (two Poisson rates).
 pub const TOTALLED: [&str; 1] = ["particles_in_fit"];
 
-/// One setting of a tidy table: its key cells, its curve and the rows of its surface pairs.
-type Setting<'a> = (Vec<Cell>, usize, Vec<&'a Vec<Cell>>);
+/// The statistics the aggregated table gives of every result column over the surface pairs, as
+/// `{column}{suffix}`: the mean, the extremes and the 95 % interval of the mean.
+pub const STATISTICS: [&str; 5] = ["_mean", "_min", "_max", "_ci_low", "_ci_high"];
 
-/// The aggregated table of a tidy table: one row per setting (every column but the job index, the
-/// seed and the results), then `curve`, the index of the row's curve ([`curves`]: its setting but
-/// the load, the one grouping every figure uses), the number of surface pairs and the mean, min and
-/// max over them of every result column (and the sum, `_total`, of those [`TOTALLED`]), and the
-/// number of surface pairs with a warning. Rows keep
-/// the order in which settings first appear; undefined results (empty cells) are left out of the
-/// statistics.
-pub fn aggregate(tidy: &Table) -> Table {
+/// The suffixes of the columns the aggregated table adds to a result column (its [`STATISTICS`],
+/// and for those [`TOTALLED`] the sum and its interval).
+pub const AGGREGATE_SUFFIXES: [&str; 8] = [
+    "_mean",
+    "_min",
+    "_max",
+    "_ci_low",
+    "_ci_high",
+    "_total",
+    "_total_ci_low",
+    "_total_ci_high",
+];
+
+/// How the aggregated table's intervals are computed, as its `interval_method` column states it.
+pub fn interval_method() -> String {
+    format!(
+        "{:.0} % confidence interval of the mean over surface pairs, {} (n - 1 degrees of freedom; empty with one \
+         pair); {}_total: {}",
+        crate::stats::LEVEL * 100.0,
+        crate::stats::Method::StudentT.name(),
+        TOTALLED[0],
+        crate::stats::Method::Poisson.name()
+    )
+}
+
+/// The settings of a tidy table: the columns that identify one (every column but the job index,
+/// the seed, the warnings and the results) and, per setting in order of first appearance, its key
+/// cells, its curve ([`curves`]) and the indices of its rows (one per surface pair). The grouping
+/// of the aggregated table and of the findings.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Settings {
+    pub key_columns: Vec<usize>,
+    /// The result columns, whose values vary between the surface pairs of a setting.
+    pub value_columns: Vec<usize>,
+    pub groups: Vec<SettingRows>,
+}
+
+/// One setting of a tidy table ([`Settings`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SettingRows {
+    pub key: Vec<Cell>,
+    pub curve: usize,
+    pub rows: Vec<usize>,
+}
+
+/// The settings of a tidy table ([`Settings`]).
+pub fn settings(tidy: &Table) -> Settings {
     let values = result_columns();
-    let value_index: Vec<usize> = values.iter().filter_map(|c| tidy.column(c)).collect();
-    let key_index: Vec<usize> = (0..tidy.columns.len())
-        .filter(|i| !value_index.contains(i) && !NOT_A_SETTING.contains(&tidy.columns[*i].as_str()))
+    let value_columns: Vec<usize> = values.iter().filter_map(|c| tidy.column(c)).collect();
+    let key_columns: Vec<usize> = (0..tidy.columns.len())
+        .filter(|i| !value_columns.contains(i) && !NOT_A_SETTING.contains(&tidy.columns[*i].as_str()))
         .collect();
     let curve_of_row = curves(tidy).index;
     let mut order: BTreeMap<Vec<String>, usize> = BTreeMap::new();
-    let mut groups: Vec<Setting> = Vec::new();
-    for (row, &curve) in tidy.rows.iter().zip(&curve_of_row) {
-        let key: Vec<Cell> = key_index.iter().map(|&i| row[i].clone()).collect();
+    let mut groups: Vec<SettingRows> = Vec::new();
+    for (r, (row, &curve)) in tidy.rows.iter().zip(&curve_of_row).enumerate() {
+        let key: Vec<Cell> = key_columns.iter().map(|&i| row[i].clone()).collect();
         let text: Vec<String> = key.iter().map(Cell::text).collect();
         let g = *order.entry(text).or_insert_with(|| {
-            groups.push((key, curve, Vec::new()));
+            groups.push(SettingRows {
+                key,
+                curve,
+                rows: Vec::new(),
+            });
             groups.len() - 1
         });
-        groups[g].2.push(row);
+        groups[g].rows.push(r);
     }
+    Settings {
+        key_columns,
+        value_columns,
+        groups,
+    }
+}
+
+/// The statistics of one result column over the surface pairs of a setting, in the order of
+/// [`STATISTICS`] (then the total and its Poisson interval when `totalled`); empty cells where the
+/// column is undefined in every pair, and an empty interval with one pair.
+fn statistics(v: &[f64], totalled: bool) -> Vec<Cell> {
+    let cells = if totalled { 8 } else { 5 };
+    if v.is_empty() {
+        return vec![Cell::Empty; cells];
+    }
+    let sum = v.iter().sum::<f64>();
+    let mean = sum / v.len() as f64;
+    let min = v.iter().copied().fold(f64::INFINITY, f64::min);
+    let max = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let mut line = vec![Cell::Float(mean), Cell::Float(min), Cell::Float(max)];
+    match crate::stats::mean_interval(v) {
+        Some(i) => line.extend([Cell::Float(i.low), Cell::Float(i.high)]),
+        None => line.extend([Cell::Empty, Cell::Empty]),
+    }
+    if totalled {
+        let count = crate::stats::poisson_interval(sum.round().max(0.0) as u64);
+        line.extend([Cell::Float(sum), Cell::Float(count.low), Cell::Float(count.high)]);
+    }
+    line
+}
+
+/// The aggregated table of a tidy table: one row per setting ([`settings`]), then `curve`, the index
+/// of the row's curve ([`curves`]: its setting but the load, the one grouping every figure uses),
+/// the number of surface pairs, the number of them with a warning, and the statistics of every
+/// result column over the pairs ([`STATISTICS`]: mean, min, max and the 95 % Student-t interval of
+/// the mean; for those [`TOTALLED`] also the sum, `_total`, with its exact Poisson interval), and
+/// last `interval_method`, the intervals' method in words. Rows keep the order in which settings
+/// first appear; undefined results (empty cells) are left out of the statistics.
+pub fn aggregate(tidy: &Table) -> Table {
+    let found = settings(tidy);
     let warnings = tidy.column("warnings");
-    let mut columns: Vec<String> = key_index.iter().map(|&i| tidy.columns[i].clone()).collect();
+    let mut columns: Vec<String> = found.key_columns.iter().map(|&i| tidy.columns[i].clone()).collect();
     columns.push("curve".into());
     columns.push("surface_pairs".into());
     columns.push("pairs_with_warnings".into());
-    for &i in &value_index {
+    for &i in &found.value_columns {
         let c = &tidy.columns[i];
-        columns.extend([format!("{c}_mean"), format!("{c}_min"), format!("{c}_max")]);
+        columns.extend(STATISTICS.iter().map(|s| format!("{c}{s}")));
         if TOTALLED.contains(&c.as_str()) {
-            columns.push(format!("{c}_total"));
+            columns.extend(["_total", "_total_ci_low", "_total_ci_high"].map(|s| format!("{c}{s}")));
         }
     }
-    let rows = groups
+    columns.push("interval_method".into());
+    let method = interval_method();
+    let rows = found
+        .groups
         .into_iter()
-        .map(|(key, curve, members)| {
-            let mut line = key;
-            line.push(Cell::Int(curve as i64));
+        .map(|group| {
+            let members: Vec<&Vec<Cell>> = group.rows.iter().map(|&r| &tidy.rows[r]).collect();
+            let mut line = group.key;
+            line.push(Cell::Int(group.curve as i64));
             line.push(Cell::Int(members.len() as i64));
             let warned = warnings.map_or(0, |w| members.iter().filter(|m| !m[w].text().is_empty()).count());
             line.push(Cell::Int(warned as i64));
-            for &i in &value_index {
-                let totalled = TOTALLED.contains(&tidy.columns[i].as_str());
+            for &i in &found.value_columns {
                 let v: Vec<f64> = members.iter().map(|m| m[i].number()).filter(|x| !x.is_nan()).collect();
-                if v.is_empty() {
-                    line.extend([Cell::Empty, Cell::Empty, Cell::Empty]);
-                    if totalled {
-                        line.push(Cell::Empty);
-                    }
-                    continue;
-                }
-                let sum = v.iter().sum::<f64>();
-                let mean = sum / v.len() as f64;
-                let min = v.iter().copied().fold(f64::INFINITY, f64::min);
-                let max = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-                line.extend([Cell::Float(mean), Cell::Float(min), Cell::Float(max)]);
-                if totalled {
-                    line.push(Cell::Float(sum));
-                }
+                line.extend(statistics(&v, TOTALLED.contains(&tidy.columns[i].as_str())));
             }
+            line.push(Cell::Text(method.clone()));
             line
         })
         .collect();
@@ -518,6 +589,21 @@ mod tests {
             agg.columns.iter().filter(|c| c.ends_with("_total")).count(),
             TOTALLED.len()
         );
+        // The 95 % interval of the mean over the two defined pairs (1 and 3: sd √2, t(1) = 12.706):
+        // 2 ± 12.706; of the particles' mean (1, 5, 9: sd 4, t(2) = 4.303): 5 ± 4.303 · 4/√3; of
+        // their total, exact Poisson: 15 → [8.395, 24.74].
+        let close = |name: &str, want: f64, tol: f64| {
+            let got = at(name).number();
+            assert!((got - want).abs() < tol, "{name} = {got}, expected {want}");
+        };
+        close("wear_rate_ci_low", 2.0 - 12.706_204_7, 1e-5);
+        close("wear_rate_ci_high", 2.0 + 12.706_204_7, 1e-5);
+        close("particles_in_fit_ci_high", 5.0 + 4.302_652_7 * 4.0 / 3f64.sqrt(), 1e-5);
+        close("particles_in_fit_total_ci_low", 8.3954, 1e-3);
+        close("particles_in_fit_total_ci_high", 24.7402, 1e-3);
+        assert!(at("interval_method").text().contains("Student t"));
+        // Every added column has a unit, or is a count: none is left to a silent default.
+        assert_eq!(unit_of(Units::Reduced, "wear_rate_ci_low"), "L²");
     }
 
     #[test]

@@ -9,6 +9,7 @@
 //! an empty cell.
 
 mod fields;
+mod figure_data;
 mod jobs;
 mod provenance;
 mod summary;
@@ -16,9 +17,14 @@ mod tables;
 mod units;
 
 pub use fields::{FieldSelection, FieldsWriter};
+pub use figure_data::{
+    curve_labels, has_kim_materials, kim_material, number, pretty, severity_fits, KimMaterial, MaterialSeverity,
+    KIM_1986, KIM_EXPERIMENTAL_K, KIM_SEVERITY_FIT, PAPER_SEVERITY_FIT,
+};
 pub use jobs::{
-    aggregate, curves, equal_critical_diameter, read_job_file, series_job, write_results_tables, CurveMaterial, Curves,
-    JobResult, StepRow, TidyRow, ALONG_A_CURVE, JOB_FORMAT, NOT_A_SETTING, TOTALLED,
+    aggregate, curves, equal_critical_diameter, interval_method, read_job_file, series_job, settings,
+    write_results_tables, CurveMaterial, Curves, JobResult, SettingRows, Settings, StepRow, TidyRow,
+    AGGREGATE_SUFFIXES, ALONG_A_CURVE, JOB_FORMAT, NOT_A_SETTING, STATISTICS, TOTALLED,
 };
 pub use provenance::{Provenance, DEPENDENCY_VERSIONS};
 pub use summary::{

@@ -7,7 +7,8 @@ use crate::sliding::WearResult;
 
 /// The unit of a quantity (a result field, a series or table column, an input) in a unit system:
 /// reduced units are multiples of E and L; SI units are Pa, m, N and J/m². Dimensionless numbers and
-/// counts have "" (counts) or "1" (ratios). Column suffixes `_mean`, `_std`, `_min`, `_max` and the
+/// counts have "" (counts) or "1" (ratios). Column suffixes `_mean`, `_std`, `_min`, `_max`, `_total`,
+/// `_ci_low`, `_ci_high` and the
 /// `surface.`/`material.`/`contact.` prefixes are looked through.
 pub fn unit_of(units: Units, quantity: &str) -> &'static str {
     let si = units == Units::Si;
@@ -19,7 +20,7 @@ pub fn unit_of(units: Units, quantity: &str) -> &'static str {
         if let Some(&(_, reduced, si_unit)) = WearResult::UNITS.iter().find(|u| u.0 == field) {
             return pick(reduced, si_unit);
         }
-        match ["_mean", "_std", "_min", "_max", "_total"]
+        match ["_mean", "_std", "_min", "_max", "_total", "_ci_low", "_ci_high"]
             .iter()
             .find_map(|s| field.strip_suffix(s))
         {
@@ -27,7 +28,7 @@ pub fn unit_of(units: Units, quantity: &str) -> &'static str {
             None => break,
         }
     }
-    for suffix in ["_mean", "_std", "_min", "_max"] {
+    for suffix in ["_ci_low", "_ci_high", "_mean", "_std", "_min", "_max"] {
         q = q.strip_suffix(suffix).unwrap_or(q);
     }
     match q {
@@ -72,6 +73,8 @@ mod tests {
         assert_eq!(unit_of(Units::Si, "critical_residence_max"), "m");
         assert_eq!(unit_of(Units::Reduced, "static_wear_rate_mean_mean"), "L²");
         assert_eq!(unit_of(Units::Reduced, "particles_in_fit_total"), "");
+        assert_eq!(unit_of(Units::Si, "wear_rate_ci_high"), "m²");
+        assert_eq!(unit_of(Units::Reduced, "nominal_pressure_ci_low"), "E");
         assert_eq!(unit_of(Units::Si, "fracture_energy"), "J/m²");
         assert_eq!(unit_of(Units::Reduced, "surface.length"), "L");
         assert_eq!(unit_of(Units::Reduced, "volume"), "L³");

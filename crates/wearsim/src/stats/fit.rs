@@ -1,5 +1,5 @@
-//! Small statistics shared by the wear fits, the spectrum fits and the contact-severity fit:
-//! least-squares lines, power laws fitted in log–log, and mean ± standard deviation.
+//! Least-squares lines, power laws fitted in log–log, and mean ± standard deviation: the wear fits,
+//! the spectrum fits and the contact-severity fit of appendix F.
 
 /// A least-squares line y = slope·x + intercept and its coefficient of determination R² (absent
 /// when y does not vary, where R² is undefined).

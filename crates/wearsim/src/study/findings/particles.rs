@@ -1,0 +1,278 @@
+//! The wear particles (paper §4.1, Fig. 5, Fig. S.1a): how many each material emits, when wear
+//! sets in, and which particles carry the wear.
+
+use crate::stats::{count_ratio, judge::smallest, Interval, Region, Side};
+
+use super::rules::{all_of, compare, curve_label, show, Compared, Outcome};
+use super::setting::{curves, high, param, pressures, Pair, Setting};
+use super::{finding, Finding, Tally};
+
+/// Particles of the seeds `a` and `b` share, both run in: (particles of a, of b, pairs).
+fn shared_counts(a: &Setting, b: &Setting) -> (u64, u64, usize) {
+    let shared: Vec<(&Pair, &Pair)> = a
+        .pairs
+        .iter()
+        .filter_map(|p| b.pair(&p.seed).map(|q| (p, q)))
+        .filter(|(p, q)| p.run_in() && q.run_in())
+        .collect();
+    (
+        shared.iter().map(|(p, _)| p.particles()).sum(),
+        shared.iter().map(|(_, q)| q.particles()).sum(),
+        shared.len(),
+    )
+}
+
+/// §4.1, Fig. S.1a: for large 𝒢 the onset of wear is delayed to higher loads.
+pub(super) fn delayed_onset_for_large_g(all: &[Setting]) -> Finding {
+    let mut tally = Tally::default();
+    let curves = curves(all);
+    for a in curves.iter().filter(|c| c.len() >= 2) {
+        for b in curves.iter().filter(|c| c.len() >= 2) {
+            let (a0, b0) = (a[0], b[0]);
+            if a0.family != b0.family
+                || a0.material != b0.material
+                || a0.shear_strength != b0.shear_strength
+                || a0.fracture_energy <= b0.fracture_energy
+            {
+                continue;
+            }
+            tally.file(onset(a, b));
+        }
+    }
+    finding(
+        "delayed-onset-for-large-g",
+        "§4.1, Fig. S.1a: by reducing adhesion (larger 𝒢) even the onset of wear can be delayed to higher loads",
+        "per pair of curves at equal τ̃ differing in 𝒢: the ratio of the particles formed in the fit window, N*₊(larger \
+         𝒢)/N*₊(smaller 𝒢) summed over the shared run-in pairs, is smaller at the lowest load than at the highest: \
+         holds when the two ratios' exact intervals (two Poisson counts) are disjoint in that order, contrary when \
+         disjoint the other way"
+            .into(),
+        "pairs of curves",
+        tally,
+    )
+}
+
+/// One pair of curves of the onset finding: `a` the larger 𝒢.
+fn onset(a: &[&Setting], b: &[&Setting]) -> Outcome {
+    let label = format!("{} vs {}", curve_label(a), curve_label(b));
+    let at = |i: usize| -> Option<(u64, u64, usize, &Setting)> {
+        let sa = a.get(i)?;
+        let sb = b.iter().find(|s| s.pressure == sa.pressure)?;
+        let (na, nb, n) = shared_counts(sa, sb);
+        Some((na, nb, n, sa))
+    };
+    let (Some(low), Some(top)) = (at(0), at(a.len() - 1)) else {
+        return Outcome::Judged {
+            side: Side::Undecided,
+            text: format!("{label}: the curves share no load"),
+            needed: None,
+        };
+    };
+    if low.2 < 2 || top.2 < 2 {
+        return Outcome::NotRunIn(format!(
+            "{label}: {} and {} shared run-in pairs at the lowest and highest load",
+            low.2, top.2
+        ));
+    }
+    let ratio = |(na, nb, ..): (u64, u64, usize, &Setting), k: usize, pairs: usize| -> Option<Interval> {
+        let grow = |c: u64| (c as f64 * k as f64 / pairs as f64).round() as u64;
+        count_ratio(grow(na), grow(nb))
+    };
+    let side_at = |k: usize| -> Side {
+        match (ratio(low, k, low.2), ratio(top, k, top.2)) {
+            (Some(r0), Some(r1)) if r0.high < r1.low => Side::Holds,
+            (Some(r0), Some(r1)) if r0.low > r1.high => Side::Contrary,
+            _ => Side::Undecided,
+        }
+    };
+    let side = side_at(low.2);
+    let show_at = |x: (u64, u64, usize, &Setting)| match ratio(x, x.2, x.2) {
+        Some(i) => format!(
+            "at F_N/(Lx·Ly) = {}: {} vs {} particles, ratio {}",
+            param(x.3.pressure),
+            x.0,
+            x.1,
+            show(&i)
+        ),
+        None => format!("at F_N/(Lx·Ly) = {}: no particle in either", param(x.3.pressure)),
+    };
+    Outcome::Judged {
+        side,
+        text: format!("{label}: {}; {}", show_at(low), show_at(top)),
+        needed: (side == Side::Undecided)
+            .then(|| smallest(low.2, |k| side_at(k) != Side::Undecided))
+            .flatten(),
+    }
+}
+
+/// The settings at one load of one family, with the hardest-and-least-tough one (largest τ̃ and
+/// smallest 𝒢 of that load, when one setting has both) and the softest-and-toughest one.
+struct AtLoad<'a> {
+    settings: Vec<&'a Setting>,
+    hardest_least_tough: Option<&'a Setting>,
+    softest_toughest: Option<&'a Setting>,
+}
+
+fn at_loads(all: &[Setting]) -> Vec<AtLoad<'_>> {
+    let mut families: Vec<&str> = all.iter().map(|s| s.family.as_str()).collect();
+    families.sort_unstable();
+    families.dedup();
+    let mut out = Vec::new();
+    for family in families {
+        for p in pressures(all) {
+            let settings: Vec<&Setting> = all.iter().filter(|s| s.family == family && s.pressure == p).collect();
+            if settings.len() < 2 {
+                continue;
+            }
+            let tau = |f: fn(f64, f64) -> f64, init| settings.iter().map(|s| s.shear_strength).fold(init, f);
+            let g = |f: fn(f64, f64) -> f64, init| settings.iter().map(|s| s.fracture_energy).fold(init, f);
+            let (hardest, softest) = (tau(f64::max, f64::NEG_INFINITY), tau(f64::min, f64::INFINITY));
+            let (least_tough, toughest) = (g(f64::min, f64::INFINITY), g(f64::max, f64::NEG_INFINITY));
+            let find = |t: f64, e: f64| {
+                settings
+                    .iter()
+                    .copied()
+                    .find(|s| s.shear_strength == t && s.fracture_energy == e)
+            };
+            out.push(AtLoad {
+                hardest_least_tough: find(hardest, least_tough),
+                softest_toughest: find(softest, toughest),
+                settings,
+            });
+        }
+    }
+    out
+}
+
+/// §4.1, Fig. 5: the hardest and the least tough material wear the least, but form the most
+/// particles (much smaller ones). Both halves, against every other setting of the load.
+pub(super) fn hardest_least_tough_emits_most_wears_least(all: &[Setting]) -> Finding {
+    let mut tally = Tally::default();
+    for at in at_loads(all) {
+        let Some(x) = at.hardest_least_tough else { continue };
+        for y in at.settings.iter().filter(|y| !std::ptr::eq(**y, x)) {
+            let mut parts = vec![compare(
+                x,
+                y,
+                "emits more",
+                Compared::ParticleRate,
+                Region::Above(1.0),
+                true,
+            )];
+            if high(all, x.pressure) {
+                parts.push(compare(
+                    x,
+                    y,
+                    "wears less",
+                    Compared::WearRate,
+                    Region::Below(1.0),
+                    true,
+                ));
+            }
+            tally.file(all_of(&format!("at F_N/(Lx·Ly) = {}", param(x.pressure)), parts));
+        }
+    }
+    finding(
+        "hardest-least-tough-emits-most-wears-least",
+        "§4.1, Fig. 5: the hardest material and the material with the lowest fracture toughness wear the least, but \
+         emit the most wear particles (much smaller ones)",
+        "per load and other setting of it: the setting of the largest τ̃ and smallest 𝒢 of the load against it, both \
+         halves paired over the shared run-in pairs (count test where a pair has no particle): dN*₊/ds ratio > 1 at \
+         every load, and W ratio < 1 at loads in the upper half of the study's (at low loads the paper's Fig. 4a has \
+         the smaller 𝒢 wearing more, so that half is not judged there); holds when every judged half holds. With one \
+         τ̃ the hardness half is untested"
+            .into(),
+        "comparisons",
+        tally,
+    )
+}
+
+/// §4.1: to minimise the emission of fine particles, a soft but tough material.
+pub(super) fn soft_tough_fewest_particles(all: &[Setting]) -> Finding {
+    let mut tally = Tally::default();
+    for at in at_loads(all) {
+        let Some(z) = at.softest_toughest else { continue };
+        // The comparison with the hardest and least tough setting is Fig. 5's: not counted twice.
+        let others = at
+            .settings
+            .iter()
+            .filter(|y| !std::ptr::eq(**y, z) && !at.hardest_least_tough.is_some_and(|x| std::ptr::eq(**y, x)));
+        for y in others {
+            tally.file(compare(
+                z,
+                y,
+                "emits fewer",
+                Compared::ParticleRate,
+                Region::Below(1.0),
+                true,
+            ));
+        }
+    }
+    finding(
+        "soft-tough-fewest-particles",
+        "§4.1: if one wants to minimise the emission of fine particles, the model suggests a soft but tough material",
+        "per load: the setting of the smallest τ̃ and largest 𝒢 of the load against every other setting but the \
+         hardest-and-least-tough one (that comparison is Fig. 5's, counted there): dN*₊/ds ratio < 1, paired over the \
+         shared run-in pairs or by the count test; a study of two materials per load has no unit of its own"
+            .into(),
+        "comparisons",
+        tally,
+    )
+}
+
+/// The mean particle volume of a pair, W/(dN*₊/ds) (NaN without particles).
+fn particle_volume(p: &Pair) -> f64 {
+    p.get("wear_rate") / p.get("particle_rate")
+}
+
+/// §4.1: more severe wear is due to the detachment of large wear particles.
+pub(super) fn severe_wear_from_large_particles(all: &[Setting]) -> Finding {
+    let mut tally = Tally::default();
+    for at in at_loads(all)
+        .into_iter()
+        .filter(|at| high(all, at.settings[0].pressure))
+    {
+        for (i, a) in at.settings.iter().enumerate() {
+            for b in &at.settings[i + 1..] {
+                let wear = compare(a, b, "W", Compared::WearRate, Region::Above(1.0), true);
+                // The heavier wearer, when W's ratio is decided either way.
+                let (heavy, light) = match wear.side() {
+                    Some(Side::Holds) => (*a, *b),
+                    Some(Side::Contrary) => (*b, *a),
+                    _ => {
+                        tally.file(match wear {
+                            Outcome::Judged { text, needed, .. } => Outcome::Judged {
+                                side: Side::Undecided,
+                                text: format!("{text} (which wears more is undecided)"),
+                                needed,
+                            },
+                            other => other,
+                        });
+                        continue;
+                    }
+                };
+                let size = compare(
+                    heavy,
+                    light,
+                    "heavier vs lighter wearer",
+                    Compared::Derived(particle_volume, "mean particle volume W/(dN*₊/ds)"),
+                    Region::Above(1.0),
+                    true,
+                );
+                tally.file(size);
+            }
+        }
+    }
+    finding(
+        "severe-wear-from-large-particles",
+        "§4.1: more severe wear is due to the detachment of large wear particles",
+        "per pair of settings at one load in the upper half of the study's loads whose W differ (W ratio decided, \
+         paired or by the count test): the mean particle volume W/(dN*₊/ds) of the one that wears more over the \
+         other's > 1, paired over the shared run-in pairs; a pair of settings whose W ratio is undecided is \
+         inconclusive. At low loads the paper's own Fig. 4a has the smaller d*, with its smaller particles, wearing \
+         more, so they are not judged"
+            .into(),
+        "pairs of settings",
+        tally,
+    )
+}

@@ -1,0 +1,323 @@
+//! The settings of a study as the findings see them: one material, τ̃, 𝒢 and load, with the values
+//! of each of its surface pairs (the unit of replication), which pairs are run in, and the groupings
+//! the findings compare (curves against load, pairs of settings at one load, contact histories).
+
+use std::collections::BTreeMap;
+
+use crate::output::{kim_material, settings as setting_groups, Cell, Table};
+use crate::sliding::RUN_IN_DECAY_LENGTHS;
+
+/// One surface pair of a setting: its seed and every numeric column of its row of the tidy table.
+#[derive(Debug, Clone)]
+pub(super) struct Pair {
+    /// The surface pair's seed as text (settings that share it share the surfaces).
+    pub seed: String,
+    values: BTreeMap<String, f64>,
+}
+
+impl Pair {
+    pub fn get(&self, name: &str) -> f64 {
+        self.values.get(name).copied().unwrap_or(f64::NAN)
+    }
+
+    /// s_r/ℓ: where the fit window starts, in decay lengths of this pair's own memory of the initial
+    /// contact (NaN when not measured).
+    pub fn decay_lengths(&self) -> f64 {
+        self.get("running_in_decay_lengths")
+    }
+
+    /// Run in: the fit window starts at least [`RUN_IN_DECAY_LENGTHS`] of the pair's own decay lengths
+    /// after s = 0. A pair whose memory is gone by the first step (no decay fitted, empty cell) is
+    /// run in.
+    pub fn run_in(&self) -> bool {
+        let r = self.decay_lengths();
+        r.is_nan() || r >= RUN_IN_DECAY_LENGTHS
+    }
+
+    /// Particles formed in the fit window.
+    pub fn particles(&self) -> u64 {
+        let n = self.get("particles_in_fit");
+        if n.is_finite() && n > 0.0 {
+            n.round() as u64
+        } else {
+            0
+        }
+    }
+}
+
+/// One setting of the study (every input but the surface pair) with its pairs.
+#[derive(Debug, Clone)]
+pub(super) struct Setting {
+    /// Its curve against load (the aggregated table's `curve`).
+    pub curve: usize,
+    /// Every input but the material's name, τ̃, 𝒢 and the load, as text: settings compare within a family.
+    pub family: String,
+    /// The same inputs by column, for comparisons across one study axis (a box, a grid, λ_l, h_rms).
+    pub family_cells: BTreeMap<String, String>,
+    /// The load F_N.
+    pub load: f64,
+    /// The box's side Lx and the sliding distance over which the fit window runs (from its start to
+    /// the end of the run): the exposure of the particle counts.
+    pub length: f64,
+    pub fit_distance: f64,
+    pub material: String,
+    pub shear_strength: f64,
+    pub fracture_energy: f64,
+    /// Mean pressure F_N/(Lx Ly) of the box.
+    pub pressure: f64,
+    pub pixel_size: f64,
+    pub critical_diameter: f64,
+    /// The ceramic of Kim et al. (the paper's Table 1) whose properties it carries, if any.
+    pub kim: Option<&'static str>,
+    pub pairs: Vec<Pair>,
+}
+
+impl Setting {
+    /// The pairs that are run in.
+    pub fn run_in_pairs(&self) -> Vec<&Pair> {
+        self.pairs.iter().filter(|p| p.run_in()).collect()
+    }
+
+    /// The pair of a seed.
+    pub fn pair(&self, seed: &str) -> Option<&Pair> {
+        self.pairs.iter().find(|p| p.seed == seed)
+    }
+
+    /// d* in pixels.
+    pub fn d_star_px(&self) -> f64 {
+        self.critical_diameter / self.pixel_size
+    }
+
+    pub fn label(&self) -> String {
+        format!(
+            "{}τ̃ = {}, 𝒢 = {}, F_N/(Lx·Ly) = {} (d* = {:.0} px)",
+            material_prefix(&self.material),
+            param(self.shear_strength),
+            param(self.fracture_energy),
+            param(self.pressure),
+            self.d_star_px()
+        )
+    }
+
+    /// "3 of 5 pairs run in (s_r/ℓ = 5.06, 4.80, 2.40, 3.43, 0.97)".
+    pub fn run_in_note(&self) -> String {
+        let r: Vec<String> = self.pairs.iter().map(|p| fmt(p.decay_lengths())).collect();
+        format!(
+            "{} of {} pairs run in (s_r/ℓ = {})",
+            self.run_in_pairs().len(),
+            self.pairs.len(),
+            r.join(", ")
+        )
+    }
+
+    /// The label of the contact history (τ̃ and load: the memory does not depend on 𝒢).
+    pub fn history_label(&self) -> String {
+        format!(
+            "{}τ̃ = {}, F_N/(Lx·Ly) = {}",
+            material_prefix(&self.material),
+            param(self.shear_strength),
+            param(self.pressure)
+        )
+    }
+}
+
+fn material_prefix(material: &str) -> String {
+    if material == "material" {
+        String::new()
+    } else {
+        format!("{material} ")
+    }
+}
+
+/// The settings of a tidy table, grouped by the library's grouping (`output::settings`).
+pub(super) fn settings(tidy: &Table) -> Vec<Setting> {
+    let found = setting_groups(tidy);
+    let col = |name: &str| tidy.column(name);
+    let not_family = [
+        "material",
+        "material.shear_strength",
+        "fracture_energy",
+        "load",
+        "nominal_pressure",
+        "contact_severity",
+    ];
+    let numeric: Vec<usize> = (0..tidy.columns.len())
+        .filter(|&c| tidy.rows.iter().any(|r| matches!(r[c], Cell::Float(_) | Cell::Int(_))))
+        .collect();
+    found
+        .groups
+        .iter()
+        .map(|g| {
+            let first = &tidy.rows[g.rows[0]];
+            let num = |name: &str| col(name).map_or(f64::NAN, |i| first[i].number());
+            let family_cells: BTreeMap<String, String> = found
+                .key_columns
+                .iter()
+                .filter(|&&c| !not_family.contains(&tidy.columns[c].as_str()))
+                .map(|&c| (tidy.columns[c].clone(), first[c].text()))
+                .collect();
+            let family: Vec<String> = found
+                .key_columns
+                .iter()
+                .filter(|&&c| !not_family.contains(&tidy.columns[c].as_str()))
+                .map(|&c| first[c].text())
+                .collect();
+            let seed = col("surface.seed");
+            let pairs = g
+                .rows
+                .iter()
+                .map(|&r| {
+                    let row = &tidy.rows[r];
+                    Pair {
+                        seed: seed.map_or(format!("row {r}"), |s| row[s].text()),
+                        values: numeric
+                            .iter()
+                            .map(|&c| (tidy.columns[c].clone(), row[c].number()))
+                            .collect(),
+                    }
+                })
+                .collect();
+            Setting {
+                curve: g.curve,
+                family: family.join("|"),
+                family_cells,
+                load: num("load"),
+                length: num("surface.length"),
+                fit_distance: num("sliding.distance") * num("surface.length") - num("fit_window_start"),
+                material: col("material").map_or("material".into(), |i| first[i].text()),
+                shear_strength: num("material.shear_strength"),
+                fracture_energy: num("fracture_energy"),
+                pressure: num("nominal_pressure"),
+                pixel_size: num("surface.length") / num("surface.grid"),
+                critical_diameter: num("critical_diameter"),
+                kim: (col("units").is_some_and(|u| first[u].text() == "si"))
+                    .then(|| {
+                        kim_material(
+                            num("material.youngs_modulus"),
+                            num("material.poisson_ratio"),
+                            num("material.shear_strength"),
+                            num("fracture_energy"),
+                        )
+                    })
+                    .flatten()
+                    .map(|k| k.name),
+                pairs,
+            }
+        })
+        .collect()
+}
+
+/// An input value as given (0.008), in exponent form when small or large (2.5e-7, 3.37e9 Pa).
+pub(super) fn param(x: f64) -> String {
+    if (1e-3..1e4).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// A result value with three significant figures (the legends' numbers).
+pub(super) fn fmt(x: f64) -> String {
+    if x.is_nan() {
+        "—".into()
+    } else if x.is_infinite() {
+        if x > 0.0 { "∞" } else { "−∞" }.into()
+    } else {
+        crate::output::number(x)
+    }
+}
+
+/// Curves against load: settings grouped by the library's curve (the aggregated table's `curve`
+/// column), each sorted by load.
+pub(super) fn curves(all: &[Setting]) -> Vec<Vec<&Setting>> {
+    let mut groups: BTreeMap<usize, Vec<&Setting>> = BTreeMap::new();
+    for s in all {
+        groups.entry(s.curve).or_default().push(s);
+    }
+    groups
+        .into_values()
+        .map(|mut c| {
+            c.sort_by(|a, b| a.pressure.total_cmp(&b.pressure));
+            c
+        })
+        .collect()
+}
+
+/// Whether two settings differ in the study axes `axes` (at least one of them) and in no other
+/// input but the material's name (a study may name its boxes as materials), at equal τ̃ and 𝒢.
+pub(super) fn differ_only_in(a: &Setting, b: &Setting, axes: &[&str]) -> bool {
+    let differs = |k: &str| a.family_cells.get(k) != b.family_cells.get(k);
+    a.shear_strength == b.shear_strength
+        && a.fracture_energy == b.fracture_energy
+        && axes.iter().any(|k| differs(k))
+        && a.family_cells
+            .keys()
+            .chain(b.family_cells.keys())
+            .all(|k| axes.contains(&k.as_str()) || k == "material" || !differs(k))
+}
+
+/// The study's distinct nominal pressures, sorted.
+pub(super) fn pressures(all: &[Setting]) -> Vec<f64> {
+    let mut p: Vec<f64> = all.iter().map(|s| s.pressure).collect();
+    p.sort_by(f64::total_cmp);
+    p.dedup();
+    p
+}
+
+/// Whether a pressure is in the upper half of the study's pressures (the "high loads" of the paper's
+/// statements): at or above the median of the distinct pressures.
+pub(super) fn high(all: &[Setting], pressure: f64) -> bool {
+    let p = pressures(all);
+    p.len() > 1 && pressure >= p[p.len() / 2]
+}
+
+/// Pairs of settings in the same family at the same load whose d* differs through one parameter:
+/// (larger d*, smaller d*, "via 𝒢" or "via τ̃").
+pub(super) fn d_star_pairs(all: &[Setting]) -> Vec<(&Setting, &Setting, &'static str)> {
+    let mut out = Vec::new();
+    for a in all {
+        for b in all {
+            if a.family != b.family || a.pressure != b.pressure {
+                continue;
+            }
+            if a.shear_strength == b.shear_strength && a.fracture_energy > b.fracture_energy {
+                out.push((a, b, "via 𝒢"));
+            } else if a.fracture_energy == b.fracture_energy && a.shear_strength < b.shear_strength {
+                out.push((a, b, "via τ̃"));
+            }
+        }
+    }
+    out
+}
+
+/// Settings that share one contact history: the memory of the initial contact does not depend on 𝒢,
+/// so each job (family, material, τ̃, load) counts once.
+pub(super) fn contact_histories(all: &[Setting]) -> Vec<&Setting> {
+    let mut seen = std::collections::BTreeSet::new();
+    all.iter()
+        .filter(|s| {
+            seen.insert(format!(
+                "{}|{}|{:e}|{:e}",
+                s.family, s.material, s.shear_strength, s.pressure
+            ))
+        })
+        .collect()
+}
+
+/// The contact-history curves: one per family, material and τ̃ (whatever 𝒢), sorted by load.
+pub(super) fn history_curves(all: &[Setting]) -> Vec<Vec<&Setting>> {
+    let mut groups: BTreeMap<String, Vec<&Setting>> = BTreeMap::new();
+    for s in contact_histories(all) {
+        groups
+            .entry(format!("{}|{}|{:e}", s.family, s.material, s.shear_strength))
+            .or_default()
+            .push(s);
+    }
+    groups
+        .into_values()
+        .map(|mut c| {
+            c.sort_by(|a, b| a.pressure.total_cmp(&b.pressure));
+            c
+        })
+        .collect()
+}

@@ -1,0 +1,445 @@
+//! The findings on hand-made studies whose intervals are known.
+
+use super::*;
+use crate::config::InputRecord;
+use crate::output::{Cell, TidyRow};
+use crate::sliding::WearResult;
+
+/// A pair's results: W, particles in the fit window; the rest follows (Δx = 1/64, fit window 0.25).
+fn result(tau: f64, g: f64, load: f64, w: f64, n: usize) -> WearResult {
+    let pm = 3.0 * 3f64.sqrt() * tau;
+    let d_star = 0.004 * (g / 0.5e-6) * (0.012 / tau).powi(2);
+    let defined = |x: f64| (n > 0).then_some(x);
+    WearResult {
+        fracture_energy: g,
+        critical_diameter: d_star,
+        wear_rate: Some(w),
+        wear_rate_r2: defined(0.95),
+        wear_volume_intercept: defined(60.0 * w / 64.0),
+        fit_window_start: 0.25,
+        wear_coefficient: Some(w * pm / load),
+        particle_rate: Some(n as f64 / 0.25),
+        wear_rate_estimate: Some(0.9 * w),
+        particles_in_fit: n,
+        initial_volume: 50.0 * w / 64.0,
+        static_wear_coefficient_mean: 0.3 * load / 1e-3 * tau / 0.012,
+        static_wear_rate_mean: 0.3 * load * load / 1e-3 * tau / 0.012,
+        memory_decay_length: Some(0.03),
+        memory_decay_r2: Some(0.9),
+        running_in_decay_lengths: Some(8.0),
+        ..WearResult::default()
+    }
+}
+
+/// One tidy row: a surface pair `seed` of setting (τ̃, 𝒢, load) on a box of 1 × `length_y`.
+fn row(job: usize, seed: u64, r: WearResult, tau: f64, load: f64, length_y: Option<f64>) -> TidyRow {
+    let inputs = InputRecord {
+        seed: Some(seed),
+        shear_strength: tau,
+        grid: Some(64),
+        length: 1.0,
+        length_y,
+        ..InputRecord::default()
+    };
+    TidyRow {
+        job,
+        material: "m".into(),
+        nominal_pressure: inputs.nominal_pressure(load),
+        inputs,
+        load,
+        result: r,
+        flow_pressure: 3.0 * 3f64.sqrt() * tau,
+        ..TidyRow::default()
+    }
+}
+
+/// Two hardnesses (0.008, 0.012), one 𝒢, two loads, three surface pairs, a few per cent apart.
+fn study(length_y: Option<f64>) -> Table {
+    let mut rows = Vec::new();
+    for (tau, load) in [(0.008, 1e-3), (0.008, 2e-3), (0.012, 1e-3), (0.012, 2e-3)] {
+        for seed in 1..=3u64 {
+            let spread = 1.0 + 0.03 * (seed as f64 - 2.0);
+            // The harder one wears less; W ∝ F_N: Archard's exponent.
+            let w = if tau == 0.012 { 1e-5 } else { 2e-5 } * load / 1e-3 * spread;
+            let n = if tau == 0.012 { 60 } else { 30 };
+            rows.push(row(
+                rows.len(),
+                seed,
+                result(tau, 0.5e-6, load, w, n),
+                tau,
+                load,
+                length_y,
+            ));
+        }
+    }
+    Table::of(&rows)
+}
+
+fn get<'a>(f: &'a [Finding], key: &str) -> &'a Finding {
+    f.iter()
+        .find(|x| x.key == key)
+        .unwrap_or_else(|| panic!("no finding {key}"))
+}
+
+/// Sets one column in the rows of one shear strength and load, pair by pair (by seed order).
+fn set(tidy: &mut Table, tau: f64, load: f64, column: &str, values: &[Cell]) {
+    let c = |name: &str| tidy.columns.iter().position(|c| c == name).unwrap();
+    let (ct, cl, cv) = (c("material.shear_strength"), c("load"), c(column));
+    let mut i = 0;
+    for r in tidy.rows.iter_mut() {
+        if r[ct].number() == tau && r[cl].number() == load {
+            r[cv] = values[i % values.len()].clone();
+            i += 1;
+        }
+    }
+}
+
+#[test]
+fn findings_on_a_hand_made_study() {
+    let f = findings(&study(None));
+    for key in [
+        "static-k-below-one-and-rising",
+        "static-wear-superlinear",
+        "static-wear-grows-with-hardness",
+        "volume-linear-after-running-in",
+        "initial-volume-much-larger-than-increments",
+        "running-in-steeper",
+        "memory-decays-exponentially",
+        "running-in-sufficient",
+        "equation-5-slightly-below-w",
+        "archard-like",
+        "larger-d-star-wears-more-at-high-load",
+    ] {
+        assert_eq!(
+            get(&f, key).verdict,
+            Verdict::Reproduced,
+            "{key}: {}",
+            get(&f, key).observed
+        );
+    }
+    // W ∝ F_N exactly in every pair: m = 1 with no spread.
+    assert!(get(&f, "archard-like").observed.contains("m of W ∝ F_N^m = 1 [1, 1]"));
+    // The larger d* (τ̃ = 0.008) wears twice as much in every pair.
+    let larger = get(&f, "larger-d-star-wears-more-at-high-load");
+    assert!(
+        larger.observed.contains("W ratio = 2 [2, 2] (paired, 3 pairs)"),
+        "{}",
+        larger.observed
+    );
+    // Eq. 5 is 0.9 W: d̄/d* = (1/0.9)^(1/3) = 1.036, beside it.
+    assert!(get(&f, "equation-5-slightly-below-w")
+        .observed
+        .contains("d̄/d* = (W/Eq. 5)^(1/3) = 1.04"));
+    // Three pairs per contact history, two τ̃ × two loads: 12 pairs run in.
+    assert!(get(&f, "running-in-sufficient")
+        .observed
+        .starts_with("holds in 12 of 12 pairs"));
+    // Studies without the settings a finding needs have no unit: not testable.
+    assert_eq!(get(&f, "toughest-not-yet-ahead").verdict, Verdict::NotTestable);
+    assert_eq!(
+        get(&f, "smaller-g-wears-more-at-low-load").verdict,
+        Verdict::NotTestable
+    );
+    let md = markdown(&f);
+    assert_eq!(md.lines().filter(|l| l.starts_with("| ")).count(), f.len() + 1);
+    assert!(md.contains("95 % confidence interval over surface pairs"));
+}
+
+#[test]
+fn run_in_is_judged_pair_by_pair() {
+    let mut tidy = study(None);
+    // τ̃ = 0.008 at the high load: one of three pairs not run in: judged on the other two.
+    set(
+        &mut tidy,
+        0.008,
+        2e-3,
+        "running_in_decay_lengths",
+        &[Cell::Float(5.06), Cell::Float(4.8), Cell::Float(0.97)],
+    );
+    // τ̃ = 0.012 at the high load: two of three not run in: not run in.
+    set(
+        &mut tidy,
+        0.012,
+        2e-3,
+        "running_in_decay_lengths",
+        &[Cell::Float(2.4), Cell::Float(3.43), Cell::Float(0.97)],
+    );
+    let f = findings(&tidy);
+    let k = get(&f, "sliding-k-below-0.1");
+    assert_eq!(k.counts, (3, 0, 0, 1), "{}", k.observed);
+    assert!(
+        k.observed
+            .contains("(2 pairs, 2 of 3 pairs run in (s_r/ℓ = 5.06, 4.8, 0.97))"),
+        "{}",
+        k.observed
+    );
+    assert!(
+        k.observed
+            .contains("not run in: 1: m τ̃ = 0.012, 𝒢 = 5e-7, F_N/(Lx·Ly) = 0.002"),
+        "{}",
+        k.observed
+    );
+    // The running-in finding counts pairs: 3 of 12 fall short.
+    let run_in = get(&f, "running-in-sufficient");
+    assert_eq!(run_in.counts, (9, 3, 0, 0), "{}", run_in.observed);
+    assert_eq!(run_in.verdict, Verdict::Partly);
+}
+
+/// Two toughnesses (d* 16 and 33 px at τ̃ = 0.012) over five pairs at two loads, with the issue's
+/// numbers: at the high load W(33 px)/W(16 px) = 0.80, 0.97, 1.28, 2.39, 0.88 pair by pair; at the
+/// low load 1 particle against 80.
+fn two_toughnesses() -> Table {
+    let mut rows = Vec::new();
+    let ratios = [0.80, 0.97, 1.28, 2.39, 0.88];
+    for seed in 1..=5u64 {
+        let i = seed as usize - 1;
+        let (lo, hi) = (1e-3, 2e-3);
+        // High load: both wear in every pair.
+        let w16 = 3e-5 * (1.0 + 0.05 * i as f64);
+        rows.push(row(
+            rows.len(),
+            seed,
+            result(0.012, 0.25e-6, hi, w16, 38),
+            0.012,
+            hi,
+            None,
+        ));
+        rows.push(row(
+            rows.len(),
+            seed,
+            result(0.012, 0.5e-6, hi, w16 * ratios[i], 6),
+            0.012,
+            hi,
+            None,
+        ));
+        // Low load: 16 particles per pair against one in the first pair alone.
+        rows.push(row(
+            rows.len(),
+            seed,
+            result(0.012, 0.25e-6, lo, 1.2e-5, 16),
+            0.012,
+            lo,
+            None,
+        ));
+        let (w, n) = if seed == 1 { (4e-6, 1) } else { (0.0, 0) };
+        rows.push(row(rows.len(), seed, result(0.012, 0.5e-6, lo, w, n), 0.012, lo, None));
+    }
+    Table::of(&rows)
+}
+
+#[test]
+fn a_difference_within_the_spread_of_the_pairs_decides_nothing() {
+    let f = findings(&two_toughnesses());
+    let larger = get(&f, "larger-d-star-wears-more-at-high-load");
+    assert_eq!(larger.counts, (0, 0, 1, 0), "{}", larger.observed);
+    assert_eq!(larger.verdict, Verdict::Inconclusive);
+    // Geometric mean of the ratios 1.16, its interval straddling 1, and the pairs that would decide it.
+    assert!(larger.observed.contains("W ratio = 1.16 ["), "{}", larger.observed);
+    let needed = larger.pairs_to_decide.expect("more pairs decide it");
+    assert!(needed > 5, "{needed}");
+    assert!(markdown(&f).contains(&format!("| {needed} |")));
+}
+
+#[test]
+fn few_particles_are_compared_by_the_count_test() {
+    let f = findings(&two_toughnesses());
+    // 80 particles against 1 at the low load: W(16 px)/W(33 px) = (16/33)³ × 80 is decided.
+    let smaller = get(&f, "smaller-g-wears-more-at-low-load");
+    assert_eq!(smaller.verdict, Verdict::Reproduced, "{}", smaller.observed);
+    assert!(
+        smaller
+            .observed
+            .contains("count test: 80 vs 1 particles over 5 shared pairs"),
+        "{}",
+        smaller.observed
+    );
+    // The onset: 1/80 at the low load against 30/190 at the high one, disjoint intervals.
+    let onset = get(&f, "delayed-onset-for-large-g");
+    assert_eq!(onset.verdict, Verdict::Reproduced, "{}", onset.observed);
+    // Fig. 5: the least tough emits more at both loads; at the high load it does not wear
+    // decidedly less (the ratios above), so that comparison is inconclusive.
+    let fig5 = get(&f, "hardest-least-tough-emits-most-wears-least");
+    assert_eq!(fig5.counts, (1, 0, 1, 0), "{}", fig5.observed);
+}
+
+#[test]
+fn a_mean_r2_does_not_hide_a_poor_pair() {
+    let mut tidy = study(None);
+    set(
+        &mut tidy,
+        0.012,
+        1e-3,
+        "memory_decay_r2",
+        &[Cell::Float(0.95), Cell::Float(0.92), Cell::Float(0.41)],
+    );
+    let memory = get(&findings(&tidy), "memory-decays-exponentially").clone();
+    assert_eq!(memory.counts, (3, 0, 1, 0), "{}", memory.observed);
+    assert!(
+        memory.observed.contains("R² of ln N₀(s) = 0.76 ["),
+        "{}",
+        memory.observed
+    );
+}
+
+#[test]
+fn an_exponent_away_from_archards_is_contrary() {
+    let mut tidy = study(None);
+    // τ̃ = 0.012: W four times larger at the doubled load in every pair, m = 2.
+    let c = |name: &str| tidy.columns.iter().position(|c| c == name).unwrap();
+    let (ct, cl, cw) = (c("material.shear_strength"), c("load"), c("wear_rate"));
+    for r in tidy.rows.iter_mut() {
+        if r[ct].number() == 0.012 && r[cl].number() == 2e-3 {
+            r[cw] = Cell::Float(r[cw].number() * 2.0);
+        }
+    }
+    let archard = get(&findings(&tidy), "archard-like").clone();
+    assert_eq!(archard.counts, (1, 1, 0, 0), "{}", archard.observed);
+    assert_eq!(archard.verdict, Verdict::NotReproduced);
+}
+
+#[test]
+fn the_verdict_and_the_pairs_to_decide_follow_from_the_counts() {
+    let tally = |h: usize, c: usize, i: &[Option<usize>], n: usize| Tally {
+        holds: vec![String::new(); h],
+        contrary: vec![String::new(); c],
+        inconclusive: i.iter().map(|x| (String::new(), *x)).collect(),
+        not_run_in: vec![String::new(); n],
+    };
+    assert_eq!(Tally::default().verdict(), Verdict::NotTestable);
+    assert_eq!(tally(0, 0, &[None], 0).verdict(), Verdict::Inconclusive);
+    assert_eq!(tally(1, 0, &[Some(9), Some(12)], 1).verdict(), Verdict::Inconclusive);
+    assert_eq!(tally(2, 0, &[None], 1).verdict(), Verdict::Reproduced);
+    assert_eq!(tally(7, 2, &[None; 3], 0).verdict(), Verdict::Partly);
+    assert_eq!(tally(2, 2, &[], 0).verdict(), Verdict::NotReproduced);
+    // One of four decided: one more decides half, the smaller of 9 and 12 pairs.
+    assert_eq!(tally(1, 0, &[Some(12), Some(9)], 1).pairs_to_decide(), Some(9));
+    // Two more needed, only one can be decided by pairs (the other unit is not run in).
+    assert_eq!(tally(0, 0, &[Some(9), None], 1).pairs_to_decide(), None);
+    let text = tally(7, 2, &[Some(10)], 0).summary("settings");
+    assert!(text.starts_with("holds in 7 of 10 settings"), "{text}");
+    assert!(text.contains("inconclusive in 1: , 10 pairs would decide it"), "{text}");
+}
+
+#[test]
+fn the_pressure_of_a_setting_is_the_load_over_the_box_area() {
+    let square = setting::settings(&study(None));
+    assert!(square.iter().all(|s| s.pressure == 1e-3 || s.pressure == 2e-3));
+    assert!(square.iter().all(|s| s.pairs.len() == 3));
+    // The same rows on a box of 1 × 0.5: twice the pressure.
+    let oblong = setting::settings(&study(Some(0.5)));
+    assert!(oblong.iter().all(|s| s.pressure == 2e-3 || s.pressure == 4e-3));
+}
+
+/// Kim's SiC and Al₂O₃ (Table 1's properties, SI units) over `seeds`, Al₂O₃ wearing three times more.
+fn kim(seeds: u64) -> Table {
+    let mut rows = Vec::new();
+    for (e, nu, tau, g, w) in [(392e9, 0.16, 4.8e9, 45.0, 1e-12), (343e9, 0.25, 3.37e9, 46.65, 3e-12)] {
+        for seed in 1..=seeds {
+            let spread = 1.0 + 0.05 * seed as f64;
+            let inputs = InputRecord {
+                units: crate::config::Units::Si,
+                seed: Some(seed),
+                youngs_modulus: e,
+                poisson_ratio: nu,
+                shear_strength: tau,
+                grid: Some(512),
+                length: 50e-6,
+                ..InputRecord::default()
+            };
+            rows.push(TidyRow {
+                job: rows.len(),
+                material: if tau == 4.8e9 { "SiC" } else { "Al2O3" }.into(),
+                nominal_pressure: inputs.nominal_pressure(0.625),
+                inputs,
+                load: 0.625,
+                result: WearResult {
+                    fracture_energy: g,
+                    critical_diameter: 2e-6,
+                    wear_rate: Some(w * spread),
+                    wear_coefficient: Some(0.05 * spread),
+                    particles_in_fit: 10,
+                    running_in_decay_lengths: Some(5.0),
+                    ..WearResult::default()
+                },
+                ..TidyRow::default()
+            });
+        }
+    }
+    Table::of(&rows)
+}
+
+#[test]
+fn kims_ceramics_are_judged_and_one_pair_gives_no_interval() {
+    let f = findings(&kim(3));
+    let hierarchy = get(&f, "kim-hierarchy");
+    assert_eq!(hierarchy.verdict, Verdict::Reproduced, "{}", hierarchy.observed);
+    assert!(
+        hierarchy.observed.contains("W ratio = 3 [3, 3] (paired, 3 pairs)"),
+        "{}",
+        hierarchy.observed
+    );
+    // k = 0.05 … against 100 × 1.5e-3 = 0.15: contrary in both.
+    assert_eq!(get(&f, "kim-k-above-experiments").verdict, Verdict::NotReproduced);
+    // One surface pair: no interval for a setting; two materials by the count test of their particles.
+    let one = findings(&kim(1));
+    let k = get(&one, "kim-k-above-experiments");
+    assert_eq!(k.counts, (0, 0, 2, 0), "{}", k.observed);
+    assert!(k.observed.contains("one surface pair: no interval"), "{}", k.observed);
+    let hierarchy = get(&one, "kim-hierarchy");
+    assert!(
+        hierarchy
+            .observed
+            .contains("count test: 10 vs 10 particles over 1 shared pairs"),
+        "{}",
+        hierarchy.observed
+    );
+}
+
+/// One row of the appendix studies: a box of side `length` at 64 px per unit length, λ_l, W.
+fn axis_row(job: usize, seed: u64, length: f64, lambda_lower: f64, w: f64, junctions: f64) -> TidyRow {
+    let inputs = InputRecord {
+        seed: Some(seed),
+        shear_strength: 0.012,
+        grid: Some((64.0 * length) as usize),
+        length,
+        lambda_lower: Some(lambda_lower),
+        ..InputRecord::default()
+    };
+    let mut result = result(0.012, 0.5e-6, 1e-3, w, 30);
+    result.junctions_mean = junctions;
+    TidyRow {
+        job,
+        material: "m".into(),
+        nominal_pressure: inputs.nominal_pressure(1e-3),
+        inputs,
+        load: 1e-3,
+        result,
+        ..TidyRow::default()
+    }
+}
+
+#[test]
+fn appendix_axes_compare_boxes_as_independent_pairs_and_lambda_pair_by_pair() {
+    let mut rows = Vec::new();
+    for seed in 1..=3u64 {
+        let spread = 1.0 + 0.05 * seed as f64;
+        // Box 1 and box 0.5 at equal F_N: the smaller wears half as much with a third of the spots.
+        rows.push(axis_row(rows.len(), seed, 1.0, 0.01, 2e-5 * spread, 30.0 * spread));
+        rows.push(axis_row(rows.len(), seed, 0.5, 0.01, 1e-5 / spread, 10.0 / spread));
+        // λ_l doubled on box 1: W 10 % higher in every pair.
+        rows.push(axis_row(rows.len(), seed, 1.0, 0.02, 2.2e-5 * spread, 30.0 * spread));
+    }
+    let f = findings(&Table::of(&rows));
+    // At F_N/(Lx·Ly) = 10⁻³ E on the larger box (above 0.5×10⁻³): the smaller box falls behind.
+    let size = get(&f, "appendix-c-box-size");
+    assert_eq!(size.counts, (1, 0, 0, 0), "{}", size.observed);
+    assert!(size.observed.contains("(Welch, 3 and 3 pairs)"), "{}", size.observed);
+    // More spots, but also twice the wear: contrary.
+    let spots = get(&f, "appendix-c-more-spots-not-more-wear");
+    assert_eq!(spots.counts, (0, 1, 0, 0), "{}", spots.observed);
+    // λ_l: paired, 1/1.1 in every pair, within [0.8, 1.25].
+    let lambda = get(&f, "appendix-d-lambda-lower");
+    assert_eq!(lambda.verdict, Verdict::Reproduced, "{}", lambda.observed);
+    assert!(lambda.observed.contains("(paired, 3 pairs)"), "{}", lambda.observed);
+    assert_eq!(get(&f, "appendix-e-rms-height").verdict, Verdict::NotTestable);
+}
