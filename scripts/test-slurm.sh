@@ -175,7 +175,14 @@ until grep -q "requeueing the task" "$work/task-1.log" 2>/dev/null; do
 done
 [ ! -f "$work/slurm/jobs/$checkpoint.json" ] && [ -f "$work/slurm/jobs/$checkpoint.checkpoint" ] ||
     { echo "error: $checkpoint finished or lost its checkpoint although stopped part-way" >&2; exit 1; }
-say "task 1 stopped part-way through $checkpoint (its checkpoint kept) and requeued itself"
+# Stopped, not killed: its claims released and no temporary file left (task 2 works beside it).
+stopped=$(grep -o "exit status [0-9]*" "$work/task-1.log" | head -n 1)
+left=$(ls -A "$work/slurm/jobs" | grep -E 'job-00000[02].*\.(claim|tmp)$' || true)
+if [ "$stopped" = "exit status 137" ] || [ -n "$left" ]; then
+    echo "error: wearsim did not stop cleanly ($stopped; left: ${left:-nothing})" >&2
+    exit 1
+fi
+say "task 1 stopped part-way through $checkpoint ($stopped, checkpoint kept, claims released) and requeued itself"
 
 deadline=$((SECONDS + 150))
 while [ -n "$(squeue -h -j "$array" 2>/dev/null)" ]; do
