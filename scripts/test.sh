@@ -25,6 +25,18 @@ logs="$root/target/test-logs"
 rm -rf "$logs"
 mkdir -p "$logs"
 phase() { printf '\n== [%4ds] %s\n' "$SECONDS" "$1"; }
+# `cpu_seconds`: sets $cpu to the CPU seconds (user + system) of the processes this shell started
+# that have ended. `times` is a builtin: run in this shell (not in $(...), a copy) it reads this
+# shell's own counters.
+cpu_seconds() {
+    local file="$logs/.times.$BASHPID"
+    times >"$file"
+    cpu=$(awk 'NR == 2 {
+        for (i = 1; i <= 2; i++) { split($i, t, /[ms]/); total += t[1] * 60 + t[2] }
+        printf "%.0f", total
+    }' "$file")
+    rm -f "$file"
+}
 
 # A step in the background: `background NAME COMMAND...` starts it with its output in
 # target/test-logs/NAME.log and its exit status, once it ends, in NAME.status; `finish NAME` waits
@@ -38,7 +50,8 @@ background() {
         start=$SECONDS
         status=0
         "$@" || status=$?
-        printf '(%s: from %ds to %ds, exit status %d)\n' "$name" "$start" "$SECONDS" "$status"
+        cpu_seconds
+        printf '(%s: from %ds to %ds, %s s of CPU, exit status %d)\n' "$name" "$start" "$SECONDS" "$cpu" "$status"
         echo "$status" >"$logs/$name.status"
         exit "$status"
     ) >"$logs/$name.log" 2>&1 &
@@ -164,3 +177,5 @@ finish slurm-packages
 finish slurm
 
 phase "All tests passed"
+cpu_seconds
+echo "CPU time of all phases: $cpu s (user + system; the Slurm daemons and jobs not counted)"
