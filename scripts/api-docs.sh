@@ -4,11 +4,13 @@
 #   Python: target/api-python/wearsim.html   (pdoc, from the installed package's docstrings)
 #   scripts/api-docs.sh [rust|python|all] [PYTHON]
 # PYTHON: an interpreter with wearsim and pdoc installed (default .venv/bin/python).
+# WEARSIM_CARGO_PROFILE: the Cargo profile whose checked dependencies cargo doc reuses (default dev;
+# scripts/test.sh sets ci, the profile of its clippy run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 which="${1:-all}"
 if [ "$which" = rust ] || [ "$which" = all ]; then
-    RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --locked -q
+    RUSTDOCFLAGS="-D warnings" cargo doc --profile "${WEARSIM_CARGO_PROFILE:-dev}" --no-deps --locked -q
     echo "Rust API reference: target/doc/wearsim/index.html"
 fi
 if [ "$which" = python ] || [ "$which" = all ]; then

@@ -3,7 +3,8 @@
 # a floor is a tested promise: a venv with exactly those versions (wheels only, as users get them),
 # the wheel given as $1 installed into it, and the pytest suite. The cross-checks against tamaas and
 # the SurfaceTopography reader are not installed here; their tests skip and say so.
-#   scripts/test-floors.sh target/wheels/wearsim-*.whl [install]
+#   scripts/test-floors.sh target/dist/wearsim-*.whl [install]
+# WEARSIM_BIN: the wearsim program the tests drive (default target/release/wearsim).
 # With "install" as the second argument only the venv is made (scripts/test.sh does that while Rust
 # compiles).
 set -euo pipefail
@@ -36,4 +37,4 @@ if wrong:
     sys.exit("the floors venv does not hold the floors: " + ", ".join(wrong))
 print("floors:", ", ".join(f"{line.split('==')[0]} {version(line.split('==')[0].split('[')[0])}" for line in open(sys.argv[1]).read().split()))
 PY
-WEARSIM_BIN="$PWD/target/release/wearsim" "$venv/bin/python" -m pytest -q -rs -p no:cacheprovider tests/python
+WEARSIM_BIN="${WEARSIM_BIN:-$PWD/target/release/wearsim}" "$venv/bin/python" -m pytest -q -rs -p no:cacheprovider tests/python

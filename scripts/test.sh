@@ -1,98 +1,181 @@
 #!/usr/bin/env bash
-# All of wearsim's tests, each phase announced with the seconds elapsed:
+# All of wearsim's tests, each phase announced with the seconds elapsed since the start:
 #   formatting and lints (cargo fmt, clippy, ruff);
-#   the Rust unit, validation and CLI tests (one release build, which also gives target/release/wearsim);
-#   the Python package: one abi3 wheel built by maturin, installed into a fresh venv with cargo off the
-#   PATH (a user without a Rust toolchain) and into .venv with the pinned test dependencies of
-#   tests/python/requirements.txt; its type stubs (mypy stubtest), mypy, the pytest suite (API, studies on
-#   a Dask LocalCluster, cross-checks against tamaas from PyPI); examples/python/quickstart.py runs in the
-#   fresh venv; the pytest suite again in a venv holding the oldest versions pyproject.toml allows
-#   (scripts/test-floors.sh); the API references (cargo doc and pdoc, warnings are errors); the
-#   tutorials of examples/tutorials run and convert to notebooks.
-# The Python dependencies are installed in the background while Rust compiles.
+#   one Cargo build (the `ci` profile of Cargo.toml, linked for glibc 2.17 by scripts/build-env.sh)
+#   that gives the Rust unit, validation and CLI tests, the `wearsim` program the other phases drive,
+#   and, with the Python extension added, the wheel;
+#   the Rust tests and API reference (cargo doc, warnings are errors);
+#   what a cluster installs (scripts/build-dist.sh): the CLI and the extension checked for the glibc
+#   they need, the manylinux2014 abi3 wheel (auditwheel) and the sdist (twine check);
+#   a real Slurm (scripts/test-slurm.sh): examples/slurm/study.sbatch as a job array, a task stopped
+#   by its time-limit signal part-way and requeued, the results equal to a local run;
+#   the Python package: the wheel in a fresh venv without cargo on the PATH (import, then
+#   examples/python/quickstart.py) and in .venv with the pinned test dependencies of
+#   tests/python/requirements.txt: its type stubs (mypy stubtest), mypy, the API reference (pdoc),
+#   the tutorials of examples/tutorials (run, and converted to notebooks), the pytest suite (API,
+#   studies on a Dask LocalCluster, cross-checks against tamaas from PyPI); the pytest suite again
+#   in a venv holding the oldest versions pyproject.toml allows (scripts/test-floors.sh).
+# Phases that do not need each other run side by side: package installs while Rust compiles, the
+# Slurm test and the Python checks beside the Rust tests. Their output is shown when they end
+# (logs in target/test-logs/), with the seconds they started and ended at.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root="$PWD"
+logs="$root/target/test-logs"
+rm -rf "$logs"
+mkdir -p "$logs"
 phase() { printf '\n== [%4ds] %s\n' "$SECONDS" "$1"; }
+# `cpu_seconds`: sets $cpu to the CPU seconds (user + system) of the processes this shell started
+# that have ended. `times` is a builtin: run in this shell (not in $(...), a copy) it reads this
+# shell's own counters.
+cpu_seconds() {
+    local file="$logs/.times.$BASHPID"
+    times >"$file"
+    cpu=$(awk 'NR == 2 {
+        for (i = 1; i <= 2; i++) { split($i, t, /[ms]/); total += t[1] * 60 + t[2] }
+        printf "%.0f", total
+    }' "$file")
+    rm -f "$file"
+}
 
-phase "Python test environment: .venv with the pinned dependencies (in the background)"
-if [ ! -x .venv/bin/python ]; then
-    python3 -m venv .venv
-fi
-mkdir -p target
-pip_log="$root/target/pip-install.log"
-(
-    .venv/bin/python -m pip install -q --upgrade pip &&
-        .venv/bin/python -m pip install -q -r tests/python/requirements.txt
-) >"$pip_log" 2>&1 &
-pip_pid=$!
-floors_log="$root/target/pip-install-floors.log"
-scripts/test-floors.sh "" install >"$floors_log" 2>&1 &
-floors_pid=$!
+# A step in the background: `background NAME COMMAND...` starts it with its output in
+# target/test-logs/NAME.log and its exit status, once it ends, in NAME.status; `finish NAME` waits
+# for it, shows its output and stops the run if it failed; `await NAME`, for a step that needs
+# another, waits for that one's status (a background step cannot wait for its sibling).
+declare -A pids
+background() {
+    local name=$1
+    shift
+    (
+        start=$SECONDS
+        status=0
+        "$@" || status=$?
+        cpu_seconds
+        printf '(%s: from %ds to %ds, %s s of CPU, exit status %d)\n' "$name" "$start" "$SECONDS" "$cpu" "$status"
+        echo "$status" >"$logs/$name.status"
+        exit "$status"
+    ) >"$logs/$name.log" 2>&1 &
+    pids[$name]=$!
+}
+finish() {
+    local name=$1 status=0
+    wait "${pids[$name]}" || status=$?
+    cat "$logs/$name.log"
+    if [ "$status" != 0 ]; then
+        echo "error: $name failed (exit status $status; log above, also in target/test-logs/$name.log)" >&2
+        exit 1
+    fi
+}
+await() {
+    until [ -f "$logs/$1.status" ]; do sleep 0.2; done
+    if [ "$(cat "$logs/$1.status")" != 0 ]; then
+        echo "error: $1 failed: see target/test-logs/$1.log" >&2
+        return 1
+    fi
+}
+
+phase "Build tools for glibc 2.17: target/build-venv (maturin, zig, cargo-zigbuild, auditwheel, twine)"
+# First, on their own: the builds need them (the linker), the other installs can wait.
+background slurm-packages scripts/test-slurm.sh install
+background cargo-fetch cargo fetch --locked
+source scripts/build-env.sh
+build_env_install
+build_env_export
+echo "linker: $CARGO_TARGET_X86_64_UNKNOWN_LINUX_GNU_LINKER"
+
+phase "In the background: .venv with the pinned test dependencies, the floors venv"
+setup_venv() {
+    [ -x .venv/bin/python ] || python3 -m venv .venv
+    .venv/bin/python -m pip install -q --upgrade pip
+    .venv/bin/python -m pip install -q -r tests/python/requirements.txt
+}
+background venv setup_venv
+background floors-venv scripts/test-floors.sh "" install
 
 phase "Formatting: cargo fmt --check"
+finish cargo-fetch
 cargo fmt --all --check
 
-phase "Lints: cargo clippy --workspace --all-targets -- -D warnings"
-cargo clippy --workspace --all-targets --locked -q -- -D warnings
+phase "Lints: cargo clippy --profile ci --workspace --all-targets -- -D warnings"
+cargo clippy --profile ci --workspace --all-targets --locked -q -- -D warnings
 
-phase "Rust tests: unit, property, analytic validation, CLI (release build)"
-cargo test --release --workspace --locked
+phase "Rust build: the tests and the wearsim program (profile ci, linked for glibc 2.17)"
+cargo test --profile ci --workspace --locked --no-run -q
 
 phase "Rust API reference: cargo doc --no-deps, warnings are errors"
-scripts/api-docs.sh rust
+WEARSIM_CARGO_PROFILE=ci scripts/api-docs.sh rust
 
-phase "Waiting for the Python test environment"
-if ! wait "$pip_pid"; then
-    cat "$pip_log" >&2
-    echo "error: installing the pinned Python test dependencies failed (log above)" >&2
-    exit 1
-fi
+phase "For cluster nodes: the CLI, the manylinux wheel and the sdist (scripts/build-dist.sh ci)"
+scripts/build-dist.sh ci
+wheel=$(ls "$root"/target/dist/wearsim-*.whl)
+# What ships is what the Python tests, the tutorials and Slurm drive (the same build as the Rust
+# tests' program).
+bin="$root/target/dist/wearsim"
 
-phase "Python lints: ruff check, ruff format --check"
-.venv/bin/ruff check
-.venv/bin/ruff format --check
+phase "Rust tests: unit, property, analytic validation, CLI; beside them, Slurm and the Python checks"
+slurm_test() {
+    await slurm-packages
+    scripts/test-slurm.sh "$bin"
+}
+background slurm slurm_test
+fresh_venv() {
+    # A user without a Rust toolchain: the wheel in a fresh venv, cargo off the PATH.
+    local fresh no_cargo_path
+    fresh="$(mktemp -d)/venv"
+    python3 -m venv "$fresh"
+    no_cargo_path=$(printf '%s' "$PATH" | tr ':' '\n' | grep -v -e cargo -e rustup | paste -sd: -)
+    (cd /tmp && env PATH="$no_cargo_path" "$fresh/bin/python" -m pip install -q "$wheel[examples]")
+    (cd /tmp && env PATH="$no_cargo_path" "$fresh/bin/python" -c "import shutil, wearsim; assert shutil.which('cargo') is None; print('wearsim', wearsim.__version__, 'from the wheel, without cargo')")
+    env PATH="$no_cargo_path" MPLBACKEND=Agg "$fresh/bin/python" examples/python/quickstart.py --out "$(mktemp -d)/python-example"
+    rm -rf "$(dirname "$fresh")"
+}
+background fresh-venv fresh_venv
+python_checks() {
+    await venv
+    echo "-- ruff check, ruff format --check"
+    .venv/bin/ruff check
+    .venv/bin/ruff format --check
+    echo "-- the wheel in .venv; type stubs against the compiled module (stubtest); mypy"
+    .venv/bin/python -m pip install -q --force-reinstall --no-deps "$wheel"
+    (cd /tmp && "$root/.venv/bin/python" -c "import wearsim; print('wearsim', wearsim.__version__, 'imported from', wearsim.__file__)")
+    (cd /tmp && "$root/.venv/bin/python" -m mypy.stubtest wearsim._wearsim)
+    (cd python && ../.venv/bin/python -m mypy wearsim)
+    echo "-- Python API reference: pdoc from the docstrings, warnings are errors"
+    scripts/api-docs.sh python
+    echo "-- tutorials: each examples/tutorials/*.py runs, and converts to a notebook"
+    for tutorial in examples/tutorials/*.py; do
+        echo "$tutorial"
+        (cd /tmp && env WEARSIM_BIN="$bin" MPLBACKEND=Agg "$root/.venv/bin/python" "$root/$tutorial" >/dev/null)
+        .venv/bin/jupytext --quiet --to ipynb --output "$(mktemp -d)/tutorial.ipynb" "$tutorial"
+    done
+}
+background python-checks python_checks
+cargo test --profile ci --workspace --locked
 
-phase "Python wheel: maturin, release, abi3"
-rm -rf target/wheels
-.venv/bin/python -m pip wheel -q . --no-deps -w target/wheels
-wheel=$(ls target/wheels/wearsim-*.whl)
-echo "built $wheel"
+phase "Python lints, the wheel in .venv, stubtest, mypy, pdoc, tutorials (began beside the Rust tests)"
+finish venv
+finish python-checks
+
+phase "Python tests: pytest; beside them, the pytest suite on the oldest versions pyproject.toml allows"
+floors_test() {
+    await floors-venv
+    # Its own temporary folder: the main suite runs at the same time.
+    WEARSIM_BIN="$bin" PYTEST_ADDOPTS="--basetemp=$root/target/floors-pytest" scripts/test-floors.sh "$wheel"
+}
+background floors floors_test
+WEARSIM_BIN="$bin" .venv/bin/python -m pytest -rs tests/python
+
+phase "Python tests on the oldest allowed versions (scripts/test-floors.sh)"
+finish floors-venv
+finish floors
 
 phase "The wheel in a fresh venv, without cargo on the PATH: import, then the README's quickstart"
-fresh="$(mktemp -d)/venv"
-python3 -m venv "$fresh"
-no_cargo_path=$(printf '%s' "$PATH" | tr ':' '\n' | grep -v -e cargo -e rustup | paste -sd: -)
-(cd /tmp && env PATH="$no_cargo_path" "$fresh/bin/python" -m pip install -q "$root/$wheel[examples]")
-(cd /tmp && env PATH="$no_cargo_path" "$fresh/bin/python" -c "import shutil, wearsim; assert shutil.which('cargo') is None; print('wearsim', wearsim.__version__, 'from the wheel, without cargo')")
-env PATH="$no_cargo_path" MPLBACKEND=Agg "$fresh/bin/python" examples/python/quickstart.py --out "$(mktemp -d)/python-example"
-rm -rf "$fresh"
+finish fresh-venv
 
-phase "The wheel in .venv; type stubs against the compiled module; mypy"
-.venv/bin/python -m pip install -q --force-reinstall --no-deps "$wheel"
-(cd /tmp && "$root/.venv/bin/python" -c "import wearsim; print('wearsim', wearsim.__version__, 'imported from', wearsim.__file__)")
-(cd /tmp && "$root/.venv/bin/python" -m mypy.stubtest wearsim._wearsim)
-(cd python && ../.venv/bin/python -m mypy wearsim)
-
-phase "Python API reference: pdoc from the docstrings, warnings are errors"
-scripts/api-docs.sh python
-
-phase "Tutorials: each examples/tutorials/*.py runs, and converts to a notebook"
-for tutorial in examples/tutorials/*.py; do
-    echo "$tutorial"
-    (cd /tmp && env WEARSIM_BIN="$root/target/release/wearsim" MPLBACKEND=Agg "$root/.venv/bin/python" "$root/$tutorial" >/dev/null)
-    .venv/bin/jupytext --quiet --to ipynb --output "$(mktemp -d)/tutorial.ipynb" "$tutorial"
-done
-
-phase "Python tests: pytest"
-WEARSIM_BIN="$root/target/release/wearsim" .venv/bin/python -m pytest -rs tests/python
-
-phase "Python tests on the oldest versions pyproject.toml allows"
-if ! wait "$floors_pid"; then
-    cat "$floors_log" >&2
-    echo "error: installing the oldest allowed Python dependencies failed (log above)" >&2
-    exit 1
-fi
-scripts/test-floors.sh "$wheel"
+phase "Slurm: examples/slurm/study.sbatch as a job array, a task stopped part-way and requeued (scripts/test-slurm.sh)"
+finish slurm-packages
+finish slurm
 
 phase "All tests passed"
+cpu_seconds
+echo "CPU time of all phases: $cpu s (user + system; the Slurm daemons and jobs not counted)"

@@ -331,7 +331,10 @@ def test_ctrl_c_interrupts_a_slide(tmp_path):
     script.write_text(
         textwrap.dedent(
             """
-            import sys, wearsim
+            import signal, sys, wearsim
+            # Ctrl-C raises KeyboardInterrupt, as in a Python started from a terminal, even when this
+            # test runs in a background job (which inherits SIGINT as ignored, so Python leaves it so).
+            signal.signal(signal.SIGINT, signal.default_int_handler)
             top, bottom = wearsim.generate_pair(256, seed=3, lambda_lower=16 / 256, lambda_upper=0.25, rms_height=0.005)
             m = wearsim.Material(1.0, 0.3, 0.01, [1e-6])
             print("sliding", flush=True)
