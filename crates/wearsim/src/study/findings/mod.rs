@@ -7,10 +7,10 @@
 //! follows from the counts ([`Tally::verdict`]). `wearsim study plot` prints them and writes
 //! `figures/findings.md`.
 //!
-//! - [`setting`]: the settings and their surface pairs, and the groupings the rules compare;
-//! - [`rules`]: one unit judged (per setting, two settings pair by pair or by a count test, a trend
+//! - `setting`: the settings and their surface pairs, and the groupings the rules compare;
+//! - `rules`: one unit judged (per setting, two settings pair by pair or by a count test, a trend
 //!   over load per pair);
-//! - [`static_model`], [`sliding`], [`materials`], [`particles`], [`kim`], [`appendix`]: one
+//! - `static_model`, `sliding`, `materials`, `particles`, `kim`, `appendix`: one
 //!   function per finding, its rule beside it.
 
 mod appendix;
