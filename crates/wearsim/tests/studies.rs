@@ -9,7 +9,7 @@ fn shipped_study_files_expand() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../studies");
     let expected = [
         ("quick.toml", 24),
-        ("paper-window.toml", 15),
+        ("paper-window.toml", 30),
         ("paper-reduced.toml", 320),
         ("running-in-step.toml", 18),
         ("kim1986.toml", 20),
