@@ -3,7 +3,6 @@
 use std::path::PathBuf;
 
 use numpy::PyReadonlyArray2;
-use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use wearsim::config::{RunConfig, SurfacePair, SurfaceSource, Units};
@@ -157,12 +156,6 @@ impl PyRunFile {
         progress: Option<Bound<'py, PyAny>>,
     ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
         let config = &self.config;
-        if config.sliding.is_none() {
-            return Err(PyValueError::new_err(format!(
-                "{}: a [sliding] table with `loads` is needed to slide",
-                self.path.display()
-            )));
-        }
         let outcome = interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, steps| {
             SlidingRun::prepare(config)?
                 .interrupted_by(interrupt)

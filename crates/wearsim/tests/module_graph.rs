@@ -33,10 +33,11 @@ const LAYERS: [&str; 18] = [
 ];
 
 /// The order of the submodules of each folder module; a submodule uses only those before it.
-const SUBLAYERS: [(&str, &[&str]); 6] = [
+const SUBLAYERS: [(&str, &[&str]); 7] = [
     ("io", &["atomic", "npy", "zarr"]),
     ("contact", &["backend", "cpu"]),
     ("topography", &["formats", "prepare", "load", "fit"]),
+    ("sliding", &["schedule", "records", "fit", "checkpoint", "state"]),
     ("config", &["raw", "source", "record"]),
     (
         "output",

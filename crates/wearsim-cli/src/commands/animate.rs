@@ -47,10 +47,9 @@ pub fn run(args: &Args) -> Result<()> {
         );
     }
     let mut config = load_run(run)?;
-    let mut sliding = config
-        .sliding
-        .clone()
-        .ok_or_else(|| anyhow!("run file {}: a [sliding] table is needed", run.display()))?;
+    let mut sliding = wearsim::run::sliding_schedule(&config)
+        .with_context(|| format!("run file {}", run.display()))?
+        .clone();
     let load = *sliding.loads.get(load_index).ok_or_else(|| {
         anyhow!(
             "invalid `--load-index {load_index}`: the run has {} loads",
@@ -101,7 +100,7 @@ pub fn run(args: &Args) -> Result<()> {
             let draw = || -> Result<()> {
                 root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
                 let labels = view.labeller.labels();
-                let states = view.bookkeeping[energy_index].states();
+                let states = view.junction_states(energy_index);
                 for i in (0..nx).step_by(step_px) {
                     for j in (0..ny).step_by(step_px) {
                         let l = labels[i * ny + j];

@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use anyhow::{bail, Result};
+use anyhow::{Context, Result};
 use wearsim::config::Units;
 use wearsim::io::{write_json, write_text, OutputDir};
 use wearsim::output::{unit_of, FieldSelection, FieldsWriter};
@@ -76,12 +76,7 @@ fn maybe(units: Units, quantity: &str, value: Option<f64>) -> String {
 pub fn run(args: &Args) -> Result<()> {
     let run = &args.run;
     let config = load_run(run)?;
-    if config.sliding.is_none() {
-        bail!(
-            "run file {}: a [sliding] table with `loads` is needed for `slide`",
-            run.display()
-        );
-    }
+    wearsim::run::sliding_schedule(&config).with_context(|| format!("run file {}", run.display()))?;
     // The output folder is made (and checked) before any work.
     let out = OutputDir::begin(&args.out, "slide", args.overwrite, &super::run_inputs(run, &config))?;
     let interrupt = super::interrupt();
@@ -142,7 +137,8 @@ pub fn run(args: &Args) -> Result<()> {
         let note = format!("load {}/{}", view.load_index + 1, sliding.loads.len());
         progress.set(view.done as u64, view.total as u64, &note);
         if let (Some(f), None) = (fields.as_mut(), fields_error.as_ref()) {
-            if let Err(e) = f.record(view.load_index, view.step_index, view.pressure, view.labeller.labels()) {
+            let (load_index, step_index, labeller) = (view.load_index, view.step_index, view.labeller);
+            if let Err(e) = f.record(load_index, step_index, view.pressure(), labeller.labels()) {
                 // Stop the run: its outputs could not all be written.
                 fields_error = Some(e);
                 interrupt.request();
