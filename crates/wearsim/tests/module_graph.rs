@@ -35,13 +35,13 @@ const LAYERS: [&str; 18] = [
 /// The order of the submodules of each folder module; a submodule uses only those before it.
 const SUBLAYERS: [(&str, &[&str]); 7] = [
     ("io", &["atomic", "npy", "zarr"]),
-    ("contact", &["backend", "cpu"]),
+    ("contact", &["backend", "cpu", "conformance"]),
     ("topography", &["formats", "prepare", "load", "fit"]),
     ("sliding", &["schedule", "records", "fit", "checkpoint", "state"]),
     ("config", &["raw", "source", "record"]),
     (
         "output",
-        &["provenance", "units", "tables", "summary", "jobs", "fields"],
+        &["provenance", "series", "units", "tables", "summary", "jobs", "fields"],
     ),
     ("study", &["expand", "store", "run", "collect", "findings"]),
 ];

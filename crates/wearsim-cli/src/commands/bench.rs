@@ -3,6 +3,7 @@
 //! τ̃ = 0.010 E, F_N = 10⁻³ E L², E = 1, ν = 0.3, default tolerance.
 
 use std::path::PathBuf;
+use std::sync::Arc;
 use std::time::Instant;
 
 use anyhow::{Context, Result};
@@ -121,11 +122,12 @@ pub fn run(args: &Args) -> Result<()> {
         // As a sliding run solves: the fields stay in the solver, composed there, warm-started.
         let grid = wearsim::Grid::square(n, 1.0)?;
         let mut solver = ContactSolver::on_device(args.device, grid, e_star, wearsim::Boundary::Periodic)?;
-        solver.compose(&top, &bottom, 0)?;
+        solver.bind_surfaces(Arc::new(top), Arc::new(bottom))?;
+        solver.compose(0)?;
         let t = Instant::now();
         let cold = solver.solve_in_place(1e-3, material.flow_pressure())?;
         let cold_s = t.elapsed().as_secs_f64();
-        solver.compose(&top, &bottom, 1)?;
+        solver.compose(1)?;
         let t = Instant::now();
         let warm = solver.solve_in_place(1e-3, material.flow_pressure())?;
         let warm_s = t.elapsed().as_secs_f64();

@@ -4,13 +4,16 @@
 //! bindings) call these and only choose where the files go.
 //!
 //! Tables are derived from one typed row each ([`SeriesRow`], [`TidyRow`]): their columns are the
-//! rows' serde fields in order, so a column list is never kept by hand. Numbers are written in
+//! rows' serde fields in order, so a column list is never kept by hand; every column's unit is
+//! declared once (`WearResult::UNITS`, [`SeriesRow::UNITS`], the other quantities in `units`) and a
+//! test fails for a column without one. Numbers are written in
 //! Rust's shortest round-trip form (`{:e}` for floats); an undefined value (NaN, a missing input) is
 //! an empty cell.
 
 mod fields;
 mod jobs;
 mod provenance;
+mod series;
 mod summary;
 mod tables;
 mod units;
@@ -18,12 +21,13 @@ mod units;
 pub use fields::{FieldSelection, FieldsWriter};
 pub use jobs::{
     aggregate, curves, equal_critical_diameter, read_job_file, series_job, write_results_tables, CurveMaterial, Curves,
-    JobResult, StepRow, TidyRow, ALONG_A_CURVE, JOB_FORMAT, NOT_A_SETTING, TOTALLED,
+    JobResult, TidyRow, ALONG_A_CURVE, JOB_FORMAT, NOT_A_SETTING, TOTALLED,
 };
 pub use provenance::{Provenance, DEPENDENCY_VERSIONS};
+pub use series::{job_series_rows, series_rows, SeriesRow, StepRow};
 pub use summary::{
-    contact_summary, junctions_summary, series_csv, series_rows, sliding_summary, surface_fit_summary, surface_summary,
-    ContactRecord, SeriesRow, SlidingInputs, SurfaceStatistics, PSD_CONVENTION, RESIDUAL_DEFINITION,
+    contact_summary, junctions_summary, series_csv, sliding_summary, surface_fit_summary, surface_summary,
+    ContactRecord, SlidingInputs, SurfaceStatistics, PSD_CONVENTION, RESIDUAL_DEFINITION,
 };
 pub use tables::{columns, Cell, Table};
-pub use units::{unit_of, units_map};
+pub use units::{declared_unit, unit_of, units_map, QUANTITIES};

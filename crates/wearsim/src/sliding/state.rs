@@ -7,6 +7,7 @@
 //! Every front end drives this one loop (through `run::SlidingRun`).
 
 use std::path::Path;
+use std::sync::Arc;
 use std::time::Instant;
 
 use crate::contact::ContactSolver;
@@ -69,8 +70,9 @@ struct LoadState {
 /// A sliding run between two steps (module documentation).
 pub(crate) struct SlidingState<'a> {
     setup: SlidingSetup<'a>,
-    top: Surface,
-    bottom: Surface,
+    /// The surfaces, shared with the solver, which composes each offset's heights from them.
+    top: Arc<Surface>,
+    bottom: Arc<Surface>,
     solver: ContactSolver,
     labeller: JunctionLabeller,
     /// Nx·Ny flags shared by the particle rules and the memory, all false between their steps.
@@ -97,9 +99,11 @@ impl<'a> SlidingState<'a> {
         let grid = top.grid();
         check_run(&top, &bottom, &setup)?;
         let offsets = setup.sliding.offsets(grid.nx());
-        let solver = ContactSolver::on_device(setup.device, grid, setup.effective_modulus, Boundary::Periodic)?
+        let (top, bottom) = (Arc::new(top), Arc::new(bottom));
+        let mut solver = ContactSolver::on_device(setup.device, grid, setup.effective_modulus, Boundary::Periodic)?
             .with_options(setup.solver)
             .with_interrupt(setup.interrupt.clone());
+        solver.bind_surfaces(Arc::clone(&top), Arc::clone(&bottom))?;
         Ok(Self {
             labeller: JunctionLabeller::new(grid.nx(), grid.ny(), setup.connectivity),
             scratch: vec![false; grid.pixels()],
@@ -158,7 +162,7 @@ impl<'a> SlidingState<'a> {
             .map_or(0.0, |i| (offset - self.offsets[i]) as f64 * dx);
 
         let t0 = Instant::now();
-        self.solver.compose(&self.top, &self.bottom, offset)?;
+        self.solver.compose(offset)?;
         let info = self
             .solver
             .solve_in_place(load / self.grid.area(), self.setup.material.flow_pressure())?;
