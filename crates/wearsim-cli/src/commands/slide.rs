@@ -73,6 +73,52 @@ fn maybe(units: Units, quantity: &str, value: Option<f64>) -> String {
     value.map_or("undefined".into(), |v| with_unit(units, quantity, v))
 }
 
+/// The fields store of `--save-fields`, its size before compression said first.
+fn fields_writer(args: &Args, out: &OutputDir, prepared: &SlidingRun) -> Result<FieldsWriter> {
+    let (grid, sliding, offsets) = (prepared.grid(), prepared.sliding(), prepared.offsets());
+    let selection = FieldSelection {
+        loads: args.fields_loads.clone(),
+        every: args.fields_every,
+    };
+    let raw = FieldsWriter::raw_bytes(grid, sliding.loads.len(), offsets.len(), &selection);
+    eprintln!(
+        "fields: {:.1} MB before compression (13 bytes per pixel and kept step), into {}",
+        raw as f64 / 1e6,
+        args.out.join("fields.zarr").display()
+    );
+    Ok(FieldsWriter::create(
+        &out.join("fields.zarr"),
+        grid,
+        prepared.config().units,
+        &sliding.loads,
+        &offsets,
+        &selection,
+        prepared.inputs().to_json(),
+    )?)
+}
+
+/// One line per load and fracture energy: W, k, dN*₊/ds, V₀ and the static model.
+fn print_results(units: Units, runs: &[wearsim::sliding::LoadRun]) {
+    for r in runs {
+        for w in &r.results {
+            println!(
+                "F_N = {}, d* = {}: W = {} (R² = {}), k = {}, dN*₊/ds = {}, V₀ = {}, k_static = {:.4} (s = 0), {:.4} ± {:.4} \
+                 (all offsets)",
+                with_unit(units, "load", r.load),
+                with_unit(units, "critical_diameter", w.critical_diameter),
+                maybe(units, "wear_rate", w.wear_rate),
+                w.wear_rate_r2.map_or("undefined".into(), |r2| format!("{r2:.3}")),
+                maybe(units, "wear_coefficient", w.wear_coefficient),
+                maybe(units, "particle_rate", w.particle_rate),
+                with_unit(units, "initial_volume", w.initial_volume),
+                w.static_wear_coefficient,
+                w.static_wear_coefficient_mean,
+                w.static_wear_coefficient_std,
+            );
+        }
+    }
+}
+
 pub fn run(args: &Args) -> Result<()> {
     let run = &args.run;
     let config = load_run(run)?;
@@ -102,28 +148,9 @@ pub fn run(args: &Args) -> Result<()> {
             d / grid.pixel_size()
         );
     }
-    let offsets = prepared.offsets();
-    let steps_per_load = offsets.len();
+    let steps_per_load = prepared.offsets().len();
     let mut fields = if args.save_fields {
-        let selection = FieldSelection {
-            loads: args.fields_loads.clone(),
-            every: args.fields_every,
-        };
-        let raw = FieldsWriter::raw_bytes(grid, sliding.loads.len(), steps_per_load, &selection);
-        eprintln!(
-            "fields: {:.1} MB before compression (13 bytes per pixel and kept step), into {}",
-            raw as f64 / 1e6,
-            args.out.join("fields.zarr").display()
-        );
-        Some(FieldsWriter::create(
-            &out.join("fields.zarr"),
-            grid,
-            units,
-            &sliding.loads,
-            &offsets,
-            &selection,
-            prepared.inputs().to_json(),
-        )?)
+        Some(fields_writer(args, &out, &prepared)?)
     } else {
         None
     };
@@ -161,24 +188,7 @@ pub fn run(args: &Args) -> Result<()> {
         let _ = std::fs::remove_file(&c.path);
     }
     let runs = &outcome.runs;
-    for r in runs {
-        for w in &r.results {
-            println!(
-                "F_N = {}, d* = {}: W = {} (R² = {}), k = {}, dN*₊/ds = {}, V₀ = {}, k_static = {:.4} (s = 0), {:.4} ± {:.4} \
-                 (all offsets)",
-                with_unit(units, "load", r.load),
-                with_unit(units, "critical_diameter", w.critical_diameter),
-                maybe(units, "wear_rate", w.wear_rate),
-                w.wear_rate_r2.map_or("undefined".into(), |r2| format!("{r2:.3}")),
-                maybe(units, "wear_coefficient", w.wear_coefficient),
-                maybe(units, "particle_rate", w.particle_rate),
-                with_unit(units, "initial_volume", w.initial_volume),
-                w.static_wear_coefficient,
-                w.static_wear_coefficient_mean,
-                w.static_wear_coefficient_std,
-            );
-        }
-    }
+    print_results(units, runs);
     for w in &outcome.warnings {
         eprintln!("warning: {w}");
     }

@@ -404,7 +404,6 @@ fn passes(backend: &mut dyn ContactBackend, reference: &mut Reference, pm: f64, 
     }
     assert_eq!(backend.contact_map(), reference.contact_map(), "contact_map");
     assert!((0..nn).all(|k| contact_bit(reference.contact_map(), k) == (p0[k] > 0.0)));
-    let pm_eff = if pm.is_finite() { pm } else { f64::MAX };
     agree_loads(&backend.load_sums(pm), &reference.load_sums(pm), exact, "load_sums");
     for (s, plastic) in [(0.7, false), (1.3, false), (1.1, true)] {
         let (a, b) = (
@@ -414,6 +413,14 @@ fn passes(backend: &mut dyn ContactBackend, reference: &mut Reference, pm: f64, 
         agree(a.0, b.0, exact, b.0, "scaled_load");
         agree(a.1, b.1, exact, b.1, "scaled_load'");
     }
+    iteration_passes(backend, reference, pm, exact);
+}
+
+/// The passes of an iteration and of the load balance, in the order a solve calls them, on the
+/// fields [`passes`] left.
+fn iteration_passes(backend: &mut dyn ContactBackend, reference: &mut Reference, pm: f64, exact: bool) {
+    let nn = reference.nx * reference.ny;
+    let pm_eff = if pm.is_finite() { pm } else { f64::MAX };
     let mean_pressure = 0.2 * pm_eff.min(0.05);
     let target = mean_pressure * nn as f64;
     let mut run = |f: &mut dyn FnMut(&mut dyn ContactBackend) -> Vec<f64>, what: &str| {
