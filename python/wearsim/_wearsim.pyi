@@ -67,6 +67,8 @@ DEFAULT_DISTANCE: float
 DEFAULT_RUNNING_IN: float
 DEFAULT_STEP_RUNNING_IN: int
 DEFAULT_STEP: int
+DEFAULT_PARTICLE_RULE: str
+PARTICLE_RULES: List[str]
 SERIES_COLUMNS: List[str]
 INTERVAL_LEVEL: float
 KIM_EXPERIMENTAL_K: Tuple[float, float]
@@ -124,6 +126,8 @@ def slide(
     running_in: float = ...,
     step_running_in: int = ...,
     step: int = ...,
+    particle_rule: str = ...,
+    device: str = "cpu",
     threads: Optional[int] = None,
     progress: Optional[Callable[[int, int], None]] = None,
 ) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]: ...
@@ -243,6 +247,10 @@ class RunFile:
     def connectivity(self) -> int: ...
     @property
     def loads(self) -> Optional[List[float]]: ...
+    @property
+    def particle_rule(self) -> Optional[str]: ...
+    @property
+    def device(self) -> str: ...
     def surfaces(self) -> Tuple[_F64Array, _F64Array]: ...
     def slide(
         self, threads: Optional[int] = None, progress: Optional[Callable[[int, int], None]] = None

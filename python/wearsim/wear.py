@@ -26,6 +26,10 @@ from .surface import as_heights
 #: Columns of the series, in order: those of ``series.csv`` (defined once, in the library).
 SERIES_COLUMNS = list(_wearsim.SERIES_COLUMNS)
 
+#: The particle rules a run can name (``particle_rule``; ``[sliding] particle_rule`` in a run file),
+#: the paper's (§3) first (defined once, in the library).
+PARTICLE_RULES = list(_wearsim.PARTICLE_RULES)
+
 
 def static_wear(junctions: Junctions, critical_diameter: float) -> Dict[str, float]:
     """Static model on one contact solution: ``wear_coefficient`` k_static = Σ_{A_i ≥ A*} A_i / Σ A_i
@@ -66,6 +70,8 @@ def slide(
     running_in: float = _wearsim.DEFAULT_RUNNING_IN,
     step_running_in: int = _wearsim.DEFAULT_STEP_RUNNING_IN,
     step: int = _wearsim.DEFAULT_STEP,
+    particle_rule: str = _wearsim.DEFAULT_PARTICLE_RULE,
+    device: str = "cpu",
     threads: Optional[int] = None,
     progress: ProgressArg = None,
 ) -> Tuple[pd.DataFrame, Dict[str, Any]]:
@@ -77,7 +83,10 @@ def slide(
     Schedule (paper §3): offsets from 0 in steps of ``step_running_in`` pixels up to the running-in
     distance ``running_in``·Lx, then in steps of ``step`` pixels up to ``distance``·Lx; each step is a
     contact solve warm-started from the previous one. ``modulus``: "half-space" (E* = E/(1−ν²)) or
-    "composite" (E* = E/(2(1−ν²))). ``threads`` runs on that many threads (default: all).
+    "composite" (E* = E/(2(1−ν²))). ``particle_rule`` names the rule that turns each step's junctions
+    into particles, one of :data:`PARTICLE_RULES` (default: the paper's, §3). ``device``: where the
+    contact solver computes, "cpu" (or "cuda", in builds with a GPU backend); recorded in the
+    summary. ``threads`` runs on that many threads (default: all).
     ``progress``: True prints steps done on stderr; a callable gets ``(steps done, total)``.
 
     Returns ``(series, summary)``: series with the columns :data:`SERIES_COLUMNS` (s in the length
@@ -100,6 +109,8 @@ def slide(
         running_in,
         step_running_in,
         step,
+        particle_rule,
+        device,
         threads,
         callback(progress, "slide: step"),
     )
@@ -124,6 +135,8 @@ class RunFile:
     tolerance = property(lambda self: self._run.tolerance, doc="Contact solver tolerance.")
     connectivity = property(lambda self: self._run.connectivity, doc="Junction connectivity, 4 or 8.")
     loads = property(lambda self: self._run.loads, doc="Normal loads of [sliding], or None.")
+    particle_rule = property(lambda self: self._run.particle_rule, doc="The particle rule of [sliding], or None.")
+    device = property(lambda self: self._run.device, doc='Where the contact solver computes: "cpu".')
 
     def surfaces(self) -> Tuple[np.ndarray, np.ndarray]:
         """The (top, bottom) surfaces, generated or read as the run file says."""

@@ -208,6 +208,10 @@ def test_slide_defaults_are_the_library_constants(tmp_path):
         _, summary = wearsim.load_run(path).slide()
     inputs = summary["inputs"]
     assert inputs["contact"]["connectivity"] == wearsim.DEFAULT_CONNECTIVITY
+    # The particle rule and the device are the library's defaults, and recorded.
+    assert parameters["particle_rule"].default == wearsim.DEFAULT_PARTICLE_RULE == wearsim.wear.PARTICLE_RULES[0]
+    assert inputs["sliding"]["particle_rule"] == wearsim.DEFAULT_PARTICLE_RULE
+    assert inputs["contact"]["device"] == parameters["device"].default == "cpu"
     assert {k: inputs["sliding"][k] for k in schedule if k != "connectivity"} == {
         k: v for k, v in schedule.items() if k != "connectivity"
     }
@@ -243,6 +247,22 @@ def test_slide_defaults_are_the_library_constants(tmp_path):
         (
             lambda: wearsim.slide(np.zeros((32, 32)), np.zeros((32, 32)), wearsim.Material(1, 0.3, 0.01, [1e-6]), []),
             "invalid `loads`",
+        ),
+        (
+            lambda: wearsim.slide(
+                np.zeros((32, 32)), np.zeros((32, 32)), wearsim.Material(1, 0.3, 0.01, [1e-6]), [1e-3], device="gpu"
+            ),
+            "invalid `device`",
+        ),
+        (
+            lambda: wearsim.slide(
+                np.zeros((32, 32)),
+                np.zeros((32, 32)),
+                wearsim.Material(1, 0.3, 0.01, [1e-6]),
+                [1e-3],
+                particle_rule="sometimes",
+            ),
+            "invalid `particle_rule`",
         ),
     ],
 )

@@ -3,7 +3,6 @@
 use std::path::PathBuf;
 
 use numpy::PyReadonlyArray2;
-use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use wearsim::config::{RunConfig, SurfacePair, SurfaceSource, Units};
@@ -11,7 +10,8 @@ use wearsim::junctions::DEFAULT_CONNECTIVITY;
 use wearsim::output::Table;
 use wearsim::run::{SlidingOutcome, SlidingRun};
 use wearsim::sliding::{SlidingConfig, DEFAULT_DISTANCE, DEFAULT_RUNNING_IN, DEFAULT_STEP, DEFAULT_STEP_RUNNING_IN};
-use wearsim::{Boundary, SolverOptions};
+use wearsim::wear::{ParticleRuleKind, DEFAULT_PARTICLE_RULE};
+use wearsim::{Boundary, Device, SolverOptions};
 
 use crate::contact::PyMaterial;
 use crate::error::{interruptible, interruptible_with_progress, to_py};
@@ -29,7 +29,7 @@ fn series_and_summary<'py>(
 
 /// Sliding model on two given surfaces. Returns (series columns, summary).
 #[pyfunction]
-#[pyo3(signature = (top, bottom, length, material, loads, modulus = "half-space", tolerance = wearsim::contact::DEFAULT_TOLERANCE, max_iterations = wearsim::contact::DEFAULT_MAX_ITERATIONS, connectivity = DEFAULT_CONNECTIVITY, distance = DEFAULT_DISTANCE, running_in = DEFAULT_RUNNING_IN, step_running_in = DEFAULT_STEP_RUNNING_IN, step = DEFAULT_STEP, threads = None, progress = None))]
+#[pyo3(signature = (top, bottom, length, material, loads, modulus = "half-space", tolerance = wearsim::contact::DEFAULT_TOLERANCE, max_iterations = wearsim::contact::DEFAULT_MAX_ITERATIONS, connectivity = DEFAULT_CONNECTIVITY, distance = DEFAULT_DISTANCE, running_in = DEFAULT_RUNNING_IN, step_running_in = DEFAULT_STEP_RUNNING_IN, step = DEFAULT_STEP, particle_rule = DEFAULT_PARTICLE_RULE.name, device = "cpu", threads = None, progress = None))]
 #[allow(clippy::too_many_arguments)]
 fn slide<'py>(
     py: Python<'py>,
@@ -46,10 +46,15 @@ fn slide<'py>(
     running_in: f64,
     step_running_in: usize,
     step: usize,
+    particle_rule: &str,
+    device: &str,
     threads: Option<usize>,
     progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
     let (t, b) = surface_pair(&top, &bottom, length)?;
+    let rule = ParticleRuleKind::named(particle_rule).map_err(to_py)?;
+    let device: Device = device.parse().map_err(to_py)?;
+    device.available().map_err(to_py)?;
     let grid = t.grid();
     let solver = SolverOptions::new(tolerance, max_iterations).map_err(to_py)?;
     wearsim::check::connectivity(connectivity).map_err(to_py)?;
@@ -62,9 +67,11 @@ fn slide<'py>(
         solver,
         connectivity,
         boundary: Boundary::Periodic,
-        device: Default::default(),
+        device,
         sliding: Some(
-            SlidingConfig::new(loads, distance, running_in, step_running_in, step, Some(grid.nx())).map_err(to_py)?,
+            SlidingConfig::new(loads, distance, running_in, step_running_in, step, Some(grid.nx()))
+                .map_err(to_py)?
+                .with_particle_rule(rule),
         ),
     };
     let pair = SurfacePair::of_arrays(t, b);
@@ -133,6 +140,14 @@ impl PyRunFile {
         self.config.connectivity
     }
     #[getter]
+    fn particle_rule(&self) -> Option<&'static str> {
+        self.config.sliding.as_ref().map(|s| s.particle_rule.name)
+    }
+    #[getter]
+    fn device(&self) -> &'static str {
+        self.config.device.name()
+    }
+    #[getter]
     fn loads(&self) -> Option<Vec<f64>> {
         self.config.sliding.as_ref().map(|s| s.loads.clone())
     }
@@ -157,12 +172,6 @@ impl PyRunFile {
         progress: Option<Bound<'py, PyAny>>,
     ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
         let config = &self.config;
-        if config.sliding.is_none() {
-            return Err(PyValueError::new_err(format!(
-                "{}: a [sliding] table with `loads` is needed to slide",
-                self.path.display()
-            )));
-        }
         let outcome = interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, steps| {
             SlidingRun::prepare(config)?
                 .interrupted_by(interrupt)

@@ -19,6 +19,21 @@ pub const NO_JUNCTION: u32 = u32::MAX;
 /// paper's junctions, §2); 8 also joins pixels touching at a corner.
 pub const DEFAULT_CONNECTIVITY: u8 = 4;
 
+/// The area of a circle of diameter `d`, π d²/4: a junction's area at its equivalent diameter, and
+/// the critical area A* = π d*²/4 of a critical diameter (paper §2). The one definition of it.
+#[inline]
+pub fn circle_area(d: f64) -> f64 {
+    std::f64::consts::PI * d * d / 4.0
+}
+
+/// The volume of the spherical particle of diameter `d`, π d³/6 (paper §3: a junction of equivalent
+/// diameter d_i detaches as a sphere of that diameter; Eq. 5's shape factor ω = π/6). The one
+/// definition of it.
+#[inline]
+pub fn particle_volume(d: f64) -> f64 {
+    std::f64::consts::PI * d.powi(3) / 6.0
+}
+
 /// One junction: pixel count and the geometry derived from it (paper §3: circular junctions,
 /// spherical particles).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -47,7 +62,7 @@ impl Junction {
             pixels,
             area,
             diameter,
-            volume: std::f64::consts::PI * diameter.powi(3) / 6.0,
+            volume: particle_volume(diameter),
             wraps_x: false,
             wraps_y: false,
         }

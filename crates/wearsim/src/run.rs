@@ -9,8 +9,12 @@
 //! [`SlidingRun::run_resumable`], with a checkpoint file) slides every load of the schedule (paper
 //! §3), an observer seeing each step (progress, fields); the [`SlidingOutcome`] holds the runs, every
 //! warning once, in a stable order (inputs, surfaces, resolution, then each load's results), and
-//! the elapsed time, and gives the series and the summary.
+//! the elapsed time, and gives the series and the summary. Both are [`SlidingRun::start`] (the
+//! set-up) followed by the steps of the [`Slide`] it gives (one at a time, with checkpoints between
+//! them) and [`Slide::finish`]; a front end that needs the steps themselves (a benchmark) drives
+//! the [`Slide`] itself.
 
+use std::path::Path;
 use std::time::Instant;
 
 use serde_json::Value;
@@ -20,7 +24,7 @@ use crate::error::{Error, Interrupt, Result};
 use crate::grid::Grid;
 use crate::output::{series_csv, series_rows, sliding_summary, SeriesRow, SlidingInputs};
 use crate::sliding::{
-    resolution_warnings, run_sliding_resumable, Checkpointing, LoadRun, Resumed, SlidingConfig, SlidingSetup, StepView,
+    resolution_warnings, Checkpointing, LoadRun, Resumed, SlidingConfig, SlidingSetup, SlidingState, StepView,
 };
 
 /// A sliding run ready to start: its surfaces, its setup and the warnings known before it runs.
@@ -48,7 +52,7 @@ fn distinct(warnings: impl IntoIterator<Item = String>) -> Vec<String> {
 impl<'a> SlidingRun<'a> {
     /// The run `config` describes, with its surfaces generated or read from its files.
     pub fn prepare(config: &'a RunConfig) -> Result<Self> {
-        schedule_of(config)?;
+        sliding_schedule(config)?;
         let start = Instant::now();
         let pair = config.surface_pair()?;
         let mut run = Self::with_surfaces(config, pair)?;
@@ -59,7 +63,7 @@ impl<'a> SlidingRun<'a> {
     /// The run `config` describes on surfaces the caller made (arrays handed over, see
     /// [`SurfacePair::of_arrays`]); where `config` fixes the grid, the surfaces must lie on it.
     pub fn with_surfaces(config: &'a RunConfig, pair: SurfacePair) -> Result<Self> {
-        let sliding = schedule_of(config)?;
+        let sliding = sliding_schedule(config)?;
         let grid = pair.top.grid();
         if let SurfaceSource::Generated { grid: expected, .. } | SurfaceSource::Arrays { grid: expected, .. } =
             &config.surfaces
@@ -150,31 +154,112 @@ impl<'a> SlidingRun<'a> {
         &self.warnings
     }
 
+    /// Sets the run up (the solver and its fields, the labeller): the state that takes its steps
+    /// ([`Slide::step`]), saves and resumes checkpoints, and finishes into the outcome. Every
+    /// front end slides through it.
+    pub fn start(self) -> Result<Slide<'a>> {
+        let start = Instant::now();
+        let SurfacePair { top, bottom, .. } = self.pair;
+        let state = SlidingState::new(top, bottom, self.setup)?;
+        Ok(Slide {
+            config: self.config,
+            sliding: self.sliding,
+            state,
+            warnings: self.warnings,
+            surfaces_seconds: self.surfaces_seconds,
+            start,
+        })
+    }
+
     /// Slides every load; `observe` sees each step (progress bars, fields, animations) but cannot
     /// change the run.
-    pub fn run(self, observe: impl FnMut(&StepView)) -> Result<SlidingOutcome<'a>> {
+    pub fn run(self, observe: impl FnMut(&mut StepView)) -> Result<SlidingOutcome<'a>> {
         self.run_resumable(None, |_| {}, observe)
     }
 
     /// [`SlidingRun::run`] saving its state as `checkpointing` says and resuming from a checkpoint
-    /// of the same run ([`run_sliding_resumable`]); `on_resume` is told what became of the file.
+    /// of the same run ([`Slide::resume`]); `on_resume` is told what became of the file. The
+    /// caller removes the file once the results are written.
     pub fn run_resumable(
         self,
         checkpointing: Option<&Checkpointing>,
         on_resume: impl FnOnce(&Resumed),
-        observe: impl FnMut(&StepView),
+        mut observe: impl FnMut(&mut StepView),
     ) -> Result<SlidingOutcome<'a>> {
-        let start = Instant::now();
-        let runs = run_sliding_resumable(
-            &self.pair.top,
-            &self.pair.bottom,
-            &self.setup,
-            checkpointing,
-            on_resume,
-            observe,
-        )?;
-        let seconds = self.surfaces_seconds + start.elapsed().as_secs_f64();
-        let steps_per_load = self.offsets().len();
+        let mut slide = self.start()?;
+        on_resume(&checkpointing.map_or(Resumed::Fresh, |c| slide.resume(&c.path)));
+        let mut last_save = Instant::now();
+        while let Some(mut view) = slide.step()? {
+            observe(&mut view);
+            if let Some(c) = checkpointing {
+                if slide.done() < slide.total() && last_save.elapsed() >= c.every {
+                    slide.save_checkpoint(&c.path)?;
+                    last_save = Instant::now();
+                }
+            }
+        }
+        slide.finish()
+    }
+}
+
+/// The schedule of a run, or an error saying that sliding needs one: the one check of every front
+/// end that slides, made before any output.
+pub fn sliding_schedule(config: &RunConfig) -> Result<&SlidingConfig> {
+    config
+        .sliding
+        .as_ref()
+        .ok_or_else(|| Error::run_file("a [sliding] table with `loads` is needed for a sliding run"))
+}
+
+/// A sliding run under way (paper §3): it takes one step at a time ([`Slide::step`]); between two
+/// steps its state can be saved to a checkpoint ([`Slide::save_checkpoint`]) from which a run of
+/// the same inputs continues ([`Slide::resume`]); [`Slide::finish`] gives the outcome.
+pub struct Slide<'a> {
+    config: &'a RunConfig,
+    sliding: &'a SlidingConfig,
+    state: SlidingState<'a>,
+    warnings: Vec<String>,
+    surfaces_seconds: f64,
+    start: Instant,
+}
+
+impl<'a> Slide<'a> {
+    /// Takes the next step (solve, label, count particles; a load's results once its last step is
+    /// done) and shows it; `None` once every load is done. A raised interrupt ends the run with
+    /// [`Error::Interrupted`] before the step.
+    pub fn step(&mut self) -> Result<Option<StepView<'_>>> {
+        self.state.step()
+    }
+
+    /// Steps done, over all loads.
+    pub fn done(&self) -> usize {
+        self.state.done()
+    }
+
+    /// Steps of every load together.
+    pub fn total(&self) -> usize {
+        self.state.total()
+    }
+
+    /// Saves the state between two steps to `path`, atomically: a run of the same inputs resumes
+    /// from it ([`Slide::resume`]) to the results of an uninterrupted run, bit for bit. Callable
+    /// from an interrupt path (a run stopped between two steps).
+    pub fn save_checkpoint(&mut self, path: &Path) -> Result<()> {
+        self.state.save_checkpoint(path)
+    }
+
+    /// Before the first step: continues from the checkpoint at `path` when it holds the state of a
+    /// run of the same inputs, and says what became of the file (none, used, or set aside and why).
+    pub fn resume(&mut self, path: &Path) -> Resumed {
+        self.state.resume(path)
+    }
+
+    /// Takes the steps left (unobserved), fits the results of every load, and gives the outcome
+    /// with every warning once.
+    pub fn finish(self) -> Result<SlidingOutcome<'a>> {
+        let steps_per_load = self.state.total() / self.sliding.loads.len();
+        let runs = self.state.finish()?;
+        let seconds = self.surfaces_seconds + self.start.elapsed().as_secs_f64();
         let warnings = distinct(
             self.warnings
                 .into_iter()
@@ -189,14 +274,6 @@ impl<'a> SlidingRun<'a> {
             steps_per_load,
         })
     }
-}
-
-/// The schedule of a run, or an error saying that sliding needs one.
-fn schedule_of(config: &RunConfig) -> Result<&SlidingConfig> {
-    config
-        .sliding
-        .as_ref()
-        .ok_or_else(|| Error::run_file("a [sliding] table with `loads` is needed for a sliding run"))
 }
 
 /// What a sliding run gives: one [`LoadRun`] per load, every warning and the time taken.

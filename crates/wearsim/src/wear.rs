@@ -1,7 +1,9 @@
-//! The wear models: the static model of Frérot et al. (2018) (paper §2) and the bookkeeping
-//! of the sliding model (paper §3), one [`SlidingBookkeeping`] per critical diameter d*.
+//! The wear models: the static model of Frérot et al. (2018) (paper §2) and the particle rules of
+//! the sliding model (paper §3): the seam [`ParticleRule`], one per critical diameter d*, with the
+//! paper's rule [`OverlapRule`] as the default of [`PARTICLE_RULES`], the rules a run file can name.
 
-use crate::junctions::{Junction, JunctionLabeller, NO_JUNCTION};
+use crate::error::{Error, Result};
+use crate::junctions::{circle_area, Junction, JunctionLabeller, NO_JUNCTION};
 
 /// Static model from one contact solution (paper §2).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -16,7 +18,7 @@ pub struct StaticWear {
 
 /// Evaluates the static model for critical diameter d* on the labelled junctions.
 pub fn static_wear(junctions: &[Junction], critical_diameter: f64) -> StaticWear {
-    let critical_area = std::f64::consts::PI * critical_diameter * critical_diameter / 4.0;
+    let critical_area = circle_area(critical_diameter);
     // fold from +0.0: an empty f64 `sum()` is −0.0, which would print as "-0" in the outputs.
     let total = junctions.iter().fold(0.0, |a, j| a + j.area);
     let (large, critical_junctions) = junctions
@@ -62,12 +64,122 @@ pub enum JunctionState {
     Disabled,
 }
 
-/// Formed / disabled / active states carried from step to step by pixel overlap (paper §3).
-/// A junction that shares a pixel with a junction of the previous step that formed a
+/// What a particle rule is handed at each step of a sliding run.
+#[derive(Debug, Clone, Copy)]
+pub struct LabelledStep<'a> {
+    /// The labelled contact map of this step (labels, contact pixels, junction sizes).
+    pub labeller: &'a JunctionLabeller,
+    /// The geometry of every junction, indexed like the labeller's junctions.
+    pub junctions: &'a [Junction],
+    /// Sliding distance since the previous step (0 at the first step, s = 0), in the run's length
+    /// unit: what a rule that counts particles per distance slid (a rate) needs.
+    pub slid: f64,
+}
+
+/// The seam of the wear model: a rule that turns the labelled junctions of each step into wear
+/// particles, for one critical diameter d* (a sliding run makes one per fracture energy and hands
+/// every one the same contact solution). The paper's §3 rule is [`OverlapRule`]; a run file
+/// chooses a rule by name (`[sliding] particle_rule`, one of [`PARTICLE_RULES`]).
+///
+/// A rule keeps whatever it carries from step to step; [`ParticleRule::carried`] and
+/// [`ParticleRule::restore`] save and restore it for a checkpoint, so that a resumed run takes the
+/// steps an uninterrupted one would have.
+pub trait ParticleRule: Send {
+    /// Advances by one step: N* (junctions of this step at least d* across), N*₊ and V so far.
+    /// `scratch` is an Nx·Ny flag buffer shared by the rules of a run, all false on entry and to be
+    /// left all false on exit.
+    fn step(&mut self, step: &LabelledStep, scratch: &mut [bool]) -> StepWear;
+
+    /// The state of every junction of the last step (indexed like the labeller's junctions), for
+    /// display.
+    fn states(&self) -> &[JunctionState];
+
+    /// What one step hands to the next, for a checkpoint (JSON).
+    fn carried(&self) -> serde_json::Value;
+
+    /// Continues from a state saved by [`ParticleRule::carried`] of the same rule and d*; `Err`
+    /// says why the state is not one.
+    fn restore(&mut self, carried: serde_json::Value) -> std::result::Result<(), String>;
+}
+
+/// A particle rule as a run file names it: its name (`[sliding] particle_rule`), what it does, and
+/// how a run makes it for one critical diameter. Compared, printed and recorded by name.
+#[derive(Clone, Copy)]
+pub struct ParticleRuleKind {
+    pub name: &'static str,
+    /// One sentence for the documentation and error messages.
+    pub description: &'static str,
+    /// The rule for critical diameter d*.
+    pub make: fn(critical_diameter: f64) -> Box<dyn ParticleRule>,
+}
+
+/// The paper's rule (§3), the default.
+pub const OVERLAP: ParticleRuleKind = ParticleRuleKind {
+    name: "overlap",
+    description: "the paper's rule (§3): an active junction at least d* across forms one particle; a junction \
+                  overlapping a formed or disabled junction of the previous step is disabled",
+    make: OverlapRule::boxed,
+};
+
+/// The particle rules a run file can name; the first is the default.
+pub const PARTICLE_RULES: &[ParticleRuleKind] = &[OVERLAP];
+
+/// The particle rule when none is given: the paper's.
+pub const DEFAULT_PARTICLE_RULE: ParticleRuleKind = PARTICLE_RULES[0];
+
+impl ParticleRuleKind {
+    /// The rule a run file names; an error naming the field and the choices otherwise.
+    pub fn named(name: &str) -> Result<Self> {
+        PARTICLE_RULES.iter().find(|k| k.name == name).copied().ok_or_else(|| {
+            let choices: Vec<String> = PARTICLE_RULES
+                .iter()
+                .map(|k| format!("\"{}\" ({})", k.name, k.description))
+                .collect();
+            Error::param(
+                "particle_rule",
+                format!("{name:?} is not a particle rule; use one of: {}", choices.join("; ")),
+            )
+        })
+    }
+}
+
+impl Default for ParticleRuleKind {
+    fn default() -> Self {
+        DEFAULT_PARTICLE_RULE
+    }
+}
+
+impl std::fmt::Debug for ParticleRuleKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name)
+    }
+}
+
+impl PartialEq for ParticleRuleKind {
+    fn eq(&self, other: &Self) -> bool {
+        self.name == other.name
+    }
+}
+
+impl serde::Serialize for ParticleRuleKind {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        s.serialize_str(self.name)
+    }
+}
+
+impl std::str::FromStr for ParticleRuleKind {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        Self::named(s)
+    }
+}
+
+/// The paper's particle rule (§3): formed / disabled / active states carried from step to step by
+/// pixel overlap. A junction that shares a pixel with a junction of the previous step that formed a
 /// particle or was disabled is disabled; every other junction is active, and an active junction
 /// with d_i ≥ d* forms a particle (V += v_i, N*₊ += 1) and counts as formed for the next step.
 #[derive(Debug, Clone)]
-pub struct SlidingBookkeeping {
+pub struct OverlapRule {
     critical_area: f64,
     /// Pixels of the previous step's formed or disabled junctions.
     blocked: Vec<u32>,
@@ -79,12 +191,12 @@ pub struct SlidingBookkeeping {
     states: Vec<JunctionState>,
 }
 
-impl SlidingBookkeeping {
-    /// Empty bookkeeping for critical diameter d*; the first [`SlidingBookkeeping::step`] is s = 0,
+impl OverlapRule {
+    /// Empty bookkeeping for critical diameter d*; the first [`ParticleRule::step`] is s = 0,
     /// where every junction is active (so V₀ = Σ v_i over d_i ≥ d*).
     pub fn new(critical_diameter: f64) -> Self {
         Self {
-            critical_area: std::f64::consts::PI * critical_diameter * critical_diameter / 4.0,
+            critical_area: circle_area(critical_diameter),
             blocked: Vec::new(),
             n_formed: 0,
             volume: 0.0,
@@ -93,39 +205,17 @@ impl SlidingBookkeeping {
         }
     }
 
-    /// State of every junction (indexed like the labeller's junctions) after the last step.
-    /// What one step hands to the next (pixels of formed or disabled junctions, N*₊, V), for a
-    /// checkpoint of a long run; [`SlidingBookkeeping::restored`] continues from it.
-    pub fn carried(&self) -> CarriedBookkeeping {
-        CarriedBookkeeping {
-            blocked: self.blocked.clone(),
-            n_formed: self.n_formed,
-            volume: self.volume,
-        }
+    fn boxed(critical_diameter: f64) -> Box<dyn ParticleRule> {
+        Box::new(Self::new(critical_diameter))
     }
+}
 
-    /// The bookkeeping of `critical_diameter` continued from a state saved by
-    /// [`SlidingBookkeeping::carried`]: its next step is the one the saved run would have taken.
-    pub fn restored(critical_diameter: f64, carried: CarriedBookkeeping) -> Self {
-        Self {
-            blocked: carried.blocked,
-            n_formed: carried.n_formed,
-            volume: carried.volume,
-            ..Self::new(critical_diameter)
-        }
-    }
-
-    pub fn states(&self) -> &[JunctionState] {
-        &self.states
-    }
-
-    /// Advances by one step on the labelled contact map. `scratch` is an Nx·Ny flag buffer, all false on
-    /// entry and on exit, shared between the bookkeepings of a run.
-    pub fn step(&mut self, labeller: &JunctionLabeller, junctions: &[Junction], scratch: &mut [bool]) -> StepWear {
-        mark_overlapping(labeller, &self.blocked, scratch, &mut self.overlap);
+impl ParticleRule for OverlapRule {
+    fn step(&mut self, step: &LabelledStep, scratch: &mut [bool]) -> StepWear {
+        mark_overlapping(step.labeller, &self.blocked, scratch, &mut self.overlap);
         let mut n_critical = 0;
         self.states.clear();
-        for (j, overlap) in junctions.iter().zip(self.overlap.iter_mut()) {
+        for (j, overlap) in step.junctions.iter().zip(self.overlap.iter_mut()) {
             let critical = j.area >= self.critical_area;
             if critical {
                 n_critical += 1;
@@ -144,12 +234,34 @@ impl SlidingBookkeeping {
             }
             // From here on `overlap` means "formed or disabled", the state the next step sees.
         }
-        flagged_pixels(labeller, &self.overlap, &mut self.blocked);
+        flagged_pixels(step.labeller, &self.overlap, &mut self.blocked);
         StepWear {
             n_critical,
             n_formed: self.n_formed,
             volume: self.volume,
         }
+    }
+
+    fn states(&self) -> &[JunctionState] {
+        &self.states
+    }
+
+    /// The pixels of formed or disabled junctions, N*₊ and V ([`CarriedBookkeeping`]).
+    fn carried(&self) -> serde_json::Value {
+        serde_json::to_value(CarriedBookkeeping {
+            blocked: self.blocked.clone(),
+            n_formed: self.n_formed,
+            volume: self.volume,
+        })
+        .expect("plain data serialises")
+    }
+
+    fn restore(&mut self, carried: serde_json::Value) -> std::result::Result<(), String> {
+        let c: CarriedBookkeeping = serde_json::from_value(carried).map_err(|e| e.to_string())?;
+        self.blocked = c.blocked;
+        self.n_formed = c.n_formed;
+        self.volume = c.volume;
+        Ok(())
     }
 }
 
@@ -185,7 +297,7 @@ fn flagged_pixels(labeller: &JunctionLabeller, flags: &[bool], out: &mut Vec<u32
     }
 }
 
-/// The state of a [`SlidingBookkeeping`] between two steps (see [`SlidingBookkeeping::carried`]).
+/// The state of an [`OverlapRule`] between two steps (see [`ParticleRule::carried`]).
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct CarriedBookkeeping {
     pub blocked: Vec<u32>,
@@ -195,7 +307,7 @@ pub struct CarriedBookkeeping {
 
 /// The memory of the initial contact (paper §3): how many junctions of the current step descend from
 /// a junction present at s = 0, following junctions from step to step by shared pixels as the
-/// sliding bookkeeping does. The paper finds this number to decay exponentially with s.
+/// paper's particle rule does. The paper finds this number to decay exponentially with s.
 /// Serialisable, so that a checkpoint of a long run carries it (its scratch `flags` included).
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct InitialContactMemory {
@@ -209,7 +321,7 @@ pub struct InitialContactMemory {
 impl InitialContactMemory {
     /// Advances by one step; the first step is s = 0, whose junctions all count. Returns the number
     /// of junctions of this step that descend from s = 0. `scratch` as for
-    /// [`SlidingBookkeeping::step`].
+    /// [`ParticleRule::step`].
     pub fn step(&mut self, labeller: &JunctionLabeller, scratch: &mut [bool]) -> usize {
         if self.started {
             mark_overlapping(labeller, &self.descendants, scratch, &mut self.flags);
@@ -234,14 +346,19 @@ mod tests {
         let dx = 1.0;
         let d_star = 2.0 * (critical_pixels / std::f64::consts::PI).sqrt();
         let mut labeller = JunctionLabeller::new(n, n, 4);
-        let mut book = SlidingBookkeeping::new(d_star);
+        let mut book = OverlapRule::new(d_star);
         let mut scratch = vec![false; n * n];
         maps.iter()
             .map(|rows| {
                 let flat: Vec<bool> = rows.iter().flat_map(|r| r.chars().map(|c| c == '#')).collect();
                 labeller.label(|k| flat[k]);
                 let j = labeller.junctions(dx);
-                let rec = book.step(&labeller, &j, &mut scratch);
+                let step = LabelledStep {
+                    labeller: &labeller,
+                    junctions: &j,
+                    slid: 1.0,
+                };
+                let rec = book.step(&step, &mut scratch);
                 assert!(scratch.iter().all(|&b| !b));
                 rec
             })

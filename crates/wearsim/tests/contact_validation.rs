@@ -284,8 +284,13 @@ fn fields_kept_in_the_solver_give_the_solution_of_fields_passed_in_bit_for_bit()
     let mut kept = ContactSolver::on_device(wearsim::Device::Cpu, grid, E_STAR, Boundary::Periodic).unwrap();
     let mut passed = ContactSolver::new(grid, E_STAR).unwrap();
     let (mut h, mut p) = (vec![0.0; n * n], vec![0.0; n * n]);
+    // Composing before any surfaces are bound is an error, not a solve of stale heights.
+    let e = kept.compose(0).unwrap_err().to_string();
+    assert!(e.contains("bind"), "{e}");
+    kept.bind_surfaces(std::sync::Arc::new(top.clone()), std::sync::Arc::new(bottom.clone()))
+        .unwrap();
     for offset in 0..3 {
-        kept.compose(&top, &bottom, offset).unwrap();
+        kept.compose(offset).unwrap();
         let a = kept.solve_in_place(1e-3, pm).unwrap();
         composite_heights(&top, &bottom, offset, &mut h);
         let b = passed.solve(&h, 1e-3, pm, &mut p).unwrap();
@@ -301,7 +306,10 @@ fn fields_kept_in_the_solver_give_the_solution_of_fields_passed_in_bit_for_bit()
     assert_eq!(a, b);
     // Surfaces of another grid are refused.
     let mut other = ContactSolver::new(wearsim::Grid::square(32, 1.0).unwrap(), E_STAR).unwrap();
-    let e = other.compose(&top, &bottom, 0).unwrap_err().to_string();
+    let e = other
+        .bind_surfaces(std::sync::Arc::new(top), std::sync::Arc::new(bottom))
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("32×32"), "{e}");
 }
 

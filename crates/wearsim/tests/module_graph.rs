@@ -33,16 +33,18 @@ const LAYERS: [&str; 18] = [
 ];
 
 /// The order of the submodules of each folder module; a submodule uses only those before it.
-const SUBLAYERS: [(&str, &[&str]); 7] = [
+const SUBLAYERS: [(&str, &[&str]); 8] = [
     ("io", &["atomic", "npy", "zarr"]),
     ("stats", &["fit", "interval", "judge"]),
-    ("contact", &["backend", "cpu"]),
+    ("contact", &["backend", "cpu", "conformance"]),
     ("topography", &["formats", "prepare", "load", "fit"]),
+    ("sliding", &["schedule", "records", "fit", "checkpoint", "state"]),
     ("config", &["raw", "source", "record"]),
     (
         "output",
         &[
             "provenance",
+            "series",
             "units",
             "tables",
             "summary",

@@ -6,10 +6,11 @@
 
 use std::path::Path;
 
-use wearsim::config::RunConfig;
+use wearsim::config::{RunConfig, SurfacePair, SurfaceSource, Units};
 use wearsim::junctions::JunctionLabeller;
+use wearsim::run::SlidingRun;
+use wearsim::sliding::LoadRun;
 use wearsim::sliding::SlidingConfig;
-use wearsim::sliding::{run_sliding, LoadRun, SlidingSetup};
 use wearsim::surface::pair_seeds;
 use wearsim::{
     composite_heights, ContactSolver, Generation, Grid, Material, ModulusConvention, SpectrumParams, Surface,
@@ -92,23 +93,31 @@ fn a_problem_repeated_along_y_or_x_has_the_tiled_contact_solution() {
 
 fn slide(top: &Surface, bottom: &Surface, loads: Vec<f64>) -> Vec<LoadRun> {
     let material = Material::new(1.0, 0.3, 0.01, vec![0.05e-6, 0.1e-6], 3.0).unwrap();
-    let sliding = SlidingConfig {
-        loads,
-        distance: 0.5,
-        running_in: 0.25,
-        step_running_in: 4,
-        step: 1,
-    };
-    let setup = SlidingSetup {
-        material: &material,
-        effective_modulus: material.effective_modulus(ModulusConvention::HalfSpace),
+    let sliding = SlidingConfig::new(loads, 0.5, 0.25, 4, 1, None).unwrap();
+    let config = RunConfig {
+        units: Units::Reduced,
+        surfaces: SurfaceSource::Arrays {
+            grid: top.grid(),
+            length: top.length(),
+        },
+        material,
+        modulus: ModulusConvention::HalfSpace,
         solver: wearsim::SolverOptions::new(1e-12, 20_000).unwrap(),
-        device: Default::default(),
         connectivity: 4,
-        sliding: &sliding,
-        interrupt: Default::default(),
+        boundary: Default::default(),
+        device: Default::default(),
+        sliding: Some(sliding),
     };
-    run_sliding(top, bottom, &setup, |_| {}).unwrap()
+    slide_config(&config, SurfacePair::of_arrays(top.clone(), bottom.clone()))
+}
+
+/// A run through the one way in.
+fn slide_config(config: &RunConfig, pair: SurfacePair) -> Vec<LoadRun> {
+    SlidingRun::with_surfaces(config, pair)
+        .unwrap()
+        .run(|_| {})
+        .unwrap()
+        .runs
 }
 
 #[test]
@@ -165,9 +174,7 @@ fn a_square_grid_written_as_two_sides_is_the_square_run() {
         .iter()
         .map(|(g, l)| {
             let config = run_file(g, l);
-            let (top, bottom) = config.surfaces().unwrap();
-            let sliding = config.sliding.clone().unwrap();
-            run_sliding(&top, &bottom, &SlidingSetup::from_run(&config, &sliding), |_| {}).unwrap()
+            slide_config(&config, config.surface_pair().unwrap())
         })
         .collect();
     for other in &runs[1..] {

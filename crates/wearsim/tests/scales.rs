@@ -6,7 +6,7 @@
 use std::path::Path;
 
 use wearsim::config::RunConfig;
-use wearsim::sliding::{run_sliding, SlidingSetup};
+use wearsim::run::SlidingRun;
 
 /// A 64² run of the paper's roughness at box side `l` (m) and Young's modulus `e` (Pa).
 fn run_file(l: f64, e: f64) -> String {
@@ -26,9 +26,7 @@ fn run_file(l: f64, e: f64) -> String {
 /// (W/L², R², k, dN*₊/ds·L, V₀/L³) of the run at scale (l, e).
 fn reduced_results(l: f64, e: f64) -> [f64; 5] {
     let config = RunConfig::from_toml(&run_file(l, e), Path::new(".")).unwrap();
-    let sliding = config.sliding.clone().unwrap();
-    let (top, bottom) = config.surfaces().unwrap();
-    let runs = run_sliding(&top, &bottom, &SlidingSetup::from_run(&config, &sliding), |_| {}).unwrap();
+    let runs = SlidingRun::prepare(&config).unwrap().run(|_| {}).unwrap().runs;
     let r = &runs[0].results[0];
     [
         r.wear_rate.expect("W defined") / (l * l),

@@ -1,11 +1,41 @@
 //! The sliding model end to end on a small grid: bookkeeping invariants, V₀ from an independent
 //! labelling, and independence from the thread count.
 
+use wearsim::config::{RunConfig, SurfacePair, SurfaceSource, Units};
 use wearsim::junctions::JunctionLabeller;
+use wearsim::run::SlidingRun;
 use wearsim::sliding::SlidingConfig;
-use wearsim::sliding::{run_sliding, schedule, LoadRun, SlidingSetup};
+use wearsim::sliding::{schedule, LoadRun};
 use wearsim::surface::pair_seeds;
 use wearsim::{composite_heights, ContactSolver, Generation, Material, ModulusConvention, SpectrumParams, Surface};
+
+/// The run of `material` and `sliding` on the arrays `top` and `bottom` (connectivity 4, the
+/// default solver), as a front end would build it.
+fn arrays_run(top: &Surface, material: &Material, sliding: &SlidingConfig) -> RunConfig {
+    RunConfig {
+        units: Units::Reduced,
+        surfaces: SurfaceSource::Arrays {
+            grid: top.grid(),
+            length: top.length(),
+        },
+        material: material.clone(),
+        modulus: ModulusConvention::HalfSpace,
+        solver: Default::default(),
+        connectivity: 4,
+        boundary: Default::default(),
+        device: Default::default(),
+        sliding: Some(sliding.clone()),
+    }
+}
+
+/// Slides `config` on `top` and `bottom` through the one way in.
+fn slide(config: &RunConfig, top: &Surface, bottom: &Surface) -> Vec<LoadRun> {
+    SlidingRun::with_surfaces(config, SurfacePair::of_arrays(top.clone(), bottom.clone()))
+        .unwrap()
+        .run(|_| {})
+        .unwrap()
+        .runs
+}
 
 fn setup_surfaces(n: usize) -> (Surface, Surface) {
     let spectrum = SpectrumParams {
@@ -32,23 +62,13 @@ fn run(threads: usize) -> (Vec<LoadRun>, Material, SlidingConfig, Surface, Surfa
         running_in: 0.25,
         step_running_in: 4,
         step: 1,
+        particle_rule: Default::default(),
     };
     let runs = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .unwrap()
-        .install(|| {
-            let setup = SlidingSetup {
-                material: &material,
-                effective_modulus: material.effective_modulus(ModulusConvention::HalfSpace),
-                solver: Default::default(),
-                device: Default::default(),
-                connectivity: 4,
-                sliding: &sliding,
-                interrupt: Default::default(),
-            };
-            run_sliding(&top, &bottom, &setup, |_| {}).unwrap()
-        });
+        .install(|| slide(&arrays_run(&top, &material, &sliding), &top, &bottom));
     (runs, material, sliding, top, bottom)
 }
 
@@ -161,17 +181,10 @@ fn sliding_results_do_not_depend_on_thread_count() {
 /// inputs is set aside with a reason.
 #[test]
 fn a_checkpointed_run_stopped_anywhere_resumes_to_the_uninterrupted_results() {
-    use wearsim::sliding::{run_sliding_resumable, Checkpointing, Resumed};
+    use wearsim::sliding::{Checkpointing, Resumed};
     let (reference, material, sliding, top, bottom) = run(2);
-    let setup = SlidingSetup {
-        material: &material,
-        effective_modulus: material.effective_modulus(ModulusConvention::HalfSpace),
-        solver: Default::default(),
-        device: Default::default(),
-        connectivity: 4,
-        sliding: &sliding,
-        interrupt: Default::default(),
-    };
+    let config = arrays_run(&top, &material, &sliding);
+    let pair = || SurfacePair::of_arrays(top.clone(), bottom.clone());
     let total = 2 * schedule(top.nx(), &sliding).len();
     let dir = tempfile::tempdir().unwrap();
     for stop_after in [1, 7, total / 2, total / 2 + 1, total - 1] {
@@ -179,32 +192,26 @@ fn a_checkpointed_run_stopped_anywhere_resumes_to_the_uninterrupted_results() {
             path: dir.path().join(format!("run-{stop_after}.checkpoint")),
             every: std::time::Duration::ZERO,
         };
-        let mut stopped = setup.clone();
-        stopped.interrupt = Default::default();
-        let interrupt = stopped.interrupt.clone();
-        let first = run_sliding_resumable(
-            &top,
-            &bottom,
-            &stopped,
-            Some(&checkpointing),
-            |_| {},
-            |v| {
-                if v.done == stop_after {
-                    interrupt.request();
-                }
-            },
-        );
+        let interrupt = wearsim::Interrupt::default();
+        let first = SlidingRun::with_surfaces(&config, pair())
+            .unwrap()
+            .interrupted_by(&interrupt)
+            .run_resumable(
+                Some(&checkpointing),
+                |_| {},
+                |v| {
+                    if v.done == stop_after {
+                        interrupt.request();
+                    }
+                },
+            );
         assert!(matches!(first, Err(wearsim::Error::Interrupted)), "{first:?}");
         let mut resumed = None;
-        let runs = run_sliding_resumable(
-            &top,
-            &bottom,
-            &setup,
-            Some(&checkpointing),
-            |r| resumed = Some(r.clone()),
-            |_| {},
-        )
-        .unwrap();
+        let runs = SlidingRun::with_surfaces(&config, pair())
+            .unwrap()
+            .run_resumable(Some(&checkpointing), |r| resumed = Some(r.clone()), |_| {})
+            .unwrap()
+            .runs;
         assert_eq!(
             resumed,
             Some(Resumed::At {
@@ -231,22 +238,47 @@ fn a_checkpointed_run_stopped_anywhere_resumes_to_the_uninterrupted_results() {
         every: std::time::Duration::from_secs(3600),
     };
     let mut resumed = None;
-    let other_setup = SlidingSetup {
-        sliding: &other,
-        ..setup.clone()
-    };
-    run_sliding_resumable(
-        &top,
-        &bottom,
-        &other_setup,
-        Some(&checkpointing),
-        |r| resumed = Some(r.clone()),
-        |_| {},
-    )
-    .unwrap();
+    SlidingRun::with_surfaces(&arrays_run(&top, &material, &other), pair())
+        .unwrap()
+        .run_resumable(Some(&checkpointing), |r| resumed = Some(r.clone()), |_| {})
+        .unwrap();
     match resumed {
         Some(Resumed::Ignored(why)) => assert!(why.contains("other inputs"), "{why}"),
         r => panic!("{r:?}"),
+    }
+}
+
+/// Driving the steps by hand (as a benchmark does) takes the steps of a whole run: the step state
+/// is the one loop, and saving a checkpoint mid-run from outside the loop (an interrupt path)
+/// resumes to the same results.
+#[test]
+fn steps_taken_one_by_one_are_the_run() {
+    let (reference, material, sliding, top, bottom) = run(2);
+    let config = arrays_run(&top, &material, &sliding);
+    let pair = || SurfacePair::of_arrays(top.clone(), bottom.clone());
+    let mut slide = SlidingRun::with_surfaces(&config, pair()).unwrap().start().unwrap();
+    let total = slide.total();
+    let mut seen = Vec::new();
+    while let Some(mut view) = slide.step().unwrap() {
+        assert_eq!(view.pressure().len(), top.nx() * top.ny());
+        assert_eq!(view.junction_states(0).len(), view.record.junctions);
+        seen.push((view.load_index, view.step_index, view.done));
+        if view.done == 5 {
+            break;
+        }
+    }
+    assert_eq!(seen.last(), Some(&(0, 4, 5)));
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("by-hand.checkpoint");
+    slide.save_checkpoint(&path).unwrap();
+    let outcome = slide.finish().unwrap();
+    assert_eq!(outcome.runs.len(), 2);
+    let mut resumed = SlidingRun::with_surfaces(&config, pair()).unwrap().start().unwrap();
+    assert_eq!(resumed.resume(&path), wearsim::sliding::Resumed::At { done: 5, total });
+    let again = resumed.finish().unwrap();
+    for ((a, b), c) in outcome.runs.iter().zip(&again.runs).zip(&reference) {
+        assert_eq!((&a.steps, &a.results), (&c.steps, &c.results));
+        assert_eq!((&b.steps, &b.results), (&c.steps, &c.results));
     }
 }
 
@@ -263,17 +295,9 @@ fn full_contact_near_the_flow_pressure_is_flagged_as_no_particle() {
         running_in: 0.125,
         step_running_in: 4,
         step: 1,
+        particle_rule: Default::default(),
     };
-    let setup = SlidingSetup {
-        material: &material,
-        effective_modulus: material.effective_modulus(ModulusConvention::HalfSpace),
-        solver: Default::default(),
-        device: Default::default(),
-        connectivity: 4,
-        sliding: &sliding,
-        interrupt: Default::default(),
-    };
-    let runs = run_sliding(&top, &bottom, &setup, |_| {}).unwrap();
+    let runs = slide(&arrays_run(&top, &material, &sliding), &top, &bottom);
     let (light, full) = (&runs[0], &runs[1]);
     assert!(light.steps.iter().all(|r| r.wrapping_junctions == 0));
     assert_eq!(light.results[0].box_wrapping_steps, 0);
@@ -305,17 +329,9 @@ fn a_fit_window_inside_the_memory_of_the_initial_contact_is_not_run_in() {
         running_in: 0.0625,
         step_running_in: 4,
         step: 1,
+        particle_rule: Default::default(),
     };
-    let setup = SlidingSetup {
-        material: &material,
-        effective_modulus: material.effective_modulus(ModulusConvention::HalfSpace),
-        solver: Default::default(),
-        device: Default::default(),
-        connectivity: 4,
-        sliding: &sliding,
-        interrupt: Default::default(),
-    };
-    let runs = run_sliding(&top, &bottom, &setup, |_| {}).unwrap();
+    let runs = slide(&arrays_run(&top, &material, &sliding), &top, &bottom);
     let result = &runs[0].results[0];
     let decay = result.memory_decay_length.expect("the memory decays");
     assert!(decay > 0.0625, "decay length {decay} is not above the running-in");
@@ -332,11 +348,7 @@ fn a_fit_window_inside_the_memory_of_the_initial_contact_is_not_run_in() {
         distance: 1.0,
         ..sliding.clone()
     };
-    let setup = SlidingSetup {
-        sliding: &long,
-        ..setup
-    };
-    let runs = run_sliding(&top, &bottom, &setup, |_| {}).unwrap();
+    let runs = slide(&arrays_run(&top, &material, &long), &top, &bottom);
     let result = &runs[0].results[0];
     let ratio = result.running_in_decay_lengths.unwrap_or(f64::INFINITY);
     assert_eq!(

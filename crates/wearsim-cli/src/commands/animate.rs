@@ -10,6 +10,7 @@ use anyhow::{anyhow, Context, Result};
 use plotters::prelude::*;
 use wearsim::junctions::NO_JUNCTION;
 use wearsim::run::SlidingRun;
+use wearsim::sliding::StepView;
 use wearsim::wear::JunctionState;
 
 use super::load_run;
@@ -33,10 +34,10 @@ pub struct Args {
     delay: u32,
 }
 
-pub fn run(args: &Args) -> Result<()> {
+/// The run of the one load animated, after checking the arguments against it.
+fn one_load(args: &Args) -> Result<wearsim::config::RunConfig> {
     let (run, out, load_index, energy_index, delay_ms) =
         (&args.run, &args.out, args.load_index, args.energy_index, args.delay);
-    register_font();
     // The GIF is written beside its name: a folder that is not there is said before any work.
     let folder = wearsim::io::parent_or_dot(out);
     if !folder.is_dir() {
@@ -47,10 +48,9 @@ pub fn run(args: &Args) -> Result<()> {
         );
     }
     let mut config = load_run(run)?;
-    let mut sliding = config
-        .sliding
-        .clone()
-        .ok_or_else(|| anyhow!("run file {}: a [sliding] table is needed", run.display()))?;
+    let mut sliding = wearsim::run::sliding_schedule(&config)
+        .with_context(|| format!("run file {}", run.display()))?
+        .clone();
     let load = *sliding.loads.get(load_index).ok_or_else(|| {
         anyhow!(
             "invalid `--load-index {load_index}`: the run has {} loads",
@@ -73,18 +73,101 @@ pub fn run(args: &Args) -> Result<()> {
         );
     }
     config.sliding = Some(sliding);
+    Ok(config)
+}
+
+/// How the grid maps to a frame: pixels of the grid per frame pixel, frame pixels per grid pixel.
+#[derive(Clone, Copy)]
+struct Layout {
+    nx: usize,
+    ny: usize,
+    step_px: usize,
+    scale: u32,
+}
+
+/// The colour of a junction's state (the legend of the frame).
+fn colour(state: JunctionState) -> RGBColor {
+    match state {
+        JunctionState::Below => RGBColor(150, 150, 150),
+        JunctionState::Forming => RGBColor(220, 30, 30),
+        JunctionState::DisabledCritical => RGBColor(245, 150, 20),
+        JunctionState::Disabled => RGBColor(40, 90, 200),
+    }
+}
+
+/// One frame: the junctions of the step coloured by their state under the particle rule of
+/// fracture energy `energy`, s, V, N*₊ and d* above them, then the legend.
+fn draw_frame<DB: DrawingBackend>(
+    root: &DrawingArea<DB, plotters::coord::Shift>,
+    view: &StepView,
+    energy: usize,
+    layout: Layout,
+    caption: &dyn Fn(&StepView) -> String,
+) -> Result<()> {
+    let Layout { nx, ny, step_px, scale } = layout;
+    root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
+    let labels = view.labeller.labels();
+    let states = view.junction_states(energy);
+    for i in (0..nx).step_by(step_px) {
+        for j in (0..ny).step_by(step_px) {
+            let l = labels[i * ny + j];
+            if l == NO_JUNCTION {
+                continue;
+            }
+            // x (first axis, the sliding direction) runs left to right.
+            let (x, y) = (
+                (i / step_px) as i32 * scale as i32,
+                (j / step_px) as i32 * scale as i32 + 40,
+            );
+            root.draw(&Rectangle::new(
+                [(x, y), (x + scale as i32, y + scale as i32)],
+                colour(states[l as usize]).filled(),
+            ))
+            .map_err(|e| anyhow!("{e}"))?;
+        }
+    }
+    let font = (FONT, 13).into_font().color(&BLACK);
+    root.draw_text(&caption(view), &font, (6, 4))
+        .map_err(|e| anyhow!("{e}"))?;
+    root.draw_text(
+        "grey: below d*   red: forming a particle   orange: disabled, ≥ d*   blue: disabled",
+        &font,
+        (6, 22),
+    )
+    .map_err(|e| anyhow!("{e}"))?;
+    root.present().map_err(|e| anyhow!("{e}"))
+}
+
+pub fn run(args: &Args) -> Result<()> {
+    let (out, energy_index, delay_ms) = (&args.out, args.energy_index, args.delay);
+    register_font();
+    let config = one_load(args)?;
     let prepared = SlidingRun::prepare(&config)?.interrupted_by(super::interrupt());
     super::report_surfaces(prepared.surfaces(), true);
     let (nx, ny) = (prepared.grid().nx(), prepared.grid().ny());
     let n = nx.max(ny);
-    let scale = (512 / n).max(1) as u32; // frames of at least 512 px where the grid is smaller
-    let step_px = (n / 512).max(1); // and at most about 1024 px where it is larger
-    let (width, height) = ((nx / step_px) as u32 * scale, (ny / step_px) as u32 * scale);
+    let layout = Layout {
+        nx,
+        ny,
+        scale: (512 / n).max(1) as u32, // frames of at least 512 px where the grid is smaller
+        step_px: (n / 512).max(1),      // and at most about 1024 px where it is larger
+    };
+    let (width, height) = (
+        (nx / layout.step_px) as u32 * layout.scale,
+        (ny / layout.step_px) as u32 * layout.scale,
+    );
     let d_star = config
         .material
         .critical_diameter(config.material.fracture_energies[energy_index]);
-    let tmp = wearsim::io::temporary_sibling(out)?;
     let length_unit = config.units.length_unit();
+    let caption = |view: &StepView| {
+        let w = view.record.wear[energy_index];
+        format!(
+            "s = {:.4} {length_unit}   V = {:.3e}   N*₊ = {}   d* = {:.3e} {length_unit}",
+            view.record.s, w.volume, w.n_formed, d_star
+        )
+    };
+    let tmp = wearsim::io::temporary_sibling(out)?;
     let mut frame_error: Option<anyhow::Error> = None;
     {
         let root = crate::raster::Raster::new(
@@ -95,58 +178,8 @@ pub fn run(args: &Args) -> Result<()> {
         let progress = Progress::new("animate", "frames", 0);
         let ran = prepared.run(|view| {
             progress.set(view.done as u64, view.total as u64, "");
-            if frame_error.is_some() {
-                return;
-            }
-            let draw = || -> Result<()> {
-                root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
-                let labels = view.labeller.labels();
-                let states = view.bookkeeping[energy_index].states();
-                for i in (0..nx).step_by(step_px) {
-                    for j in (0..ny).step_by(step_px) {
-                        let l = labels[i * ny + j];
-                        if l == NO_JUNCTION {
-                            continue;
-                        }
-                        let color = match states[l as usize] {
-                            JunctionState::Below => RGBColor(150, 150, 150),
-                            JunctionState::Forming => RGBColor(220, 30, 30),
-                            JunctionState::DisabledCritical => RGBColor(245, 150, 20),
-                            JunctionState::Disabled => RGBColor(40, 90, 200),
-                        };
-                        // x (first axis, the sliding direction) runs left to right.
-                        let (x, y) = (
-                            (i / step_px) as i32 * scale as i32,
-                            (j / step_px) as i32 * scale as i32 + 40,
-                        );
-                        root.draw(&Rectangle::new(
-                            [(x, y), (x + scale as i32, y + scale as i32)],
-                            color.filled(),
-                        ))
-                        .map_err(|e| anyhow!("{e}"))?;
-                    }
-                }
-                let w = view.record.wear[energy_index];
-                let font = (FONT, 13).into_font().color(&BLACK);
-                root.draw_text(
-                    &format!(
-                        "s = {:.4} {length_unit}   V = {:.3e}   N*₊ = {}   d* = {:.3e} {length_unit}",
-                        view.record.s, w.volume, w.n_formed, d_star
-                    ),
-                    &font,
-                    (6, 4),
-                )
-                .map_err(|e| anyhow!("{e}"))?;
-                root.draw_text(
-                    "grey: below d*   red: forming a particle   orange: disabled, ≥ d*   blue: disabled",
-                    &font,
-                    (6, 22),
-                )
-                .map_err(|e| anyhow!("{e}"))?;
-                root.present().map_err(|e| anyhow!("{e}"))
-            };
-            if let Err(e) = draw() {
-                frame_error = Some(e);
+            if frame_error.is_none() {
+                frame_error = draw_frame(&root, view, energy_index, layout, &caption).err();
             }
         });
         progress.finish();

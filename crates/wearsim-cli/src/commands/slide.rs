@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use anyhow::{bail, Result};
+use anyhow::{Context, Result};
 use wearsim::config::Units;
 use wearsim::io::{write_json, write_text, OutputDir};
 use wearsim::output::{unit_of, FieldSelection, FieldsWriter};
@@ -73,15 +73,56 @@ fn maybe(units: Units, quantity: &str, value: Option<f64>) -> String {
     value.map_or("undefined".into(), |v| with_unit(units, quantity, v))
 }
 
+/// The fields store of `--save-fields`, its size before compression said first.
+fn fields_writer(args: &Args, out: &OutputDir, prepared: &SlidingRun) -> Result<FieldsWriter> {
+    let (grid, sliding, offsets) = (prepared.grid(), prepared.sliding(), prepared.offsets());
+    let selection = FieldSelection {
+        loads: args.fields_loads.clone(),
+        every: args.fields_every,
+    };
+    let raw = FieldsWriter::raw_bytes(grid, sliding.loads.len(), offsets.len(), &selection);
+    eprintln!(
+        "fields: {:.1} MB before compression (13 bytes per pixel and kept step), into {}",
+        raw as f64 / 1e6,
+        args.out.join("fields.zarr").display()
+    );
+    Ok(FieldsWriter::create(
+        &out.join("fields.zarr"),
+        grid,
+        prepared.config().units,
+        &sliding.loads,
+        &offsets,
+        &selection,
+        prepared.inputs().to_json(),
+    )?)
+}
+
+/// One line per load and fracture energy: W, k, dN*₊/ds, V₀ and the static model.
+fn print_results(units: Units, runs: &[wearsim::sliding::LoadRun]) {
+    for r in runs {
+        for w in &r.results {
+            println!(
+                "F_N = {}, d* = {}: W = {} (R² = {}), k = {}, dN*₊/ds = {}, V₀ = {}, k_static = {:.4} (s = 0), {:.4} ± {:.4} \
+                 (all offsets)",
+                with_unit(units, "load", r.load),
+                with_unit(units, "critical_diameter", w.critical_diameter),
+                maybe(units, "wear_rate", w.wear_rate),
+                w.wear_rate_r2.map_or("undefined".into(), |r2| format!("{r2:.3}")),
+                maybe(units, "wear_coefficient", w.wear_coefficient),
+                maybe(units, "particle_rate", w.particle_rate),
+                with_unit(units, "initial_volume", w.initial_volume),
+                w.static_wear_coefficient,
+                w.static_wear_coefficient_mean,
+                w.static_wear_coefficient_std,
+            );
+        }
+    }
+}
+
 pub fn run(args: &Args) -> Result<()> {
     let run = &args.run;
     let config = load_run(run)?;
-    if config.sliding.is_none() {
-        bail!(
-            "run file {}: a [sliding] table with `loads` is needed for `slide`",
-            run.display()
-        );
-    }
+    wearsim::run::sliding_schedule(&config).with_context(|| format!("run file {}", run.display()))?;
     // The output folder is made (and checked) before any work.
     let out = OutputDir::begin(&args.out, "slide", args.overwrite, &super::run_inputs(run, &config))?;
     let interrupt = super::interrupt();
@@ -107,28 +148,9 @@ pub fn run(args: &Args) -> Result<()> {
             d / grid.pixel_size()
         );
     }
-    let offsets = prepared.offsets();
-    let steps_per_load = offsets.len();
+    let steps_per_load = prepared.offsets().len();
     let mut fields = if args.save_fields {
-        let selection = FieldSelection {
-            loads: args.fields_loads.clone(),
-            every: args.fields_every,
-        };
-        let raw = FieldsWriter::raw_bytes(grid, sliding.loads.len(), steps_per_load, &selection);
-        eprintln!(
-            "fields: {:.1} MB before compression (13 bytes per pixel and kept step), into {}",
-            raw as f64 / 1e6,
-            args.out.join("fields.zarr").display()
-        );
-        Some(FieldsWriter::create(
-            &out.join("fields.zarr"),
-            grid,
-            units,
-            &sliding.loads,
-            &offsets,
-            &selection,
-            prepared.inputs().to_json(),
-        )?)
+        Some(fields_writer(args, &out, &prepared)?)
     } else {
         None
     };
@@ -142,7 +164,8 @@ pub fn run(args: &Args) -> Result<()> {
         let note = format!("load {}/{}", view.load_index + 1, sliding.loads.len());
         progress.set(view.done as u64, view.total as u64, &note);
         if let (Some(f), None) = (fields.as_mut(), fields_error.as_ref()) {
-            if let Err(e) = f.record(view.load_index, view.step_index, view.pressure, view.labeller.labels()) {
+            let (load_index, step_index, labeller) = (view.load_index, view.step_index, view.labeller);
+            if let Err(e) = f.record(load_index, step_index, view.pressure(), labeller.labels()) {
                 // Stop the run: its outputs could not all be written.
                 fields_error = Some(e);
                 interrupt.request();
@@ -165,24 +188,7 @@ pub fn run(args: &Args) -> Result<()> {
         let _ = std::fs::remove_file(&c.path);
     }
     let runs = &outcome.runs;
-    for r in runs {
-        for w in &r.results {
-            println!(
-                "F_N = {}, d* = {}: W = {} (R² = {}), k = {}, dN*₊/ds = {}, V₀ = {}, k_static = {:.4} (s = 0), {:.4} ± {:.4} \
-                 (all offsets)",
-                with_unit(units, "load", r.load),
-                with_unit(units, "critical_diameter", w.critical_diameter),
-                maybe(units, "wear_rate", w.wear_rate),
-                w.wear_rate_r2.map_or("undefined".into(), |r2| format!("{r2:.3}")),
-                maybe(units, "wear_coefficient", w.wear_coefficient),
-                maybe(units, "particle_rate", w.particle_rate),
-                with_unit(units, "initial_volume", w.initial_volume),
-                w.static_wear_coefficient,
-                w.static_wear_coefficient_mean,
-                w.static_wear_coefficient_std,
-            );
-        }
-    }
+    print_results(units, runs);
     for w in &outcome.warnings {
         eprintln!("warning: {w}");
     }

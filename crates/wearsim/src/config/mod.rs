@@ -24,6 +24,7 @@ use crate::sliding::{
 };
 use crate::surface::{pair_seeds, Generation, Surface};
 use crate::topography::{metres_per, FileSurface, Preprocess};
+use crate::wear::ParticleRuleKind;
 
 use raw::{one_line, RawRun};
 use source::{lateral_scale, surface_source};
@@ -109,14 +110,21 @@ impl RunConfig {
                     SurfaceSource::Generated { grid, .. } | SurfaceSource::Arrays { grid, .. } => Some(grid.nx()),
                     SurfaceSource::Files { .. } => None,
                 };
-                Some(SlidingConfig::new(
-                    sl.loads,
-                    sl.distance.unwrap_or(DEFAULT_DISTANCE),
-                    sl.running_in.unwrap_or(DEFAULT_RUNNING_IN),
-                    sl.step_running_in.unwrap_or(DEFAULT_STEP_RUNNING_IN),
-                    sl.step.unwrap_or(DEFAULT_STEP),
-                    grid,
-                )?)
+                let rule = match &sl.particle_rule {
+                    Some(name) => ParticleRuleKind::named(name)?,
+                    None => ParticleRuleKind::default(),
+                };
+                Some(
+                    SlidingConfig::new(
+                        sl.loads,
+                        sl.distance.unwrap_or(DEFAULT_DISTANCE),
+                        sl.running_in.unwrap_or(DEFAULT_RUNNING_IN),
+                        sl.step_running_in.unwrap_or(DEFAULT_STEP_RUNNING_IN),
+                        sl.step.unwrap_or(DEFAULT_STEP),
+                        grid,
+                    )?
+                    .with_particle_rule(rule),
+                )
             }
         };
         // The apparent area, where the run file fixes it (a file's y side may come from its shape,
@@ -316,6 +324,11 @@ impl RunConfig {
             running_in: self.sliding.as_ref().map(|s| s.running_in),
             step_running_in: self.sliding.as_ref().map(|s| s.step_running_in),
             step: self.sliding.as_ref().map(|s| s.step),
+            particle_rule: self
+                .sliding
+                .as_ref()
+                .filter(|s| s.particle_rule != ParticleRuleKind::default())
+                .map(|s| s.particle_rule.name.to_string()),
         };
         match &self.surfaces {
             SurfaceSource::Generated { grid, spectrum, seed } => {

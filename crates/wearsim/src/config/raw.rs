@@ -99,6 +99,7 @@ pub(super) struct RawSliding {
     pub(super) running_in: Option<f64>,
     pub(super) step_running_in: Option<usize>,
     pub(super) step: Option<usize>,
+    pub(super) particle_rule: Option<String>,
 }
 
 /// A TOML error message on one line (they come with a source excerpt over several lines).

@@ -79,6 +79,9 @@ pub struct InputRecord {
     pub step_running_in: Option<usize>,
     #[serde(rename = "sliding.step")]
     pub step: Option<usize>,
+    /// The particle rule, when not the paper's; absent in job files written before it was recorded.
+    #[serde(rename = "sliding.particle_rule", default)]
+    pub particle_rule: Option<String>,
 }
 
 impl InputRecord {

@@ -6,15 +6,33 @@
 //! solve (heights h, pressure p, displacement u = 𝒦p and its spare, the conjugate direction t, its
 //! response r = 𝒦t, the previous pressure) for as long as the solver lives (a whole sliding run),
 //! performs the convolutions and the fused element-wise passes, and returns only the scalars of
-//! their reductions ([`Stats`], [`LoadSums`], sums). Fields cross to the caller only when asked for
-//! ([`ContactBackend::pressure`]); the contact map that labelling needs is read through
-//! `ContactMap`.
+//! their reductions ([`Stats`], [`LoadSums`], sums). The surfaces of a sliding run are bound once
+//! ([`ContactBackend::bind_surfaces`]) and composed where the fields live at each offset; what
+//! crosses back per step is the contact map as one bit per pixel, made by the backend
+//! ([`ContactBackend::contact_map`]), and the pressure only when a caller asks
+//! ([`ContactBackend::pressure`]).
 //!
 //! A backend fixes the order of its reductions, so that its results do not depend on the thread
-//! count (the CPU backend: per-row partials combined in row order).
+//! count: the CPU backend takes per-row partials combined in row order, and for the load sums
+//! ([`ContactBackend::load_sums`], [`ContactBackend::scaled_load`]) partials over chunks of
+//! [`LOAD_CHUNK`] pixels combined in chunk order. Each method's arithmetic is written out once more,
+//! plainly, in the reference backend of the conformance test (`contact::conformance`), which any
+//! backend must pass: exactly, for a backend that keeps these orders, or within the round-off of
+//! its own.
+
+use std::sync::Arc;
 
 use crate::influence::Boundary;
-use crate::surface::{composite_heights, Surface};
+use crate::surface::Surface;
+
+/// Pixels per partial of the load sums (row-major order), combined in order.
+pub(crate) const LOAD_CHUNK: usize = 4096;
+
+/// The contact map as a backend hands it over: bit `k % 64` of word `k / 64` is set when pixel `k`
+/// (row-major) carries pressure, p > 0.
+pub(crate) fn contact_bit(bits: &[u64], k: usize) -> bool {
+    bits[k / 64] >> (k % 64) & 1 == 1
+}
 
 /// Statistics of g = u − h over the three regions of the pressure field (free 0 < p < p_m,
 /// non-contact p = 0, plastic p = p_m), gathered by one pass; per-row partials are combined in row
@@ -206,11 +224,14 @@ pub(crate) trait ContactBackend: Send + Sync {
     /// Sets the heights h: `fill` writes them, row-major, into a host buffer of Nx·Ny values.
     fn write_heights(&mut self, fill: &mut dyn FnMut(&mut [f64]));
 
-    /// Sets the heights to the composite topography of `top` slid by `offset` pixels over `bottom`
-    /// ([`composite_heights`]); a device backend may compose them where the fields live.
-    fn compose(&mut self, top: &Surface, bottom: &Surface, offset: usize) {
-        self.write_heights(&mut |h| composite_heights(top, bottom, offset, h));
-    }
+    /// Binds the two surfaces of a sliding run, fixed for the run: a device backend copies them to
+    /// the device once; the CPU backend keeps the shared handles.
+    fn bind_surfaces(&mut self, top: Arc<Surface>, bottom: Arc<Surface>);
+
+    /// Sets the heights to the composite topography of the bound surfaces, the top one slid by
+    /// `offset` pixels over the bottom one ([`crate::surface::composite_heights`]), where the fields
+    /// live. Only after [`ContactBackend::bind_surfaces`].
+    fn compose(&mut self, offset: usize);
 
     /// Sets the pressure p (initial guess or warm start): `fill` writes it into a host buffer.
     fn write_pressure(&mut self, fill: &mut dyn FnMut(&mut [f64]));
@@ -218,22 +239,27 @@ pub(crate) trait ContactBackend: Send + Sync {
     /// The pressure p, row-major, on the host (a device backend copies it back).
     fn pressure(&mut self) -> &[f64];
 
-    /// Statistics of h ([`HeightStats`]).
-    fn height_stats(&self) -> HeightStats;
+    /// The contact map of p: one bit per pixel, set where p > 0 ([`contact_bit`]), Nx·Ny/64 words
+    /// rounded up (the bits past the last pixel are 0); a device backend makes it there and copies
+    /// back only the bits.
+    fn contact_map(&mut self) -> &[u64];
+
+    /// Statistics of h ([`HeightStats`]), per-row partials combined in row order.
+    fn height_stats(&mut self) -> HeightStats;
 
     /// The initial guess: p clipped to p_m where it is usable (finite, ≥ 0, not all zero), else
     /// the uniform pressure `mean_pressure`.
     fn initial_guess(&mut self, mean_pressure: f64, pm: f64);
 
-    /// [`LoadSums`] of p.
-    fn load_sums(&self, pm: f64) -> LoadSums;
+    /// [`LoadSums`] of p, over chunks of [`LOAD_CHUNK`] pixels combined in order.
+    fn load_sums(&mut self, pm: f64) -> LoadSums;
 
     /// p ← p_m on every contact pixel (the contact cannot carry the load and must grow).
     fn saturate_contact(&mut self, pm: f64);
 
     /// Σ min(p_m, s·pᵢ) and its derivative in s, over the movable pixels (free ones, or every
-    /// contact pixel when `scale_plastic`).
-    fn scaled_load(&self, s: f64, pm: f64, scale_plastic: bool) -> (f64, f64);
+    /// contact pixel when `scale_plastic`), over chunks of [`LOAD_CHUNK`] pixels combined in order.
+    fn scaled_load(&mut self, s: f64, pm: f64, scale_plastic: bool) -> (f64, f64);
 
     /// pᵢ ← min(p_m, s·pᵢ) on the movable pixels.
     fn scale(&mut self, s: f64, pm: f64, scale_plastic: bool);

@@ -4,10 +4,13 @@
 
 use rayon::prelude::*;
 
-use super::backend::{ContactBackend, HeightStats, LoadSums, Stats, Update};
+use std::sync::Arc;
+
+use super::backend::{ContactBackend, HeightStats, LoadSums, Stats, Update, LOAD_CHUNK};
 use crate::error::Result;
 use crate::grid::Grid;
 use crate::influence::{self, Boundary, Influence};
+use crate::surface::Surface;
 
 /// Arrays of Nx·Ny doubles the CPU backend holds besides its influence operator: h, p, u, t, r,
 /// the previous p and the spare u (7), and rounding for the per-row partials and FFT rows.
@@ -15,8 +18,8 @@ pub(crate) fn arrays(boundary: Boundary) -> f64 {
     8.5 + influence::arrays(boundary)
 }
 
-/// The fields of a solve in host memory, the influence operator and the per-row partials, all
-/// made once.
+/// The fields of a solve in host memory, the influence operator and the partials of every
+/// reduction, all made once: no pass allocates.
 pub(crate) struct CpuBackend {
     ny: usize,
     /// 𝒦, periodic or with a free boundary.
@@ -30,9 +33,22 @@ pub(crate) struct CpuBackend {
     p_old: Vec<f64>,
     /// Spare displacement buffer: receives 𝒦p after a step off the CG line.
     u_alt: Vec<f64>,
+    /// The surfaces of a sliding run, shared with the caller (no copy).
+    surfaces: Option<(Arc<Surface>, Arc<Surface>)>,
+    /// The contact map, one bit per pixel.
+    bits: Vec<u64>,
     stats: Vec<Stats>,
     sums: Vec<[f64; 2]>,
     row_partials: Vec<f64>,
+    /// Per-row partials of the height statistics: Σ(h − h₀), Σ(h − h₀)², max, all finite; taken
+    /// by `compose` for the heights it writes (`height_rows_ready`).
+    height_rows: Vec<(f64, f64, f64, bool)>,
+    height_rows_ready: bool,
+    /// Per-row partials of the initial guess's tests: all finite and ≥ 0, any > 0.
+    guess_rows: Vec<(bool, bool)>,
+    /// Per-chunk partials of the load sums and of the scaled load ([`LOAD_CHUNK`] pixels each).
+    load_chunks: Vec<LoadSums>,
+    scaled_chunks: Vec<(f64, f64)>,
     /// Rows per rayon task in the element-wise passes.
     min_len: usize,
     /// [`ContactBackend::response_scale`].
@@ -54,9 +70,16 @@ impl CpuBackend {
             r: vec![0.0; nx * ny],
             p_old: vec![0.0; nx * ny],
             u_alt: vec![0.0; nx * ny],
+            surfaces: None,
+            bits: vec![0; (nx * ny).div_ceil(64)],
             stats: vec![Stats::default(); nx],
             sums: vec![[0.0; 2]; nx],
             row_partials: vec![0.0; nx],
+            height_rows: vec![(0.0, 0.0, 0.0, true); nx],
+            height_rows_ready: false,
+            guess_rows: vec![(true, false); nx],
+            load_chunks: vec![LoadSums::default(); (nx * ny).div_ceil(LOAD_CHUNK)],
+            scaled_chunks: vec![(0.0, 0.0); (nx * ny).div_ceil(LOAD_CHUNK)],
             min_len: (8192 / ny).max(1),
             response_scale,
         })
@@ -82,30 +105,73 @@ impl ContactBackend for CpuBackend {
 
     fn write_heights(&mut self, fill: &mut dyn FnMut(&mut [f64])) {
         fill(&mut self.heights);
+        self.height_rows_ready = false;
     }
 
     fn write_pressure(&mut self, fill: &mut dyn FnMut(&mut [f64])) {
         fill(&mut self.pressure);
     }
 
+    fn bind_surfaces(&mut self, top: Arc<Surface>, bottom: Arc<Surface>) {
+        self.surfaces = Some((top, bottom));
+    }
+
+    /// [`composite_heights`](crate::surface::composite_heights), with the row partials of
+    /// [`ContactBackend::height_stats`] taken in the same pass (one pass over h fewer per step).
+    fn compose(&mut self, offset: usize) {
+        let (top, bottom) = self.surfaces.as_ref().expect("surfaces bound before composing");
+        let (nx, ny) = (top.nx(), top.ny());
+        let (t, b) = (top.heights(), bottom.heights());
+        let source = |i: usize| (i + nx - offset % nx) % nx;
+        let h0 = b[0] + t[source(0) * ny];
+        self.heights
+            .par_chunks_mut(ny)
+            .zip(self.height_rows.par_iter_mut())
+            .enumerate()
+            .for_each(|(i, (row, acc))| {
+                let src = source(i);
+                for ((o, &bv), &tv) in row
+                    .iter_mut()
+                    .zip(&b[i * ny..(i + 1) * ny])
+                    .zip(&t[src * ny..(src + 1) * ny])
+                {
+                    *o = bv + tv;
+                }
+                *acc = height_row(row, h0);
+            });
+        self.height_rows_ready = true;
+    }
+
     fn pressure(&mut self) -> &[f64] {
         &self.pressure
     }
 
-    /// One deterministic parallel pass: Σ(h − h₀), Σ(h − h₀)², max, finite.
-    fn height_stats(&self) -> HeightStats {
+    /// 64 pixels per word, in parallel.
+    fn contact_map(&mut self) -> &[u64] {
+        self.bits
+            .par_iter_mut()
+            .with_min_len(64)
+            .zip(self.pressure.par_chunks(64))
+            .for_each(|(word, p)| {
+                *word = p.iter().enumerate().fold(0, |w, (b, &p)| w | (u64::from(p > 0.0) << b));
+            });
+        &self.bits
+    }
+
+    /// One deterministic parallel pass (none after [`ContactBackend::compose`], which took the
+    /// row partials): Σ(h − h₀), Σ(h − h₀)², max, finite.
+    fn height_stats(&mut self) -> HeightStats {
         let heights = &self.heights;
         let h0 = heights[0];
-        let (sum, sum_sq, max, finite) = heights
-            .par_chunks(self.ny)
-            .map(|row| {
-                row.iter()
-                    .fold((0.0, 0.0, f64::NEG_INFINITY, true), |(s, q, m, f), &h| {
-                        (s + (h - h0), q + (h - h0) * (h - h0), m.max(h), f && h.is_finite())
-                    })
-            })
-            .collect::<Vec<_>>()
-            .into_iter()
+        if !self.height_rows_ready {
+            self.height_rows
+                .par_iter_mut()
+                .zip(heights.par_chunks(self.ny))
+                .for_each(|(acc, row)| *acc = height_row(row, h0));
+        }
+        let (sum, sum_sq, max, finite) = self
+            .height_rows
+            .iter()
             .fold((0.0, 0.0, f64::NEG_INFINITY, true), |a, b| {
                 (a.0 + b.0, a.1 + b.1, a.2.max(b.2), a.3 && b.3)
             });
@@ -123,46 +189,64 @@ impl ContactBackend for CpuBackend {
         }
     }
 
+    /// One pass over rows for the two tests, one to set p.
     fn initial_guess(&mut self, mean_pressure: f64, pm: f64) {
-        let pressure = &mut self.pressure;
-        let usable = pressure.par_iter().all(|p| p.is_finite() && *p >= 0.0) && pressure.par_iter().any(|&p| p > 0.0);
-        if usable {
-            pressure.par_iter_mut().for_each(|p| *p = p.min(pm));
-        } else {
-            pressure.par_iter_mut().for_each(|p| *p = mean_pressure);
-        }
+        let n = self.ny;
+        self.guess_rows
+            .par_iter_mut()
+            .with_min_len(self.min_len)
+            .zip(self.pressure.par_chunks(n))
+            .for_each(|(acc, row)| {
+                *acc = row.iter().fold((true, false), |(valid, any), &p| {
+                    (valid && p.is_finite() && p >= 0.0, any || p > 0.0)
+                });
+            });
+        let usable = self.guess_rows.iter().all(|r| r.0) && self.guess_rows.iter().any(|r| r.1);
+        self.pressure
+            .par_chunks_mut(n)
+            .with_min_len(self.min_len)
+            .for_each(|row| {
+                for p in row {
+                    *p = if usable { p.min(pm) } else { mean_pressure };
+                }
+            });
     }
 
-    fn load_sums(&self, pm: f64) -> LoadSums {
-        self.pressure
-            .par_chunks(4096)
+    fn load_sums(&mut self, pm: f64) -> LoadSums {
+        self.load_chunks
+            .par_iter_mut()
+            .zip(self.pressure.par_chunks(LOAD_CHUNK))
             .with_min_len(self.min_len)
-            .map(|c| {
+            .for_each(|(acc, c)| {
                 let mut s = LoadSums::default();
                 for &p in c {
                     s.add(p, pm);
                 }
-                s
-            })
-            .collect::<Vec<_>>()
-            .into_iter()
-            .fold(LoadSums::default(), LoadSums::merge)
+                *acc = s;
+            });
+        self.load_chunks
+            .iter()
+            .fold(LoadSums::default(), |a, &b| LoadSums::merge(a, b))
     }
 
     fn saturate_contact(&mut self, pm: f64) {
-        self.pressure.par_iter_mut().for_each(|p| {
-            if *p > 0.0 {
-                *p = pm
-            }
-        });
+        self.pressure
+            .par_chunks_mut(self.ny)
+            .with_min_len(self.min_len)
+            .for_each(|row| {
+                for p in row.iter_mut().filter(|p| **p > 0.0) {
+                    *p = pm;
+                }
+            });
     }
 
-    fn scaled_load(&self, s: f64, pm: f64, scale_plastic: bool) -> (f64, f64) {
+    fn scaled_load(&mut self, s: f64, pm: f64, scale_plastic: bool) -> (f64, f64) {
         let movable_pixel = |p: f64| p > 0.0 && (scale_plastic || p < pm);
-        self.pressure
-            .par_chunks(4096)
+        self.scaled_chunks
+            .par_iter_mut()
+            .zip(self.pressure.par_chunks(LOAD_CHUNK))
             .with_min_len(self.min_len)
-            .map(|c| {
+            .for_each(|(acc, c)| {
                 let (mut f, mut df) = (0.0, 0.0);
                 for &p in c {
                     if movable_pixel(p) {
@@ -175,20 +259,25 @@ impl ContactBackend for CpuBackend {
                         }
                     }
                 }
-                (f, df)
-            })
-            .collect::<Vec<_>>()
-            .into_iter()
-            .fold((0.0, 0.0), |(a, b), (f, df)| (a + f, b + df))
+                *acc = (f, df);
+            });
+        self.scaled_chunks
+            .iter()
+            .fold((0.0, 0.0), |(a, b), &(f, df)| (a + f, b + df))
     }
 
     fn scale(&mut self, s: f64, pm: f64, scale_plastic: bool) {
         let movable_pixel = |p: f64| p > 0.0 && (scale_plastic || p < pm);
-        self.pressure.par_iter_mut().for_each(|p| {
-            if movable_pixel(*p) {
-                *p = (s * *p).min(pm);
-            }
-        });
+        self.pressure
+            .par_chunks_mut(self.ny)
+            .with_min_len(self.min_len)
+            .for_each(|row| {
+                for p in row {
+                    if movable_pixel(*p) {
+                        *p = (s * *p).min(pm);
+                    }
+                }
+            });
     }
 
     fn spread_missing_load(&mut self, total: f64, pm: f64, mean: f64) {
@@ -377,13 +466,30 @@ impl ContactBackend for CpuBackend {
     }
 
     fn undo(&mut self, step: f64) {
+        let n = self.ny;
         self.pressure
-            .par_iter_mut()
-            .zip(self.p_old.par_iter())
-            .for_each(|(p, &o)| *p = o);
+            .par_chunks_mut(n)
+            .with_min_len(self.min_len)
+            .zip(self.p_old.par_chunks(n))
+            .for_each(|(p, o)| p.copy_from_slice(o));
         self.u
-            .par_iter_mut()
-            .zip(self.u_alt.par_iter().zip(self.r.par_iter()))
-            .for_each(|(u, (&a, &r))| *u = a + step * r);
+            .par_chunks_mut(n)
+            .with_min_len(self.min_len)
+            .zip(self.u_alt.par_chunks(n).zip(self.r.par_chunks(n)))
+            .for_each(|(u, (a, r))| {
+                for ((u, &a), &r) in u.iter_mut().zip(a).zip(r) {
+                    *u = a + step * r;
+                }
+            });
     }
+}
+
+/// The partial of the height statistics over one row, about h₀: Σ(h − h₀), Σ(h − h₀)², max, all
+/// finite.
+#[inline]
+fn height_row(row: &[f64], h0: f64) -> (f64, f64, f64, bool) {
+    row.iter()
+        .fold((0.0, 0.0, f64::NEG_INFINITY, true), |(s, q, m, f), &h| {
+            (s + (h - h0), q + (h - h0) * (h - h0), m.max(h), f && h.is_finite())
+        })
 }

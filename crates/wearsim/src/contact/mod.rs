@@ -26,7 +26,11 @@
 //! and max(0, g_i + c) on plastic pixels, c = −mean over free pixels of g.
 
 pub(crate) mod backend;
+#[cfg(test)]
+mod conformance;
 mod cpu;
+
+use std::sync::Arc;
 
 use rayon::prelude::*;
 
@@ -195,18 +199,18 @@ impl std::str::FromStr for Device {
     }
 }
 
-/// Which pixels are in contact (p > 0) after a solve, as labelling reads them (a device backend
-/// would hand over a bit map instead of the pressure).
+/// Which pixels are in contact (p > 0) after a solve, as labelling reads them: one bit per pixel,
+/// made by the backend where the fields live (only the bits cross to the host).
 #[derive(Debug, Clone, Copy)]
 pub struct ContactMap<'a> {
-    pressure: &'a [f64],
+    bits: &'a [u64],
 }
 
 impl ContactMap<'_> {
     /// Whether pixel `k` (row-major) is in contact.
     #[inline]
     pub fn contains(&self, k: usize) -> bool {
-        self.pressure[k] > 0.0
+        backend::contact_bit(self.bits, k)
     }
 }
 
@@ -218,6 +222,8 @@ pub struct ContactSolver {
     effective_modulus: f64,
     device: Device,
     backend: Box<dyn ContactBackend>,
+    /// Whether surfaces are bound for [`ContactSolver::compose`].
+    bound: bool,
     options: SolverOptions,
     /// Checked once per iteration: a raised flag ends the solve with [`Error::Interrupted`].
     interrupt: Interrupt,
@@ -275,9 +281,24 @@ impl ContactSolver {
             effective_modulus,
             device,
             backend,
+            bound: false,
             options: SolverOptions::default(),
             interrupt: Interrupt::default(),
         })
+    }
+
+    /// A solver over a backend made elsewhere (the conformance test's reference).
+    #[cfg(test)]
+    pub(crate) fn with_backend(grid: Grid, effective_modulus: f64, backend: Box<dyn ContactBackend>) -> Self {
+        Self {
+            grid,
+            effective_modulus,
+            device: Device::Cpu,
+            backend,
+            bound: false,
+            options: SolverOptions::default(),
+            interrupt: Interrupt::default(),
+        }
     }
 
     /// The grid.
@@ -401,10 +422,10 @@ impl ContactSolver {
         Ok(info)
     }
 
-    /// Sets the heights of the next in-place solve to the composite topography of `top` slid by
-    /// `offset` pixels over `bottom` ([`composite_heights`](crate::surface::composite_heights)),
-    /// where the solver's fields live.
-    pub fn compose(&mut self, top: &Surface, bottom: &Surface, offset: usize) -> Result<()> {
+    /// Binds the two surfaces of a sliding run, fixed for the run (a device backend copies them
+    /// there once; the CPU keeps the shared handles, no copy): [`ContactSolver::compose`] then
+    /// sets the heights of each offset where the solver's fields live.
+    pub fn bind_surfaces(&mut self, top: Arc<Surface>, bottom: Arc<Surface>) -> Result<()> {
         let (nx, ny) = (self.grid.nx(), self.grid.ny());
         if top.nx() != nx || top.ny() != ny || bottom.nx() != nx || bottom.ny() != ny {
             return Err(Error::param(
@@ -412,7 +433,22 @@ impl ContactSolver {
                 format!("the surfaces must have the solver's {nx}×{ny} grid"),
             ));
         }
-        self.backend.compose(top, bottom, offset);
+        self.backend.bind_surfaces(top, bottom);
+        self.bound = true;
+        Ok(())
+    }
+
+    /// Sets the heights of the next in-place solve to the composite topography of the bound top
+    /// surface slid by `offset` pixels over the bound bottom one
+    /// ([`composite_heights`](crate::surface::composite_heights)).
+    pub fn compose(&mut self, offset: usize) -> Result<()> {
+        if !self.bound {
+            return Err(Error::param(
+                "surface",
+                "no surfaces are bound to the solver; bind them (`bind_surfaces`) before composing",
+            ));
+        }
+        self.backend.compose(offset);
         Ok(())
     }
 
@@ -428,10 +464,10 @@ impl ContactSolver {
         self.backend.pressure()
     }
 
-    /// The contact map of the last solve.
+    /// The contact map of the last solve (or of the pressure as set), as the backend makes it.
     pub fn contact_map(&mut self) -> ContactMap<'_> {
         ContactMap {
-            pressure: self.backend.pressure(),
+            bits: self.backend.contact_map(),
         }
     }
 
@@ -675,7 +711,70 @@ fn converged(info: SolveInfo) -> Result<SolveInfo> {
 
 #[cfg(test)]
 mod tests {
+    use super::conformance::{agree_fields, backend_passes, uniform, Broken, MakeBackend, GRIDS};
     use super::*;
+
+    /// Whole solves with the backend `make` builds against solves with the reference backend, both
+    /// boundaries, saturated and elastic, cold and warm-started: pressures and reports agree.
+    fn solves(make: &MakeBackend, grid: Grid, boundary: Boundary, exact: bool) {
+        let e_star = 1.0 / 0.91;
+        for (pm, mean_pressure) in [(0.05, 4e-3), (f64::INFINITY, 2e-3)] {
+            let heights: Vec<f64> = uniform(21, grid.pixels()).iter().map(|x| 0.01 * x * x).collect();
+            let shifted: Vec<f64> = heights
+                .iter()
+                .enumerate()
+                .map(|(k, h)| h + 1e-4 * (k % 7) as f64)
+                .collect();
+            let mut results = Vec::new();
+            for backend in [
+                make(grid, e_star, boundary),
+                conformance::reference(grid, e_star, boundary),
+            ] {
+                let mut solver = ContactSolver::with_backend(grid, e_star, backend);
+                let mut p = vec![0.0; grid.pixels()];
+                let cold = solver.solve(&heights, mean_pressure, pm, &mut p).unwrap();
+                let warm = solver.solve(&shifted, mean_pressure, pm, &mut p).unwrap();
+                results.push((cold, warm, p));
+            }
+            let (a, b) = (&results[0], &results[1]);
+            let what = format!("{boundary:?} solve on {}×{}, p_m = {pm}", grid.nx(), grid.ny());
+            if exact {
+                assert_eq!((&a.0, &a.1), (&b.0, &b.1), "{what}");
+            } else {
+                assert_eq!(
+                    (a.0.contact_pixels, a.1.contact_pixels),
+                    (b.0.contact_pixels, b.1.contact_pixels),
+                    "{what}"
+                );
+            }
+            agree_fields(&a.2, &b.2, exact, &what);
+        }
+    }
+
+    /// The conformance test of a backend (`contact::conformance`): every pass against the plain
+    /// reference, then whole solves. A new backend adds a test calling this with its constructor.
+    fn conformance(make: &MakeBackend, exact: bool) {
+        backend_passes(make, exact);
+        for (nx, ny) in GRIDS {
+            let grid = Grid::new(nx, ny, 0.1 * nx as f64).unwrap();
+            for boundary in [Boundary::Periodic, Boundary::Free] {
+                solves(make, grid, boundary, exact);
+            }
+        }
+    }
+
+    #[test]
+    fn the_cpu_backend_passes_the_conformance_test_exactly() {
+        conformance(&super::conformance::cpu, true);
+    }
+
+    #[test]
+    fn the_conformance_test_fails_a_backend_that_breaks_a_rule() {
+        let make: &MakeBackend =
+            &|grid, e_star, boundary| Box::new(Broken(CpuBackend::new(grid, e_star, boundary).unwrap()));
+        let failed = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| conformance(make, false))).is_err();
+        assert!(failed, "a backend that counts plastic load as free passed");
+    }
 
     #[test]
     fn unreachable_or_meaningless_settings_are_refused() {

@@ -7,11 +7,10 @@ use serde_json::json;
 
 use crate::config::{InputRecord, Units};
 use crate::error::{Error, Result};
-use crate::sliding::{StepRecord, WearResult};
-use crate::wear::StepWear;
+use crate::sliding::WearResult;
 
 use super::provenance::Provenance;
-use super::summary::SeriesRow;
+use super::series::{job_series_rows, SeriesRow, StepRow};
 use super::tables::{columns, Cell, Table};
 use super::units::units_map;
 
@@ -46,39 +45,6 @@ pub struct JobResult {
     pub warnings: Vec<String>,
 }
 
-/// One step of a job file.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct StepRow {
-    pub s: f64,
-    pub junctions: usize,
-    /// Junctions that wrap the periodic box (no particles of the model, paper §3); 0 in job files
-    /// written before it existed.
-    #[serde(default)]
-    pub wrapping_junctions: usize,
-    pub contact_area: f64,
-    pub initial_junctions: usize,
-    pub n_critical: Vec<usize>,
-    pub n_formed: Vec<usize>,
-    pub volume: Vec<f64>,
-    pub static_wear_coefficient: Vec<f64>,
-}
-
-impl From<&StepRecord> for StepRow {
-    fn from(r: &StepRecord) -> Self {
-        Self {
-            s: r.s,
-            junctions: r.junctions,
-            wrapping_junctions: r.wrapping_junctions,
-            contact_area: r.contact_area,
-            initial_junctions: r.initial_junctions,
-            static_wear_coefficient: r.statics.iter().map(|w| w.wear_coefficient).collect(),
-            n_critical: r.wear.iter().map(|w| w.n_critical).collect(),
-            n_formed: r.wear.iter().map(|w| w.n_formed).collect(),
-            volume: r.wear.iter().map(|w| w.volume).collect(),
-        }
-    }
-}
-
 impl JobResult {
     /// The job file's text.
     pub fn to_json(&self) -> String {
@@ -96,42 +62,7 @@ impl JobResult {
     /// step, as the series of a sliding run is ordered, with its columns; those a job file does not
     /// keep (W_static/ω, the solver's iterations and residual per step) are empty.
     pub fn series_rows(&self) -> Vec<SeriesRow> {
-        let mut rows = Vec::new();
-        for (e, w) in self.results.iter().enumerate() {
-            for st in &self.steps {
-                let (Some(&n_critical), Some(&n_formed), Some(&volume), Some(&k)) = (
-                    st.n_critical.get(e),
-                    st.n_formed.get(e),
-                    st.volume.get(e),
-                    st.static_wear_coefficient.get(e),
-                ) else {
-                    continue;
-                };
-                let wear = StepWear {
-                    n_critical,
-                    n_formed,
-                    volume,
-                };
-                rows.push(SeriesRow {
-                    load: self.load,
-                    fracture_energy: w.fracture_energy,
-                    s: st.s,
-                    junctions: st.junctions,
-                    contact_area: st.contact_area,
-                    n_critical,
-                    n_formed,
-                    n_shrunk: wear.n_shrunk(),
-                    volume,
-                    initial_junctions: st.initial_junctions,
-                    static_wear_coefficient: k,
-                    static_wear_rate: None,
-                    iterations: None,
-                    residual: None,
-                    wrapping_junctions: st.wrapping_junctions,
-                });
-            }
-        }
-        rows
+        job_series_rows(self.load, &self.results, &self.steps)
     }
 }
 
@@ -518,26 +449,7 @@ mod tests {
 
     #[test]
     fn columns_come_from_the_row_types() {
-        assert_eq!(
-            columns::<SeriesRow>(),
-            [
-                "load",
-                "fracture_energy",
-                "s",
-                "junctions",
-                "contact_area",
-                "n_critical",
-                "n_formed",
-                "n_shrunk",
-                "volume",
-                "initial_junctions",
-                "static_wear_coefficient",
-                "static_wear_rate",
-                "iterations",
-                "residual",
-                "wrapping_junctions"
-            ]
-        );
+        // The series' columns are pinned beside their units (`output::series`).
         let tidy = columns::<TidyRow>();
         assert_eq!(&tidy[..3], ["job", "material", "units"]);
         assert!(tidy.contains(&"surface.seed".to_string()) && tidy.contains(&"wear_rate".to_string()));

@@ -4,7 +4,9 @@
 //! bindings) call these and only choose where the files go.
 //!
 //! Tables are derived from one typed row each ([`SeriesRow`], [`TidyRow`]): their columns are the
-//! rows' serde fields in order, so a column list is never kept by hand. Numbers are written in
+//! rows' serde fields in order, so a column list is never kept by hand; every column's unit is
+//! declared once (`WearResult::UNITS`, [`SeriesRow::UNITS`], the other quantities in `units`) and a
+//! test fails for a column without one. Numbers are written in
 //! Rust's shortest round-trip form (`{:e}` for floats); an undefined value (NaN, a missing input) is
 //! an empty cell.
 
@@ -12,6 +14,7 @@ mod fields;
 mod figure_data;
 mod jobs;
 mod provenance;
+mod series;
 mod summary;
 mod tables;
 mod units;
@@ -23,13 +26,14 @@ pub use figure_data::{
 };
 pub use jobs::{
     aggregate, curves, equal_critical_diameter, interval_method, read_job_file, series_job, settings,
-    write_results_tables, CurveMaterial, Curves, JobResult, SettingRows, Settings, StepRow, TidyRow,
-    AGGREGATE_SUFFIXES, ALONG_A_CURVE, JOB_FORMAT, NOT_A_SETTING, STATISTICS, TOTALLED,
+    write_results_tables, CurveMaterial, Curves, JobResult, SettingRows, Settings, TidyRow, AGGREGATE_SUFFIXES,
+    ALONG_A_CURVE, JOB_FORMAT, NOT_A_SETTING, STATISTICS, TOTALLED,
 };
 pub use provenance::{Provenance, DEPENDENCY_VERSIONS};
+pub use series::{job_series_rows, series_rows, SeriesRow, StepRow};
 pub use summary::{
-    contact_summary, junctions_summary, series_csv, series_rows, sliding_summary, surface_fit_summary, surface_summary,
-    ContactRecord, SeriesRow, SlidingInputs, SurfaceStatistics, PSD_CONVENTION, RESIDUAL_DEFINITION,
+    contact_summary, junctions_summary, series_csv, sliding_summary, surface_fit_summary, surface_summary,
+    ContactRecord, SlidingInputs, SurfaceStatistics, PSD_CONVENTION, RESIDUAL_DEFINITION,
 };
 pub use tables::{columns, Cell, Table};
-pub use units::{unit_of, units_map};
+pub use units::{declared_unit, unit_of, units_map, QUANTITIES};

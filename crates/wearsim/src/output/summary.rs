@@ -5,85 +5,16 @@ use serde::Serialize;
 use serde_json::{json, Value};
 
 use crate::config::{RunConfig, SurfaceSource, Units};
-use crate::contact::{SolveInfo, SolverOptions};
+use crate::contact::{Device, SolveInfo, SolverOptions};
 use crate::influence::Boundary;
 use crate::material::{Material, ModulusConvention};
 use crate::sliding::{LoadRun, SlidingConfig, WearResult};
 use crate::surface::Surface;
 
 use super::provenance::Provenance;
+use super::series::{series_rows, SeriesRow};
 use super::tables::{columns, Table};
 use super::units::{unit_of, units_map};
-
-/// One row of a sliding run's series (`series.csv` of `wearsim slide`, the DataFrame of the Python
-/// `slide`): one step of one load for one fracture energy. The first nine columns are the paper's
-/// record per step (§3), then the memory of the initial contact and the static model at this step;
-/// `iterations` and `residual` are the contact solver's.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
-pub struct SeriesRow {
-    /// Normal load F_N.
-    pub load: f64,
-    /// Fracture energy 𝒢.
-    pub fracture_energy: f64,
-    /// Sliding distance s in the run's length unit.
-    pub s: f64,
-    /// Number of junctions N.
-    pub junctions: usize,
-    /// Real contact area as a fraction of the apparent area Lx·Ly.
-    pub contact_area: f64,
-    /// N*: junctions with d_i ≥ d* at this step.
-    pub n_critical: usize,
-    /// N*₊: particles formed so far, s = 0 included.
-    pub n_formed: usize,
-    /// N*₋ = N*₊ − N*.
-    pub n_shrunk: i64,
-    /// V: wear volume so far, s = 0 included.
-    pub volume: f64,
-    /// Junctions descending from a junction present at s = 0 (the memory of the initial contact,
-    /// paper §3).
-    pub initial_junctions: usize,
-    /// Static model on this step's contact map: k_static and W_static/ω (paper §2); a study's job
-    /// file keeps k_static only, so W_static/ω is empty in a job's series.
-    pub static_wear_coefficient: f64,
-    pub static_wear_rate: Option<f64>,
-    /// Contact solver iterations of this step (empty in a job's series: job files do not keep it).
-    pub iterations: Option<usize>,
-    /// Contact solver residual of this step (empty in a job's series).
-    pub residual: Option<f64>,
-    /// Junctions that wrap the periodic box at this step (full contact, a band across the box):
-    /// no particles of the model (paper §3), yet counted in N, V and k_static.
-    pub wrapping_junctions: usize,
-}
-
-/// The series of every load and fracture energy: load by load, then fracture energy, then step.
-pub fn series_rows(runs: &[LoadRun]) -> Vec<SeriesRow> {
-    let mut rows = Vec::new();
-    for r in runs {
-        for (e, w) in r.results.iter().enumerate() {
-            for st in &r.steps {
-                let sw = &st.wear[e];
-                rows.push(SeriesRow {
-                    load: r.load,
-                    fracture_energy: w.fracture_energy,
-                    s: st.s,
-                    junctions: st.junctions,
-                    contact_area: st.contact_area,
-                    n_critical: sw.n_critical,
-                    n_formed: sw.n_formed,
-                    n_shrunk: sw.n_shrunk(),
-                    volume: sw.volume,
-                    initial_junctions: st.initial_junctions,
-                    static_wear_coefficient: st.statics[e].wear_coefficient,
-                    static_wear_rate: Some(st.statics[e].wear_rate_over_omega),
-                    iterations: Some(st.iterations),
-                    residual: Some(st.residual),
-                    wrapping_junctions: st.wrapping_junctions,
-                });
-            }
-        }
-    }
-    rows
-}
 
 /// `series.csv` of a sliding run: plain CSV for pandas and R; units and provenance are in the
 /// summary beside it.
@@ -101,6 +32,8 @@ pub struct SlidingInputs<'a> {
     pub modulus: ModulusConvention,
     pub solver: SolverOptions,
     pub connectivity: u8,
+    /// Where the contact solver computed.
+    pub device: Device,
     pub sliding: &'a SlidingConfig,
 }
 
@@ -114,6 +47,7 @@ impl<'a> SlidingInputs<'a> {
             modulus: config.modulus,
             solver: config.solver,
             connectivity: config.connectivity,
+            device: config.device,
             sliding,
         }
     }
@@ -123,7 +57,7 @@ impl<'a> SlidingInputs<'a> {
         json!({
             "surfaces": self.surfaces,
             "material": self.material,
-            "contact": contact_inputs(self.modulus, self.solver, self.connectivity),
+            "contact": contact_inputs(self.modulus, self.solver, self.connectivity, self.device),
             "sliding": self.sliding,
         })
     }
@@ -133,13 +67,15 @@ fn surface_source(source: &SurfaceSource) -> Value {
     serde_json::to_value(source).expect("plain data serialises")
 }
 
-/// The contact settings of a run as they appear in its outputs.
-fn contact_inputs(modulus: ModulusConvention, solver: SolverOptions, connectivity: u8) -> Value {
+/// The contact settings of a run as they appear in its outputs, the device the solver computed on
+/// included.
+fn contact_inputs(modulus: ModulusConvention, solver: SolverOptions, connectivity: u8, device: Device) -> Value {
     json!({
         "modulus": modulus.name(),
         "tolerance": solver.tolerance(),
         "max_iterations": solver.max_iterations(),
         "connectivity": connectivity,
+        "device": device.name(),
     })
 }
 
@@ -300,7 +236,7 @@ pub fn contact_summary(
         ("surfaces".to_string(), surface_source(&config.surfaces)),
         (
             "contact".to_string(),
-            contact_inputs(config.modulus, config.solver, config.connectivity),
+            contact_inputs(config.modulus, config.solver, config.connectivity, config.device),
         ),
     ]);
     doc

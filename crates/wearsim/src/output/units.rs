@@ -1,53 +1,113 @@
 //! Units of quantities and columns in the run's unit system (reduced: E, L; SI: Pa, m, N, J/m²).
+//!
+//! Every unit is declared once: a result field's beside the field (`WearResult::UNITS`), a series
+//! column's beside the column ([`SeriesRow::UNITS`]), and every other quantity a table, summary
+//! or front end names (the inputs, the tidy and aggregated tables' own columns, the fields) in
+//! [`QUANTITIES`]. A name declared nowhere has no unit ([`declared_unit`] says so); the tests
+//! check every column of every table against the declarations.
 
 use std::collections::BTreeMap;
 
 use crate::config::Units;
 use crate::sliding::WearResult;
 
-/// The unit of a quantity (a result field, a series or table column, an input) in a unit system:
-/// reduced units are multiples of E and L; SI units are Pa, m, N and J/m². Dimensionless numbers and
-/// counts have "" (counts) or "1" (ratios). Column suffixes `_mean`, `_std`, `_min`, `_max`, `_total`,
-/// `_ci_low`, `_ci_high` and the
-/// `surface.`/`material.`/`contact.` prefixes are looked through.
-pub fn unit_of(units: Units, quantity: &str) -> &'static str {
+use super::series::SeriesRow;
+
+/// The units of the quantities that are no field of a row declaring its own: (name, reduced, SI);
+/// "" for counts and text, "1" for ratios. Input columns (`surface.length`, `sliding.step`, …) are
+/// declared by their key.
+pub const QUANTITIES: &[(&str, &str, &str)] = &[
+    // Loads, pressures, moduli and energies.
+    ("load", "E L²", "N"),
+    ("nominal_pressure", "E", "Pa"),
+    ("fracture_energies", "E L", "J/m²"),
+    ("flow_pressure", "E", "Pa"),
+    ("effective_modulus", "E", "Pa"),
+    ("youngs_modulus", "E", "Pa"),
+    ("shear_strength", "E", "Pa"),
+    ("mean_pressure", "E", "Pa"),
+    ("pressure", "E", "Pa"),
+    // Lengths.
+    ("length", "L", "m"),
+    ("length_y", "L", "m"),
+    ("lambda_lower", "L", "m"),
+    ("lambda_upper", "L", "m"),
+    ("rms_height", "L", "m"),
+    ("approach", "L", "m"),
+    ("pixel_size", "L", "m"),
+    ("gap", "L", "m"),
+    ("displacement", "L", "m"),
+    // Ratios and dimensionless inputs.
+    ("contact_severity", "1", "1"),
+    ("poisson_ratio", "1", "1"),
+    ("geometry_factor", "1", "1"),
+    ("hurst", "1", "1"),
+    ("tolerance", "1", "1"),
+    ("taper", "1 (fraction of the side)", "1 (fraction of the side)"),
+    ("distance", "1 (fraction of Lx)", "1 (fraction of Lx)"),
+    ("running_in", "1 (fraction of Lx)", "1 (fraction of Lx)"),
+    ("step_running_in", "px", "px"),
+    ("step", "px", "px"),
+    ("grid", "px", "px"),
+    ("grid_y", "px", "px"),
+    // Counts, choices and text.
+    ("job", "", ""),
+    ("material", "", ""),
+    ("units", "", ""),
+    ("seed", "", ""),
+    ("top", "", ""),
+    ("bottom", "", ""),
+    ("height_unit", "", ""),
+    ("lateral_unit", "", ""),
+    ("detrend", "", ""),
+    ("generation", "", ""),
+    ("modulus", "", ""),
+    ("max_iterations", "", ""),
+    ("connectivity", "", ""),
+    ("device", "", ""),
+    ("particle_rule", "", ""),
+    ("warnings", "", ""),
+    // Columns the aggregated table adds.
+    ("curve", "", ""),
+    ("surface_pairs", "", ""),
+    ("pairs_with_warnings", "", ""),
+    ("interval_method", "", ""),
+];
+
+/// Statistics over surface pairs that keep the unit of their column.
+const STATISTICS: [&str; 7] = ["_mean", "_std", "_min", "_max", "_total", "_ci_low", "_ci_high"];
+
+/// The declared unit of a quantity (a result field, a series or table column, an input) in a unit
+/// system, or `None` when none declares it: reduced units are multiples of E and L; SI units are
+/// Pa, m, N and J/m²; "" for counts and text, "1" for ratios. Statistics over surface pairs
+/// (`_mean`, `_std`, `_min`, `_max`, `_total`) and the bounds of their intervals (`_ci_low`,
+/// `_ci_high`) keep the unit of their column, and the
+/// `surface.`/`material.`/`contact.`/`sliding.` prefixes of input columns are looked through.
+pub fn declared_unit(units: Units, quantity: &str) -> Option<&'static str> {
     let si = units == Units::Si;
-    let pick = |reduced: &'static str, si_unit: &'static str| if si { si_unit } else { reduced };
-    let mut q = quantity.rsplit('.').next().unwrap_or(quantity);
-    // A result field (or a statistic of one over surface pairs): its unit is declared with it.
-    let mut field = q;
-    loop {
-        if let Some(&(_, reduced, si_unit)) = WearResult::UNITS.iter().find(|u| u.0 == field) {
-            return pick(reduced, si_unit);
-        }
-        match ["_mean", "_std", "_min", "_max", "_total", "_ci_low", "_ci_high"]
+    let declared = |name: &str| {
+        [WearResult::UNITS, SeriesRow::UNITS, QUANTITIES]
             .iter()
-            .find_map(|s| field.strip_suffix(s))
-        {
-            Some(shorter) => field = shorter,
-            None => break,
+            .find_map(|table| table.iter().find(|u| u.0 == name))
+            .map(|&(_, reduced, si_unit)| if si { si_unit } else { reduced })
+    };
+    let mut name = quantity.rsplit('.').next().unwrap_or(quantity);
+    loop {
+        if let Some(unit) = declared(name) {
+            return Some(unit);
         }
-    }
-    for suffix in ["_ci_low", "_ci_high", "_mean", "_std", "_min", "_max"] {
-        q = q.strip_suffix(suffix).unwrap_or(q);
-    }
-    match q {
-        "load" => pick("E L²", "N"),
-        "nominal_pressure" => pick("E", "Pa"),
-        "fracture_energies" => pick("E L", "J/m²"),
-        "flow_pressure" | "effective_modulus" | "youngs_modulus" | "shear_strength" | "mean_pressure" | "pressure" => {
-            pick("E", "Pa")
-        }
-        "s" | "length" | "lambda_lower" | "lambda_upper" | "rms_height" | "approach" | "pixel_size" | "gap"
-        | "displacement" => pick("L", "m"),
-        "volume" => pick("L³", "m³"),
-        "contact_area" => "1 (fraction of Lx·Ly)",
-        "contact_severity" | "poisson_ratio" | "geometry_factor" | "hurst" | "tolerance" | "residual" => "1",
-        _ => "",
+        name = STATISTICS.iter().find_map(|s| name.strip_suffix(s))?;
     }
 }
 
-/// The units of the given columns (those with one), for a table's companion file or a summary.
+/// [`declared_unit`] for a quantity the caller names in code (a front end's label): "" when none
+/// is declared, which the tests rule out for every column a table emits.
+pub fn unit_of(units: Units, quantity: &str) -> &'static str {
+    declared_unit(units, quantity).unwrap_or("")
+}
+
+/// The units of the given columns (those with one, counts and text left out), for a table's
+/// companion file or a summary.
 pub fn units_map<'a>(units: Units, columns: impl IntoIterator<Item = &'a str>) -> BTreeMap<String, String> {
     columns
         .into_iter()
@@ -72,11 +132,33 @@ mod tests {
         // Statistics over pairs keep the unit; counts have none; other tables' columns keep theirs.
         assert_eq!(unit_of(Units::Si, "critical_residence_max"), "m");
         assert_eq!(unit_of(Units::Reduced, "static_wear_rate_mean_mean"), "L²");
-        assert_eq!(unit_of(Units::Reduced, "particles_in_fit_total"), "");
+        assert_eq!(declared_unit(Units::Reduced, "particles_in_fit_total"), Some(""));
         assert_eq!(unit_of(Units::Si, "wear_rate_ci_high"), "m²");
         assert_eq!(unit_of(Units::Reduced, "nominal_pressure_ci_low"), "E");
         assert_eq!(unit_of(Units::Si, "fracture_energy"), "J/m²");
         assert_eq!(unit_of(Units::Reduced, "surface.length"), "L");
         assert_eq!(unit_of(Units::Reduced, "volume"), "L³");
+        assert_eq!(unit_of(Units::Reduced, "sliding.step"), "px");
+        // A name declared nowhere has no unit, rather than an empty one.
+        assert_eq!(declared_unit(Units::Si, "undeclared_column"), None);
+        assert_eq!(declared_unit(Units::Si, "undeclared_column_mean"), None);
+    }
+
+    #[test]
+    fn a_quantity_declared_twice_has_one_unit() {
+        let tables = [WearResult::UNITS, SeriesRow::UNITS, QUANTITIES];
+        for (i, a) in tables.iter().enumerate() {
+            for b in &tables[i + 1..] {
+                for x in a.iter() {
+                    if let Some(y) = b.iter().find(|y| y.0 == x.0) {
+                        assert_eq!(x, y, "{} is declared with two units", x.0);
+                    }
+                }
+            }
+            let mut names: Vec<&str> = a.iter().map(|u| u.0).collect();
+            names.sort_unstable();
+            names.dedup();
+            assert_eq!(names.len(), a.len(), "a name declared twice in one table");
+        }
     }
 }

@@ -1,0 +1,670 @@
+//! The conformance test of a contact backend: every pass of [`ContactBackend`] and whole solves,
+//! run on small grids against a plain reference written from the trait's documentation (serial
+//! loops, one pixel at a time, the reductions in their documented order), for both boundaries and
+//! for the saturated (p_m finite) and elastic (p_m = ∞) cases; and each pass repeated on one and
+//! on two threads, which must agree bit for bit. A new backend passes the conformance test of
+//! `contact/mod.rs` (these passes, then whole solves against the reference's) with its own
+//! constructor: exactly when it keeps the reductions' order (as the CPU backend does), else within
+//! round-off.
+
+use std::sync::Arc;
+
+use super::backend::{contact_bit, ContactBackend, HeightStats, LoadSums, Stats, Update, LOAD_CHUNK};
+use super::cpu::CpuBackend;
+use crate::grid::Grid;
+use crate::influence::{Boundary, Influence};
+use crate::surface::{composite_heights, Surface};
+
+/// The plain reference: the fields in host vectors, each pass a serial loop over rows and pixels
+/// in row-major order, partials per row (per [`LOAD_CHUNK`] pixels for the load sums) combined in
+/// order; 𝒦 by [`Influence::apply`].
+struct Reference {
+    nx: usize,
+    ny: usize,
+    influence: Influence,
+    h: Vec<f64>,
+    p: Vec<f64>,
+    u: Vec<f64>,
+    t: Vec<f64>,
+    r: Vec<f64>,
+    p_old: Vec<f64>,
+    u_kept: Vec<f64>,
+    bits: Vec<u64>,
+    surfaces: Option<(Arc<Surface>, Arc<Surface>)>,
+    response_scale: f64,
+}
+
+impl Reference {
+    fn new(grid: Grid, effective_modulus: f64, boundary: Boundary) -> Self {
+        let (nx, ny) = (grid.nx(), grid.ny());
+        let influence = Influence::new(grid, effective_modulus, boundary).unwrap();
+        let response_scale = 2f64.powi(influence.self_influence().log2().floor() as i32);
+        let field = || vec![0.0; nx * ny];
+        Self {
+            nx,
+            ny,
+            influence,
+            h: field(),
+            p: field(),
+            u: field(),
+            t: field(),
+            r: field(),
+            p_old: field(),
+            u_kept: field(),
+            bits: vec![0; (nx * ny).div_ceil(64)],
+            surfaces: None,
+            response_scale,
+        }
+    }
+
+    /// Per-row partials of `f(row index, pixel range)`, combined by `combine` in row order.
+    fn rows<R>(&self, mut f: impl FnMut(usize, std::ops::Range<usize>) -> R) -> Vec<R> {
+        (0..self.nx).map(|i| f(i, i * self.ny..(i + 1) * self.ny)).collect()
+    }
+}
+
+impl ContactBackend for Reference {
+    fn boundary(&self) -> Boundary {
+        self.influence.boundary()
+    }
+
+    fn self_influence(&self) -> f64 {
+        self.influence.self_influence()
+    }
+
+    fn apply_influence(&mut self, input: &[f64], out: &mut [f64]) {
+        self.influence.apply(input, out);
+    }
+
+    fn write_heights(&mut self, fill: &mut dyn FnMut(&mut [f64])) {
+        fill(&mut self.h);
+    }
+
+    fn bind_surfaces(&mut self, top: Arc<Surface>, bottom: Arc<Surface>) {
+        self.surfaces = Some((top, bottom));
+    }
+
+    fn compose(&mut self, offset: usize) {
+        let (top, bottom) = self.surfaces.as_ref().unwrap();
+        composite_heights(top, bottom, offset, &mut self.h);
+    }
+
+    fn write_pressure(&mut self, fill: &mut dyn FnMut(&mut [f64])) {
+        fill(&mut self.p);
+    }
+
+    fn pressure(&mut self) -> &[f64] {
+        &self.p
+    }
+
+    fn contact_map(&mut self) -> &[u64] {
+        self.bits.fill(0);
+        for (k, &p) in self.p.iter().enumerate() {
+            if p > 0.0 {
+                self.bits[k / 64] |= 1 << (k % 64);
+            }
+        }
+        &self.bits
+    }
+
+    fn height_stats(&mut self) -> HeightStats {
+        let h0 = self.h[0];
+        let rows = self.rows(|_, range| {
+            let (mut s, mut q, mut m, mut f) = (0.0, 0.0, f64::NEG_INFINITY, true);
+            for &h in &self.h[range] {
+                s += h - h0;
+                q += (h - h0) * (h - h0);
+                m = m.max(h);
+                f = f && h.is_finite();
+            }
+            (s, q, m, f)
+        });
+        let mut total = (0.0, 0.0, f64::NEG_INFINITY, true);
+        for r in rows {
+            total = (total.0 + r.0, total.1 + r.1, total.2.max(r.2), total.3 && r.3);
+        }
+        let not_finite = self.h.iter().position(|h| !h.is_finite()).map(|k| (k, self.h[k]));
+        HeightStats {
+            sum: total.0,
+            sum_sq: total.1,
+            max: total.2,
+            not_finite,
+        }
+    }
+
+    fn initial_guess(&mut self, mean_pressure: f64, pm: f64) {
+        let usable = self.p.iter().all(|p| p.is_finite() && *p >= 0.0) && self.p.iter().any(|&p| p > 0.0);
+        for p in &mut self.p {
+            *p = if usable { p.min(pm) } else { mean_pressure };
+        }
+    }
+
+    fn load_sums(&mut self, pm: f64) -> LoadSums {
+        let mut total = LoadSums::default();
+        for chunk in self.p.chunks(LOAD_CHUNK) {
+            let mut s = LoadSums::default();
+            for &p in chunk {
+                s.add(p, pm);
+            }
+            total = LoadSums::merge(total, s);
+        }
+        total
+    }
+
+    fn saturate_contact(&mut self, pm: f64) {
+        for p in self.p.iter_mut().filter(|p| **p > 0.0) {
+            *p = pm;
+        }
+    }
+
+    fn scaled_load(&mut self, s: f64, pm: f64, scale_plastic: bool) -> (f64, f64) {
+        let mut total = (0.0, 0.0);
+        for chunk in self.p.chunks(LOAD_CHUNK) {
+            let (mut f, mut df) = (0.0, 0.0);
+            for &p in chunk {
+                if p > 0.0 && (scale_plastic || p < pm) {
+                    if s * p >= pm {
+                        f += pm;
+                    } else {
+                        f += s * p;
+                        df += p;
+                    }
+                }
+            }
+            total = (total.0 + f, total.1 + df);
+        }
+        total
+    }
+
+    fn scale(&mut self, s: f64, pm: f64, scale_plastic: bool) {
+        for p in &mut self.p {
+            if *p > 0.0 && (scale_plastic || *p < pm) {
+                *p = (s * *p).min(pm);
+            }
+        }
+    }
+
+    fn spread_missing_load(&mut self, total: f64, pm: f64, mean: f64) {
+        let missing = total - self.p.iter().sum::<f64>();
+        let penetration = |k: usize| {
+            if mean.is_nan() {
+                0.0
+            } else {
+                (mean - (self.u[k] - self.h[k])).max(0.0)
+            }
+        };
+        let (mut weight_sum, mut n_zero) = (0.0, 0usize);
+        for k in 0..self.p.len() {
+            if self.p[k] <= 0.0 {
+                weight_sum += penetration(k);
+                n_zero += 1;
+            }
+        }
+        let shares: Vec<Option<f64>> = (0..self.p.len())
+            .map(|k| {
+                (self.p[k] <= 0.0).then(|| {
+                    if weight_sum > 0.0 {
+                        missing * penetration(k) / weight_sum
+                    } else {
+                        missing / n_zero.max(1) as f64
+                    }
+                })
+            })
+            .collect();
+        for (p, share) in self.p.iter_mut().zip(shares) {
+            if let Some(share) = share {
+                *p = share.min(pm);
+            }
+        }
+    }
+
+    fn displacement_and_stats(&mut self, reference: f64, pm: f64) -> Stats {
+        self.influence.apply(&self.p, &mut self.u);
+        let rows = self.rows(|_, range| {
+            let mut s = Stats::default();
+            for k in range {
+                s.add(self.p[k], self.u[k], self.h[k], reference, pm);
+            }
+            s
+        });
+        Stats::combine(&rows)
+    }
+
+    fn direction(&mut self, mean: f64, beta: f64, pm: f64) -> (f64, f64) {
+        let mut total = (0.0, 0.0);
+        for i in 0..self.nx {
+            let (mut st, mut sdt) = (0.0, 0.0);
+            for k in i * self.ny..(i + 1) * self.ny {
+                if self.p[k] > 0.0 && self.p[k] < pm {
+                    let d = self.u[k] - self.h[k] - mean;
+                    self.t[k] = d + beta * self.t[k];
+                    st += self.t[k];
+                    sdt += d * self.t[k];
+                } else {
+                    self.t[k] = 0.0;
+                }
+            }
+            total = (total.0 + st, total.1 + sdt);
+        }
+        total
+    }
+
+    fn response_scale(&self) -> f64 {
+        self.response_scale
+    }
+
+    fn response(&mut self, shift: f64) -> f64 {
+        let shifted: Vec<f64> = self.t.iter().map(|&t| if t != 0.0 { t - shift } else { t }).collect();
+        self.influence.apply(&shifted, &mut self.r);
+        let rows = self.rows(|_, range| {
+            let mut s = 0.0;
+            for k in range {
+                if self.t[k] != 0.0 {
+                    s += (self.r[k] / self.response_scale) * (self.t[k] - shift);
+                }
+            }
+            s
+        });
+        rows.iter().sum()
+    }
+
+    fn update(&mut self, mean: f64, tau: f64, shift: f64, pm: f64) -> Update {
+        let cg_step = shift.is_finite();
+        self.p_old.copy_from_slice(&self.p);
+        let (mut parts, mut sums) = (Vec::new(), Vec::new());
+        let (mut released, mut clipped) = (false, false);
+        for i in 0..self.nx {
+            let (mut s, mut sum_p) = (Stats::default(), 0.0);
+            for k in i * self.ny..(i + 1) * self.ny {
+                let d = self.u[k] - self.h[k] - mean;
+                let p = &mut self.p[k];
+                if *p <= 0.0 {
+                    if d < 0.0 {
+                        *p = (-tau * d).min(pm);
+                        released = true;
+                    }
+                } else if *p >= pm {
+                    if d > 0.0 {
+                        *p = (pm - tau * d).max(0.0);
+                        released = true;
+                    }
+                } else if cg_step && self.t[k] != 0.0 {
+                    let q = *p - tau * (self.t[k] - shift);
+                    if q <= 0.0 {
+                        *p = 0.0;
+                        clipped = true;
+                    } else if q >= pm {
+                        *p = pm;
+                        clipped = true;
+                    } else {
+                        *p = q;
+                    }
+                }
+                if cg_step {
+                    self.u[k] -= tau * self.r[k];
+                }
+                sum_p += self.p[k];
+                s.add(self.p[k], self.u[k], self.h[k], mean, pm);
+            }
+            parts.push(s);
+            sums.push(sum_p);
+        }
+        Update {
+            stats: Stats::combine(&parts),
+            total: sums.iter().sum(),
+            released,
+            clipped,
+        }
+    }
+
+    fn keep_displacement(&mut self) {
+        std::mem::swap(&mut self.u, &mut self.u_kept);
+    }
+
+    fn undo(&mut self, step: f64) {
+        self.p.copy_from_slice(&self.p_old);
+        for k in 0..self.u.len() {
+            self.u[k] = self.u_kept[k] + step * self.r[k];
+        }
+    }
+}
+
+/// A backend's constructor, as `ContactSolver::on_device` calls it.
+pub(crate) type MakeBackend = dyn Fn(Grid, f64, Boundary) -> Box<dyn ContactBackend> + Sync;
+
+/// Deterministic values in [0, 1) (a linear congruential sequence).
+pub(crate) fn uniform(seed: u64, n: usize) -> Vec<f64> {
+    let mut x = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+    (0..n)
+        .map(|_| {
+            x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (x >> 11) as f64 / (1u64 << 53) as f64
+        })
+        .collect()
+}
+
+/// Two numbers agree: bit for bit when `exact`, else to round-off of `scale`.
+fn agree(a: f64, b: f64, exact: bool, scale: f64, what: &str) {
+    if exact {
+        assert!(
+            a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()),
+            "{what}: {a:e} vs reference {b:e}"
+        );
+    } else {
+        assert!(
+            (a - b).abs() <= 1e-10 * scale.abs().max(f64::MIN_POSITIVE),
+            "{what}: {a:e} vs reference {b:e}"
+        );
+    }
+}
+
+pub(crate) fn agree_fields(a: &[f64], b: &[f64], exact: bool, what: &str) {
+    let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    assert_eq!(a.len(), b.len(), "{what}");
+    for (k, (&x, &y)) in a.iter().zip(b).enumerate() {
+        agree(x, y, exact, scale, &format!("{what}[{k}]"));
+    }
+}
+
+fn agree_loads(a: &LoadSums, b: &LoadSums, exact: bool, what: &str) {
+    assert_eq!(a.n_contact, b.n_contact, "{what}.n_contact");
+    agree(a.free, b.free, exact, b.free, &format!("{what}.free"));
+    agree(a.plastic, b.plastic, exact, b.plastic, &format!("{what}.plastic"));
+    agree(a.max_free, b.max_free, exact, b.max_free, &format!("{what}.max_free"));
+}
+
+/// A pressure field with every kind of pixel: zero, free (0 < p < p_m) and plastic (p = p_m).
+fn mixed_pressure(n: usize, pm: f64, seed: u64) -> Vec<f64> {
+    uniform(seed, n)
+        .into_iter()
+        .map(|x| match x {
+            x if x < 0.4 => 0.0,
+            x if x < 0.55 && pm.is_finite() => pm,
+            x => x * if pm.is_finite() { pm } else { 0.02 },
+        })
+        .collect()
+}
+
+/// Every pass of `backend` against the reference, in the order a solve calls them, on the same
+/// inputs; the values each returns and the pressure each leaves agree.
+fn passes(backend: &mut dyn ContactBackend, reference: &mut Reference, pm: f64, exact: bool) {
+    let nn = reference.nx * reference.ny;
+    let (top, bottom) = (surface(reference, 11), surface(reference, 12));
+    for b in [&mut *backend, &mut *reference as &mut dyn ContactBackend] {
+        b.bind_surfaces(Arc::clone(&top), Arc::clone(&bottom));
+        b.compose(3);
+    }
+    let hs = (backend.height_stats(), reference.height_stats());
+    agree(hs.0.sum, hs.1.sum, exact, hs.1.sum_sq.sqrt(), "height_stats.sum");
+    agree(hs.0.sum_sq, hs.1.sum_sq, exact, hs.1.sum_sq, "height_stats.sum_sq");
+    assert_eq!((hs.0.max, hs.0.not_finite), (hs.1.max, hs.1.not_finite));
+    let p0 = mixed_pressure(nn, pm, 5);
+    for b in [&mut *backend, &mut *reference as &mut dyn ContactBackend] {
+        b.write_pressure(&mut |p| p.copy_from_slice(&p0));
+    }
+    assert_eq!(backend.contact_map(), reference.contact_map(), "contact_map");
+    assert!((0..nn).all(|k| contact_bit(reference.contact_map(), k) == (p0[k] > 0.0)));
+    agree_loads(&backend.load_sums(pm), &reference.load_sums(pm), exact, "load_sums");
+    for (s, plastic) in [(0.7, false), (1.3, false), (1.1, true)] {
+        let (a, b) = (
+            backend.scaled_load(s, pm, plastic),
+            reference.scaled_load(s, pm, plastic),
+        );
+        agree(a.0, b.0, exact, b.0, "scaled_load");
+        agree(a.1, b.1, exact, b.1, "scaled_load'");
+    }
+    iteration_passes(backend, reference, pm, exact);
+}
+
+/// The passes of an iteration and of the load balance, in the order a solve calls them, on the
+/// fields [`passes`] left.
+fn iteration_passes(backend: &mut dyn ContactBackend, reference: &mut Reference, pm: f64, exact: bool) {
+    let nn = reference.nx * reference.ny;
+    let pm_eff = if pm.is_finite() { pm } else { f64::MAX };
+    let mean_pressure = 0.2 * pm_eff.min(0.05);
+    let target = mean_pressure * nn as f64;
+    let mut run = |f: &mut dyn FnMut(&mut dyn ContactBackend) -> Vec<f64>, what: &str| {
+        both(&mut *backend, &mut *reference, exact, f, what)
+    };
+    run(
+        &mut |b| vec![b.displacement_and_stats(0.0, pm).energy],
+        "displacement_and_stats",
+    );
+    run(
+        &mut |b| {
+            let s = b.displacement_and_stats(1e-3, pm);
+            let l = s.load;
+            vec![
+                s.n_free,
+                s.sum,
+                s.sum_sq,
+                s.max_free,
+                s.min_free,
+                s.min_zero,
+                s.max_plastic,
+                s.n_plastic,
+                s.energy,
+                l.free,
+                l.plastic,
+                l.n_contact as f64,
+                l.max_free,
+            ]
+        },
+        "displacement_and_stats",
+    );
+    run(
+        &mut |b| {
+            b.scale(1.2, pm, false);
+            b.spread_missing_load(target, pm, 2e-3);
+            vec![]
+        },
+        "scale, spread_missing_load",
+    );
+    run(
+        &mut |b| {
+            b.spread_missing_load(target, pm, f64::NAN);
+            vec![b.displacement_and_stats(0.0, pm).sum]
+        },
+        "spread_missing_load (even)",
+    );
+    for (beta, tau, shift) in [(0.0, 0.5, 0.0), (0.3, 2.0, f64::NAN), (0.5, 1e3, 1e-4)] {
+        run(
+            &mut |b| {
+                let (st, sdt) = b.direction(1e-3, beta, pm);
+                let curvature = b.response(if shift.is_nan() { 0.0 } else { shift });
+                let u = b.update(1e-3, tau, shift, pm);
+                vec![
+                    st,
+                    sdt,
+                    curvature,
+                    u.total,
+                    u.stats.energy,
+                    u.stats.sum,
+                    f64::from(u8::from(u.released)),
+                    f64::from(u8::from(u.clipped)),
+                ]
+            },
+            "direction, response, update",
+        );
+        run(
+            &mut |b| {
+                b.keep_displacement();
+                let s = b.displacement_and_stats(1e-3, pm);
+                b.undo(tau);
+                vec![s.energy, b.displacement_and_stats(2e-3, pm).energy]
+            },
+            "keep_displacement, undo",
+        );
+    }
+    run(
+        &mut |b| {
+            b.saturate_contact(pm_eff);
+            b.initial_guess(mean_pressure, pm_eff);
+            vec![b.load_sums(pm_eff).free]
+        },
+        "saturate_contact, initial_guess",
+    );
+    run(
+        &mut |b| {
+            b.write_pressure(&mut |p| p.fill(-1.0));
+            b.initial_guess(mean_pressure, pm_eff);
+            vec![]
+        },
+        "initial_guess (unusable)",
+    );
+    let input = uniform(9, nn);
+    let (mut a, mut b) = (vec![0.0; nn], vec![0.0; nn]);
+    backend.apply_influence(&input, &mut a);
+    reference.apply_influence(&input, &mut b);
+    agree_fields(&a, &b, exact, "apply_influence");
+}
+
+/// Runs `f` on the backend and on the reference; what it returns and the pressure it leaves agree.
+fn both(
+    backend: &mut dyn ContactBackend,
+    reference: &mut Reference,
+    exact: bool,
+    f: &mut dyn FnMut(&mut dyn ContactBackend) -> Vec<f64>,
+    what: &str,
+) {
+    let (a, b) = (f(&mut *backend), f(&mut *reference));
+    for (k, (&x, &y)) in a.iter().zip(&b).enumerate() {
+        agree(x, y, exact, y, &format!("{what} #{k}"));
+    }
+    agree_fields(backend.pressure(), reference.pressure(), exact, &format!("{what}: p"));
+}
+
+/// A surface of the reference's grid, heights in [0, 0.01).
+fn surface(reference: &Reference, seed: u64) -> Arc<Surface> {
+    let grid = Grid::new(reference.nx, reference.ny, 0.1 * reference.nx as f64).unwrap();
+    let heights = uniform(seed, reference.nx * reference.ny)
+        .iter()
+        .map(|x| 0.01 * x)
+        .collect();
+    Arc::new(Surface::new("conformance", grid, heights).unwrap())
+}
+
+/// Every pass of the backend `make` builds against the reference, on grids of both shapes, both
+/// boundaries, saturated and elastic; and on one and two threads, which must agree bit for bit.
+pub(crate) fn backend_passes(make: &MakeBackend, exact: bool) {
+    for (nx, ny) in GRIDS {
+        let grid = Grid::new(nx, ny, 0.1 * nx as f64).unwrap();
+        for boundary in [Boundary::Periodic, Boundary::Free] {
+            for pm in [0.05, f64::INFINITY] {
+                let mut backend = make(grid, 1.1, boundary);
+                let mut reference = Reference::new(grid, 1.1, boundary);
+                passes(backend.as_mut(), &mut reference, pm, exact);
+            }
+        }
+    }
+    // The reductions' order is the backend's own: one thread and two give the same bits.
+    let grid = Grid::new(130, 40, 13.0).unwrap();
+    let on = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| {
+                let mut backend = make(grid, 1.1, Boundary::Periodic);
+                let mut reference = Reference::new(grid, 1.1, Boundary::Periodic);
+                passes(backend.as_mut(), &mut reference, 0.05, false);
+                backend.pressure().to_vec()
+            })
+    };
+    assert_eq!(on(1), on(2), "the backend's passes depend on the thread count");
+}
+
+/// The grids of the conformance test (Nx, Ny): rectangular both ways, square, and one whose rows
+/// outnumber a rayon task's.
+pub(crate) const GRIDS: [(usize, usize); 3] = [(32, 16), (16, 16), (130, 40)];
+
+/// The reference backend (module documentation), for whole solves to compare with.
+pub(crate) fn reference(grid: Grid, effective_modulus: f64, boundary: Boundary) -> Box<dyn ContactBackend> {
+    Box::new(Reference::new(grid, effective_modulus, boundary))
+}
+
+/// The CPU backend's constructor.
+pub(crate) fn cpu(grid: Grid, effective_modulus: f64, boundary: Boundary) -> Box<dyn ContactBackend> {
+    Box::new(CpuBackend::new(grid, effective_modulus, boundary).unwrap())
+}
+
+/// The CPU backend with the plastic pixels of the load sums counted as free: a backend the
+/// conformance test must fail.
+pub(crate) struct Broken(pub(crate) CpuBackend);
+
+impl ContactBackend for Broken {
+    fn boundary(&self) -> Boundary {
+        self.0.boundary()
+    }
+    fn self_influence(&self) -> f64 {
+        self.0.self_influence()
+    }
+    fn apply_influence(&mut self, i: &[f64], o: &mut [f64]) {
+        self.0.apply_influence(i, o)
+    }
+    fn write_heights(&mut self, f: &mut dyn FnMut(&mut [f64])) {
+        self.0.write_heights(f)
+    }
+    fn bind_surfaces(&mut self, t: Arc<Surface>, b: Arc<Surface>) {
+        self.0.bind_surfaces(t, b)
+    }
+    fn compose(&mut self, o: usize) {
+        self.0.compose(o)
+    }
+    fn write_pressure(&mut self, f: &mut dyn FnMut(&mut [f64])) {
+        self.0.write_pressure(f)
+    }
+    fn pressure(&mut self) -> &[f64] {
+        self.0.pressure()
+    }
+    fn contact_map(&mut self) -> &[u64] {
+        self.0.contact_map()
+    }
+    fn height_stats(&mut self) -> HeightStats {
+        self.0.height_stats()
+    }
+    fn initial_guess(&mut self, m: f64, pm: f64) {
+        self.0.initial_guess(m, pm)
+    }
+    fn load_sums(&mut self, pm: f64) -> LoadSums {
+        let s = self.0.load_sums(pm);
+        LoadSums {
+            free: s.free + s.plastic,
+            plastic: 0.0,
+            ..s
+        }
+    }
+    fn saturate_contact(&mut self, pm: f64) {
+        self.0.saturate_contact(pm)
+    }
+    fn scaled_load(&mut self, s: f64, pm: f64, sp: bool) -> (f64, f64) {
+        self.0.scaled_load(s, pm, sp)
+    }
+    fn scale(&mut self, s: f64, pm: f64, sp: bool) {
+        self.0.scale(s, pm, sp)
+    }
+    fn spread_missing_load(&mut self, t: f64, pm: f64, m: f64) {
+        self.0.spread_missing_load(t, pm, m)
+    }
+    fn displacement_and_stats(&mut self, r: f64, pm: f64) -> Stats {
+        self.0.displacement_and_stats(r, pm)
+    }
+    fn direction(&mut self, m: f64, b: f64, pm: f64) -> (f64, f64) {
+        self.0.direction(m, b, pm)
+    }
+    fn response_scale(&self) -> f64 {
+        self.0.response_scale()
+    }
+    fn response(&mut self, s: f64) -> f64 {
+        self.0.response(s)
+    }
+    fn update(&mut self, m: f64, t: f64, s: f64, pm: f64) -> Update {
+        self.0.update(m, t, s, pm)
+    }
+    fn keep_displacement(&mut self) {
+        self.0.keep_displacement()
+    }
+    fn undo(&mut self, s: f64) {
+        self.0.undo(s)
+    }
+}

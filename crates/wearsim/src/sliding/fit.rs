@@ -1,0 +1,219 @@
+//! The fitted results of one load (paper §3 and appendices B, C) and the warnings about them.
+
+use crate::junctions::particle_volume;
+use crate::material::Material;
+use crate::stats::{line_fit, mean_std};
+
+use super::records::{finite, StepRecord, WearResult, RUN_IN_DECAY_LENGTHS};
+use super::schedule::SlidingSetup;
+
+/// Fewest particles after running-in for a wear rate worth a number without a warning.
+pub const FEW_PARTICLES: usize = 10;
+
+/// Warnings about d* in pixels: a critical diameter of a few pixels is not resolved.
+pub fn resolution_warnings(material: &Material, pixel_size: f64) -> Vec<String> {
+    material
+        .fracture_energies
+        .iter()
+        .zip(material.critical_diameters())
+        .filter(|(_, d)| d / pixel_size < crate::check::RESOLVED_PIXELS)
+        .map(|(g, d)| {
+            format!(
+                "d* = {d:.4e} for 𝒢 = {g:.4e} is {:.2} pixels, under {}: junctions of the critical size \
+                 are not resolved and the wear results follow the grid; refine `grid`",
+                d / pixel_size,
+                crate::check::RESOLVED_PIXELS
+            )
+        })
+        .collect()
+}
+
+/// What the results of every fracture energy of a load share: where the fit window starts, the
+/// memory of the initial contact, the junctions and the steps with a junction around the box.
+struct LoadFits {
+    fit_start: f64,
+    junctions_mean: f64,
+    box_wrapping_steps: usize,
+    memory_decay_length: Option<f64>,
+    memory_decay_r2: Option<f64>,
+    memory_fit_initial_junctions: Option<f64>,
+    running_in_decay_lengths: Option<f64>,
+}
+
+/// The fitted results of one load per fracture energy (paper §3 and appendices B, C), and the
+/// warnings about them.
+pub(crate) fn results_of_load(
+    setup: &SlidingSetup,
+    load: f64,
+    pm: f64,
+    steps: &[StepRecord],
+    running_in: usize,
+) -> (Vec<WearResult>, Vec<String>) {
+    let fitted: Vec<&StepRecord> = steps.iter().filter(|r| r.offset >= running_in).collect();
+    let mut warnings = Vec::new();
+    let shared = load_fits(load, steps, &fitted, &mut warnings);
+    let results = setup
+        .material
+        .critical_diameters()
+        .into_iter()
+        .enumerate()
+        .map(|(e, d)| {
+            let context = Context {
+                load,
+                pm,
+                energy: e,
+                fracture_energy: setup.material.fracture_energies[e],
+                critical_diameter: d,
+            };
+            result_of_energy(&context, steps, &fitted, &shared, &mut warnings)
+        })
+        .collect();
+    (results, warnings)
+}
+
+/// The memory of the initial contact (ln N₀ against s over the steps where N₀ > 0), the start of
+/// the fit window in decay lengths, the mean number of junctions and the steps with a junction
+/// around the box, with their warnings.
+fn load_fits(load: f64, steps: &[StepRecord], fitted: &[&StepRecord], warnings: &mut Vec<String>) -> LoadFits {
+    let decaying: Vec<&StepRecord> = steps.iter().filter(|r| r.initial_junctions > 0).collect();
+    let memory = line_fit(
+        &decaying.iter().map(|r| r.s).collect::<Vec<_>>(),
+        &decaying
+            .iter()
+            .map(|r| (r.initial_junctions as f64).ln())
+            .collect::<Vec<_>>(),
+    );
+    let (memory_decay_length, memory_decay_r2, memory_fit_initial_junctions) = match memory {
+        Some(f) if f.slope < 0.0 => {
+            let length = finite(-1.0 / f.slope);
+            (length, f.r2, length.and(finite(f.intercept.exp())))
+        }
+        _ => (None, None, None),
+    };
+    let fit_start = fitted.first().map_or(0.0, |r| r.s);
+    let running_in_decay_lengths = match (memory_decay_length, memory) {
+        (Some(l), _) => finite(fit_start / l),
+        // The lineages of s = 0 do not thin out: an infinite decay length.
+        (None, Some(_)) => Some(0.0),
+        (None, None) => None,
+    };
+    if let Some(r) = running_in_decay_lengths.filter(|r| *r < RUN_IN_DECAY_LENGTHS) {
+        let decay = memory_decay_length.map_or("does not decay".to_string(), |l| format!("decays over ℓ = {l:.4e}"));
+        warnings.push(format!(
+            "F_N = {load:.4e}: not run in: the memory of the initial contact {decay}, and the fit window starts at s = \
+             {fit_start:.4e}, {r:.2} decay lengths (under {RUN_IN_DECAY_LENGTHS}), with {:.0} % of the junction \
+             lineages of s = 0 expected still present; raise `running_in` (and `distance`) to at least \
+             {RUN_IN_DECAY_LENGTHS} ℓ",
+            100.0 * (-r).exp()
+        ));
+    }
+    let (junctions_mean, _) = mean_std(fitted.iter().map(|r| r.junctions as f64));
+    let wrapping: Vec<&StepRecord> = steps.iter().filter(|r| r.wrapping_junctions > 0).collect();
+    if let Some(first) = wrapping.first() {
+        warnings.push(format!(
+            "F_N = {load:.4e}: at {} of {} steps (the first at s = {:.4e}) a junction wraps the periodic box \
+             (contact area up to {:.3} of the box): it is no particle of the model, which needs finite junctions \
+             (paper §3), yet it is counted as one in N, V and k_static; lower the load or enlarge the box",
+            wrapping.len(),
+            steps.len(),
+            first.s,
+            wrapping.iter().map(|r| r.contact_area).fold(0.0, f64::max),
+        ));
+    }
+    LoadFits {
+        fit_start,
+        junctions_mean,
+        box_wrapping_steps: wrapping.len(),
+        memory_decay_length,
+        memory_decay_r2,
+        memory_fit_initial_junctions,
+        running_in_decay_lengths,
+    }
+}
+
+/// The load and fracture energy a result is fitted for.
+struct Context {
+    load: f64,
+    /// Flow pressure p_m.
+    pm: f64,
+    /// Index of the fracture energy in the material's list.
+    energy: usize,
+    fracture_energy: f64,
+    critical_diameter: f64,
+}
+
+/// The result of one fracture energy: W, dN*₊/ds and k fitted over the fit window, the static
+/// model over every offset, the means of appendix C, with the warnings about them.
+fn result_of_energy(
+    c: &Context,
+    steps: &[StepRecord],
+    fitted: &[&StepRecord],
+    shared: &LoadFits,
+    warnings: &mut Vec<String>,
+) -> WearResult {
+    let (e, d, load) = (c.energy, c.critical_diameter, c.load);
+    let s: Vec<f64> = fitted.iter().map(|r| r.s).collect();
+    let v: Vec<f64> = fitted.iter().map(|r| r.wear[e].volume).collect();
+    let nf: Vec<f64> = fitted.iter().map(|r| r.wear[e].n_formed as f64).collect();
+    let wear_fit = line_fit(&s, &v);
+    let particle_fit = line_fit(&s, &nf);
+    let wear_rate = wear_fit.and_then(|f| finite(f.slope));
+    let wear_volume_intercept = wear_fit
+        .filter(|_| wear_rate.is_some())
+        .and_then(|f| finite(f.intercept));
+    let particle_rate = particle_fit.and_then(|f| finite(f.slope));
+    let particles_in_fit = match (fitted.first(), fitted.last()) {
+        (Some(a), Some(b)) => b.wear[e].n_formed - a.wear[e].n_formed,
+        _ => 0,
+    };
+    let wear_rate_r2 = wear_fit.and_then(|f| f.r2);
+    let context = format!("F_N = {load:.4e}, 𝒢 = {:.4e} (d* = {d:.4e})", c.fracture_energy);
+    if particles_in_fit == 0 {
+        warnings.push(format!(
+            "{context}: no particle formed after running-in, so W = 0 and its fit (R²) is undefined; no junction \
+             grows to d* in this box at this load"
+        ));
+    } else if particles_in_fit < FEW_PARTICLES {
+        warnings.push(format!(
+            "{context}: only {particles_in_fit} particles formed after running-in (fewer than {FEW_PARTICLES}); W \
+             rests on a handful of events"
+        ));
+    }
+    if let Some(r2) = wear_rate_r2.filter(|r2| *r2 < 0.8) {
+        warnings.push(format!(
+            "{context}: the wear-rate fit is poor (R² = {r2:.3} < 0.8); V(s) is not linear"
+        ));
+    }
+    let (k_mean, k_std) = mean_std(steps.iter().map(|r| r.statics[e].wear_coefficient));
+    let (w_mean, w_std) = mean_std(steps.iter().map(|r| r.statics[e].wear_rate_over_omega));
+    let (critical_junctions_mean, _) = mean_std(fitted.iter().map(|r| r.wear[e].n_critical as f64));
+    WearResult {
+        fracture_energy: c.fracture_energy,
+        critical_diameter: d,
+        wear_rate,
+        wear_rate_r2,
+        wear_volume_intercept,
+        fit_window_start: shared.fit_start,
+        wear_coefficient: wear_rate.and_then(|w| finite(w * c.pm / load)),
+        particle_rate,
+        wear_rate_estimate: particle_rate.and_then(|rate| finite(particle_volume(d) * rate)),
+        particles_in_fit,
+        initial_volume: steps[0].wear[e].volume,
+        static_wear_coefficient: steps[0].statics[e].wear_coefficient,
+        static_wear_rate: steps[0].statics[e].wear_rate_over_omega,
+        static_wear_coefficient_mean: k_mean,
+        static_wear_coefficient_std: k_std,
+        static_wear_rate_mean: w_mean,
+        static_wear_rate_std: w_std,
+        junctions_mean: shared.junctions_mean,
+        critical_junctions_mean,
+        box_wrapping_steps: shared.box_wrapping_steps,
+        memory_decay_length: shared.memory_decay_length,
+        memory_decay_r2: shared.memory_decay_r2,
+        memory_fit_initial_junctions: shared.memory_fit_initial_junctions,
+        running_in_decay_lengths: shared.running_in_decay_lengths,
+        critical_residence: particle_rate
+            .filter(|r| *r > 0.0)
+            .and_then(|r| finite(critical_junctions_mean / r)),
+    }
+}

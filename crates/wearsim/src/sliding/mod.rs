@@ -1,0 +1,24 @@
+//! The sliding simulation (paper §3): slide the top surface over the bottom one along x, solve the
+//! contact at every offset (warm-started from the previous step), label the junctions, and advance
+//! one particle rule per fracture energy on the shared contact solutions. Ends with the
+//! least-squares wear rate, particle rate and Archard wear coefficient after running-in.
+//!
+//! `schedule` (the offsets and what a run needs besides the surfaces), `records` (what a step and a
+//! load record), `fit` (a load's results and warnings), `checkpoint` (the state between two steps
+//! saved and read back), `state` (the run as a state taking one step at a time, which every front
+//! end drives through `run::SlidingRun`).
+
+mod checkpoint;
+mod fit;
+mod records;
+mod schedule;
+mod state;
+
+pub use checkpoint::{Checkpointing, Resumed, CHECKPOINT_EVERY};
+pub use fit::{resolution_warnings, FEW_PARTICLES};
+pub use records::{LoadRun, StepRecord, Timing, WearResult, RUN_IN_DECAY_LENGTHS};
+pub use schedule::{
+    schedule, SlidingConfig, SlidingSetup, DEFAULT_DISTANCE, DEFAULT_RUNNING_IN, DEFAULT_STEP, DEFAULT_STEP_RUNNING_IN,
+};
+pub(crate) use state::SlidingState;
+pub use state::StepView;

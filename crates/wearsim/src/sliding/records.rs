@@ -1,0 +1,170 @@
+//! What a sliding run records: one [`StepRecord`] per step, one [`WearResult`] per load and
+//! fracture energy, and the [`LoadRun`] that holds them with the time taken.
+
+use crate::wear::{StaticWear, StepWear};
+
+/// One step of one load: the contact statistics and, per fracture energy, the wear record.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct StepRecord {
+    /// Offset in pixels.
+    pub offset: usize,
+    /// Sliding distance s in the run's length unit.
+    pub s: f64,
+    /// Number of junctions N.
+    pub junctions: usize,
+    /// Junctions that wrap the periodic box (full contact, a band across the box): no particles of
+    /// the model, which needs finite junctions (paper §3), yet counted in N and the wear records.
+    pub wrapping_junctions: usize,
+    /// Real contact area as a fraction of the apparent area.
+    pub contact_area: f64,
+    /// Junctions of this step that descend from a junction present at s = 0 (paper §3's memory of
+    /// the initial contact).
+    pub initial_junctions: usize,
+    /// Solver iterations of this step.
+    pub iterations: usize,
+    /// Solver residual of this step.
+    pub residual: f64,
+    /// Wear record per fracture energy, in the material's order.
+    pub wear: Vec<StepWear>,
+    /// Static model on this step's contact map per fracture energy (paper §2).
+    pub statics: Vec<StaticWear>,
+}
+
+/// A finite number, or nothing.
+pub(crate) fn finite(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+/// Results per load and fracture energy (paper §3–4 and appendices B, C); also the record stored in
+/// study job files. Fitted quantities are absent (`null` in JSON, an empty cell in CSV) where they
+/// are undefined; the run's `warnings` say why.
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct WearResult {
+    pub fracture_energy: f64,
+    pub critical_diameter: f64,
+    /// W = dV/ds fitted after running-in (volume per sliding distance).
+    pub wear_rate: Option<f64>,
+    /// R² of the wear-rate fit; absent where V does not change after running-in (no particle).
+    pub wear_rate_r2: Option<f64>,
+    /// Intercept b of the line V(s) ≈ W s + b fitted after running-in (volume), the dashed line of
+    /// the paper's Fig. 3; absent with W. Absent in job files written before it existed.
+    #[serde(default)]
+    pub wear_volume_intercept: Option<f64>,
+    /// Sliding distance at which the fit window starts (run's length unit): the first step at or
+    /// past the running-in distance, where the fits of W and dN*₊/ds and the means over the fit
+    /// window begin; the running-in (not fitted) part of the paper's Fig. 3 ends here. Read as 0
+    /// from job files of format 2 only so that the job-format check, not a parse error, refuses them.
+    #[serde(default)]
+    pub fit_window_start: f64,
+    /// k = W p̃ / F_N (Archard, paper Eq. 2).
+    pub wear_coefficient: Option<f64>,
+    /// dN*₊/ds fitted after running-in (particles per sliding distance).
+    pub particle_rate: Option<f64>,
+    /// Paper Eq. 5, ω d*³ dN*₊/ds with ω = π/6 (the paper finds it slightly below W, appendix B).
+    pub wear_rate_estimate: Option<f64>,
+    /// Particles formed after running-in (N*₊ at the end minus at the start of the fit window).
+    pub particles_in_fit: usize,
+    /// V₀, the volume counted at s = 0.
+    pub initial_volume: f64,
+    /// Static model at s = 0: k_static = Σ_{A_i ≥ A*} A_i / Σ A_i.
+    pub static_wear_coefficient: f64,
+    /// Static model at s = 0: W_static/ω = k_static Σ A_i.
+    pub static_wear_rate: f64,
+    /// Static model over every offset of the run (paper §2): mean and standard deviation of k_static.
+    pub static_wear_coefficient_mean: f64,
+    pub static_wear_coefficient_std: f64,
+    /// Static model over every offset: mean and standard deviation of W_static/ω.
+    pub static_wear_rate_mean: f64,
+    pub static_wear_rate_std: f64,
+    /// Mean number of junctions N over the fit window (paper appendix C).
+    pub junctions_mean: f64,
+    /// Mean number of junctions at least d* across, N*, over the fit window (paper appendix C).
+    pub critical_junctions_mean: f64,
+    /// Decay length ℓ of the memory of the initial contact, N₀(s) ≈ N₀(0) e^(−s/ℓ) (paper §3), fitted
+    /// to ln N₀ over the steps where N₀ > 0; absent when it does not decay.
+    pub memory_decay_length: Option<f64>,
+    /// R² of that fit (in ln N₀).
+    pub memory_decay_r2: Option<f64>,
+    /// N₀(0) of that fit, e^b of the line ln N₀ ≈ b − s/ℓ: with ℓ, the fitted curve of the memory
+    /// of the initial contact; absent with ℓ. Absent in job files written before it existed.
+    #[serde(default)]
+    pub memory_fit_initial_junctions: Option<f64>,
+    /// Steps of the load at which a junction wrapped the periodic box (full contact near p_m, a
+    /// contact band across the box). Such a junction is no particle of the model (paper §3 needs
+    /// finite junctions), yet it is counted as one, so results with steps here are not the model's;
+    /// the warnings say so. Absent in job files written before it existed: 0.
+    #[serde(default)]
+    pub box_wrapping_steps: usize,
+    /// The running-in distance (start of the fit window) in decay lengths, s_r/ℓ; 0 when the memory
+    /// does not decay, absent when it is gone by the first step after s = 0. Below
+    /// [`RUN_IN_DECAY_LENGTHS`] the fit window starts while the initial contact is still remembered
+    /// (paper §3) and the run is not run in; the run's `warnings` say so.
+    pub running_in_decay_lengths: Option<f64>,
+    /// N*/(dN*₊/ds): the sliding distance a junction stays at least d* per particle it forms
+    /// (Little's law over the fit window). A junction forms one particle and is then disabled while
+    /// it overlaps itself (paper §3), so when critical junctions grow and live longer with load, this
+    /// grows and the particle rate per critical junction, and k, fall; absent without particles.
+    pub critical_residence: Option<f64>,
+}
+
+impl WearResult {
+    /// The unit of every field, declared beside the fields so that a new result states its unit
+    /// where it is added: (field, reduced units, SI units); "" for counts, "1" for ratios. Read by
+    /// `output::unit_of` for every table and summary that holds the field (`_mean`, `_min`, …
+    /// of it included).
+    pub const UNITS: &'static [(&'static str, &'static str, &'static str)] = &[
+        ("fracture_energy", "E L", "J/m²"),
+        ("critical_diameter", "L", "m"),
+        ("wear_rate", "L²", "m²"),
+        ("wear_rate_r2", "1", "1"),
+        ("wear_volume_intercept", "L³", "m³"),
+        ("fit_window_start", "L", "m"),
+        ("wear_coefficient", "1", "1"),
+        ("particle_rate", "1/L", "1/m"),
+        ("wear_rate_estimate", "L²", "m²"),
+        ("particles_in_fit", "", ""),
+        ("initial_volume", "L³", "m³"),
+        ("static_wear_coefficient", "1", "1"),
+        ("static_wear_rate", "L²", "m²"),
+        ("static_wear_coefficient_mean", "1", "1"),
+        ("static_wear_coefficient_std", "1", "1"),
+        ("static_wear_rate_mean", "L²", "m²"),
+        ("static_wear_rate_std", "L²", "m²"),
+        ("junctions_mean", "", ""),
+        ("critical_junctions_mean", "", ""),
+        ("memory_decay_length", "L", "m"),
+        ("memory_decay_r2", "1", "1"),
+        ("memory_fit_initial_junctions", "", ""),
+        ("box_wrapping_steps", "", ""),
+        ("running_in_decay_lengths", "1", "1"),
+        ("critical_residence", "L", "m"),
+    ];
+}
+
+/// Decay lengths of the memory of the initial contact after which a run counts as run in: e^−3, so
+/// about 5 % of the junction lineages present at s = 0 are expected at the start of the fit window.
+/// The paper (§3) finds the decay length not predictable and takes L/4 as a safety margin; this rule
+/// checks that margin on each run's own measured decay.
+pub const RUN_IN_DECAY_LENGTHS: f64 = 3.0;
+
+/// Time spent per part of the sliding loop, in seconds.
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Timing {
+    pub solve: f64,
+    pub labelling: f64,
+    pub bookkeeping: f64,
+}
+
+/// One load's sliding run.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct LoadRun {
+    /// Normal load F_N.
+    pub load: f64,
+    pub steps: Vec<StepRecord>,
+    pub results: Vec<WearResult>,
+    pub total_iterations: usize,
+    pub max_iterations: usize,
+    pub timing: Timing,
+    /// What makes a result of this load under-resolved or undefined, one sentence each.
+    pub warnings: Vec<String>,
+}

@@ -1,0 +1,184 @@
+//! The particle-rule seam (`wear::ParticleRule`): a rule written outside the library, with a known
+//! answer, plugged into a run through `[sliding] particle_rule`'s type alone, slides like the
+//! paper's rule (same contact solutions, its own particles), is recorded in the summary, keeps its
+//! state through a checkpoint and shows its junction states to an observer.
+
+use std::path::Path;
+
+use wearsim::config::RunConfig;
+use wearsim::run::SlidingRun;
+use wearsim::sliding::{Checkpointing, Resumed};
+use wearsim::wear::{JunctionState, LabelledStep, ParticleRule, ParticleRuleKind, StepWear, PARTICLE_RULES};
+
+/// A trivial rule: every junction at least d* across forms a particle at every step, with no
+/// memory of the previous step. Its answer: N*₊ is the running sum of N*, V the running sum of the
+/// critical junctions' particle volumes.
+struct EveryCriticalJunction {
+    critical_area: f64,
+    n_formed: usize,
+    volume: f64,
+    /// The distance slid over the run, from what each step is handed.
+    slid: f64,
+    states: Vec<JunctionState>,
+}
+
+impl ParticleRule for EveryCriticalJunction {
+    fn step(&mut self, step: &LabelledStep, _scratch: &mut [bool]) -> StepWear {
+        self.slid += step.slid;
+        self.states.clear();
+        let mut n_critical = 0;
+        for j in step.junctions {
+            if j.area >= self.critical_area {
+                n_critical += 1;
+                self.volume += j.volume;
+                self.states.push(JunctionState::Forming);
+            } else {
+                self.states.push(JunctionState::Below);
+            }
+        }
+        self.n_formed += n_critical;
+        StepWear {
+            n_critical,
+            n_formed: self.n_formed,
+            volume: self.volume,
+        }
+    }
+
+    fn states(&self) -> &[JunctionState] {
+        &self.states
+    }
+
+    fn carried(&self) -> serde_json::Value {
+        serde_json::json!([self.n_formed, self.volume, self.slid])
+    }
+
+    fn restore(&mut self, carried: serde_json::Value) -> Result<(), String> {
+        let (n, v, s): (usize, f64, f64) = serde_json::from_value(carried).map_err(|e| e.to_string())?;
+        (self.n_formed, self.volume, self.slid) = (n, v, s);
+        Ok(())
+    }
+}
+
+const EVERY_CRITICAL_JUNCTION: ParticleRuleKind = ParticleRuleKind {
+    name: "every-critical-junction",
+    description: "every junction at least d* across forms a particle at every step",
+    make: |d| {
+        Box::new(EveryCriticalJunction {
+            critical_area: wearsim::junctions::circle_area(d),
+            n_formed: 0,
+            volume: 0.0,
+            slid: 0.0,
+            states: Vec::new(),
+        })
+    },
+};
+
+const RUN: &str = "[surface]\ngrid = 32\nlambda_lower = 0.125\nlambda_upper = 0.5\nrms_height = 0.01\nseed = 3\n\
+                   [material]\nyoungs_modulus = 1.0\npoisson_ratio = 0.3\nshear_strength = 0.01\n\
+                   fracture_energies = [0.25e-6, 1e-6]\n[sliding]\nloads = [2e-3, 4e-3]\n";
+
+fn config(rule: ParticleRuleKind) -> RunConfig {
+    let mut config = RunConfig::from_toml(RUN, Path::new(".")).unwrap();
+    let sliding = config.sliding.take().unwrap();
+    config.sliding = Some(sliding.with_particle_rule(rule));
+    config
+}
+
+#[test]
+fn a_rule_written_outside_the_library_slides_with_its_known_answer() {
+    let paper = config(ParticleRuleKind::default());
+    let reference = SlidingRun::prepare(&paper).unwrap().run(|_| {}).unwrap();
+    let trivial = config(EVERY_CRITICAL_JUNCTION);
+    let mut states_seen = 0;
+    let outcome = SlidingRun::prepare(&trivial)
+        .unwrap()
+        .run(|view| {
+            // The observer sees the rule's own junction states.
+            for e in 0..2 {
+                let states = view.junction_states(e);
+                assert_eq!(states.len(), view.record.junctions);
+                assert_eq!(
+                    states.iter().filter(|s| **s == JunctionState::Forming).count(),
+                    view.record.wear[e].n_critical
+                );
+                states_seen += states.len();
+                // Each step is handed the distance slid since the previous one.
+                let slid = view.rules[e].carried()[2].as_f64().unwrap();
+                assert!((slid - view.record.s).abs() < 1e-12, "{slid} vs s = {}", view.record.s);
+            }
+        })
+        .unwrap();
+    assert!(states_seen > 0);
+    for (run, paper_run) in outcome.runs.iter().zip(&reference.runs) {
+        for e in 0..2 {
+            let mut formed = 0;
+            for (step, paper_step) in run.steps.iter().zip(&paper_run.steps) {
+                // The same contact solutions and junctions: the rules differ only in particles.
+                assert_eq!(
+                    (step.junctions, step.contact_area, step.iterations),
+                    (paper_step.junctions, paper_step.contact_area, paper_step.iterations)
+                );
+                assert_eq!(step.wear[e].n_critical, paper_step.wear[e].n_critical);
+                formed += step.wear[e].n_critical;
+                assert_eq!(step.wear[e].n_formed, formed);
+                assert!(step.wear[e].n_formed >= paper_step.wear[e].n_formed);
+            }
+            // V₀ is the same at s = 0, where both rules count every critical junction once.
+            assert_eq!(run.results[e].initial_volume, paper_run.results[e].initial_volume);
+        }
+    }
+    let summary = outcome.summary();
+    assert_eq!(summary["inputs"]["sliding"]["particle_rule"], "every-critical-junction");
+    assert_eq!(
+        reference.summary()["inputs"]["sliding"]["particle_rule"],
+        PARTICLE_RULES[0].name
+    );
+}
+
+#[test]
+fn a_rule_keeps_its_state_through_a_checkpoint() {
+    let trivial = config(EVERY_CRITICAL_JUNCTION);
+    let whole = SlidingRun::prepare(&trivial).unwrap().run(|_| {}).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let checkpointing = Checkpointing {
+        path: dir.path().join("run.checkpoint"),
+        every: std::time::Duration::ZERO,
+    };
+    let interrupt = wearsim::Interrupt::default();
+    let stopped = SlidingRun::prepare(&trivial)
+        .unwrap()
+        .interrupted_by(&interrupt)
+        .run_resumable(
+            Some(&checkpointing),
+            |_| {},
+            |view| {
+                if view.done == 11 {
+                    interrupt.request();
+                }
+            },
+        );
+    assert!(matches!(stopped, Err(wearsim::Error::Interrupted)));
+    // The paper's rule does not take the other rule's checkpoint.
+    let paper_config = config(ParticleRuleKind::default());
+    let mut paper = SlidingRun::prepare(&paper_config).unwrap().start().unwrap();
+    assert!(matches!(paper.resume(&checkpointing.path), Resumed::Ignored(_)));
+    let mut resumed = None;
+    let again = SlidingRun::prepare(&trivial)
+        .unwrap()
+        .run_resumable(Some(&checkpointing), |r| resumed = Some(r.clone()), |_| {})
+        .unwrap();
+    assert!(matches!(resumed, Some(Resumed::At { done: 11, .. })), "{resumed:?}");
+    for (a, b) in whole.runs.iter().zip(&again.runs) {
+        assert_eq!((&a.steps, &a.results), (&b.steps, &b.results));
+    }
+}
+
+#[test]
+fn a_run_file_names_the_rule_and_an_unknown_name_is_refused_with_the_choices() {
+    let named = RunConfig::from_toml(&format!("{RUN}particle_rule = \"overlap\"\n"), Path::new(".")).unwrap();
+    assert_eq!(named.sliding.unwrap().particle_rule, ParticleRuleKind::default());
+    let e = RunConfig::from_toml(&format!("{RUN}particle_rule = \"sometimes\"\n"), Path::new("."))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("particle_rule") && e.contains("\"overlap\""), "{e}");
+}
