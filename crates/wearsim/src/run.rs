@@ -161,7 +161,7 @@ impl<'a> SlidingRun<'a> {
     pub fn run_resumable(
         self,
         checkpointing: Option<&Checkpointing>,
-        on_resume: impl FnOnce(&Resumed),
+        on_resume: impl FnMut(&Resumed),
         observe: impl FnMut(&StepView),
     ) -> Result<SlidingOutcome<'a>> {
         let start = Instant::now();

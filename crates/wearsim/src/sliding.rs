@@ -3,8 +3,7 @@
 //! and advance one wear bookkeeping per fracture energy on the shared contact solutions. Ends with
 //! the least-squares wear rate, particle rate and Archard wear coefficient after running-in.
 
-use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use crate::check::positive;
 use crate::contact::{ContactSolver, Device, SolverOptions};
@@ -13,9 +12,14 @@ use crate::grid::Grid;
 use crate::influence::Boundary;
 use crate::junctions::JunctionLabeller;
 use crate::material::Material;
-use crate::stats::{line_fit, mean_std};
+use crate::stats::{line_fit, mean_std, LineFit};
 use crate::surface::Surface;
-use crate::wear::{static_wear, CarriedBookkeeping, InitialContactMemory, SlidingBookkeeping, StaticWear, StepWear};
+use crate::wear::{static_wear, InitialContactMemory, SlidingBookkeeping, StaticWear, StepWear};
+
+mod checkpoint;
+
+use checkpoint::{inputs_key, load_checkpoint, SavedState, StopSaver};
+pub use checkpoint::{Checkpointing, Resumed, CHECKPOINT_EVERY};
 
 /// The sliding schedule (paper §3); distances as fractions of the box side Lx along the sliding
 /// direction x, steps in pixels.
@@ -392,7 +396,7 @@ pub fn run_sliding_resumable(
     bottom: &Surface,
     setup: &SlidingSetup,
     checkpointing: Option<&Checkpointing>,
-    on_resume: impl FnOnce(&Resumed),
+    mut on_resume: impl FnMut(&Resumed),
     mut observe: impl FnMut(&StepView),
 ) -> Result<Vec<LoadRun>> {
     let grid: Grid = top.grid();
@@ -437,7 +441,7 @@ pub fn run_sliding_resumable(
     let key = inputs_key(top, bottom, setup);
     let (mut saved, resumed) = match checkpointing {
         None => (None, Resumed::Fresh),
-        Some(c) => match load_checkpoint(&c.path, &key, &mut solver, diameters.len(), offsets.len()) {
+        Some(c) => match load_checkpoint(&c.path, &key, &mut solver, setup, diameters.len(), offsets.len()) {
             Ok(None) => (None, Resumed::Fresh),
             Ok(Some(state)) => {
                 let at = Resumed::At {
@@ -456,8 +460,12 @@ pub fn run_sliding_resumable(
         .unwrap_or_default();
     let mut done = saved.as_ref().map_or(0, |s| s.done);
     let mut last_save = Instant::now();
+    // The state of the last finished step, saved when the run is stopped (a solve interrupted part
+    // way has already changed the solver's pressure): one more Nx·Ny field while checkpointing.
+    let mut saver = checkpointing.map(|c| StopSaver::new(c, done, total_steps, grid.pixels()));
     for (load_index, &load) in setup.sliding.loads.iter().enumerate().skip(runs.len()) {
-        let (mut books, mut memory, mut steps, mut timing) = match saved.take() {
+        // A checkpoint taken between two loads holds no step of the next one: it starts cold.
+        let (mut books, mut memory, mut steps, mut timing) = match saved.take().filter(|s| !s.steps.is_empty()) {
             // The checkpoint's pressure is already the solver's.
             Some(state) => (
                 diameters
@@ -480,10 +488,21 @@ pub fn run_sliding_resumable(
             }
         };
         for (step_index, &offset) in offsets.iter().enumerate().skip(steps.len()) {
-            setup.interrupt.check()?;
             let t0 = Instant::now();
-            solver.compose(top, bottom, offset)?;
-            let info = solver.solve_in_place(load / area, pm)?;
+            let info = setup
+                .interrupt
+                .check()
+                .and_then(|()| solver.compose(top, bottom, offset))
+                .and_then(|()| solver.solve_in_place(load / area, pm));
+            let info = match (info, saver.as_mut()) {
+                (Ok(info), _) => info,
+                (Err(Error::Interrupted), Some(saver)) => {
+                    let state = SavedState::of(&key, done, &runs, &steps, timing, &books, &memory);
+                    saver.save_on_stop(&state, &mut on_resume);
+                    return Err(Error::Interrupted);
+                }
+                (Err(e), _) => return Err(e),
+            };
             let t1 = Instant::now();
             let map = solver.contact_map();
             let count = labeller.label(|k| map.contains(k));
@@ -522,20 +541,11 @@ pub fn run_sliding_resumable(
                 labeller: &labeller,
                 bookkeeping: &books,
             });
-            if let Some(c) = checkpointing {
+            if let (Some(c), Some(saver)) = (checkpointing, saver.as_mut()) {
+                saver.keep(solver.pressure(), done);
                 if done < total_steps && last_save.elapsed() >= c.every {
-                    let state = SavedState {
-                        format: CHECKPOINT_FORMAT,
-                        software: format!("wearsim {}", crate::io::VERSION),
-                        inputs: &key,
-                        done,
-                        finished: &runs,
-                        steps: &steps,
-                        timing,
-                        books: books.iter().map(SlidingBookkeeping::carried).collect(),
-                        memory: &memory,
-                    };
-                    save_checkpoint(&c.path, &state, solver.pressure())?;
+                    let state = SavedState::of(&key, done, &runs, &steps, timing, &books, &memory);
+                    saver.save(&state, &mut on_resume);
                     last_save = Instant::now();
                 }
             }
@@ -552,170 +562,6 @@ pub fn run_sliding_resumable(
         });
     }
     Ok(runs)
-}
-
-/// Where and how often a long sliding run saves its state, so that a rerun of a run killed (a Slurm
-/// job at its wall-time limit) resumes instead of starting over.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Checkpointing {
-    /// The checkpoint file, replaced atomically at every save.
-    pub path: PathBuf,
-    /// Least time between two saves; zero saves after every step.
-    pub every: Duration,
-}
-
-/// The interval between checkpoints when none is given: a killed run loses at most a few minutes.
-pub const CHECKPOINT_EVERY: Duration = Duration::from_secs(300);
-
-/// What a run made of the checkpoint file it was given.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Resumed {
-    /// There was none: the run starts at s = 0.
-    Fresh,
-    /// The run continues after `done` of its `total` steps.
-    At { done: usize, total: usize },
-    /// The file holds no usable state of this run (other inputs, another version of wearsim, cut
-    /// short); the message says why. The run starts at s = 0 and replaces it.
-    Ignored(String),
-}
-
-/// Version of the checkpoint layout (2: finished loads' results hold `fit_window_start`).
-const CHECKPOINT_FORMAT: u32 = 2;
-
-/// First bytes of a checkpoint file; then the length of the JSON state (u64, little-endian), the
-/// state, and the contact pressure (Nx·Ny f64, little-endian, exact).
-const CHECKPOINT_MAGIC: &[u8] = b"wearsim sliding checkpoint\n";
-
-/// The state of a run between two steps, as saved.
-#[derive(serde::Serialize)]
-struct SavedState<'a> {
-    format: u32,
-    software: String,
-    /// Hash of every input of the run (see [`inputs_key`]).
-    inputs: &'a str,
-    /// Steps done over all loads.
-    done: usize,
-    /// Loads finished.
-    finished: &'a [LoadRun],
-    /// Records of the load under way.
-    steps: &'a [StepRecord],
-    timing: Timing,
-    books: Vec<CarriedBookkeeping>,
-    memory: &'a InitialContactMemory,
-}
-
-/// [`SavedState`] as read back.
-#[derive(serde::Deserialize)]
-struct LoadedState {
-    format: u32,
-    software: String,
-    inputs: String,
-    done: usize,
-    finished: Vec<LoadRun>,
-    steps: Vec<StepRecord>,
-    timing: Timing,
-    books: Vec<CarriedBookkeeping>,
-    memory: InitialContactMemory,
-}
-
-/// FNV-1a hash of everything that decides a run's results: the version, the material, modulus,
-/// solver options, connectivity and schedule, and both surfaces' sizes and heights (bit patterns).
-fn inputs_key(top: &Surface, bottom: &Surface, setup: &SlidingSetup) -> String {
-    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
-    let mut feed = |bytes: &[u8]| {
-        for b in bytes {
-            hash ^= u64::from(*b);
-            hash = hash.wrapping_mul(0x0100_0000_01b3);
-        }
-    };
-    feed(crate::io::VERSION.as_bytes());
-    let settings = serde_json::json!({
-        "material": setup.material,
-        "effective_modulus": setup.effective_modulus.to_bits(),
-        "solver": setup.solver,
-        "connectivity": setup.connectivity,
-        "sliding": setup.sliding,
-    });
-    feed(settings.to_string().as_bytes());
-    for surface in [top, bottom] {
-        feed(&(surface.nx() as u64).to_le_bytes());
-        feed(&(surface.ny() as u64).to_le_bytes());
-        feed(&surface.length().to_bits().to_le_bytes());
-        feed(&surface.pixel_size().to_bits().to_le_bytes());
-        for h in surface.heights() {
-            feed(&h.to_bits().to_le_bytes());
-        }
-    }
-    format!("{hash:016x}")
-}
-
-/// Writes a checkpoint atomically (temporary sibling, then renamed over the old one).
-fn save_checkpoint(path: &Path, state: &SavedState, pressure: &[f64]) -> Result<()> {
-    let json =
-        serde_json::to_vec(state).map_err(|e| Error::file(path, format!("cannot encode the checkpoint: {e}")))?;
-    crate::io::atomic_write(path, |w| {
-        w.write_all(CHECKPOINT_MAGIC)?;
-        w.write_all(&(json.len() as u64).to_le_bytes())?;
-        w.write_all(&json)?;
-        for p in pressure {
-            w.write_all(&p.to_le_bytes())?;
-        }
-        Ok(())
-    })
-}
-
-/// Reads a checkpoint of the run whose inputs hash to `key` into `pressure`; `Ok(None)` when there
-/// is no file, `Err(why)` when it cannot be used.
-fn load_checkpoint(
-    path: &Path,
-    key: &str,
-    solver: &mut ContactSolver,
-    energies: usize,
-    steps_per_load: usize,
-) -> std::result::Result<Option<LoadedState>, String> {
-    let bytes = match std::fs::read(path) {
-        Ok(b) => b,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
-        Err(e) => return Err(format!("{}: cannot be read ({e})", path.display())),
-    };
-    let unusable = |why: &str| format!("{}: {why}; the run starts over and replaces it", path.display());
-    let rest = bytes
-        .strip_prefix(CHECKPOINT_MAGIC)
-        .ok_or_else(|| unusable("not a checkpoint of a wearsim sliding run"))?;
-    let cut = || unusable("cut short");
-    let (len, rest) = rest.split_first_chunk::<8>().ok_or_else(cut)?;
-    let len = usize::try_from(u64::from_le_bytes(*len)).map_err(|_| cut())?;
-    if rest.len() < len {
-        return Err(cut());
-    }
-    let (json, field) = rest.split_at(len);
-    let state: LoadedState = serde_json::from_slice(json).map_err(|e| unusable(&format!("unreadable state ({e})")))?;
-    if state.format != CHECKPOINT_FORMAT || state.software != format!("wearsim {}", crate::io::VERSION) {
-        return Err(unusable(&format!(
-            "written by {} (checkpoint format {}), not by this wearsim {}",
-            state.software,
-            state.format,
-            crate::io::VERSION
-        )));
-    }
-    if state.inputs != key {
-        return Err(unusable(
-            "saved by a run of other inputs (run file, surfaces or schedule changed since)",
-        ));
-    }
-    if field.len() != solver.grid().pixels() * 8
-        || state.books.len() != energies
-        || state.steps.len() > steps_per_load
-        || state.steps.is_empty() && state.finished.is_empty()
-    {
-        return Err(cut());
-    }
-    solver.set_pressure(|pressure| {
-        for (p, b) in pressure.iter_mut().zip(field.chunks_exact(8)) {
-            *p = f64::from_le_bytes(b.try_into().expect("8 bytes"));
-        }
-    });
-    Ok(Some(state))
 }
 
 /// The fitted results of one load per fracture energy (paper §3 and appendices B, C), and the
@@ -785,15 +631,24 @@ fn results_of_load(
             let g = setup.material.fracture_energies[e];
             let v: Vec<f64> = fitted.iter().map(|r| r.wear[e].volume).collect();
             let nf: Vec<f64> = fitted.iter().map(|r| r.wear[e].n_formed as f64).collect();
-            let wear_fit = line_fit(&s, &v);
             let particle_fit = line_fit(&s, &nf);
-            let wear_rate = wear_fit.and_then(|f| finite(f.slope));
-            let wear_volume_intercept = wear_fit.filter(|_| wear_rate.is_some()).and_then(|f| finite(f.intercept));
-            let particle_rate = particle_fit.and_then(|f| finite(f.slope));
             let particles_in_fit = match (fitted.first(), fitted.last()) {
                 (Some(a), Some(b)) => b.wear[e].n_formed - a.wear[e].n_formed,
                 _ => 0,
             };
+            // Without a particle V is constant over the window: W = 0 exactly and R² undefined (a
+            // least-squares fit of equal values leaves round-off, a slope of ±1e-30 and any R²).
+            let wear_fit = line_fit(&s, &v).map(|f| match v.first() {
+                Some(&v0) if particles_in_fit == 0 => LineFit {
+                    slope: 0.0,
+                    intercept: v0,
+                    r2: None,
+                },
+                _ => f,
+            });
+            let wear_rate = wear_fit.and_then(|f| finite(f.slope));
+            let wear_volume_intercept = wear_fit.filter(|_| wear_rate.is_some()).and_then(|f| finite(f.intercept));
+            let particle_rate = particle_fit.and_then(|f| finite(f.slope));
             let wear_rate_r2 = wear_fit.and_then(|f| f.r2);
             let context = format!("F_N = {load:.4e}, 𝒢 = {g:.4e} (d* = {d:.4e})");
             if particles_in_fit == 0 {
