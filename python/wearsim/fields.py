@@ -117,16 +117,16 @@ TITLE = "Per-step contact fields of a wearsim sliding run"
 
 
 def _written_by_to_netcdf(path: Path) -> bool:
-    """Whether ``path`` is a NetCDF file that :func:`to_netcdf` wrote (its title and source)."""
+    """Whether ``path`` is a NetCDF file that :func:`to_netcdf` wrote (its source and references)."""
     try:
         import h5py
 
         with h5py.File(path, "r") as f:
-            title, source = f.attrs.get("title"), f.attrs.get("source")
+            source, references = f.attrs.get("source"), f.attrs.get("references")
     except Exception:  # not HDF5, unreadable, h5py missing: not one of ours
         return False
-    as_text = [v.decode() if isinstance(v, bytes) else str(v) for v in (title, source)]
-    return as_text[0] == TITLE and as_text[1].startswith("wearsim ")
+    text = [v.decode() if isinstance(v, bytes) else str(v) for v in (source, references)]
+    return text[0].startswith("wearsim ") and text[1] == PAPER
 
 
 def _check_out(store: Path, out: Path, overwrite: bool) -> None:
