@@ -222,3 +222,95 @@ fn a_tolerance_loose_enough_to_move_the_results_is_warned_about() {
         assert_eq!(summary.contains("[contact] tolerance"), warned, "{tolerance}");
     }
 }
+
+#[test]
+fn a_figure_or_report_that_a_full_disk_cuts_short_is_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = format!("{GENERATED}[sliding]\nloads = [1e-3]\n").replace("seed = 1", "seed = [1, 2]");
+    let study = file(dir.path(), "s.toml", &text);
+    let out = dir.path().join("st");
+    let o = run(&["study", "run", s(&study), "--out", s(&out)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // A file-size limit (as a full disk): the first write past it fails; the message names the file.
+    for blocks in [4, 64] {
+        let o = sh(&format!(
+            "trap '' XFSZ; ulimit -f {blocks}; exec {} study plot {}",
+            env!("CARGO_BIN_EXE_wearsim"),
+            s(&out)
+        ));
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{blocks} blocks: {e}");
+        assert!(
+            [".png", ".svg", ".md", ".csv"].iter().any(|x| e.contains(x)),
+            "{blocks} blocks: {e}"
+        );
+        // Nothing half-written left, in the study folder or its figures.
+        let left: Vec<_> = [out.clone(), out.join("figures")]
+            .iter()
+            .filter_map(|d| std::fs::read_dir(d).ok())
+            .flat_map(|entries| entries.flatten())
+            .map(|e| e.file_name().to_string_lossy().to_string())
+            .filter(|n| n.ends_with(".tmp"))
+            .collect();
+        assert!(left.is_empty(), "{left:?}");
+    }
+}
+
+/// Peak resident size, in MiB, of `wearsim args` run to its end (the child's own rusage).
+fn peak_mib(dir: &Path, args: &[&str]) -> f64 {
+    let child = common::wearsim()
+        .current_dir(dir)
+        .args(args)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let mut status = 0;
+    // SAFETY: wait4 on our own child, into a zeroed rusage it fills.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    let pid = unsafe { libc::wait4(child.id() as i32, &mut status, 0, &mut usage) };
+    assert_eq!(pid, child.id() as i32);
+    assert!(
+        libc::WIFEXITED(status) && libc::WEXITSTATUS(status) == 0,
+        "{args:?} failed"
+    );
+    usage.ru_maxrss as f64 / 1024.0
+}
+
+#[test]
+fn the_memory_checked_is_within_ten_percent_of_the_measured_peak() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = big(1024)
+        .replace("distance = 0.1", "distance = 0.012")
+        .replace("running_in = 0.05", "running_in = 0.004");
+    let run_path = run_file(dir.path(), &text);
+    for args in [
+        vec!["slide", s(&run_path), "--out", "o1"],
+        vec!["contact", s(&run_path), "--load", "1e-3", "--out", "o2"],
+        vec!["surface", s(&run_path), "--out", "o3"],
+    ] {
+        // The estimate, as the refusal under a 1 MB allocation states it.
+        let o = common::wearsim()
+            .current_dir(dir.path())
+            .env("SLURM_MEM_PER_NODE", "1")
+            .args(&args)
+            .output()
+            .unwrap();
+        let e = stderr(&o);
+        let estimate: f64 = e
+            .split("needs about ")
+            .nth(1)
+            .and_then(|r| r.strip_suffix('\n').unwrap_or(r).split(" MiB").next())
+            .and_then(|v| v.parse().ok())
+            .unwrap_or_else(|| panic!("no estimate in MiB: {e}"));
+        // The estimate is for the largest peak: the threads of a run do not always overlap their
+        // largest arrays (a surface pair's peak is sometimes a fifth lower), so the largest of three.
+        let peak = (0..3).map(|_| peak_mib(dir.path(), &args)).fold(0.0, f64::max);
+        let ratio = estimate / peak;
+        assert!(
+            (0.9..=1.1).contains(&ratio),
+            "{}: estimate {estimate} MiB, peak {peak:.0} MiB",
+            args[0]
+        );
+    }
+}

@@ -213,3 +213,28 @@ fn a_claim_that_a_full_disk_left_empty_never_blocks_the_retry() {
     let o = run(&["slide", s(&run_path), "--out", s(&out)]);
     assert!(o.status.success(), "{}", stderr(&o));
 }
+
+#[test]
+fn a_checkpoints_temporary_file_cut_by_a_kill_is_removed_by_the_next_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let run_path = run_file(dir.path(), &sliding());
+    let host = std::fs::read_to_string("/proc/sys/kernel/hostname").unwrap();
+    // A save of `.out.checkpoint` cut short by a kill, its process gone; and one of a live process
+    // (this test's), which must stay.
+    let gone = dir
+        .path()
+        .join(format!("..out.checkpoint.{}.4000000000-0.tmp", host.trim()));
+    let live = dir
+        .path()
+        .join(format!("..out.checkpoint.{}.{}-0.tmp", host.trim(), std::process::id()));
+    for partial in [&gone, &live] {
+        std::fs::write(partial, b"wearsim sliding checkpoint, cut").unwrap();
+    }
+    let out = dir.path().join("out");
+    let o = run(&["slide", s(&run_path), "--out", s(&out)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!gone.exists(), "the killed save's temporary file stays");
+    assert!(live.exists(), "a live process's temporary file was removed");
+    std::fs::remove_file(&live).unwrap();
+    assert_eq!(listing(dir.path()), ["out", "run.toml"]);
+}
