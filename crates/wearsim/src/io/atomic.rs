@@ -635,25 +635,33 @@ impl Drop for OutputDir {
 }
 
 /// Writes several files so that they appear together: each into a temporary sibling, then all
-/// renamed into place (a failed write leaves none of them changed).
+/// renamed into place (a failed write leaves none of them changed). The temporary files are
+/// registered as being written, so that a command stopped by a signal removes them
+/// ([`abandon_outputs`]) and none is put in place after that.
 pub fn write_texts_together(files: &[(&Path, &str)]) -> Result<()> {
     let mut written: Vec<(std::path::PathBuf, &Path)> = Vec::new();
     let result = (|| -> Result<()> {
         for (path, text) in files {
             let tmp = temporary_sibling(path)?;
+            register(&tmp);
             written.push((tmp.clone(), path));
             write_text(&tmp, text)?;
         }
-        let _in_place = live();
+        let in_place = live();
+        if let Some((_, path)) = written.iter().find(|(tmp, _)| !in_place.contains(tmp)) {
+            return Err(Error::io(path, std::io::Error::other("stopped")));
+        }
         for (tmp, path) in &written {
             std::fs::rename(tmp, path).map_err(|e| Error::io(path, e))?;
         }
         Ok(())
     })();
-    if result.is_err() {
-        for (tmp, _) in &written {
+    let mut list = live();
+    for (tmp, _) in &written {
+        if result.is_err() {
             let _ = std::fs::remove_file(tmp);
         }
+        release(&mut list, tmp);
     }
     result
 }
