@@ -258,6 +258,7 @@ fn a_figure_or_report_that_a_full_disk_cuts_short_is_named() {
 
 /// Peak resident size, in MiB, of `wearsim args` run to its end (the child's own rusage).
 fn peak_mib(dir: &Path, args: &[&str]) -> f64 {
+    #[allow(clippy::zombie_processes)] // reaped by wait4 below, which also gives its rusage
     let child = common::wearsim()
         .current_dir(dir)
         .args(args)
