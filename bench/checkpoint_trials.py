@@ -1,11 +1,16 @@
 """Kill-and-resume trials of a checkpointed `wearsim slide`, counted for docs/reliability.md.
 
-One uninterrupted run gives the reference series.csv; each trial starts the same run with a
-checkpoint after every step, kills it with SIGKILL (as a Slurm wall-time limit does) at a random
-moment after its first checkpoint, runs the same command again, and compares the resumed series.csv
-with the reference byte for byte. A trial whose run finished before the kill is counted apart.
+One uninterrupted run gives the reference series.csv; each trial starts the same run, stops it at a
+random moment, runs the same command again, and compares the resumed series.csv with the reference
+byte for byte. A trial whose run finished before the stop is counted apart. `--stop` says how:
 
-    cargo build --release -p wearsim-cli && python bench/checkpoint_trials.py [--grid 512] [--trials 5]
+- `kill`: a checkpoint after every step, SIGKILL at a random moment after the first one;
+- `term`, `usr1`: the default five minutes between checkpoints (none falls within the run), then
+  SIGTERM (a Slurm time limit) or SIGUSR1 (`--signal=USR1@…`): only the state saved on the way out
+  can resume it;
+- `term-kill`: SIGTERM, then SIGKILL after a grace period of `--grace` seconds, as Slurm does.
+
+    cargo build --release -p wearsim-cli && python bench/checkpoint_trials.py [--grid 512] [--trials 5] [--stop term]
 """
 
 from __future__ import annotations
@@ -13,6 +18,7 @@ from __future__ import annotations
 import argparse
 import os
 import random
+import signal
 import subprocess
 import tempfile
 import time
@@ -49,6 +55,8 @@ def main() -> None:
     parser.add_argument("--grid", type=int, default=512)
     parser.add_argument("--trials", type=int, default=5)
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--stop", choices=["kill", "term", "usr1", "term-kill"], default="kill")
+    parser.add_argument("--grace", type=float, default=1.0, help="seconds between SIGTERM and SIGKILL (term-kill)")
     args = parser.parse_args()
     rng = random.Random(args.seed)
     with tempfile.TemporaryDirectory() as tmp:
@@ -65,26 +73,47 @@ def main() -> None:
         reference = (work / "ref" / "series.csv").read_bytes()
         print(f"{n}² reference run: {duration:.1f} s")
         out, checkpoint = work / "out", work / ".out.checkpoint"
-        command = [WEARSIM, "slide", str(run), "--out", str(out), "--quiet", "--checkpoint-every", "0s"]
-        counts = {"killed after a checkpoint": 0, "resumed identical": 0, "resumed different": 0, "finished first": 0}
+        every = "0s" if args.stop == "kill" else "5m"
+        command = [WEARSIM, "slide", str(run), "--out", str(out), "--quiet", "--checkpoint-every", every]
+        counts = {"stopped part-way": 0, "resumed identical": 0, "resumed different": 0, "started over": 0}
+        counts["finished first"] = 0
+
+        def live_signals() -> None:  # not the "ignored" SIGINT of a background shell
+            for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGUSR1):
+                signal.signal(sig, signal.SIG_DFL)
+
         for trial in range(args.trials):
             subprocess.run(["rm", "-rf", str(out)], check=True)
-            child = subprocess.Popen(command, stderr=subprocess.DEVNULL)
-            while not checkpoint.exists() and child.poll() is None:
-                time.sleep(0.01)
-            time.sleep(rng.uniform(0.0, 0.8 * duration))
+            checkpoint.unlink(missing_ok=True)
+            child = subprocess.Popen(command, stderr=subprocess.DEVNULL, preexec_fn=live_signals)
+            if args.stop == "kill":
+                while not checkpoint.exists() and child.poll() is None:
+                    time.sleep(0.01)
+            time.sleep(rng.uniform(0.05 * duration, 0.8 * duration))
             if child.poll() is not None:
                 counts["finished first"] += 1
                 continue
-            child.kill()
+            if args.stop == "kill":
+                child.kill()
+            else:
+                child.send_signal(signal.SIGUSR1 if args.stop == "usr1" else signal.SIGTERM)
+                try:
+                    child.wait(timeout=args.grace if args.stop == "term-kill" else None)
+                except subprocess.TimeoutExpired:
+                    child.kill()
             child.wait()
-            counts["killed after a checkpoint"] += 1
+            counts["stopped part-way"] += 1
             resumed = subprocess.run(command, stderr=subprocess.PIPE, text=True, check=True)
             note = next((line for line in resumed.stderr.splitlines() if "resuming" in line), "no resume note")
             same = (out / "series.csv").read_bytes() == reference
             counts["resumed identical" if same else "resumed different"] += 1
+            if note == "no resume note":
+                counts["started over"] += 1
             verdict = "identical" if same else "DIFFERS"
-            print(f"trial {trial + 1}: {note}; series.csv {verdict}; checkpoint left: {checkpoint.exists()}")
+            print(
+                f"trial {trial + 1}: status {child.returncode}; {note}; series.csv {verdict}; "
+                f"checkpoint left: {checkpoint.exists()}"
+            )
         print(", ".join(f"{k}: {v}" for k, v in counts.items()))
 
 

@@ -14,7 +14,13 @@ two-number grids), arguments (--jobs 0, three or negative --length), messages of
 unclear errors, `surface fit` on surfaces wearsim generated, and the same dimensionless run at extreme SI
 length scales.
 
-    cargo build --release -p wearsim-cli && python bench/reliability_trials.py [--quick | --second-round]
+The third round (``--third-round`` runs it alone; bench/reliability_third_round.py) adds folders and
+files that are not wearsim's, partial files of killed runs, damaged checkpoints and edited job files,
+memory limits (ulimit, Slurm) and huge compressed inputs, stop signals to every command, Slurm time
+limits, a loose solver tolerance, its unclear messages and the Python API items.
+
+    cargo build --release -p wearsim-cli
+    python bench/reliability_trials.py [--quick | --second-round | --third-round]
 """
 
 from __future__ import annotations
@@ -246,14 +252,19 @@ def disk_full_and_signals(tmp: Path, tally: dict, trials: int) -> None:
         for sig in (signal.SIGINT, signal.SIGTERM):
             out = tmp / f"sig{t}"
             child = subprocess.Popen(
-                [WEARSIM, "slide", str(big), "--out", str(out)], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE
+                [WEARSIM, "slide", str(big), "--out", str(out)],
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.PIPE,
+                preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),  # not the shell's "ignored"
             )
             time.sleep(0.2 + 0.3 * t)
             child.send_signal(sig)
             child.wait()
-            hidden = [f for f in tmp.iterdir() if f.name.startswith(".")]
-            clean = (child.returncode == 130 and not out.exists()) or child.returncode == 0
+            # Stopped: status 128 + the signal, no folder, only the checkpoint saved on the way out.
+            hidden = [f for f in tmp.iterdir() if f.name.startswith(".") and f.name != f".sig{t}.checkpoint"]
+            clean = (child.returncode == 128 + sig and not out.exists()) or child.returncode == 0
             kind = "clear error" if clean and not hidden else "data loss"
+            (tmp / f".sig{t}.checkpoint").unlink(missing_ok=True)
             tally[("SIGINT / SIGTERM during a slide", kind)].append(f"{sig.name} after {0.2 + 0.3 * t:.1f} s")
             subprocess.run(["rm", "-rf", str(out)])
 
@@ -459,19 +470,26 @@ def main() -> None:
     parser.add_argument("--quick", action="store_true", help="fewer trials")
     parser.add_argument("--verbose", action="store_true", help="list every trial")
     parser.add_argument("--second-round", action="store_true", help="only the classes of the second round")
+    parser.add_argument("--third-round", action="store_true", help="only the classes of the third round")
     args = parser.parse_args()
     tally: dict = collections.defaultdict(list)
     start = time.time()
     with tempfile.TemporaryDirectory() as d:
         tmp = Path(d)
-        if not args.second_round:
+        if not (args.second_round or args.third_round):
             bad_inputs(tmp, tally, args.quick)
             kills_and_concurrency(tmp, tally, 3 if args.quick else 10)
             disk_full_and_signals(tmp, tally, 2 if args.quick else 5)
             huge_sizes(tmp, tally)
-        second_round(tmp, tally)
+        if not args.third_round:
+            second_round(tmp, tally)
+        if not args.second_round:
+            from reliability_third_round import third_round
+
+            third_round(tmp, tally, args.quick)
     classes = sorted({c for c, _ in tally})
     kinds = ["accepted", "clear error", "unclear error", "panic", "abort", "hang", "data loss", "silently wrong"]
+    kinds.append("ignored signal")
     print(f"| class | trials | {' | '.join(kinds)} |")
     print("|---|---|" + "---|" * len(kinds))
     for c in classes:
@@ -479,7 +497,7 @@ def main() -> None:
         print(f"| {c} | {sum(counts)} | {' | '.join(map(str, counts))} |")
     totals = [sum(len(tally[(c, k)]) for c in classes) for k in kinds]
     print(f"| **all** | {sum(totals)} | {' | '.join(map(str, totals))} |")
-    for k in ["unclear error", "panic", "abort", "hang", "data loss", "silently wrong"]:
+    for k in ["unclear error", "panic", "abort", "hang", "data loss", "silently wrong", "ignored signal"]:
         for c in classes:
             for detail in tally[(c, k)]:
                 print(f"{k}: {c}: {detail}")

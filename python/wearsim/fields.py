@@ -2,7 +2,7 @@
 and converted to NetCDF-4 with CF attributes for programs that do not read Zarr (MATLAB's
 ``ncread``, ParaView, Panoply, netCDF-C tools, xarray with any NetCDF engine).
 
-Needs the ``fields`` extra (``pip install "wearsim[fields]"``: xarray, zarr and h5netcdf).
+Needs the ``fields`` extra (``pip install "wearsim[fields]"``: xarray, zarr, h5netcdf and h5py).
 
 The NetCDF file holds per load and sliding step (dimensions ``load``, ``s``, ``x``, ``y``):
 
@@ -25,8 +25,9 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import signal
+import socket
 import sys
-import tempfile
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Dict, Hashable, List, Literal, Optional, Union
 
@@ -47,7 +48,7 @@ def _xarray():
     try:
         import xarray
     except ImportError as e:  # pragma: no cover - depends on the environment
-        raise ImportError('wearsim.fields needs xarray, zarr and h5netcdf: pip install "wearsim[fields]"') from e
+        raise ImportError('wearsim.fields needs xarray, zarr, h5netcdf and h5py: pip install "wearsim[fields]"') from e
     return xarray
 
 
@@ -98,7 +99,7 @@ def to_cf(ds: "xarray.Dataset") -> "xarray.Dataset":
     system = attrs.pop("units", None)
     out.attrs = {
         "Conventions": "CF-1.8",
-        "title": "Per-step contact fields of a wearsim sliding run",
+        "title": TITLE,
         "institution": "",
         "source": f"wearsim {__version__}",
         "references": PAPER,
@@ -112,18 +113,60 @@ def to_cf(ds: "xarray.Dataset") -> "xarray.Dataset":
     return out
 
 
+TITLE = "Per-step contact fields of a wearsim sliding run"
+
+
+def _written_by_to_netcdf(path: Path) -> bool:
+    """Whether ``path`` is a NetCDF file that :func:`to_netcdf` wrote (its source and references)."""
+    try:
+        import h5py
+
+        with h5py.File(path, "r") as f:
+            source, references = f.attrs.get("source"), f.attrs.get("references")
+    except Exception:  # not HDF5, unreadable, h5py missing: not one of ours
+        return False
+    text = [v.decode() if isinstance(v, bytes) else str(v) for v in (source, references)]
+    return text[0].startswith("wearsim ") and text[1] == PAPER
+
+
+def _check_out(store: Path, out: Path, overwrite: bool) -> None:
+    """Refuses an ``out`` inside the store (or the store itself), a folder, and an existing file that
+    this conversion did not write unless ``overwrite``: never over another command's output (a
+    ``summary.json``), an input, or a file of the user's, whatever the spelling of the path."""
+    real_out, real_store = out.resolve(), store.resolve()
+    if real_out == real_store or real_store in real_out.parents:
+        raise ValueError(f"{out} is inside the fields store {store}: writing there would damage it; give another path")
+    if real_out.is_dir():
+        raise IsADirectoryError(f"{out} is a folder, where the NetCDF file to write is needed; give a file path")
+    if real_out.exists() and not overwrite and not _written_by_to_netcdf(real_out):
+        raise FileExistsError(
+            f"{out} exists and was not written by `wearsim fields to-netcdf`; give another path, or overwrite=True "
+            "(--overwrite) to replace it"
+        )
+
+
+def _temporary_sibling(out: Path) -> Path:
+    """``.NAME.HOST.PID-0.tmp`` beside ``out``: the name ``wearsim`` gives its temporary files, whose
+    host and process tell a later run that a killed conversion left it (and remove it)."""
+    return out.parent / f".{out.name}.{socket.gethostname()}.{os.getpid()}-0.tmp"
+
+
 def to_netcdf(
     store: Union[str, Path],
     out: Union[str, Path],
     *,
     engine: Literal["h5netcdf", "netcdf4"] = "h5netcdf",
     complevel: int = 1,
+    overwrite: bool = False,
 ) -> Path:
     """Converts the fields store ``store`` (``DIR/fields.zarr``) to the NetCDF-4 file ``out`` with CF
     attributes (module documentation), compressed with zlib at ``complevel`` (0 for none). The file
-    is written beside ``out`` and renamed into place, so a failed conversion leaves no partial file.
-    Returns ``out``."""
+    is written beside ``out`` and renamed into place, so a failed conversion leaves no partial file;
+    it gets the permissions of any new file (the umask's). An existing ``out`` is replaced only when
+    an earlier conversion wrote it, or with ``overwrite``; one inside the store never. Returns
+    ``out``."""
     out = Path(out)
+    _check_out(Path(store), out, overwrite)
     cf = to_cf(open_fields(store))
     if engine not in ("h5netcdf", "netcdf4"):
         raise ValueError(f"invalid `engine`: {engine!r}; NetCDF-4 is written by 'h5netcdf' or 'netcdf4'")
@@ -136,8 +179,9 @@ def to_netcdf(
             enc["chunksizes"] = tuple(sizes[d] if d in ("x", "y") else 1 for d in cf[name].dims)
         encoding[name] = enc
     out.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{out.name}.", suffix=".tmp", dir=out.parent)
-    os.close(fd)
+    tmp = _temporary_sibling(out)
+    # Created as any new file is (mode 0666 less the umask), not 0600 as a temporary file would be.
+    os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o666))
     try:
         cf.to_netcdf(tmp, engine=engine, format="NETCDF4", encoding=encoding)
         os.replace(tmp, out)
@@ -158,14 +202,34 @@ def main(argv: Optional[List[str]] = None) -> int:
     conv.add_argument("store", type=Path, help="DIR/fields.zarr of `wearsim slide --save-fields`")
     conv.add_argument("out", type=Path, help="NetCDF file to write (e.g. fields.nc)")
     conv.add_argument("--complevel", type=int, default=1, help="zlib level, 0 for none (default 1)")
+    conv.add_argument("--overwrite", action="store_true", help="replace OUT even when another program wrote it")
     args = parser.parse_args(argv)
+    _stop_on_signals()
     try:
-        path = to_netcdf(args.store, args.out, complevel=args.complevel)
-    except (ImportError, FileNotFoundError, ValueError) as e:
+        path = to_netcdf(args.store, args.out, complevel=args.complevel, overwrite=args.overwrite)
+    except (ImportError, OSError, ValueError) as e:
         print(f"error: {e}", file=sys.stderr)
         return 1
+    except KeyboardInterrupt:
+        print("error: stopped by a signal; nothing was written", file=sys.stderr)
+        return 130
     print(f"wrote {path}")
     return 0
+
+
+def _stop_on_signals() -> None:
+    """SIGTERM, SIGHUP, SIGUSR1 and SIGUSR2 (``wearsim`` passes a stop on as SIGTERM; Slurm sends
+    them at a time limit) stop the conversion as Ctrl-C does, once: the temporary file is removed on
+    the way out, and further signals are ignored while it is."""
+
+    def stop(signum: int, frame: object) -> None:
+        for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGUSR1, signal.SIGUSR2):
+            signal.signal(s, signal.SIG_IGN)
+        raise KeyboardInterrupt
+
+    for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGUSR1, signal.SIGUSR2):
+        if signal.getsignal(s) is not signal.SIG_IGN:
+            signal.signal(s, stop)
 
 
 if __name__ == "__main__":  # pragma: no cover

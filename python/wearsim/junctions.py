@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import warnings
 from dataclasses import dataclass, field
 from typing import Tuple
@@ -89,8 +90,8 @@ def label_junctions(
         contact = contact > 0
     if contact.ndim != 2:
         raise ValueError(f"invalid `contact`: a 2-D array is needed, got {contact.ndim} dimensions")
-    if not pixel_size > 0:
-        raise ValueError(f"invalid `pixel_size`: {pixel_size} must be positive")
+    if not (math.isfinite(pixel_size) and pixel_size > 0):
+        raise ValueError(f"invalid `pixel_size`: {pixel_size} must be a finite positive number")
     labels, pixels, wraps = _wearsim.label_junctions(np.ascontiguousarray(contact), connectivity)
     if wraps.any():
         which = np.flatnonzero(wraps.any(axis=1))

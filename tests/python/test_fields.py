@@ -153,3 +153,51 @@ def test_the_fields_convert_to_cf_netcdf_that_another_reader_opens(run, wearsim_
         text=True,
     )
     assert missing.returncode != 0 and 'pip install "wearsim[fields]"' in missing.stderr
+
+
+def test_the_conversion_never_writes_over_a_file_it_did_not_make(run, wearsim_bin, tmp_path):
+    import os
+    import sys
+
+    pytest.importorskip("h5netcdf")
+    from wearsim.fields import to_netcdf
+
+    store = run / "slide" / "fields.zarr"
+    summary = run / "slide" / "summary.json"
+    before = summary.read_bytes()
+    # Another command's output, under two spellings: refused without --overwrite, left whole.
+    for target in (summary, run / "slide" / "." / "summary.json"):
+        with pytest.raises(FileExistsError, match="overwrite"):
+            to_netcdf(store, target)
+        cli = subprocess.run(
+            [wearsim_bin, "fields", "to-netcdf", store, target, "--python", sys.executable],
+            capture_output=True,
+            text=True,
+        )
+        assert cli.returncode != 0 and "--overwrite" in cli.stderr, cli.stderr
+    assert summary.read_bytes() == before
+    with pytest.raises(ValueError, match="inside the fields store"):
+        to_netcdf(store, store / "pressure" / "x.nc", overwrite=True)
+    # Its own output is replaced; the file gets the umask's permissions, not 0600.
+    out = tmp_path / "fields.nc"
+    old = os.umask(0o022)
+    try:
+        to_netcdf(store, out)
+        to_netcdf(store, out)
+    finally:
+        os.umask(old)
+    assert out.stat().st_mode & 0o777 == 0o644
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]
+
+
+def test_the_fields_extra_installs_every_module_the_conversion_imports(root, wearsim_bin):
+    import re
+    import tomllib
+
+    extra = tomllib.loads((root / "pyproject.toml").read_text())["project"]["optional-dependencies"]["fields"]
+    names = {re.split(r"[<>=\[ ]", r)[0].lower() for r in extra}
+    # What `wearsim fields to-netcdf` checks before it runs the conversion.
+    source = (root / "crates" / "wearsim-cli" / "src" / "commands" / "fields.rs").read_text()
+    probe = re.search(r'"import (wearsim\.fields[^"]*)"', source).group(1)
+    needed = {m.strip() for m in probe.split(",")} - {"wearsim.fields"}
+    assert needed <= names, needed - names

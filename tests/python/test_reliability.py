@@ -67,3 +67,57 @@ def test_absurd_thread_counts_are_capped_and_zero_is_refused():
     assert any("four per core" in str(w.message) for w in caught)
     with pytest.raises(ValueError, match="threads"):
         wearsim.slide(top, bottom, material, [1e-3], threads=0)
+
+
+def test_materials_run_files_and_solvers_pickle_and_deep_copy(tmp_path):
+    import copy
+    import pickle
+
+    import numpy as np
+
+    material = wearsim.Material(1.0, 0.3, 0.01, [0.25e-6, 1e-6], 2.5)
+    path = tmp_path / "run.toml"
+    path.write_text(
+        "[surface]\ngrid = 64\nlambda_lower = 0.125\nlambda_upper = 0.25\nrms_height = 0.005\nseed = 1\n"
+        "[material]\nyoungs_modulus = 1.0\npoisson_ratio = 0.3\nshear_strength = 0.01\nfracture_energies = [1e-6]\n"
+    )
+    run = wearsim.RunFile(path)
+    solver = wearsim.ContactSolver(64, 1.0, 1.0, tolerance=1e-9)
+    top, bottom = wearsim.generate_pair(64, lambda_lower=0.125, lambda_upper=0.25, rms_height=0.005, seed=1)
+    expected = solver.solve(top - bottom, 1e-3).pressure
+    for clone in (pickle.loads(pickle.dumps(material)), copy.deepcopy(material), copy.copy(material)):
+        assert repr(clone) == repr(material) and clone.critical_diameters == material.critical_diameters
+    for clone in (pickle.loads(pickle.dumps(run)), copy.deepcopy(run)):
+        assert clone.material.critical_diameters == run.material.critical_diameters
+    for clone in (pickle.loads(pickle.dumps(solver)), copy.deepcopy(solver)):
+        assert clone.shape == (64, 64) and clone.tolerance == 1e-9
+        np.testing.assert_array_equal(clone.solve(top - bottom, 1e-3).pressure, expected)
+
+
+def test_one_solver_used_from_several_threads_solves_one_call_at_a_time():
+    from concurrent.futures import ThreadPoolExecutor
+
+    import numpy as np
+
+    solver = wearsim.ContactSolver(128, 1.0, 1.0)
+    top, bottom = wearsim.generate_pair(128, lambda_lower=0.0625, lambda_upper=0.25, rms_height=0.005, seed=2)
+    loads = [5e-4, 1e-3, 2e-3, 4e-3] * 2
+    alone = [solver.solve(top - bottom, f).pressure for f in loads]
+    with ThreadPoolExecutor(4) as pool:
+        together = list(pool.map(lambda f: solver.solve(top - bottom, f).pressure, loads))
+    for a, b in zip(alone, together):
+        np.testing.assert_array_equal(a, b)
+
+
+def test_grid_sizes_and_pixel_sizes_out_of_range_are_refused_in_words():
+    import numpy as np
+
+    for grid in (-4, (64, -2), 0):
+        with pytest.raises(ValueError, match="`grid`") as e:
+            wearsim.ContactSolver(grid, 1.0, 1.0)
+        assert "convert" not in str(e.value)
+    contact = np.zeros((16, 16), dtype=bool)
+    contact[3:6, 3:6] = True
+    for size in (float("inf"), float("nan"), 0.0, -1.0):
+        with pytest.raises(ValueError, match="`pixel_size`"):
+            wearsim.label_junctions(contact, pixel_size=size)

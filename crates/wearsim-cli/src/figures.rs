@@ -83,7 +83,8 @@ pub fn save(dir: &Path, name: &str, size: (u32, u32), figure: &impl Figure) -> R
         let _ = std::fs::remove_file(&tmp_svg);
         let _ = std::fs::remove_file(&tmp_png);
     }
-    drawn
+    // A write that fails (a full disk) names the figure it could not write.
+    drawn.map_err(|e| e.context(format!("cannot write the figure {name}.png / {name}.svg")))
 }
 
 /// Colour-blind-safe palette (Okabe & Ito), then greys.

@@ -99,7 +99,9 @@ fn main() {
             std::process::exit(2);
         }
     }
-    commands::interrupt();
+    // The pool is made before any work, so that its threads' stacks count in the memory checks.
+    let _ = rayon::ThreadPoolBuilder::new().build_global();
+    commands::handle_signals();
     let result = match cli.command {
         Command::Surface(args) => surface::run(&args),
         Command::Contact(args) => contact::run(&args),
@@ -113,12 +115,20 @@ fn main() {
         Command::Bench(args) => bench::run(&args),
         Command::BenchSlide(args) => bench::run_slide(&args),
     };
+    let stopped = commands::stop_signal();
     if let Err(e) = result {
         let interrupted = e
             .chain()
             .any(|c| matches!(c.downcast_ref::<wearsim::Error>(), Some(wearsim::Error::Interrupted)));
-        eprintln!("error: {}", message(&e));
-        std::process::exit(if interrupted { 130 } else { 1 });
+        match (interrupted, stopped) {
+            (true, Some(sig)) => eprintln!("error: stopped by {}", commands::signal_name(sig)),
+            _ => eprintln!("error: {}", message(&e)),
+        }
+        std::process::exit(match (interrupted, stopped) {
+            (true, Some(sig)) => 128 + sig,
+            (true, None) => 130,
+            _ => 1,
+        });
     }
 }
 

@@ -352,12 +352,11 @@ fn a_study_is_tied_to_its_surface_files_and_job_files_are_checked_and_repaired()
 }
 
 #[test]
-fn material_names_with_commas_quotes_and_newlines_keep_every_csv_row_whole() {
+fn material_names_with_commas_and_quotes_keep_every_csv_row_whole_and_newlines_are_refused() {
     let dir = tempfile::tempdir().unwrap();
-    let text = STUDY.replace("seed = [1, 2]", "seed = 1").replace(
-        "[material]\n",
-        "[[materials]]\nname = \"steel, \\\"hard\\\"\\nrolled\"\n",
-    );
+    let text = STUDY
+        .replace("seed = [1, 2]", "seed = 1")
+        .replace("[material]\n", "[[materials]]\nname = \"steel, \\\"hard\\\" rolled\"\n");
     let study = file(dir.path(), "names.toml", &text);
     let out = dir.path().join("out");
     let o = study_run(&study, &out, &[]);
@@ -365,10 +364,14 @@ fn material_names_with_commas_quotes_and_newlines_keep_every_csv_row_whole() {
     let (header, rows) = csv_records(&collect_csv(&out));
     assert!(column(&header, &rows, "material")
         .iter()
-        .all(|m| *m == "steel, \"hard\"\nrolled"));
+        .all(|m| *m == "steel, \"hard\" rolled"));
     let aggregated = std::fs::read_to_string(out.join("results_aggregated.csv")).unwrap();
     let (header, rows) = csv_records(&aggregated);
     assert!(column(&header, &rows, "material").iter().all(|m| m.contains("rolled")));
+    // A newline would start a line of findings.md that reads like another material's.
+    let study = file(dir.path(), "newline.toml", &text.replace(" rolled", "\\nrolled"));
+    let o = study_run(&study, &dir.path().join("newline"), &[]);
+    assert!(!o.status.success() && stderr(&o).contains("`name`"), "{}", stderr(&o));
 }
 
 #[test]
@@ -745,7 +748,21 @@ fn small_things_that_used_to_slip_through() {
 
 #[test]
 fn ctrl_c_and_sigterm_stop_cleanly_and_the_study_resumes() {
+    use std::os::unix::process::CommandExt;
     let dir = tempfile::tempdir().unwrap();
+    // The signals at their default disposition (a background shell starts tests with SIGINT ignored).
+    let wearsim = || {
+        let mut c = wearsim();
+        // SAFETY: signal(2) between fork and exec.
+        unsafe {
+            c.pre_exec(|| {
+                libc::signal(libc::SIGINT, libc::SIG_DFL);
+                libc::signal(libc::SIGTERM, libc::SIG_DFL);
+                Ok(())
+            });
+        }
+        c
+    };
     let signal = |pid: u32, name: &str| {
         assert!(Command::new("kill")
             .args([&format!("-{name}"), &pid.to_string()])
@@ -753,7 +770,8 @@ fn ctrl_c_and_sigterm_stop_cleanly_and_the_study_resumes() {
             .unwrap()
             .success());
     };
-    // A slide interrupted part-way: status 130, neither its folder nor a temporary one left.
+    // A slide interrupted part-way: status 130, neither its folder nor a temporary one left, only
+    // the checkpoint it saved on the way out.
     let text = format!(
         "{}[sliding]\nloads = [5e-4, 1e-3, 2e-3]\ndistance = 1.0\nrunning_in = 0.5\n",
         GENERATED
@@ -776,7 +794,10 @@ fn ctrl_c_and_sigterm_stop_cleanly_and_the_study_resumes() {
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
         .collect();
-    assert!(!out.exists() && left.iter().all(|f| !f.starts_with('.')), "{left:?}");
+    assert!(
+        !out.exists() && left.iter().all(|f| !f.starts_with('.') || f == ".slide.checkpoint"),
+        "{left:?}"
+    );
     // A study stopped by SIGTERM: finished job files stay, claims are released, a new run finishes.
     let study = file(dir.path(), "study.toml", &STUDY.replace("grid = 64", "grid = 128"));
     let reference = dir.path().join("reference");
@@ -802,13 +823,15 @@ fn ctrl_c_and_sigterm_stop_cleanly_and_the_study_resumes() {
     }
     signal(child.id(), "TERM");
     let o = child.wait_with_output().unwrap();
-    if o.status.code() == Some(130) {
+    if o.status.code() == Some(128 + libc::SIGTERM) {
         let files: Vec<String> = std::fs::read_dir(out.join("jobs"))
             .unwrap()
             .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
             .collect();
         assert!(
-            files.iter().all(|f| f.ends_with(".json") && !f.starts_with('.')),
+            files
+                .iter()
+                .all(|f| (f.ends_with(".json") || f.ends_with(".checkpoint")) && !f.starts_with('.')),
             "{files:?}"
         );
     } else {

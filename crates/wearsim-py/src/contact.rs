@@ -1,5 +1,6 @@
 //! The material, the contact solver, and junctions with the static model.
 
+use std::sync::{Mutex, MutexGuard};
 use std::time::Instant;
 
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2};
@@ -89,6 +90,23 @@ impl PyMaterial {
             .inner
             .effective_modulus(modulus.parse::<ModulusConvention>().map_err(to_py)?))
     }
+    /// Pickling and copying (multiprocessing, joblib, Dask): made again from its inputs.
+    #[allow(clippy::type_complexity)]
+    fn __reduce__<'py>(
+        slf: &Bound<'py, Self>,
+    ) -> PyResult<(Bound<'py, pyo3::types::PyType>, (f64, f64, f64, Vec<f64>, f64))> {
+        let m = &slf.get().inner;
+        Ok((
+            slf.get_type(),
+            (
+                m.youngs_modulus,
+                m.poisson_ratio,
+                m.shear_strength,
+                m.fracture_energies.clone(),
+                m.geometry_factor,
+            ),
+        ))
+    }
     fn __repr__(&self) -> String {
         let m = &self.inner;
         format!(
@@ -106,10 +124,29 @@ type Solution<'py> = (
     Bound<'py, PyAny>,
 );
 
-/// FFT contact solver for one grid, reused across solves (plans and buffers are made once).
-#[pyclass(name = "ContactSolver", module = "wearsim._wearsim")]
+/// FFT contact solver for one grid, reused across solves (plans and buffers are made once). One
+/// solver used from several threads solves one call at a time (its buffers are shared): calls wait
+/// for each other, outside the GIL. Pickled or copied, it is made again from its settings.
+#[pyclass(name = "ContactSolver", module = "wearsim._wearsim", frozen)]
 pub struct PyContactSolver {
-    inner: wearsim::ContactSolver,
+    inner: Mutex<wearsim::ContactSolver>,
+    grid: wearsim::Grid,
+    /// What it was made with, for pickling.
+    args: SolverArgs,
+}
+
+/// The arguments a solver was made with.
+type SolverArgs = ((usize, usize), f64, f64, f64, usize, &'static str, &'static str);
+
+impl PyContactSolver {
+    /// The solver, locked for one call (waiting for another thread's call to finish).
+    fn lock(&self) -> PyResult<MutexGuard<'_, wearsim::ContactSolver>> {
+        self.inner.lock().map_err(|_| {
+            pyo3::exceptions::PyRuntimeError::new_err(
+                "this ContactSolver failed in another thread during a call; make a new one",
+            )
+        })
+    }
 }
 
 #[pymethods]
@@ -128,50 +165,68 @@ impl PyContactSolver {
         let options = SolverOptions::new(tolerance, max_iterations).map_err(to_py)?;
         let boundary = boundary.parse::<Boundary>().map_err(to_py)?;
         let device = device.parse::<wearsim::Device>().map_err(to_py)?;
-        let inner = wearsim::ContactSolver::on_device(device, grid.grid(length)?, effective_modulus, boundary)
+        let grid = grid.grid(length)?;
+        let inner = wearsim::ContactSolver::on_device(device, grid, effective_modulus, boundary)
             .map_err(to_py)?
             .with_options(options);
-        Ok(Self { inner })
+        let args = (
+            (grid.nx(), grid.ny()),
+            length,
+            effective_modulus,
+            tolerance,
+            max_iterations,
+            boundary.name(),
+            device.name(),
+        );
+        Ok(Self {
+            inner: Mutex::new(inner),
+            grid,
+            args,
+        })
+    }
+
+    /// Pickling and copying (multiprocessing, joblib, Dask): a new solver of the same settings.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> (Bound<'py, pyo3::types::PyType>, SolverArgs) {
+        (slf.get_type(), slf.get().args)
     }
 
     /// (Nx, Ny).
     #[getter]
     fn shape(&self) -> (usize, usize) {
-        let g = self.inner.grid();
-        (g.nx(), g.ny())
+        self.args.0
     }
     /// Side along x, Lx.
     #[getter]
     fn length(&self) -> f64 {
-        self.inner.grid().length_x()
+        self.args.1
     }
     #[getter]
     fn effective_modulus(&self) -> f64 {
-        self.inner.effective_modulus()
+        self.args.2
     }
     #[getter]
     fn tolerance(&self) -> f64 {
-        self.inner.options().tolerance()
+        self.args.3
     }
     #[getter]
     fn max_iterations(&self) -> usize {
-        self.inner.options().max_iterations()
+        self.args.4
     }
     /// "periodic" or "free".
     #[getter]
     fn boundary(&self) -> &'static str {
-        self.inner.boundary().name()
+        self.args.5
     }
     /// "cpu".
     #[getter]
     fn device(&self) -> &'static str {
-        self.inner.device().name()
+        self.args.6
     }
 
     /// Returns (pressure, displacement, gap, info dict); see the Python wrapper for the meaning.
     #[pyo3(signature = (heights, load, flow_pressure = f64::INFINITY, initial_pressure = None))]
     fn solve<'py>(
-        &mut self,
+        &self,
         py: Python<'py>,
         heights: PyReadonlyArray2<'py, f64>,
         load: f64,
@@ -184,19 +239,27 @@ impl PyContactSolver {
             None => vec![0.0; shape.0 * shape.1],
             Some(p0) => field_of("initial_pressure", &p0, shape, "solver")?,
         };
-        let area = self.inner.grid().area();
-        let solver = &mut self.inner;
+        let area = self.grid.area();
         let start = Instant::now();
-        let info = interruptible(py, None, |interrupt| {
+        // Locked outside the GIL: a thread waiting for another's call never holds the GIL it needs.
+        let (info, fields, seconds) = interruptible(py, None, |interrupt| {
+            let mut solver = match self.inner.lock() {
+                Ok(s) => s,
+                Err(_) => {
+                    return Err(wearsim::Error::param(
+                        "solver",
+                        "failed in another thread; make a new one",
+                    ))
+                }
+            };
             solver.set_interrupt(interrupt.clone());
             let r = solver.solve(&h, load / area, flow_pressure, &mut pressure);
             solver.set_interrupt(Interrupt::default());
-            r
+            let info = r?;
+            let seconds = start.elapsed().as_secs_f64();
+            let fields = solver.gap_and_displacement(&h, &pressure, &info)?;
+            Ok((info, fields, seconds))
         })?;
-        let seconds = start.elapsed().as_secs_f64();
-        let fields = py
-            .detach(|| solver.gap_and_displacement(&h, &pressure, &info))
-            .map_err(to_py)?;
         let d = json_to_py(py, &ContactRecord::new(&info, &pressure, seconds))?;
         Ok((
             to_array(py, shape, pressure),
@@ -208,15 +271,17 @@ impl PyContactSolver {
 
     /// Displacement 𝒦p of a pressure field (zero mean when periodic).
     fn displacement<'py>(
-        &mut self,
+        &self,
         py: Python<'py>,
         pressure: PyReadonlyArray2<'py, f64>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let shape = self.shape();
         let p = field_of("pressure", &pressure, shape, "solver")?;
         let mut out = vec![0.0; shape.0 * shape.1];
-        let solver = &mut self.inner;
-        py.detach(|| solver.apply_influence(&p, &mut out));
+        py.detach(|| -> PyResult<()> {
+            self.lock()?.apply_influence(&p, &mut out);
+            Ok(())
+        })?;
         Ok(to_array(py, shape, out))
     }
 }

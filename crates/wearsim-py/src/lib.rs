@@ -25,24 +25,33 @@ mod topography;
 /// Two arrays returned together (a surface pair, labels and sizes, a spectrum).
 type Pair<'py, A, B> = PyResult<(Bound<'py, A>, Bound<'py, B>)>;
 
-/// A grid size from Python: `N` (square) or `(Nx, Ny)`.
+/// A grid size from Python: `N` (square) or `(Nx, Ny)`; any integers, so that a negative or zero
+/// size is refused by the grid's own rule with its message, not by a failed conversion.
 #[derive(FromPyObject, Clone, Copy)]
 enum GridSize {
-    Square(usize),
-    Sides((usize, usize)),
+    Square(i64),
+    Sides((i64, i64)),
 }
 
 impl GridSize {
-    fn sides(self) -> (usize, usize) {
-        match self {
+    fn sides(self) -> PyResult<(usize, usize)> {
+        let (nx, ny) = match self {
             GridSize::Square(n) => (n, n),
             GridSize::Sides(s) => s,
-        }
+        };
+        let side = |n: i64| {
+            usize::try_from(n).map_err(|_| {
+                PyValueError::new_err(format!(
+                    "invalid `grid`: {n} must be a positive even number of pixels ≥ 16 (powers of two are fastest)"
+                ))
+            })
+        };
+        Ok((side(nx)?, side(ny)?))
     }
 
     /// The grid of these sides whose side along x is `length_x`.
     fn grid(self, length_x: f64) -> PyResult<wearsim::Grid> {
-        let (nx, ny) = self.sides();
+        let (nx, ny) = self.sides()?;
         wearsim::Grid::new(nx, ny, length_x).map_err(error::to_py)
     }
 }

@@ -101,6 +101,11 @@ impl PyRunFile {
         Ok(Self { path, config })
     }
 
+    /// Pickling and copying (multiprocessing, joblib, Dask): the run file read again from its path
+    /// (absolute, so that another working folder reads the same file).
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> (Bound<'py, pyo3::types::PyType>, (PathBuf,)) {
+        (slf.get_type(), (wearsim::io::canonical_path(&slf.get().path),))
+    }
     #[getter]
     fn path(&self) -> PathBuf {
         self.path.clone()

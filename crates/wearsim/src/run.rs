@@ -178,24 +178,55 @@ impl<'a> SlidingRun<'a> {
     }
 
     /// [`SlidingRun::run`] saving its state as `checkpointing` says and resuming from a checkpoint
-    /// of the same run ([`Slide::resume`]); `on_resume` is told what became of the file. The
-    /// caller removes the file once the results are written.
+    /// of the same run ([`Slide::resume`]); `on_resume` is told what became of the file, of a
+    /// checkpoint that could not be written (the run goes on to its results) and of the state saved
+    /// when the run is stopped (a signal, a Slurm time limit: [`Error::Interrupted`]), which the same
+    /// run resumes from. The caller removes the file once the results are written.
     pub fn run_resumable(
         self,
         checkpointing: Option<&Checkpointing>,
-        on_resume: impl FnOnce(&Resumed),
+        mut on_resume: impl FnMut(&Resumed),
         mut observe: impl FnMut(&mut StepView),
     ) -> Result<SlidingOutcome<'a>> {
         let mut slide = self.start()?;
-        on_resume(&checkpointing.map_or(Resumed::Fresh, |c| slide.resume(&c.path)));
+        let Some(c) = checkpointing else {
+            on_resume(&Resumed::Fresh);
+            while let Some(mut view) = slide.step()? {
+                observe(&mut view);
+            }
+            return slide.finish();
+        };
+        slide.keep_state_for_stops();
+        on_resume(&slide.resume(&c.path));
+        let mut saved_done = slide.done();
         let mut last_save = Instant::now();
-        while let Some(mut view) = slide.step()? {
-            observe(&mut view);
-            if let Some(c) = checkpointing {
-                if slide.done() < slide.total() && last_save.elapsed() >= c.every {
-                    slide.save_checkpoint(&c.path)?;
-                    last_save = Instant::now();
+        loop {
+            let stepped = slide.step().map(|view| view.map(|mut v| observe(&mut v)).is_some());
+            match stepped {
+                Ok(true) => {}
+                Ok(false) => break,
+                Err(Error::Interrupted) => {
+                    if slide.done() > saved_done {
+                        on_resume(&match slide.save_checkpoint(&c.path) {
+                            Ok(_) => Resumed::Saved {
+                                done: slide.done(),
+                                total: slide.total(),
+                            },
+                            Err(e) => Resumed::NotSaved(e.to_string()),
+                        });
+                    }
+                    return Err(Error::Interrupted);
                 }
+                Err(e) => return Err(e),
+            }
+            if slide.done() < slide.total() && last_save.elapsed() >= c.every {
+                match slide.save_checkpoint(&c.path) {
+                    Ok(_) => saved_done = slide.done(),
+                    Err(e) => on_resume(&Resumed::NotSaved(format!(
+                        "{e}; the run goes on, but a kill now would lose the steps since the last checkpoint"
+                    ))),
+                }
+                last_save = Instant::now();
             }
         }
         slide.finish()
@@ -242,10 +273,18 @@ impl<'a> Slide<'a> {
     }
 
     /// Saves the state between two steps to `path`, atomically: a run of the same inputs resumes
-    /// from it ([`Slide::resume`]) to the results of an uninterrupted run, bit for bit. Callable
-    /// from an interrupt path (a run stopped between two steps).
-    pub fn save_checkpoint(&mut self, path: &Path) -> Result<()> {
+    /// from it ([`Slide::resume`]) to the results of an uninterrupted run, bit for bit; `false` when
+    /// no step has finished (nothing to save). Callable from an interrupt path: after a solve
+    /// stopped part-way, with the state kept since [`Slide::keep_state_for_stops`].
+    pub fn save_checkpoint(&mut self, path: &Path) -> Result<bool> {
         self.state.save_checkpoint(path)
+    }
+
+    /// Keeps the contact pressure of every finished step (one more Nx·Ny field), so that a run
+    /// stopped part-way through a solve can still save the state after its last finished step
+    /// ([`Slide::save_checkpoint`] on the interrupt path).
+    pub fn keep_state_for_stops(&mut self) {
+        self.state.keep_state_for_stops();
     }
 
     /// Before the first step: continues from the checkpoint at `path` when it holds the state of a

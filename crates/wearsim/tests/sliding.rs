@@ -270,7 +270,7 @@ fn steps_taken_one_by_one_are_the_run() {
     assert_eq!(seen.last(), Some(&(0, 4, 5)));
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("by-hand.checkpoint");
-    slide.save_checkpoint(&path).unwrap();
+    assert!(slide.save_checkpoint(&path).unwrap(), "five steps are saved");
     let outcome = slide.finish().unwrap();
     assert_eq!(outcome.runs.len(), 2);
     let mut resumed = SlidingRun::with_surfaces(&config, pair()).unwrap().start().unwrap();

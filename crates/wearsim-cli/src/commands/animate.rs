@@ -3,7 +3,8 @@
 //! grey below d*, red forming a particle now, orange at or above d* but disabled (its particle is
 //! already counted), blue disabled below d*; s and V are written on the frame.
 
-use std::path::PathBuf;
+use std::io::{Read, Seek, SeekFrom, Write};
+use std::path::{Path, PathBuf};
 
 use crate::progress::Progress;
 use anyhow::{anyhow, Context, Result};
@@ -32,12 +33,52 @@ pub struct Args {
     /// Frame delay in milliseconds (GIF stores hundredths of a second: 10 … 655350).
     #[arg(long, default_value_t = 80)]
     delay: u32,
+    /// Replace --out even when it is a file that `wearsim animate` did not write.
+    #[arg(long)]
+    overwrite: bool,
+}
+
+/// The comment a GIF written by `wearsim animate` carries, which tells a later run that the file is
+/// one it may replace.
+const GIF_MARK: &[u8] = b"written by wearsim animate";
+
+/// Marks the finished GIF `path` as wearsim's: a comment extension before its trailer.
+fn mark_gif(path: &Path) -> std::io::Result<()> {
+    let mut f = std::fs::OpenOptions::new().read(true).write(true).open(path)?;
+    let len = f.metadata()?.len();
+    let mut last = [0u8];
+    f.seek(SeekFrom::End(-1))?;
+    f.read_exact(&mut last)?;
+    if last[0] != 0x3B {
+        return Err(std::io::Error::other("the GIF has no trailer"));
+    }
+    f.set_len(len - 1)?;
+    f.seek(SeekFrom::End(0))?;
+    f.write_all(&[0x21, 0xFE, GIF_MARK.len() as u8])?;
+    f.write_all(GIF_MARK)?;
+    f.write_all(&[0x00, 0x3B])?;
+    f.sync_all()
+}
+
+/// Whether `path` is a GIF that `wearsim animate` wrote (its comment, at the end).
+fn is_wearsim_gif(path: &Path) -> bool {
+    let Ok(mut f) = std::fs::File::open(path) else {
+        return false;
+    };
+    let mut head = [0u8; 4];
+    let mut tail = Vec::new();
+    f.read_exact(&mut head).is_ok()
+        && &head == b"GIF8"
+        && f.seek(SeekFrom::End(-64)).is_ok()
+        && f.read_to_end(&mut tail).is_ok()
+        && tail.windows(GIF_MARK.len()).any(|w| w == GIF_MARK)
 }
 
 /// The run of the one load animated, after checking the arguments against it.
 fn one_load(args: &Args) -> Result<wearsim::config::RunConfig> {
     let (run, out, load_index, energy_index, delay_ms) =
         (&args.run, &args.out, args.load_index, args.energy_index, args.delay);
+    super::polls_interrupt();
     // The GIF is written beside its name: a folder that is not there is said before any work.
     let folder = wearsim::io::parent_or_dot(out);
     if !folder.is_dir() {
@@ -48,6 +89,18 @@ fn one_load(args: &Args) -> Result<wearsim::config::RunConfig> {
         );
     }
     let mut config = load_run(run)?;
+    // Never over an input or a file another command (or the user) made, whatever the spelling.
+    wearsim::io::refuse_foreign_file(
+        out,
+        "animate",
+        args.overwrite,
+        &super::run_inputs(run, &config),
+        is_wearsim_gif,
+    )?;
+    let grid = config.grid()?;
+    wearsim::check::memory("a sliding run", grid.nx(), grid.ny(), wearsim::check::SLIDING_ARRAYS)?;
+    // Partial GIFs of killed runs beside it.
+    wearsim::io::remove_abandoned_siblings(out);
     let mut sliding = wearsim::run::sliding_schedule(&config)
         .with_context(|| format!("run file {}", run.display()))?
         .clone();
@@ -187,7 +240,13 @@ pub fn run(args: &Args) -> Result<()> {
             frame_error = Some(e.into());
         }
     }
-    if let Some(e) = frame_error {
+    let finished = match frame_error {
+        Some(e) => Err(e),
+        None => mark_gif(&tmp)
+            .with_context(|| format!("cannot write {}", out.display()))
+            .and_then(|()| super::check_interrupt()),
+    };
+    if let Err(e) = finished {
         let _ = std::fs::remove_file(&tmp);
         return Err(e);
     }

@@ -41,6 +41,7 @@ pub struct Args {
 }
 
 pub fn run(args: &Args) -> Result<()> {
+    super::polls_interrupt();
     let load = args.load;
     let config = load_run(&args.run)?;
     if !(load.is_finite() && load > 0.0) {
@@ -89,6 +90,11 @@ pub fn run(args: &Args) -> Result<()> {
              does not have; give offset 0 with `boundary = free`, or slide with the periodic boundary"
         );
     }
+    let arrays = match boundary {
+        Boundary::Periodic => wearsim::check::CONTACT_ARRAYS,
+        Boundary::Free => wearsim::check::CONTACT_FREE_ARRAYS,
+    };
+    wearsim::check::memory("a contact solve", n, ny, arrays)?;
     let out = OutputDir::begin(
         &args.out,
         "contact",
@@ -122,6 +128,7 @@ pub fn run(args: &Args) -> Result<()> {
         &out.join("summary.json"),
         &contact_summary(&config, load, offset, shift, boundary, &record),
     )?;
+    super::check_interrupt()?;
     out.commit()?;
     println!(
         "contact area {:.6} of the apparent area, approach {:.6e} {unit}, {} iterations, residual {:.2e} (tolerance {:.0e}), {:.3} s",

@@ -20,15 +20,22 @@ pub struct ToNetcdfArgs {
     /// (`pip install "wearsim[fields]"`); default: $WEARSIM_PYTHON, else python3.
     #[arg(long)]
     python: Option<PathBuf>,
+    /// Replace OUT even when it is a file that `fields to-netcdf` did not write.
+    #[arg(long)]
+    overwrite: bool,
 }
 
 pub fn to_netcdf(args: &ToNetcdfArgs) -> Result<()> {
+    super::polls_interrupt();
     if !args.store.join(".zgroup").is_file() {
         bail!(
             "{} is not a fields store (no .zgroup); give the fields.zarr folder written by `wearsim slide --save-fields`",
             args.store.display()
         );
     }
+    // Never into the store nor over a file of it, whatever the spelling; an existing file that the
+    // conversion did not write is refused by the Python side, which reads NetCDF attributes.
+    wearsim::io::refuse_foreign_file(&args.out, "fields to-netcdf", true, &[args.store.as_path()], |_| true)?;
     let python = args
         .python
         .clone()
@@ -36,7 +43,7 @@ pub fn to_netcdf(args: &ToNetcdfArgs) -> Result<()> {
         .unwrap_or_else(|| PathBuf::from("python3"));
     // Is the package with the extra there? Asked first, so that the error says what to install.
     let probe = Command::new(&python)
-        .args(["-c", "import wearsim.fields, xarray, zarr, h5netcdf"])
+        .args(["-c", "import wearsim.fields, xarray, zarr, h5netcdf, h5py"])
         .output()
         .with_context(|| {
             format!(
@@ -54,18 +61,34 @@ pub fn to_netcdf(args: &ToNetcdfArgs) -> Result<()> {
             why.trim().lines().last().unwrap_or("import failed")
         );
     }
-    let status = Command::new(&python)
-        .args([
-            "-m",
-            "wearsim.fields",
-            "to-netcdf",
-            "--complevel",
-            &args.complevel.to_string(),
-        ])
+    // Partial files of killed conversions beside it.
+    wearsim::io::remove_abandoned_siblings(&args.out);
+    super::check_interrupt()?;
+    let mut command = Command::new(&python);
+    command.args([
+        "-m",
+        "wearsim.fields",
+        "to-netcdf",
+        "--complevel",
+        &args.complevel.to_string(),
+    ]);
+    if args.overwrite {
+        command.arg("--overwrite");
+    }
+    let mut child = command
         .arg(&args.store)
         .arg(&args.out)
-        .status()
+        .spawn()
         .with_context(|| format!("cannot run {}", python.display()))?;
+    // A stop signal is passed on: the conversion removes its temporary file and exits.
+    super::set_child(child.id());
+    if super::interrupt().is_requested() {
+        let _ = child.kill(); // the signal came before the child could be told
+    }
+    let status = child.wait();
+    super::set_child(0);
+    let status = status.with_context(|| format!("cannot run {}", python.display()))?;
+    super::check_interrupt()?;
     if !status.success() {
         bail!("the conversion failed ({status}); its error is above");
     }

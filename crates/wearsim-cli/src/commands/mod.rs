@@ -11,21 +11,113 @@ pub mod study;
 pub mod surface;
 
 use std::path::Path;
+use std::sync::atomic::{AtomicBool, AtomicI32, Ordering};
 
 use anyhow::{Context, Result};
 use wearsim::config::RunConfig;
 
-/// The flag Ctrl-C and SIGTERM raise: the library stops at its next iteration, the command cleans up
-/// (temporary files, claims) and exits with status 130.
+/// The signals that stop a command: Ctrl-C, a closed terminal, `kill`, and a Slurm job's time
+/// limit (SIGTERM, then SIGKILL after a grace period) and `--signal` (SIGUSR1, SIGUSR2).
+const STOP_SIGNALS: [i32; 5] = [
+    signal_hook::consts::SIGINT,
+    signal_hook::consts::SIGTERM,
+    signal_hook::consts::SIGHUP,
+    signal_hook::consts::SIGUSR1,
+    signal_hook::consts::SIGUSR2,
+];
+
+/// The first stop signal received (0: none).
+static SIGNAL: AtomicI32 = AtomicI32::new(0);
+/// Whether the command polls [`interrupt`] (stops at its next step, saving what a rerun resumes
+/// from) rather than stopping at once.
+static POLLS: AtomicBool = AtomicBool::new(false);
+/// A child process that the stop signal is passed on to (`fields to-netcdf`).
+static CHILD: AtomicI32 = AtomicI32::new(0);
+
+/// The flag a stop signal raises: the library stops at its next iteration, the command cleans up
+/// (temporary files, claims), long runs save their state, and it exits with 128 + the signal.
 pub fn interrupt() -> &'static wearsim::Interrupt {
     static FLAG: std::sync::OnceLock<wearsim::Interrupt> = std::sync::OnceLock::new();
-    FLAG.get_or_init(|| {
-        let flag = wearsim::Interrupt::default();
-        let raised = flag.clone();
-        // Without a handler (e.g. one already installed) the signal keeps its default action.
-        let _ = ctrlc::set_handler(move || raised.request());
-        flag
-    })
+    FLAG.get_or_init(wearsim::Interrupt::default)
+}
+
+/// Handles the stop signals for the whole run. A command that polls the flag ([`polls_interrupt`])
+/// stops at its next step; any other stops at once: its temporary files and claims are removed
+/// (outputs being put in place are finished first) and it exits with 128 + the signal. A second
+/// signal stops any command at once. SIGINT and SIGHUP keep an ignored disposition they inherit
+/// (`nohup`, a background job), as other Unix programs do.
+pub fn handle_signals() {
+    let wanted: Vec<i32> = STOP_SIGNALS
+        .into_iter()
+        .filter(|&s| {
+            let keep = s == signal_hook::consts::SIGINT || s == signal_hook::consts::SIGHUP;
+            !(keep && inherited_ignored(s))
+        })
+        .collect();
+    let Ok(mut signals) = signal_hook::iterator::Signals::new(&wanted) else {
+        return;
+    };
+    std::thread::spawn(move || {
+        for sig in signals.forever() {
+            let first = SIGNAL
+                .compare_exchange(0, sig, Ordering::SeqCst, Ordering::SeqCst)
+                .is_ok();
+            interrupt().request();
+            let child = CHILD.load(Ordering::SeqCst);
+            if child > 0 {
+                // SAFETY: kill(2) on the pid of a child this process started and still waits for.
+                unsafe {
+                    libc::kill(child, libc::SIGTERM);
+                }
+            }
+            if !first || !POLLS.load(Ordering::SeqCst) {
+                stop_now(sig);
+            }
+        }
+    });
+}
+
+/// Whether `signal` was ignored when the program started.
+fn inherited_ignored(signal: i32) -> bool {
+    // SAFETY: sigaction(2) with a null new action only reads the current one into `old`.
+    unsafe {
+        let mut old: libc::sigaction = std::mem::zeroed();
+        libc::sigaction(signal, std::ptr::null(), &mut old) == 0 && old.sa_sigaction == libc::SIG_IGN
+    }
+}
+
+/// Stops the command now: removes its temporary files and claims and exits with 128 + `signal`.
+fn stop_now(signal: i32) -> ! {
+    let _in_place = wearsim::io::abandon_outputs();
+    eprintln!("error: stopped by {}; nothing was written", signal_name(signal));
+    std::process::exit(128 + signal);
+}
+
+/// The command polls [`interrupt`] at every step of its work and stops there, cleanly, when a
+/// stop signal raises it (a long run saving its state first).
+pub fn polls_interrupt() {
+    POLLS.store(true, Ordering::SeqCst);
+}
+
+/// A child process to pass a stop signal on to (as SIGTERM), while it runs; 0 when it is done.
+pub fn set_child(pid: u32) {
+    CHILD.store(i32::try_from(pid).unwrap_or(0), Ordering::SeqCst);
+}
+
+/// The stop signal received, if any.
+pub fn stop_signal() -> Option<i32> {
+    Some(SIGNAL.load(Ordering::SeqCst)).filter(|&s| s != 0)
+}
+
+/// A signal's name (SIGTERM).
+pub fn signal_name(signal: i32) -> String {
+    signal_hook::low_level::signal_name(signal).map_or(format!("signal {signal}"), String::from)
+}
+
+/// `Err(Interrupted)` once a stop signal arrived: checked before outputs are put in place, so
+/// that a command stopped after its last step writes nothing and exits non-zero.
+pub fn check_interrupt() -> Result<()> {
+    interrupt().check().map_err(Into::into)
 }
 
 /// Reads and validates a run file.

@@ -49,12 +49,17 @@ pub fn checkpoint_path(out: &std::path::Path) -> PathBuf {
     wearsim::io::parent_or_dot(out).join(format!(".{name}.checkpoint"))
 }
 
-/// Says on stderr what became of a checkpoint.
-pub fn report_resume(resumed: &Resumed) {
+/// Says on stderr what became of the checkpoint `path`.
+pub fn report_checkpoint(path: &std::path::Path, resumed: &Resumed) {
     match resumed {
         Resumed::Fresh => {}
         Resumed::At { done, total } => eprintln!("resuming from the checkpoint after {done} of {total} steps"),
         Resumed::Ignored(why) => eprintln!("warning: checkpoint not used: {why}"),
+        Resumed::Saved { done, total } => eprintln!(
+            "saved the state after {done} of {total} steps in {}: the same command run again resumes from it",
+            path.display()
+        ),
+        Resumed::NotSaved(why) => eprintln!("warning: checkpoint not saved: {why}"),
     }
 }
 
@@ -121,8 +126,11 @@ fn print_results(units: Units, runs: &[wearsim::sliding::LoadRun]) {
 
 pub fn run(args: &Args) -> Result<()> {
     let run = &args.run;
+    super::polls_interrupt();
     let config = load_run(run)?;
     wearsim::run::sliding_schedule(&config).with_context(|| format!("run file {}", run.display()))?;
+    let grid = config.grid()?;
+    wearsim::check::memory("a sliding run", grid.nx(), grid.ny(), wearsim::check::SLIDING_ARRAYS)?;
     // The output folder is made (and checked) before any work.
     let out = OutputDir::begin(&args.out, "slide", args.overwrite, &super::run_inputs(run, &config))?;
     let interrupt = super::interrupt();
@@ -160,7 +168,8 @@ pub fn run(args: &Args) -> Result<()> {
         path: checkpoint_path(out.target()),
         every: args.checkpoint_every,
     });
-    let outcome = prepared.run_resumable(checkpointing.as_ref(), report_resume, |view| {
+    let report = |r: &Resumed| report_checkpoint(&checkpoint_path(out.target()), r);
+    let outcome = prepared.run_resumable(checkpointing.as_ref(), report, |view| {
         let note = format!("load {}/{}", view.load_index + 1, sliding.loads.len());
         progress.set(view.done as u64, view.total as u64, &note);
         if let (Some(f), None) = (fields.as_mut(), fields_error.as_ref()) {
@@ -182,6 +191,7 @@ pub fn run(args: &Args) -> Result<()> {
     }
     write_text(&out.join("series.csv"), &outcome.series_csv())?;
     write_json(&out.join("summary.json"), &outcome.summary())?;
+    super::check_interrupt()?;
     out.commit()?;
     // The results are in place: the state they were resumed from is no longer needed.
     if let Some(c) = &checkpointing {

@@ -93,6 +93,7 @@ fn slurm_shard(id: &str, var: impl Fn(&str) -> Option<String>) -> Result<(usize,
 }
 
 pub fn run(args: &RunArgs) -> Result<()> {
+    super::polls_interrupt();
     let (study_path, out, shard_arg, workers) = (&args.study, &args.out, args.shard.as_deref(), args.jobs);
     let text = std::fs::read_to_string(study_path).with_context(|| format!("cannot read {}", study_path.display()))?;
     let base = study_path
@@ -134,7 +135,18 @@ pub fn run(args: &RunArgs) -> Result<()> {
         },
     );
     progress.finish();
+    if let (Err(wearsim::Error::Interrupted), Some(sig)) = (&outcome, super::stop_signal()) {
+        eprintln!(
+            "{}: the finished jobs are saved in {} and the jobs under way saved their state beside them; the same \
+             command run again resumes",
+            super::signal_name(sig),
+            out.join("jobs").display()
+        );
+    }
     let summary = outcome?;
+    for note in &summary.checkpoint_warnings {
+        eprintln!("warning: {note}");
+    }
     for why in &summary.recomputed {
         eprintln!("warning: recomputed a job whose file could not be read: {why}");
     }

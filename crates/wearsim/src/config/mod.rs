@@ -256,9 +256,12 @@ impl RunConfig {
     }
 
     /// What makes this run under-resolved before it starts: a shortest wavelength λ_l of fewer than
-    /// four pixels (the paper uses 16, appendix A). One sentence each.
+    /// four pixels (the paper uses 16, appendix A), a solver tolerance loose enough to move the
+    /// results ([`crate::check::tolerance_warning`]). One sentence each.
     pub fn warnings(&self) -> Vec<String> {
-        let mut out = Vec::new();
+        let mut out: Vec<String> = crate::check::tolerance_warning(self.solver.tolerance())
+            .into_iter()
+            .collect();
         if let SurfaceSource::Generated { grid, spectrum, .. } = &self.surfaces {
             let pixels = spectrum.lambda_lower / grid.pixel_size();
             if pixels < crate::check::RESOLVED_PIXELS {

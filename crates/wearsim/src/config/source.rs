@@ -228,6 +228,9 @@ pub(super) fn files_source(
     let (top, bottom) = (crate::io::canonical_path(&top), crate::io::canonical_path(&bottom));
     for p in [&top, &bottom] {
         if files == SurfaceFiles::MustExist && !p.is_file() {
+            if p.exists() {
+                crate::topography::regular_file(p)?;
+            }
             return Err(Error::file(
                 p,
                 "surface file not found (paths are relative to the run file)",

@@ -2,8 +2,9 @@
 //! half-written file; text and JSON files; output folders that appear whole.
 
 use std::io::{BufWriter, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Mutex, MutexGuard};
 
 use crate::error::{Error, Result};
 
@@ -13,6 +14,43 @@ pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 /// Counter that makes temporary names unique within a process (with the process id, across
 /// processes sharing a folder).
 static TMP_COUNTER: AtomicU64 = AtomicU64::new(0);
+
+/// The temporary files and folders this process is writing and the claims it holds: what a command
+/// stopped by a signal removes before it exits ([`abandon_outputs`]). Its lock is also held while
+/// outputs are put in place, so that a stop never falls between moving an earlier folder aside and
+/// renaming the new one into place.
+static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+fn live() -> MutexGuard<'static, Vec<PathBuf>> {
+    LIVE.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+fn register(path: &Path) {
+    live().push(path.to_path_buf());
+}
+
+fn release(list: &mut Vec<PathBuf>, path: &Path) {
+    if let Some(k) = list.iter().rposition(|p| p == path) {
+        list.swap_remove(k);
+    }
+}
+
+/// Removes every temporary file and folder this process is writing and every claim it holds, and
+/// returns a guard that keeps any output from being put in place while it is held: a command that a
+/// signal stops at once (one that does not poll its interrupt flag) calls it, then exits holding
+/// the guard. Earlier outputs stay whole: a folder being replaced is either still in place or
+/// already replaced, never moved aside.
+pub fn abandon_outputs() -> MutexGuard<'static, Vec<PathBuf>> {
+    let mut list = live();
+    for p in list.drain(..) {
+        let _ = if p.is_dir() {
+            std::fs::remove_dir_all(&p)
+        } else {
+            std::fs::remove_file(&p)
+        };
+    }
+    list
+}
 
 /// A temporary sibling of `path`, unique to this process and call: `.{name}.{host}.{pid}-{k}.tmp`.
 /// The host and process in the name tell a later run whether its owner is gone
@@ -121,6 +159,49 @@ pub fn refuse_inputs_inside(out: &Path, inputs: &[&Path]) -> Result<()> {
     Ok(())
 }
 
+/// Refuses a single output file `out` (an animation, a NetCDF file) that is, or lies inside, one of
+/// `inputs`, whatever `overwrite` says, and an existing file there that `ours` does not recognise as
+/// one `command` wrote, unless `overwrite` is set: another command's output (a `summary.json`), an
+/// input of another run, a file of the user's. Paths are compared in canonical form.
+pub fn refuse_foreign_file(
+    out: &Path,
+    command: &str,
+    overwrite: bool,
+    inputs: &[&Path],
+    ours: impl Fn(&Path) -> bool,
+) -> Result<()> {
+    let target = canonical_path(out);
+    for input in inputs {
+        let input = canonical_path(input);
+        if target.starts_with(&input) {
+            return Err(Error::file(
+                out,
+                format!(
+                    "is {} the input {}: writing there would destroy it, --overwrite or not; give another path",
+                    if target == input { "" } else { "inside" },
+                    input.display()
+                )
+                .replace("is  the", "is the"),
+            ));
+        }
+    }
+    if target.is_dir() {
+        return Err(Error::file(
+            out,
+            "is a folder, where the file to write is needed; give a file path",
+        ));
+    }
+    if target.exists() && !overwrite && !ours(&target) {
+        return Err(Error::file(
+            out,
+            format!(
+                "exists and was not written by `wearsim {command}`; give another path, or --overwrite to replace it"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// A claim on an output path: the file `.{name}.claim` beside it, created exclusively (two processes
 /// cannot both create it) before any work and holding `host pid`; removed when dropped. A claim
 /// whose process is gone (this host, no such process) is taken over.
@@ -137,37 +218,38 @@ impl OutputClaim {
             .ok_or_else(|| Error::file(target, "not a folder name"))?;
         let path = parent_or_dot(target).join(format!(".{}.claim", sibling_stem(&name.to_string_lossy())));
         for _ in 0..2 {
-            match std::fs::OpenOptions::new().write(true).create_new(true).open(&path) {
-                Ok(mut f) => {
-                    let owner = format!("{} {}\n", host_name(), std::process::id());
-                    f.write_all(owner.as_bytes()).map_err(|e| Error::io(&path, e))?;
-                    return Ok(Self { path });
-                }
-                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
-                    let owner = std::fs::read_to_string(&path).unwrap_or_default();
-                    let mut words = owner.split_whitespace();
-                    let (host, pid) = (words.next().unwrap_or(""), words.next().unwrap_or(""));
-                    let age = std::fs::metadata(&path)
-                        .and_then(|m| m.modified())
-                        .ok()
-                        .and_then(|t| std::time::SystemTime::now().duration_since(t).ok());
-                    // An empty claim is one whose writer died between creating and filling it.
-                    let dead = (host == host_name() && process_gone(pid) == Some(true))
-                        || owner.is_empty() && age.is_some_and(|a| a.as_secs() > 5);
-                    if !dead {
-                        return Err(Error::file(
-                            target,
-                            format!(
-                                "another wearsim run (process {pid} on {host}) is writing this folder; wait for it \
-                                 to finish or give another --out (if that run is gone, remove {})",
-                                path.display()
-                            ),
-                        ));
-                    }
-                    let _ = std::fs::remove_file(&path);
-                }
-                Err(e) => return Err(Error::io(&path, e)),
+            // Made and registered under the lock, so that a stop in between never leaves it behind.
+            let mut list = live();
+            if create_claim_file(&path)? {
+                list.push(path.clone());
+                return Ok(Self { path });
             }
+            drop(list);
+            let owner = std::fs::read_to_string(&path).unwrap_or_default();
+            let mut words = owner.split_whitespace();
+            let (host, pid) = (words.next().unwrap_or(""), words.next().unwrap_or(""));
+            let age = std::fs::metadata(&path)
+                .and_then(|m| m.modified())
+                .ok()
+                .and_then(|t| std::time::SystemTime::now().duration_since(t).ok());
+            // An empty claim is one whose writer died between creating and filling it.
+            let dead = (host == host_name() && process_gone(pid) == Some(true))
+                || owner.is_empty() && age.is_some_and(|a| a.as_secs() > 5);
+            if !dead {
+                let who = if owner.is_empty() {
+                    "another wearsim run is starting to write this folder".to_string()
+                } else {
+                    format!("another wearsim run (process {pid} on {host}) is writing this folder")
+                };
+                return Err(Error::file(
+                    target,
+                    format!(
+                        "{who}; wait for it to finish or give another --out (if that run is gone, remove {})",
+                        path.display()
+                    ),
+                ));
+            }
+            let _ = std::fs::remove_file(&path);
         }
         Err(Error::file(
             target,
@@ -176,10 +258,48 @@ impl OutputClaim {
     }
 }
 
+/// Creates the claim file `path` exclusively, holding this process's `host pid`: `Ok(false)` when
+/// it exists already. A claim that cannot be filled (a full disk) is removed again, so that it never
+/// blocks a retry as the empty claim of a run that seems to be starting.
+pub fn create_claim_file(path: &Path) -> Result<bool> {
+    match std::fs::OpenOptions::new().write(true).create_new(true).open(path) {
+        Ok(mut f) => {
+            let owner = format!("{} {}\n", host_name(), std::process::id());
+            if let Err(e) = f.write_all(owner.as_bytes()).and_then(|()| f.sync_all()) {
+                drop(f);
+                let _ = std::fs::remove_file(path);
+                return Err(Error::io(path, e));
+            }
+            Ok(true)
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => Ok(false),
+        Err(e) => Err(Error::io(path, e)),
+    }
+}
+
 impl Drop for OutputClaim {
     fn drop(&mut self) {
+        let mut list = live();
         let _ = std::fs::remove_file(&self.path);
+        release(&mut list, &self.path);
     }
+}
+
+/// Makes `dir` and its missing parents, saying which part of the path is a file in the way (the
+/// system says only "File exists").
+pub fn make_folder(dir: &Path) -> Result<()> {
+    if dir.is_dir() {
+        return Ok(());
+    }
+    if let Some(file) = dir.ancestors().find(|a| a.exists() && !a.is_dir()) {
+        let what = if file == dir {
+            "exists and is not a folder".to_string()
+        } else {
+            format!("is a file, not a folder, so {} cannot be made inside it", dir.display())
+        };
+        return Err(Error::file(file, format!("{what}; give another path")));
+    }
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))
 }
 
 /// The folder holding `path` (`.` for a bare file name).
@@ -234,16 +354,26 @@ pub fn canonical_path(path: &Path) -> std::path::PathBuf {
 /// and `path` is untouched.
 pub fn atomic_write(path: &Path, write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>) -> Result<()> {
     let tmp = temporary_sibling(path)?;
+    register(&tmp);
     let result = (|| -> std::io::Result<()> {
         let file = std::fs::File::create(&tmp)?;
         let mut w = BufWriter::new(file);
         write(&mut w)?;
         let file = w.into_inner().map_err(|e| e.into_error())?;
         file.sync_all()?;
-        std::fs::rename(&tmp, path)
+        // Put in place only while no stop is removing this process's temporaries.
+        let mut list = live();
+        if !list.contains(&tmp) {
+            return Err(std::io::Error::other("stopped"));
+        }
+        let renamed = std::fs::rename(&tmp, path);
+        release(&mut list, &tmp);
+        renamed
     })();
     if let Err(e) = result {
+        let mut list = live();
         let _ = std::fs::remove_file(&tmp);
+        release(&mut list, &tmp);
         return Err(Error::io(path, e));
     }
     Ok(())
@@ -274,13 +404,120 @@ pub fn read_text(path: &Path) -> Result<String> {
 pub struct OutputDir {
     target: std::path::PathBuf,
     staging: std::path::PathBuf,
+    command: String,
     committed: bool,
     /// Held until the outputs are in place (or abandoned): one run per folder.
     _claim: OutputClaim,
 }
 
-/// The marker file that says which command wrote a folder.
-const MARKER: &str = ".wearsim.json";
+/// The marker file that says which command wrote a folder, and which files it wrote there.
+pub const MARKER: &str = ".wearsim.json";
+
+/// The marker of a folder written by `command` holding `files` (none listed: a folder that grows,
+/// as a study folder does).
+pub fn marker(command: &str, files: Option<&[String]>) -> serde_json::Value {
+    let mut m = serde_json::json!({"command": command, "software": format!("wearsim {VERSION}")});
+    if let Some(files) = files {
+        m["files"] = serde_json::json!(files);
+    }
+    m
+}
+
+/// Whose a folder is, from its entries and its marker ([`MARKER`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum FolderOwner {
+    /// Missing or empty.
+    Nobody,
+    /// Written by `wearsim {command}`; `foreign` lists the entries it did not write (known only
+    /// where the marker lists the files).
+    Wearsim { command: String, foreign: Vec<String> },
+    /// Entries but no marker: not wearsim's.
+    Foreign,
+}
+
+/// Whose the folder `dir` is. A study folder of an earlier version (a `study.hash`, no marker) is
+/// `study run`'s.
+pub fn folder_owner(dir: &Path) -> Result<FolderOwner> {
+    if !dir.is_dir() {
+        return Ok(FolderOwner::Nobody);
+    }
+    let entries: Vec<String> = std::fs::read_dir(dir)
+        .map_err(|e| Error::io(dir, e))?
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().to_string())
+        .collect();
+    if entries.is_empty() {
+        return Ok(FolderOwner::Nobody);
+    }
+    let marker = std::fs::read_to_string(dir.join(MARKER))
+        .ok()
+        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok());
+    let command = marker
+        .as_ref()
+        .and_then(|v| v.get("command").and_then(|c| c.as_str()).map(String::from));
+    let Some(command) = command.or_else(|| dir.join("study.hash").is_file().then(|| "study run".to_string())) else {
+        return Ok(FolderOwner::Foreign);
+    };
+    let listed: Option<Vec<String>> = marker
+        .as_ref()
+        .and_then(|v| v.get("files"))
+        .and_then(|f| serde_json::from_value(f.clone()).ok());
+    let foreign = match listed {
+        Some(files) => entries
+            .into_iter()
+            .filter(|e| e != MARKER && !files.contains(e))
+            .collect(),
+        None => Vec::new(),
+    };
+    Ok(FolderOwner::Wearsim { command, foreign })
+}
+
+/// Refuses to replace or add to the folder `target` for `command` unless it is wearsim's folder of
+/// that command holding only what it wrote: another command's results, files wearsim did not write
+/// (the user's own, added beside its outputs or in a folder of their own) are never replaced without
+/// `--overwrite`.
+pub fn refuse_foreign_folder(target: &Path, command: &str) -> Result<()> {
+    let more = |names: &[String]| {
+        let shown: Vec<&str> = names.iter().take(3).map(String::as_str).collect();
+        format!(
+            "{}{}",
+            shown.join(", "),
+            if names.len() > 3 {
+                format!(" and {} more", names.len() - 3)
+            } else {
+                String::new()
+            }
+        )
+    };
+    match folder_owner(target)? {
+        FolderOwner::Nobody => Ok(()),
+        FolderOwner::Wearsim { command: c, foreign } if c == command => {
+            if foreign.is_empty() {
+                Ok(())
+            } else {
+                Err(Error::file(
+                    target,
+                    format!(
+                        "holds files that `wearsim {c}` did not write ({}) beside its results; move them out, give \
+                         another --out, or --overwrite to replace the folder with them",
+                        more(&foreign)
+                    ),
+                ))
+            }
+        }
+        FolderOwner::Wearsim { command: c, .. } => Err(Error::file(
+            target,
+            format!(
+                "holds the results of `wearsim {c}`; give another --out, or --overwrite to replace them with those of \
+                 `wearsim {command}`"
+            ),
+        )),
+        FolderOwner::Foreign => Err(Error::file(
+            target,
+            "holds files that wearsim did not write; give another --out, or --overwrite to replace the folder",
+        )),
+    }
+}
 
 impl OutputDir {
     /// Prepares to write the outputs of `command` into `target`. An existing `target` must be a
@@ -306,50 +543,35 @@ impl OutputDir {
                  --out results",
             ));
         }
-        let parent = parent_or_dot(target);
-        std::fs::create_dir_all(parent).map_err(|e| Error::io(parent, e))?;
+        if let Some(file) = target.ancestors().skip(1).find(|a| a.exists() && !a.is_dir()) {
+            return Err(Error::file(
+                file,
+                format!(
+                    "is a file, not a folder, so the output folder {} cannot be made inside it; give another --out",
+                    given.display()
+                ),
+            ));
+        }
+        make_folder(parent_or_dot(target))?;
         let claim = OutputClaim::take(target)?;
         remove_abandoned_siblings(target);
         if target.exists() && !target.is_dir() {
             return Err(Error::file(target, "exists and is not a folder; give another --out"));
         }
-        if target.is_dir() && !overwrite {
-            let mut entries = std::fs::read_dir(target).map_err(|e| Error::io(target, e))?;
-            if entries.next().is_some() {
-                let marker = std::fs::read_to_string(target.join(MARKER)).ok();
-                let writer = marker
-                    .as_deref()
-                    .and_then(|t| serde_json::from_str::<serde_json::Value>(t).ok())
-                    .and_then(|v| v.get("command").and_then(|c| c.as_str()).map(String::from));
-                match writer {
-                    Some(c) if c == command => {}
-                    Some(c) => {
-                        return Err(Error::file(
-                            target,
-                            format!(
-                                "holds the results of `wearsim {c}`; give another --out, or --overwrite to replace \
-                                 them with those of `wearsim {command}`"
-                            ),
-                        ))
-                    }
-                    None => return Err(Error::file(
-                        target,
-                        "holds files that wearsim did not write; give another --out, or --overwrite to replace the \
-                             folder",
-                    )),
-                }
-            }
+        if !overwrite {
+            refuse_foreign_folder(target, command)?;
         }
         let staging = temporary_sibling(target)?;
-        std::fs::create_dir(&staging).map_err(|e| Error::io(&staging, e))?;
+        register(&staging);
         let dir = Self {
             target: target.to_path_buf(),
             staging,
+            command: command.to_string(),
             committed: false,
             _claim: claim,
         };
-        let provenance = serde_json::json!({"command": command, "software": format!("wearsim {VERSION}")});
-        write_json(&dir.join(MARKER), &provenance)?;
+        std::fs::create_dir(&dir.staging).map_err(|e| Error::io(&dir.staging, e))?;
+        write_json(&dir.join(MARKER), &marker(command, None))?;
         Ok(dir)
     }
 
@@ -366,6 +588,19 @@ impl OutputDir {
     /// Puts the outputs in place: the temporary folder replaces `target` (an earlier folder there is
     /// moved aside first and removed after).
     pub fn commit(mut self) -> Result<()> {
+        let mut files: Vec<String> = std::fs::read_dir(&self.staging)
+            .map_err(|e| Error::io(&self.staging, e))?
+            .flatten()
+            .map(|e| e.file_name().to_string_lossy().to_string())
+            .filter(|name| name != MARKER)
+            .collect();
+        files.sort();
+        write_json(&self.join(MARKER), &marker(&self.command, Some(&files)))?;
+        // Held throughout: a stop removing this process's temporaries waits until the folder is in place.
+        let mut list = live();
+        if !list.contains(&self.staging) {
+            return Err(Error::Interrupted);
+        }
         let aside = if self.target.exists() {
             let aside = temporary_sibling(&self.target)?;
             std::fs::rename(&self.target, &aside).map_err(|e| Error::io(&self.target, e))?;
@@ -380,6 +615,8 @@ impl OutputDir {
             return Err(Error::io(&self.target, e));
         }
         self.committed = true;
+        release(&mut list, &self.staging);
+        drop(list);
         if let Some(aside) = aside {
             let _ = std::fs::remove_dir_all(aside);
         }
@@ -390,30 +627,41 @@ impl OutputDir {
 impl Drop for OutputDir {
     fn drop(&mut self) {
         if !self.committed {
+            let mut list = live();
             let _ = std::fs::remove_dir_all(&self.staging);
+            release(&mut list, &self.staging);
         }
     }
 }
 
 /// Writes several files so that they appear together: each into a temporary sibling, then all
-/// renamed into place (a failed write leaves none of them changed).
+/// renamed into place (a failed write leaves none of them changed). The temporary files are
+/// registered as being written, so that a command stopped by a signal removes them
+/// ([`abandon_outputs`]) and none is put in place after that.
 pub fn write_texts_together(files: &[(&Path, &str)]) -> Result<()> {
     let mut written: Vec<(std::path::PathBuf, &Path)> = Vec::new();
     let result = (|| -> Result<()> {
         for (path, text) in files {
             let tmp = temporary_sibling(path)?;
+            register(&tmp);
             written.push((tmp.clone(), path));
             write_text(&tmp, text)?;
+        }
+        let in_place = live();
+        if let Some((_, path)) = written.iter().find(|(tmp, _)| !in_place.contains(tmp)) {
+            return Err(Error::io(path, std::io::Error::other("stopped")));
         }
         for (tmp, path) in &written {
             std::fs::rename(tmp, path).map_err(|e| Error::io(path, e))?;
         }
         Ok(())
     })();
-    if result.is_err() {
-        for (tmp, _) in &written {
+    let mut list = live();
+    for (tmp, _) in &written {
+        if result.is_err() {
             let _ = std::fs::remove_file(tmp);
         }
+        release(&mut list, tmp);
     }
     result
 }
@@ -448,6 +696,46 @@ mod tests {
             .map(|e| e.file_name())
             .collect();
         assert_eq!(left.len(), 2, "{left:?}");
+    }
+
+    #[test]
+    fn a_folder_is_a_commands_only_with_its_marker_and_only_what_it_wrote() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out");
+        assert_eq!(folder_owner(&out).unwrap(), FolderOwner::Nobody);
+        let staged = OutputDir::begin(&out, "slide", false, &[]).unwrap();
+        write_text(&staged.join("series.csv"), "a\n").unwrap();
+        staged.commit().unwrap();
+        let owner = |c: &str, f: &[&str]| FolderOwner::Wearsim {
+            command: c.into(),
+            foreign: f.iter().map(|s| s.to_string()).collect(),
+        };
+        assert_eq!(folder_owner(&out).unwrap(), owner("slide", &[]));
+        std::fs::write(out.join("notes.txt"), "mine").unwrap();
+        assert_eq!(folder_owner(&out).unwrap(), owner("slide", &["notes.txt"]));
+        let e = OutputDir::begin(&out, "slide", false, &[]).unwrap_err().to_string();
+        assert!(e.contains("notes.txt") && e.contains("--overwrite"), "{e}");
+        // A study folder of an earlier version: its hash file, no marker.
+        let study = dir.path().join("study");
+        std::fs::create_dir_all(study.join("jobs")).unwrap();
+        std::fs::write(study.join("study.hash"), "0123").unwrap();
+        assert_eq!(folder_owner(&study).unwrap(), owner("study run", &[]));
+        std::fs::write(dir.path().join("theirs"), "x").unwrap();
+        std::fs::create_dir(dir.path().join("user")).unwrap();
+        std::fs::write(dir.path().join("user").join("results.csv"), "x").unwrap();
+        assert_eq!(folder_owner(&dir.path().join("user")).unwrap(), FolderOwner::Foreign);
+        // A single output file: never an input (any spelling), never a foreign file without overwrite.
+        let input = dir.path().join("run.gif");
+        std::fs::write(&input, "[surface]").unwrap();
+        let spelled = dir.path().join("user").join("..").join("run.gif");
+        for overwrite in [false, true] {
+            let e = refuse_foreign_file(&spelled, "animate", overwrite, &[&input], |_| true).unwrap_err();
+            assert!(e.to_string().contains("input"), "{e}");
+        }
+        let theirs = dir.path().join("theirs");
+        assert!(refuse_foreign_file(&theirs, "animate", false, &[], |_| false).is_err());
+        assert!(refuse_foreign_file(&theirs, "animate", true, &[], |_| false).is_ok());
+        assert!(refuse_foreign_file(&theirs, "animate", false, &[], |_| true).is_ok());
     }
 
     #[test]

@@ -199,6 +199,23 @@ pub fn npy_shape(path: &Path, what: &str) -> Result<(usize, usize)> {
     }
 }
 
+/// [`npy_shape`] of an array read from a stream of `size` bytes (inside an `.npz` archive): only
+/// its header is read.
+pub fn npy_shape_from(reader: &mut impl Read, size: u64, path: &Path, what: &str) -> Result<(usize, usize)> {
+    let h = read_npy_header(reader, size, path)?;
+    match h.shape[..] {
+        [rows, cols] => Ok((rows, cols)),
+        _ => Err(Error::file(
+            path,
+            format!(
+                "{what} must be a 2D array; this one has shape {:?} ({} dimensions)",
+                h.shape,
+                h.shape.len()
+            ),
+        )),
+    }
+}
+
 /// Reads a 2D `.npy` array of one of the `accepted` element types. The header's promise is checked
 /// against the file's size before any data is read; `what` names the array in messages.
 pub fn read_npy_2d(path: &Path, accepted: &[NpyType], what: &str) -> Result<Npy2> {

@@ -2,7 +2,7 @@
 
 use crate::junctions::particle_volume;
 use crate::material::Material;
-use crate::stats::{line_fit, mean_std};
+use crate::stats::{line_fit, mean_std, LineFit};
 
 use super::records::{finite, StepRecord, WearResult, RUN_IN_DECAY_LENGTHS};
 use super::schedule::SlidingSetup;
@@ -155,17 +155,26 @@ fn result_of_energy(
     let s: Vec<f64> = fitted.iter().map(|r| r.s).collect();
     let v: Vec<f64> = fitted.iter().map(|r| r.wear[e].volume).collect();
     let nf: Vec<f64> = fitted.iter().map(|r| r.wear[e].n_formed as f64).collect();
-    let wear_fit = line_fit(&s, &v);
     let particle_fit = line_fit(&s, &nf);
+    let particles_in_fit = match (fitted.first(), fitted.last()) {
+        (Some(a), Some(b)) => b.wear[e].n_formed - a.wear[e].n_formed,
+        _ => 0,
+    };
+    // Without a particle V is constant over the window: W = 0 exactly and R² undefined (a
+    // least-squares fit of equal values leaves round-off, a slope of ±1e-30 and any R²).
+    let wear_fit = line_fit(&s, &v).map(|f| match v.first() {
+        Some(&v0) if particles_in_fit == 0 => LineFit {
+            slope: 0.0,
+            intercept: v0,
+            r2: None,
+        },
+        _ => f,
+    });
     let wear_rate = wear_fit.and_then(|f| finite(f.slope));
     let wear_volume_intercept = wear_fit
         .filter(|_| wear_rate.is_some())
         .and_then(|f| finite(f.intercept));
     let particle_rate = particle_fit.and_then(|f| finite(f.slope));
-    let particles_in_fit = match (fitted.first(), fitted.last()) {
-        (Some(a), Some(b)) => b.wear[e].n_formed - a.wear[e].n_formed,
-        _ => 0,
-    };
     let wear_rate_r2 = wear_fit.and_then(|f| f.r2);
     let context = format!("F_N = {load:.4e}, 𝒢 = {:.4e} (d* = {d:.4e})", c.fracture_energy);
     if particles_in_fit == 0 {

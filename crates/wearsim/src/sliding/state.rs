@@ -90,6 +90,12 @@ pub(crate) struct SlidingState<'a> {
     load: Option<LoadState>,
     done: usize,
     total: usize,
+    /// The contact pressure after the last finished step, kept (one more Nx·Ny field) once
+    /// [`SlidingState::keep_state_for_stops`] asks: a solve stopped part-way has already changed
+    /// the solver's pressure, and a checkpoint saved then must hold the state between two steps.
+    kept: Option<Vec<f64>>,
+    /// A solve failed or was stopped part-way: the solver's pressure is no step's.
+    pressure_unsettled: bool,
 }
 
 impl<'a> SlidingState<'a> {
@@ -117,6 +123,8 @@ impl<'a> SlidingState<'a> {
             finished: Vec::new(),
             load: None,
             done: 0,
+            kept: None,
+            pressure_unsettled: false,
             solver,
             top,
             bottom,
@@ -132,6 +140,15 @@ impl<'a> SlidingState<'a> {
     /// Steps of every load together.
     pub(crate) fn total(&self) -> usize {
         self.total
+    }
+
+    /// Keeps the contact pressure of every finished step from now on, so that a run stopped
+    /// part-way through a solve can still save the state between its last two steps.
+    pub(crate) fn keep_state_for_stops(&mut self) {
+        if self.kept.is_none() {
+            let pressure = self.solver.pressure().to_vec();
+            self.kept = Some(pressure);
+        }
     }
 
     /// The hash of the run's inputs that its checkpoints carry.
@@ -162,10 +179,15 @@ impl<'a> SlidingState<'a> {
             .map_or(0.0, |i| (offset - self.offsets[i]) as f64 * dx);
 
         let t0 = Instant::now();
+        self.pressure_unsettled = true;
         self.solver.compose(offset)?;
         let info = self
             .solver
             .solve_in_place(load / self.grid.area(), self.setup.material.flow_pressure())?;
+        self.pressure_unsettled = false;
+        if let Some(kept) = self.kept.as_mut() {
+            kept.copy_from_slice(self.solver.pressure());
+        }
         let t1 = Instant::now();
         let map = self.solver.contact_map();
         let count = self.labeller.label(|k| map.contains(k));
@@ -267,25 +289,43 @@ impl<'a> SlidingState<'a> {
     /// Saves the state between two steps to `path` (atomically: temporary sibling, then renamed over
     /// the old file): everything one step hands to the next (the contact pressure that warm-starts
     /// the solver, every particle rule's state, the memory of the initial contact, the records so
-    /// far). Before the first step there is nothing to save.
-    pub(crate) fn save_checkpoint(&mut self, path: &Path) -> Result<()> {
-        if self.load.is_none() {
-            return Ok(());
+    /// far). Gives `false` when there is nothing to save (no step finished yet). After a solve
+    /// stopped part-way it needs the pressure kept since [`SlidingState::keep_state_for_stops`].
+    pub(crate) fn save_checkpoint(&mut self, path: &Path) -> Result<bool> {
+        if self.done == 0 {
+            return Ok(false);
+        }
+        if self.pressure_unsettled && self.kept.is_none() {
+            return Err(Error::file(
+                path,
+                "the run was stopped part-way through a solve and did not keep the state of its last step",
+            ));
         }
         let key = self.key().to_string();
-        let load = self.load.as_ref().expect("a load under way");
+        // Between two loads (or stopped before the first step of a load finished), the next load
+        // starts cold: its particle rules and memory are fresh.
+        let fresh = self.new_rules();
+        let no_memory = InitialContactMemory::default();
+        let (steps, timing, rules, memory) = match &self.load {
+            Some(l) if !l.steps.is_empty() => (&l.steps[..], l.timing, &l.rules, &l.memory),
+            _ => (&[][..], Timing::default(), &fresh, &no_memory),
+        };
         let state = SavedState {
             format: CHECKPOINT_FORMAT,
             software: format!("wearsim {}", crate::io::VERSION),
             inputs: &key,
             done: self.done,
             finished: &self.finished,
-            steps: &load.steps,
-            timing: load.timing,
-            books: load.rules.iter().map(|r| r.carried()).collect(),
-            memory: &load.memory,
+            steps,
+            timing,
+            books: rules.iter().map(|r| r.carried()).collect(),
+            memory,
         };
-        save_checkpoint(path, &state, self.solver.pressure())
+        let pressure = match &self.kept {
+            Some(kept) => kept.as_slice(),
+            None => self.solver.pressure(),
+        };
+        save_checkpoint(path, &state, pressure).map(|()| true)
     }
 
     /// Before the first step: continues from the checkpoint at `path` when it holds the state of a
@@ -297,7 +337,8 @@ impl<'a> SlidingState<'a> {
         }
         let key = self.key().to_string();
         let (energies, steps) = (self.diameters.len(), self.offsets.len());
-        match load_checkpoint(path, &key, &mut self.solver, energies, steps) {
+        let pm = self.setup.material.flow_pressure();
+        match load_checkpoint(path, &key, &mut self.solver, pm, energies, steps) {
             Ok(None) => Resumed::Fresh,
             Err(why) => Resumed::Ignored(why),
             Ok(Some(state)) => match self.restore(state) {
@@ -325,12 +366,16 @@ impl<'a> SlidingState<'a> {
         }
         self.finished = state.finished;
         self.done = state.done;
-        self.load = Some(LoadState {
+        // A checkpoint between two loads holds no step of the next one: it begins cold.
+        self.load = (!state.steps.is_empty()).then(|| LoadState {
             rules,
             memory: state.memory,
             steps: state.steps,
             timing: state.timing,
         });
+        if let Some(kept) = self.kept.as_mut() {
+            kept.copy_from_slice(self.solver.pressure());
+        }
         Ok(())
     }
 }

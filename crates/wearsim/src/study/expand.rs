@@ -163,6 +163,7 @@ fn materials(table: &Table) -> Result<Vec<MaterialChoice>> {
                     None => format!("material{}", i + 1),
                     Some(_) => return Err(Error::run_file("[[materials]] `name` must be a string")),
                 };
+                crate::check::name("[[materials]] `name`", &name).map_err(Error::run_file)?;
                 // A material may carry its own surface parameters (e.g. the steady-state h_rms of
                 // Kim et al.'s ceramics): `[materials.surface]` keys replace those of [surface].
                 let overrides = match t.remove("surface") {
@@ -195,6 +196,7 @@ fn materials(table: &Table) -> Result<Vec<MaterialChoice>> {
                     )))
                 }
             };
+            crate::check::name("[material] `name`", &name).map_err(Error::run_file)?;
             for (m, v) in product(&t, "material", &["fracture_energies"])? {
                 materials.push((name.clone(), m, v, Table::new()));
             }

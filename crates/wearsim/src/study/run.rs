@@ -8,13 +8,13 @@ use std::sync::Mutex;
 use crate::error::{Error, Interrupt, Result};
 use crate::output::{JobResult, Provenance, StepRow};
 use crate::run::SlidingRun;
-use crate::sliding::Checkpointing;
+use crate::sliding::{Checkpointing, Resumed};
 use crate::study::expand::Job;
 use crate::study::store::{stored_result, write_result, Claim, Stored, CLAIM_REFRESH};
 
 /// Runs one job; a raised `interrupt` stops it with [`Error::Interrupted`].
 pub fn run_job(job: &Job, interrupt: &Interrupt) -> Result<JobResult> {
-    run_job_observed(job, interrupt, None, || {})
+    run_job_observed(job, interrupt, None, || {}, |_| {})
 }
 
 /// Path of job `index`'s checkpoint in a study folder (see [`crate::sliding::Checkpointing`]).
@@ -31,19 +31,21 @@ pub fn job_steps(job: &Job) -> usize {
 }
 
 /// [`run_job`], calling `on_step` after every sliding step (progress of a long job), saving its
-/// state and resuming from it as `checkpointing` says. The job is a sliding run like any other
-/// ([`SlidingRun`]), and its job file keeps every warning of it, its surfaces' included.
+/// state and resuming from it as `checkpointing` says (`on_checkpoint` is told what became of the
+/// checkpoint: resumed, set aside, saved when stopped, not written). The job is a sliding run like
+/// any other ([`SlidingRun`]), and its job file keeps every warning of it, its surfaces' included.
 pub fn run_job_observed(
     job: &Job,
     interrupt: &Interrupt,
     checkpointing: Option<&Checkpointing>,
     on_step: impl Fn(),
+    on_checkpoint: impl FnMut(&Resumed),
 ) -> Result<JobResult> {
     let run = &job.run;
     let mut outcome =
         SlidingRun::prepare(run)?
             .interrupted_by(interrupt)
-            .run_resumable(checkpointing, |_| {}, |_| on_step())?;
+            .run_resumable(checkpointing, on_checkpoint, |_| on_step())?;
     let r = outcome
         .runs
         .pop()
@@ -92,6 +94,9 @@ pub struct RunSummary {
     pub claimed_elsewhere: Vec<usize>,
     /// Job files that could not be read and were computed again, with the reason.
     pub recomputed: Vec<String>,
+    /// What became of the jobs' checkpoints where it needs saying: one set aside (damaged, of other
+    /// inputs) or one that could not be written (a full disk), per job.
+    pub checkpoint_warnings: Vec<String>,
 }
 
 /// Runs the given jobs with `workers` jobs at once, the threads of the current rayon pool shared
@@ -139,6 +144,7 @@ pub fn run_jobs(
     let failed: Mutex<Vec<Error>> = Mutex::new(Vec::new());
     let elsewhere: Mutex<Vec<usize>> = Mutex::new(Vec::new());
     let held: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+    let notes: Mutex<Vec<String>> = Mutex::new(Vec::new());
     let stop = std::sync::atomic::AtomicBool::new(false);
     let workers = workers.clamp(1, pending.len().max(1));
     let threads_per_worker = (rayon::current_num_threads() / workers).max(1);
@@ -183,12 +189,23 @@ pub fn run_jobs(
                             path: checkpoint_path(dir, job.index),
                             every,
                         });
+                        let on_checkpoint = |r: &Resumed| {
+                            let note = match r {
+                                Resumed::Ignored(why) => format!("job {}: checkpoint not used: {why}", job.index),
+                                Resumed::NotSaved(why) => format!("job {}: checkpoint not saved: {why}", job.index),
+                                _ => return,
+                            };
+                            if let Ok(mut notes) = notes.lock() {
+                                notes.push(note);
+                            }
+                        };
                         let outcome = pool
                             .install(|| {
-                                run_job_observed(job, interrupt, checkpointing.as_ref(), || {
+                                let on_step = || {
                                     steps_done.fetch_add(1, Ordering::Relaxed);
                                     report(done.load(Ordering::Relaxed));
-                                })
+                                };
+                                run_job_observed(job, interrupt, checkpointing.as_ref(), on_step, on_checkpoint)
                             })
                             .and_then(|r| write_result(dir, &r));
                         if outcome.is_ok() {
@@ -223,6 +240,7 @@ pub fn run_jobs(
         first
     })?;
     summary.computed = done.into_inner();
+    summary.checkpoint_warnings = notes.into_inner().map_err(|_| lock_error())?;
     summary.claimed_elsewhere = elsewhere.into_inner().map_err(|_| lock_error())?;
     summary.claimed_elsewhere.sort_unstable();
     let mut failed = failed.into_inner().map_err(|_| lock_error())?;
@@ -262,18 +280,20 @@ pub fn workers_for_memory(jobs: &[&Job], workers: usize) -> Result<(usize, Optio
         largest.1,
         crate::check::SLIDING_ARRAYS,
     )?;
-    let per_job = crate::check::SLIDING_ARRAYS * 8.0 * (largest.0 * largest.1) as f64;
-    match crate::check::available_memory() {
-        Some(have) if per_job * workers as f64 > have as f64 => {
-            let fit = ((have as f64 / per_job) as usize).max(1);
+    let per_job =
+        crate::check::memory_need(largest.0, largest.1, crate::check::SLIDING_ARRAYS) - crate::check::BASE_MEMORY;
+    match crate::check::memory_room() {
+        Some(room) if per_job * workers as f64 + crate::check::BASE_MEMORY > room.bytes as f64 => {
+            let fit = (((room.bytes as f64 - crate::check::BASE_MEMORY) / per_job) as usize).max(1);
             Ok((
                 fit,
                 Some(format!(
-                    "{workers} jobs of {}×{} pixels at once would not fit in the {:.1} GiB of memory available; \
+                    "{workers} jobs of {}×{} pixels at once would not fit in the {:.1} GiB this process may use ({}); \
                      running {fit} at a time",
                     largest.0,
                     largest.1,
-                    have as f64 / (1u64 << 30) as f64
+                    room.bytes as f64 / (1u64 << 30) as f64,
+                    room.limit
                 )),
             ))
         }

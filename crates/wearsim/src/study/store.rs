@@ -3,12 +3,14 @@
 //! per job under way, so that runs sharing a folder (Slurm shards, a second run started by
 //! mistake) never compute a job twice nor touch each other's files.
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, SystemTime};
 
 use crate::error::{Error, Result};
-use crate::io::{host_name, read_text, temporary_sibling, write_text};
+use crate::io::{
+    create_claim_file, folder_owner, host_name, make_folder, marker, process_gone, read_text, temporary_sibling,
+    write_json, write_text, FolderOwner, MARKER,
+};
 use crate::output::{read_job_file, JobResult};
 use crate::study::expand::{Job, Study};
 
@@ -37,7 +39,133 @@ pub fn write_result(dir: &Path, result: &JobResult) -> Result<()> {
             ),
         ));
     }
-    write_text(&path, &text)
+    write_text(&path, &with_checksum(&text))
+}
+
+/// The key a job file's checksum is written under, last in the file.
+const CHECKSUM_KEY: &str = ",\"checksum\":\"fnv1a64:";
+
+/// A job file's text with the checksum of its JSON appended as its last key, so that a file
+/// damaged or edited since it was written (one digit of a wear rate) is found when it is read.
+fn with_checksum(json: &str) -> String {
+    let body = json.trim_end();
+    let open = body.strip_suffix('}').unwrap_or(body);
+    format!("{open}{CHECKSUM_KEY}{:016x}\"}}", fnv1a64(body.as_bytes()))
+}
+
+/// FNV-1a, 64 bits.
+fn fnv1a64(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
+/// Checks the checksum of a job file's text; files of earlier versions have none and pass (their
+/// values are still checked, [`out_of_range`]).
+fn checksum_matches(text: &str) -> bool {
+    let text = text.trim_end();
+    let Some(k) = text.rfind(CHECKSUM_KEY) else { return true };
+    let given = &text[k + CHECKSUM_KEY.len()..];
+    let Some(given) = given.strip_suffix("\"}") else {
+        return false;
+    };
+    given == format!("{:016x}", fnv1a64(format!("{}}}", &text[..k]).as_bytes()))
+}
+
+/// What in a job's result is out of the range any run gives, if anything: results for another
+/// number of fracture energies, negative rates, volumes or means, an R² outside [0, 1], a contact
+/// area outside [0, 1], volumes or particle counts that fall along the slide.
+pub fn out_of_range(r: &JobResult, job: &Job) -> Option<String> {
+    let energies = &job.run.material.fracture_energies;
+    if r.results.len() != energies.len() {
+        return Some(format!(
+            "results for {} fracture energies where the job has {}",
+            r.results.len(),
+            energies.len()
+        ));
+    }
+    let nonneg = |v: f64| v.is_finite() && v >= 0.0;
+    let ratio = |v: f64| v.is_finite() && (-1e-9..=1.0 + 1e-9).contains(&v);
+    for (e, (w, &g)) in r.results.iter().zip(energies).enumerate() {
+        let optional = [
+            ("wear_rate", w.wear_rate),
+            ("wear_coefficient", w.wear_coefficient),
+            ("particle_rate", w.particle_rate),
+            ("wear_rate_estimate", w.wear_rate_estimate),
+            ("memory_decay_length", w.memory_decay_length),
+            ("memory_fit_initial_junctions", w.memory_fit_initial_junctions),
+            ("running_in_decay_lengths", w.running_in_decay_lengths),
+            ("critical_residence", w.critical_residence),
+        ];
+        let plain = [
+            ("fit_window_start", w.fit_window_start),
+            ("initial_volume", w.initial_volume),
+            ("static_wear_rate", w.static_wear_rate),
+            ("static_wear_coefficient_std", w.static_wear_coefficient_std),
+            ("static_wear_rate_mean", w.static_wear_rate_mean),
+            ("static_wear_rate_std", w.static_wear_rate_std),
+            ("junctions_mean", w.junctions_mean),
+            ("critical_junctions_mean", w.critical_junctions_mean),
+        ];
+        let ratios = [
+            ("wear_rate_r2", w.wear_rate_r2),
+            ("memory_decay_r2", w.memory_decay_r2),
+            ("static_wear_coefficient", Some(w.static_wear_coefficient)),
+            ("static_wear_coefficient_mean", Some(w.static_wear_coefficient_mean)),
+        ];
+        let bad = optional
+            .iter()
+            .find(|(_, v)| v.is_some_and(|v| !nonneg(v)))
+            .map(|(name, v)| (*name, v.unwrap_or_default(), "≥ 0"))
+            .or_else(|| plain.iter().find(|(_, v)| !nonneg(*v)).map(|(n, v)| (*n, *v, "≥ 0")))
+            .or_else(|| {
+                ratios
+                    .iter()
+                    .find(|(_, v)| v.is_some_and(|v| !ratio(v)))
+                    .map(|(n, v)| (*n, v.unwrap_or_default(), "within [0, 1]"))
+            })
+            .or_else(|| (w.fracture_energy != g).then_some(("fracture_energy", w.fracture_energy, "the job's")))
+            .or_else(|| {
+                (!(w.critical_diameter.is_finite() && w.critical_diameter > 0.0)).then_some((
+                    "critical_diameter",
+                    w.critical_diameter,
+                    "> 0",
+                ))
+            });
+        if let Some((name, value, rule)) = bad {
+            return Some(format!("`results[{e}].{name}` = {value:e}, which must be {rule}"));
+        }
+    }
+    if r.steps.is_empty() {
+        return Some("no sliding step".into());
+    }
+    for (k, st) in r.steps.iter().enumerate() {
+        let counts = [
+            st.n_critical.len(),
+            st.n_formed.len(),
+            st.volume.len(),
+            st.static_wear_coefficient.len(),
+        ];
+        let bad = counts.iter().any(|&c| c != energies.len())
+            || !nonneg(st.s)
+            || !ratio(st.contact_area)
+            || st.volume.iter().any(|&v| !nonneg(v))
+            || st.static_wear_coefficient.iter().any(|&v| !ratio(v));
+        let falls = k > 0 && {
+            let prev = &r.steps[k - 1];
+            st.s < prev.s
+                || st.volume.iter().zip(&prev.volume).any(|(a, b)| a < b)
+                || st.n_formed.iter().zip(&prev.n_formed).any(|(a, b)| a < b)
+        };
+        if bad || falls {
+            return Some(format!(
+                "a step out of range (step {k}, s = {:e}: volumes and particle counts only grow along the slide, \
+                 the contact area is within [0, 1])",
+                st.s
+            ));
+        }
+    }
+    None
 }
 
 /// What a study folder holds for one job.
@@ -66,6 +194,12 @@ pub fn stored_result(job: &Job, dir: &Path) -> Result<Stored> {
         }
         Err(e) => return Err(e),
     };
+    if !checksum_matches(&read_text(&path)?) {
+        return Ok(Stored::Unreadable(format!(
+            "{}: its checksum does not match its contents: the file was edited or damaged since the job wrote it",
+            path.display()
+        )));
+    }
     if r.format != crate::output::JOB_FORMAT {
         return Err(Error::StudyFolder {
             dir: dir.into(),
@@ -92,6 +226,12 @@ pub fn stored_result(job: &Job, dir: &Path) -> Result<Stored> {
                 job.index
             ),
         ));
+    }
+    if let Some(why) = out_of_range(&r, job) {
+        return Ok(Stored::Unreadable(format!(
+            "{}: holds {why}; no run writes that, so the file was edited or damaged",
+            path.display()
+        )));
     }
     Ok(Stored::Done(Box::new(r)))
 }
@@ -133,20 +273,13 @@ impl Claim {
     pub fn take(dir: &Path, index: usize) -> Result<Option<Claim>> {
         let path = claim_path(dir, index);
         for _ in 0..2 {
-            match std::fs::OpenOptions::new().write(true).create_new(true).open(&path) {
-                Ok(mut f) => {
-                    let owner = format!("{} {}\n", host_name(), std::process::id());
-                    f.write_all(owner.as_bytes()).map_err(|e| Error::io(&path, e))?;
-                    return Ok(Some(Claim { path }));
-                }
-                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
-                    if !Self::is_stale(&path) {
-                        return Ok(None);
-                    }
-                    let _ = std::fs::remove_file(&path);
-                }
-                Err(e) => return Err(Error::io(&path, e)),
+            if create_claim_file(&path)? {
+                return Ok(Some(Claim { path }));
             }
+            if !Self::is_stale(&path) {
+                return Ok(None);
+            }
+            let _ = std::fs::remove_file(&path);
         }
         Ok(None)
     }
@@ -191,7 +324,8 @@ pub fn prepare_folder(dir: &Path, study: &Study, base: &Path) -> Result<()> {
         }
     }
     crate::io::refuse_inputs_inside(dir, &inputs)?;
-    std::fs::create_dir_all(dir.join("jobs")).map_err(|e| Error::io(dir, e))?;
+    refuse_foreign_study_folder(dir)?;
+    make_folder(&dir.join("jobs"))?;
     let hash_path = dir.join("study.hash");
     // The folder belongs to the first study that links its hash file into place: a hard link
     // cannot replace an existing file, so of two studies started at once exactly one wins, and the
@@ -221,6 +355,9 @@ pub fn prepare_folder(dir: &Path, study: &Study, base: &Path) -> Result<()> {
         });
     }
     // Written by the study that claimed the folder (or, if it was killed first, by the next run).
+    if !dir.join(MARKER).is_file() {
+        write_json(&dir.join(MARKER), &marker(STUDY_COMMAND, None))?;
+    }
     if !dir.join("study.toml").is_file() {
         let base = base.canonicalize().map_err(|e| Error::io(base, e))?;
         write_text(&dir.join("study.base"), &base.to_string_lossy())?;
@@ -235,11 +372,77 @@ pub fn prepare_folder(dir: &Path, study: &Study, base: &Path) -> Result<()> {
             .ok()
             .and_then(|t| SystemTime::now().duration_since(t).ok())
             .is_some_and(|age| age > CLAIM_EXPIRY);
-        if name.starts_with('.') && name.ends_with(".tmp") && old {
+        if name.starts_with('.') && name.ends_with(".tmp") && (old || abandoned_here(&name)) {
             let _ = std::fs::remove_file(entry.path());
         }
     }
     Ok(())
+}
+
+/// The command whose folders are study folders (the marker's `command`).
+pub const STUDY_COMMAND: &str = "study run";
+
+/// Refuses a study folder that is not empty and is not a study folder: another command's results,
+/// the user's own files (a `results.csv` of theirs would be replaced by `collect`). A folder being
+/// made by another study at this moment (only `jobs` and its hash file's temporaries) is left to the
+/// hash-file race of [`prepare_folder`].
+fn refuse_foreign_study_folder(dir: &Path) -> Result<()> {
+    if dir.exists() && !dir.is_dir() {
+        return Err(Error::file(dir, "exists and is not a folder; give another --out"));
+    }
+    let jobs = dir.join("jobs");
+    if jobs.exists() && !jobs.is_dir() {
+        return Err(Error::StudyFolder {
+            dir: dir.into(),
+            message: format!(
+                "holds a file {} where a study keeps its job folder, so it is no study folder; give a new or empty \
+                 --out folder for the study",
+                jobs.display()
+            ),
+        });
+    }
+    // Listed once: what a study being made holds before its hash file (which never goes away) is
+    // its `jobs` folder and the temporary files of that hash file.
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(());
+    };
+    let starting = entries.flatten().all(|e| {
+        let name = e.file_name().to_string_lossy().to_string();
+        name == "jobs" || name.starts_with('.') && name.contains(".study.hash.") && name.ends_with(".tmp")
+    });
+    if starting {
+        return Ok(());
+    }
+    match folder_owner(dir)? {
+        FolderOwner::Nobody => Ok(()),
+        FolderOwner::Wearsim { command, .. } if command == STUDY_COMMAND => Ok(()),
+        FolderOwner::Wearsim { command, .. } => Err(Error::StudyFolder {
+            dir: dir.into(),
+            message: format!(
+                "holds the results of `wearsim {command}`, not a study; give a new or empty --out folder for the study"
+            ),
+        }),
+        FolderOwner::Foreign => Err(Error::StudyFolder {
+            dir: dir.into(),
+            message: "holds files that wearsim did not write and is no study folder; give a new or empty --out \
+                      folder for the study (wearsim writes results.csv and more there)"
+                .into(),
+        }),
+    }
+}
+
+/// Whether a temporary file `.NAME.HOST.PID-K.tmp` belongs to a process of this host that is gone.
+fn abandoned_here(name: &str) -> bool {
+    let Some(owner) = name.strip_suffix(".tmp") else {
+        return false;
+    };
+    let Some((rest, pid_k)) = owner.rsplit_once('.') else {
+        return false;
+    };
+    let Some((pid, _)) = pid_k.split_once('-') else {
+        return false;
+    };
+    rest.ends_with(&format!(".{}", host_name())) && process_gone(pid) == Some(true)
 }
 
 /// The stored study of a folder and the folder its relative paths resolve against.
@@ -268,6 +471,20 @@ pub fn stored_study(dir: &Path) -> Result<(String, PathBuf)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_job_files_checksum_finds_one_changed_digit_and_files_without_one_pass() {
+        let json = r#"{"format":3,"results":[{"wear_rate":1.2345e-4}]}"#;
+        let text = with_checksum(json);
+        assert!(text.starts_with(&json[..json.len() - 1]) && text.ends_with("\"}"));
+        assert!(checksum_matches(&text) && checksum_matches(&format!("{text}\n")));
+        assert!(!checksum_matches(&text.replace("1.2345", "1.2346")));
+        assert!(!checksum_matches(&text.replace("fnv1a64:", "fnv1a64:0")));
+        // Written before checksums: only range-checked.
+        assert!(checksum_matches(json));
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        assert_eq!(v["results"][0]["wear_rate"], 1.2345e-4);
+    }
 
     #[test]
     fn a_claim_is_exclusive_and_one_left_by_a_dead_process_is_taken_over() {

@@ -44,8 +44,11 @@ pub struct Measured {
 /// `.npy`/`.npz` arrays are indexed `[x, y]`, as wearsim writes them. Lines starting with `#`, `%` or
 /// `//` are comments; non-numeric lines before the first number are a header and skipped.
 pub fn read(path: &Path) -> Result<Measured> {
+    regular_file(path)?;
     match extension(path).as_str() {
         "npy" => {
+            let (rows, cols) = crate::io::npy_shape(path, "a height map")?;
+            check_memory(path, rows, cols)?;
             let a = read_npy_2d(path, &HEIGHT_TYPES, "a height map")?;
             Ok(a.into())
         }
@@ -67,9 +70,64 @@ impl From<crate::io::Npy2> for Measured {
     }
 }
 
-fn read_npz(path: &Path) -> Result<Measured> {
+/// Refuses a path that is no regular file: a device (`/dev/zero` reads forever), a pipe, a folder.
+pub fn regular_file(path: &Path) -> Result<()> {
+    let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
+    if meta.is_dir() {
+        return Err(Error::file(
+            path,
+            "is a folder, where a file is needed; give the height map file's path",
+        ));
+    }
+    if !meta.is_file() {
+        return Err(Error::file(
+            path,
+            "is not a regular file (a device, a pipe or a socket); give a height map file (.npy, .npz or text)",
+        ));
+    }
+    Ok(())
+}
+
+/// Memory of reading a height map into a surface, in arrays of its pixels' doubles: the file's
+/// data, the values, their copy cropped to even sides and the surface made of it.
+const READ_ARRAYS: f64 = 4.0;
+
+/// Refuses a height map of `rows × cols` that this process cannot hold, before reading its data.
+fn check_memory(path: &Path, rows: usize, cols: usize) -> Result<()> {
+    match crate::check::memory_shortfall("reading the height map", rows, cols, READ_ARRAYS) {
+        Some(why) => Err(Error::file(
+            path,
+            why.replace("lower `grid`", "crop or resample the map"),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// The shape (rows, cols) of the height map of an `.npy` or `.npz` file, from its header alone:
+/// an archive's array is inflated only as far as its header. `None` for text files.
+pub fn array_shape(path: &Path) -> Result<Option<(usize, usize)>> {
+    match extension(path).as_str() {
+        "npy" => {
+            regular_file(path)?;
+            crate::io::npy_shape(path, "a height map").map(Some)
+        }
+        "npz" => {
+            regular_file(path)?;
+            let (mut archive, chosen) = open_npz(path)?;
+            let mut entry = archive
+                .by_name(&chosen)
+                .map_err(|e| Error::file(path, format!("cannot read {chosen}: {e}")))?;
+            let size = entry.size();
+            crate::io::npy_shape_from(&mut entry, size, &path.join(&chosen), "a height map").map(Some)
+        }
+        _ => Ok(None),
+    }
+}
+
+/// The archive of an `.npz` file and the name of its height map's entry.
+fn open_npz(path: &Path) -> Result<(zip::ZipArchive<std::fs::File>, String)> {
     let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
-    let mut archive =
+    let archive =
         zip::ZipArchive::new(file).map_err(|e| Error::file(path, format!("not a NumPy .npz archive ({e})")))?;
     let names: Vec<String> = archive
         .file_names()
@@ -96,6 +154,15 @@ fn read_npz(path: &Path) -> Result<Measured> {
             )
         })?
         .clone();
+    Ok((archive, chosen))
+}
+
+fn read_npz(path: &Path) -> Result<Measured> {
+    // The header first, inflating nothing more: a small archive may hold gigabytes of zeros.
+    if let Some((rows, cols)) = array_shape(path)? {
+        check_memory(path, rows, cols)?;
+    }
+    let (mut archive, chosen) = open_npz(path)?;
     let mut entry = archive
         .by_name(&chosen)
         .map_err(|e| Error::file(path, format!("cannot read {chosen}: {e}")))?;

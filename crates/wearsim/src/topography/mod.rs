@@ -17,6 +17,6 @@ mod load;
 mod prepare;
 
 pub use fit::{fit, surface_block, SpectrumFit, FIT_METHOD};
-pub use formats::{metres_per, read, Measured};
+pub use formats::{array_shape, metres_per, read, regular_file, Measured};
 pub use load::{file_grid, file_span, load, probe_grid, FileSurface, Loaded};
 pub use prepare::{periodicity, preprocess, Detrend, Periodicity, Preprocess, NOT_PERIODIC};
