@@ -37,6 +37,31 @@ pub struct FieldsWriter {
     every: usize,
 }
 
+/// The indices of the loads whose fields are kept, in order and once each; an error naming the
+/// option for a step interval of 0 or a load index the run does not have.
+fn kept_loads(selection: &FieldSelection, loads: usize) -> Result<Vec<usize>> {
+    if selection.every == 0 {
+        return Err(Error::param("fields every", "must be at least 1 (every step)"));
+    }
+    if let Some(&bad) = selection.loads.iter().find(|&&i| i >= loads) {
+        return Err(Error::param(
+            "fields loads",
+            format!(
+                "load index {bad} does not exist; the run has {loads} loads, indices 0 … {}",
+                loads.saturating_sub(1)
+            ),
+        ));
+    }
+    Ok(if selection.loads.is_empty() {
+        (0..loads).collect()
+    } else {
+        let mut k = selection.loads.clone();
+        k.sort_unstable();
+        k.dedup();
+        k
+    })
+}
+
 impl FieldsWriter {
     /// Creates the store at `path` (a folder that must not exist) for a run of `loads` over the
     /// schedule `offsets` (pixels) on `grid`.
@@ -49,27 +74,7 @@ impl FieldsWriter {
         selection: &FieldSelection,
         inputs: Value,
     ) -> Result<Self> {
-        if selection.every == 0 {
-            return Err(Error::param("fields every", "must be at least 1 (every step)"));
-        }
-        if let Some(&bad) = selection.loads.iter().find(|&&i| i >= loads.len()) {
-            return Err(Error::param(
-                "fields loads",
-                format!(
-                    "load index {bad} does not exist; the run has {} loads, indices 0 … {}",
-                    loads.len(),
-                    loads.len().saturating_sub(1)
-                ),
-            ));
-        }
-        let kept: Vec<usize> = if selection.loads.is_empty() {
-            (0..loads.len()).collect()
-        } else {
-            let mut k = selection.loads.clone();
-            k.sort_unstable();
-            k.dedup();
-            k
-        };
+        let kept = kept_loads(selection, loads.len())?;
         let mut load_slot = vec![None; loads.len()];
         for (slot, &i) in kept.iter().enumerate() {
             load_slot[i] = Some(slot);
