@@ -99,6 +99,56 @@ pub struct RunSummary {
     pub checkpoint_warnings: Vec<String>,
 }
 
+/// Refreshes the claims of the jobs under way every [`CLAIM_REFRESH`] until `stop`, so that other
+/// runs sharing the folder see them alive.
+fn keep_claims_fresh(stop: &std::sync::atomic::AtomicBool, held: &Mutex<Vec<PathBuf>>) {
+    let mut since = std::time::Instant::now();
+    while !stop.load(Ordering::Relaxed) {
+        std::thread::sleep(std::time::Duration::from_millis(200));
+        if since.elapsed() >= CLAIM_REFRESH {
+            if let Ok(paths) = held.lock() {
+                for p in paths.iter() {
+                    refresh_claim(p);
+                }
+            }
+            since = std::time::Instant::now();
+        }
+    }
+}
+
+/// Runs one claimed job (resuming from and saving its checkpoint when `checkpoint_every` is set) and
+/// writes its job file; the checkpoint is removed once the file is in place. What became of a
+/// checkpoint that was not used or could not be written goes to `notes`.
+fn run_and_store(
+    job: &Job,
+    dir: &Path,
+    checkpoint_every: Option<std::time::Duration>,
+    interrupt: &Interrupt,
+    notes: &Mutex<Vec<String>>,
+    on_step: impl Fn(),
+) -> Result<()> {
+    let checkpointing = checkpoint_every.map(|every| Checkpointing {
+        path: checkpoint_path(dir, job.index),
+        every,
+    });
+    let on_checkpoint = |r: &Resumed| {
+        let note = match r {
+            Resumed::Ignored(why) => format!("job {}: checkpoint not used: {why}", job.index),
+            Resumed::NotSaved(why) => format!("job {}: checkpoint not saved: {why}", job.index),
+            _ => return,
+        };
+        if let Ok(mut notes) = notes.lock() {
+            notes.push(note);
+        }
+    };
+    run_job_observed(job, interrupt, checkpointing.as_ref(), on_step, on_checkpoint)
+        .and_then(|r| write_result(dir, &r))?;
+    if let Some(c) = &checkpointing {
+        let _ = std::fs::remove_file(&c.path);
+    }
+    Ok(())
+}
+
 /// Runs the given jobs with `workers` jobs at once, the threads of the current rayon pool shared
 /// between them (one worker: every thread on each job, for large grids; as many workers as threads:
 /// one thread per job, for many small jobs). A job whose file exists is skipped; one that another
@@ -150,21 +200,7 @@ pub fn run_jobs(
     let threads_per_worker = (rayon::current_num_threads() / workers).max(1);
     let lock_error = || Error::param("study", "a worker of the study runner panicked");
     std::thread::scope(|scope| -> Result<()> {
-        // Keeps this run's claims alive for other runs sharing the folder.
-        scope.spawn(|| {
-            let mut since = std::time::Instant::now();
-            while !stop.load(Ordering::Relaxed) {
-                std::thread::sleep(std::time::Duration::from_millis(200));
-                if since.elapsed() >= CLAIM_REFRESH {
-                    if let Ok(paths) = held.lock() {
-                        for p in paths.iter() {
-                            refresh_claim(p);
-                        }
-                    }
-                    since = std::time::Instant::now();
-                }
-            }
-        });
+        scope.spawn(|| keep_claims_fresh(&stop, &held));
         let handles: Vec<_> = (0..workers)
             .map(|_| {
                 scope.spawn(|| -> Result<()> {
@@ -185,34 +221,12 @@ pub fn run_jobs(
                             continue;
                         }
                         held.lock().map_err(|_| lock_error())?.push(claim.path().to_path_buf());
-                        let checkpointing = checkpoint_every.map(|every| Checkpointing {
-                            path: checkpoint_path(dir, job.index),
-                            every,
-                        });
-                        let on_checkpoint = |r: &Resumed| {
-                            let note = match r {
-                                Resumed::Ignored(why) => format!("job {}: checkpoint not used: {why}", job.index),
-                                Resumed::NotSaved(why) => format!("job {}: checkpoint not saved: {why}", job.index),
-                                _ => return,
-                            };
-                            if let Ok(mut notes) = notes.lock() {
-                                notes.push(note);
-                            }
+                        let on_step = || {
+                            steps_done.fetch_add(1, Ordering::Relaxed);
+                            report(done.load(Ordering::Relaxed));
                         };
-                        let outcome = pool
-                            .install(|| {
-                                let on_step = || {
-                                    steps_done.fetch_add(1, Ordering::Relaxed);
-                                    report(done.load(Ordering::Relaxed));
-                                };
-                                run_job_observed(job, interrupt, checkpointing.as_ref(), on_step, on_checkpoint)
-                            })
-                            .and_then(|r| write_result(dir, &r));
-                        if outcome.is_ok() {
-                            if let Some(c) = &checkpointing {
-                                let _ = std::fs::remove_file(&c.path);
-                            }
-                        }
+                        let outcome =
+                            pool.install(|| run_and_store(job, dir, checkpoint_every, interrupt, &notes, on_step));
                         held.lock().map_err(|_| lock_error())?.retain(|p| p != claim.path());
                         drop(claim);
                         match outcome {
