@@ -110,6 +110,7 @@ def slide(
     running_in: float = ...,
     step_running_in: int = ...,
     step: int = ...,
+    stopping: str = "settled-map",
     threads: Optional[int] = None,
     progress: Optional[Callable[[int, int], None]] = None,
 ) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]: ...

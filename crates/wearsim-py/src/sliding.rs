@@ -29,7 +29,7 @@ fn series_and_summary<'py>(
 
 /// Sliding model on two given surfaces. Returns (series columns, summary).
 #[pyfunction]
-#[pyo3(signature = (top, bottom, length, material, loads, modulus = "half-space", tolerance = wearsim::contact::DEFAULT_TOLERANCE, max_iterations = wearsim::contact::DEFAULT_MAX_ITERATIONS, connectivity = DEFAULT_CONNECTIVITY, distance = DEFAULT_DISTANCE, running_in = DEFAULT_RUNNING_IN, step_running_in = DEFAULT_STEP_RUNNING_IN, step = DEFAULT_STEP, threads = None, progress = None))]
+#[pyo3(signature = (top, bottom, length, material, loads, modulus = "half-space", tolerance = wearsim::contact::DEFAULT_TOLERANCE, max_iterations = wearsim::contact::DEFAULT_MAX_ITERATIONS, connectivity = DEFAULT_CONNECTIVITY, distance = DEFAULT_DISTANCE, running_in = DEFAULT_RUNNING_IN, step_running_in = DEFAULT_STEP_RUNNING_IN, step = DEFAULT_STEP, stopping = "settled-map", threads = None, progress = None))]
 #[allow(clippy::too_many_arguments)]
 fn slide<'py>(
     py: Python<'py>,
@@ -46,6 +46,7 @@ fn slide<'py>(
     running_in: f64,
     step_running_in: usize,
     step: usize,
+    stopping: &str,
     threads: Option<usize>,
     progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
@@ -66,6 +67,7 @@ fn slide<'py>(
         sliding: Some(
             SlidingConfig::new(loads, distance, running_in, step_running_in, step, Some(grid.nx())).map_err(to_py)?,
         ),
+        stopping: stopping.parse().map_err(to_py)?,
     };
     let pair = SurfacePair::of_arrays(t, b);
     let outcome = interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, steps| {

@@ -159,7 +159,7 @@ pub mod surface;
 pub mod topography;
 pub mod wear;
 
-pub use contact::{ContactFields, ContactMap, ContactSolver, Device, SolveInfo, SolverOptions, Termination};
+pub use contact::{ContactFields, ContactMap, ContactSolver, Device, SolveInfo, SolverOptions, Stopping, Termination};
 pub use error::{Error, Interrupt, Result};
 pub use grid::Grid;
 pub use influence::Boundary;

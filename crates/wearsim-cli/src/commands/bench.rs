@@ -210,6 +210,7 @@ pub fn run_slide(args: &SlideArgs) -> Result<()> {
         boundary: Default::default(),
         device: args.device,
         sliding: Some(sliding),
+        stopping: wearsim::contact::SLIDING_STOPPING,
     };
     let (material, e_star) = (&config.material, config.effective_modulus());
     let prepared = SlidingRun::prepare(&config)?;
@@ -248,7 +249,9 @@ pub fn run_slide(args: &SlideArgs) -> Result<()> {
         let n = args.warm_n;
         let (top, bottom) = paper_pair(n)?;
         let grid = wearsim::Grid::square(n, 1.0)?;
-        let mut solver = ContactSolver::on_device(args.device, grid, e_star, wearsim::Boundary::Periodic)?;
+        // As a sliding run solves its steps: until the contact map is settled.
+        let mut solver = ContactSolver::on_device(args.device, grid, e_star, wearsim::Boundary::Periodic)?
+            .with_options(wearsim::SolverOptions::default().with_stopping(wearsim::contact::SLIDING_STOPPING));
         let mut labeller = wearsim::junctions::JunctionLabeller::new(n, n, DEFAULT_CONNECTIVITY);
         solver.compose(&top, &bottom, 0)?;
         solver.solve_in_place(1e-3, material.flow_pressure())?;

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use serde::Deserialize;
 
-use crate::contact::Device;
+use crate::contact::{Device, Stopping};
 use crate::influence::Boundary;
 use crate::material::ModulusConvention;
 use crate::surface::Generation;
@@ -99,6 +99,7 @@ pub(super) struct RawSliding {
     pub(super) running_in: Option<f64>,
     pub(super) step_running_in: Option<usize>,
     pub(super) step: Option<usize>,
+    pub(super) stopping: Option<Stopping>,
 }
 
 /// A TOML error message on one line (they come with a source excerpt over several lines).

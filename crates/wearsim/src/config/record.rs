@@ -2,7 +2,7 @@
 
 use serde::Deserialize;
 
-use crate::contact::Device;
+use crate::contact::{Device, Stopping};
 use crate::material::ModulusConvention;
 use crate::surface::Generation;
 
@@ -79,6 +79,11 @@ pub struct InputRecord {
     pub step_running_in: Option<usize>,
     #[serde(rename = "sliding.step")]
     pub step: Option<usize>,
+    /// When each step's contact solve stopped, when not the default (the contact map settled);
+    /// absent in job files written before it was recorded, whose runs stopped at the tolerance and
+    /// whose wear results the settled map reproduces.
+    #[serde(rename = "sliding.stopping", default)]
+    pub stopping: Option<Stopping>,
 }
 
 impl InputRecord {

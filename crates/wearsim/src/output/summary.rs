@@ -112,7 +112,7 @@ impl<'a> SlidingInputs<'a> {
             surfaces: surface_source(&config.surfaces),
             material: &config.material,
             modulus: config.modulus,
-            solver: config.solver,
+            solver: config.solver.with_stopping(config.stopping),
             connectivity: config.connectivity,
             sliding,
         }
@@ -138,6 +138,7 @@ fn contact_inputs(modulus: ModulusConvention, solver: SolverOptions, connectivit
     json!({
         "modulus": modulus.name(),
         "tolerance": solver.tolerance(),
+        "stopping": solver.stopping().name(),
         "max_iterations": solver.max_iterations(),
         "connectivity": connectivity,
     })
@@ -191,7 +192,7 @@ pub fn sliding_summary(
         "critical_diameter": m.fracture_energies.iter().zip(m.critical_diameters()).map(|(g, d)| json!({"fracture_energy": g, "critical_diameter": d})).collect::<Vec<_>>(),
         "effective_modulus": m.effective_modulus(inputs.modulus),
         "modulus_convention": inputs.modulus.name(),
-        "solver": {"tolerance": inputs.solver.tolerance(), "residual_definition": RESIDUAL_DEFINITION, "per_load": solver},
+        "solver": {"tolerance": inputs.solver.tolerance(), "stopping": inputs.solver.stopping().name(), "residual_definition": RESIDUAL_DEFINITION, "per_load": solver},
         "steps_per_load": steps_per_load,
         "fit": "least-squares lines of V and N*₊ against s over the steps with s ≥ running_in·L",
         "static_wear_rate_convention": "W_static/ω = k_static Σ A_i; static_wear_coefficient and static_wear_rate at s = 0, *_mean and *_std over every offset of the run",
