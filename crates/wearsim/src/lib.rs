@@ -143,6 +143,7 @@
 pub mod check;
 pub mod config;
 pub mod contact;
+pub mod cost;
 pub mod error;
 pub mod fft;
 pub mod grid;

@@ -29,6 +29,10 @@ pub struct Args {
     /// Where the contact solver computes: cpu (or cuda, in builds with a GPU backend).
     #[arg(long, default_value = "cpu")]
     device: wearsim::Device,
+    /// Only measure this machine's calibration for the cost estimates of `slide` and `study run`
+    /// (a few seconds), cache it and print it.
+    #[arg(long)]
+    calibrate: bool,
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -70,6 +74,9 @@ fn paper_pair(n: usize) -> Result<(Surface, Surface)> {
 }
 
 pub fn run(args: &Args) -> Result<()> {
+    if args.calibrate {
+        return super::estimate::recalibrate();
+    }
     for &n in &args.sizes {
         check_size(n).with_context(|| format!("--sizes {n}"))?;
     }
