@@ -30,7 +30,7 @@ pub struct Args {
     #[arg(long, default_value = "cpu")]
     device: wearsim::Device,
     /// Only measure this machine's calibration for the cost estimates of `slide` and `study run`
-    /// (a few seconds), cache it and print it.
+    /// (about ten seconds), cache it and print it.
     #[arg(long)]
     calibrate: bool,
 }

@@ -7,14 +7,14 @@ use wearsim::config::RunConfig;
 use wearsim::cost::{cache_dir, Calibration, Estimate};
 use wearsim::study::Job;
 
-/// This machine's calibration: the cached one, or measured now (a few seconds) and cached.
+/// This machine's calibration: the cached one, or measured now (about ten seconds) and cached.
 pub fn calibration() -> Result<Calibration> {
     let dir = cache_dir();
     if let Some(c) = dir.as_deref().and_then(Calibration::cached) {
         return Ok(c);
     }
     eprintln!(
-        "calibrating this machine for cost estimates on {} (a few seconds, once per machine, wearsim version \
+        "calibrating this machine for cost estimates on {} (about ten seconds, once per machine, wearsim version \
          and thread count)",
         counted(rayon::current_num_threads(), "thread")
     );
