@@ -128,6 +128,7 @@ def slide(
     step: int = ...,
     particle_rule: str = ...,
     device: str = "cpu",
+    stopping: str = "settled-map",
     threads: Optional[int] = None,
     progress: Optional[Callable[[int, int], None]] = None,
 ) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]: ...

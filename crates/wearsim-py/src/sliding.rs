@@ -29,7 +29,7 @@ fn series_and_summary<'py>(
 
 /// Sliding model on two given surfaces. Returns (series columns, summary).
 #[pyfunction]
-#[pyo3(signature = (top, bottom, length, material, loads, modulus = "half-space", tolerance = wearsim::contact::DEFAULT_TOLERANCE, max_iterations = wearsim::contact::DEFAULT_MAX_ITERATIONS, connectivity = DEFAULT_CONNECTIVITY, distance = DEFAULT_DISTANCE, running_in = DEFAULT_RUNNING_IN, step_running_in = DEFAULT_STEP_RUNNING_IN, step = DEFAULT_STEP, particle_rule = DEFAULT_PARTICLE_RULE.name, device = "cpu", threads = None, progress = None))]
+#[pyo3(signature = (top, bottom, length, material, loads, modulus = "half-space", tolerance = wearsim::contact::DEFAULT_TOLERANCE, max_iterations = wearsim::contact::DEFAULT_MAX_ITERATIONS, connectivity = DEFAULT_CONNECTIVITY, distance = DEFAULT_DISTANCE, running_in = DEFAULT_RUNNING_IN, step_running_in = DEFAULT_STEP_RUNNING_IN, step = DEFAULT_STEP, particle_rule = DEFAULT_PARTICLE_RULE.name, device = "cpu", stopping = "settled-map", threads = None, progress = None))]
 #[allow(clippy::too_many_arguments)]
 fn slide<'py>(
     py: Python<'py>,
@@ -48,6 +48,7 @@ fn slide<'py>(
     step: usize,
     particle_rule: &str,
     device: &str,
+    stopping: &str,
     threads: Option<usize>,
     progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
@@ -73,6 +74,7 @@ fn slide<'py>(
                 .map_err(to_py)?
                 .with_particle_rule(rule),
         ),
+        stopping: stopping.parse().map_err(to_py)?,
     };
     let pair = SurfacePair::of_arrays(t, b);
     let outcome = interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, steps| {

@@ -143,6 +143,7 @@
 pub mod check;
 pub mod config;
 pub mod contact;
+pub mod cost;
 pub mod error;
 pub mod fft;
 pub mod grid;
@@ -159,7 +160,7 @@ pub mod surface;
 pub mod topography;
 pub mod wear;
 
-pub use contact::{ContactFields, ContactMap, ContactSolver, Device, SolveInfo, SolverOptions, Termination};
+pub use contact::{ContactFields, ContactMap, ContactSolver, Device, SolveInfo, SolverOptions, Stopping, Termination};
 pub use error::{Error, Interrupt, Result};
 pub use grid::Grid;
 pub use influence::Boundary;

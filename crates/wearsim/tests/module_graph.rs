@@ -11,7 +11,7 @@
 use std::collections::BTreeSet;
 use std::path::Path;
 
-const LAYERS: [&str; 18] = [
+const LAYERS: [&str; 19] = [
     "error",
     "check",
     "io",
@@ -27,6 +27,7 @@ const LAYERS: [&str; 18] = [
     "wear",
     "sliding",
     "config",
+    "cost",
     "output",
     "run",
     "study",

@@ -107,6 +107,7 @@ fn slide(top: &Surface, bottom: &Surface, loads: Vec<f64>) -> Vec<LoadRun> {
         boundary: Default::default(),
         device: Default::default(),
         sliding: Some(sliding),
+        stopping: wearsim::contact::SLIDING_STOPPING,
     };
     slide_config(&config, SurfacePair::of_arrays(top.clone(), bottom.clone()))
 }

@@ -25,6 +25,7 @@ fn arrays_run(top: &Surface, material: &Material, sliding: &SlidingConfig) -> Ru
         boundary: Default::default(),
         device: Default::default(),
         sliding: Some(sliding.clone()),
+        stopping: wearsim::contact::SLIDING_STOPPING,
     }
 }
 

@@ -32,6 +32,10 @@ pub struct Args {
     /// Where the contact solver computes: cpu (or cuda, in builds with a GPU backend).
     #[arg(long, default_value = "cpu")]
     device: wearsim::Device,
+    /// Only measure this machine's calibration for the cost estimates of `slide` and `study run`
+    /// (about ten seconds), cache it and print it.
+    #[arg(long)]
+    calibrate: bool,
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -73,6 +77,9 @@ fn paper_pair(n: usize) -> Result<(Surface, Surface)> {
 }
 
 pub fn run(args: &Args) -> Result<()> {
+    if args.calibrate {
+        return super::estimate::recalibrate();
+    }
     for &n in &args.sizes {
         check_size(n).with_context(|| format!("--sizes {n}"))?;
     }
@@ -214,6 +221,7 @@ pub fn run_slide(args: &SlideArgs) -> Result<()> {
         boundary: Default::default(),
         device: args.device,
         sliding: Some(sliding),
+        stopping: wearsim::contact::SLIDING_STOPPING,
     };
     let material = &config.material;
     let prepared = SlidingRun::prepare(&config)?;

@@ -3,6 +3,7 @@
 pub mod animate;
 pub mod bench;
 pub mod contact;
+pub mod estimate;
 pub mod fields;
 pub mod junctions;
 pub mod plot;

@@ -39,6 +39,10 @@ pub struct Args {
     /// --save-fields (the fields of the steps before a kill are not kept).
     #[arg(long, default_value = "5m", value_parser = humantime::parse_duration, value_name = "DURATION")]
     checkpoint_every: std::time::Duration,
+    /// Print the cost estimate (wall time, peak memory, Slurm --time and --mem) and stop: nothing
+    /// is computed or written (every run prints it before it starts).
+    #[arg(long)]
+    dry_run: bool,
 }
 
 /// The checkpoint file of a run into `out`: `.NAME.checkpoint` beside it.
@@ -129,11 +133,16 @@ pub fn run(args: &Args) -> Result<()> {
     super::polls_interrupt();
     let config = load_run(run)?;
     wearsim::run::sliding_schedule(&config).with_context(|| format!("run file {}", run.display()))?;
+    let interrupt = super::interrupt();
+    // The estimate comes first: a dry run on a login node sizes a job for the nodes it will run on.
+    super::estimate::report_run(&config, args.dry_run)?;
+    if args.dry_run {
+        return Ok(());
+    }
     let grid = config.grid()?;
     wearsim::check::memory("a sliding run", grid.nx(), grid.ny(), wearsim::check::SLIDING_ARRAYS)?;
     // The output folder is made (and checked) before any work.
     let out = OutputDir::begin(&args.out, "slide", args.overwrite, &super::run_inputs(run, &config))?;
-    let interrupt = super::interrupt();
     let prepared = SlidingRun::prepare(&config)?.interrupted_by(interrupt);
     super::report_surfaces(prepared.surfaces(), false);
     let sliding = prepared.sliding();

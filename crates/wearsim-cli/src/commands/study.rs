@@ -25,6 +25,10 @@ pub struct RunArgs {
     /// uninterrupted one; the checkpoint is removed once the job file is written.
     #[arg(long, default_value = "5m", value_parser = humantime::parse_duration, value_name = "DURATION")]
     checkpoint_every: std::time::Duration,
+    /// Print the cost estimate of this shard's jobs (wall time, CPU hours, peak memory, Slurm --time
+    /// and --mem) and stop: no study folder is made (every run prints it before it starts).
+    #[arg(long)]
+    dry_run: bool,
 }
 
 #[derive(clap::Args)]
@@ -107,6 +111,10 @@ pub fn run(args: &RunArgs) -> Result<()> {
     let (workers, note) = workers_for_memory(&jobs, requested)?;
     if let Some(note) = note {
         eprintln!("note: {note}");
+    }
+    super::estimate::report_study(&jobs, workers, args.dry_run)?;
+    if args.dry_run {
+        return Ok(());
     }
     // The study file is an input too: a study folder holding it would overwrite or mix with it.
     wearsim::io::refuse_inputs_inside(out, &[study_path.as_path()])?;

@@ -12,7 +12,7 @@ pub use source::{SurfaceFiles, SurfacePair, SurfaceSource};
 use std::path::Path;
 
 use crate::check::connectivity as check_connectivity;
-use crate::contact::{Device, SolverOptions};
+use crate::contact::{Device, SolverOptions, Stopping, SLIDING_STOPPING};
 use crate::error::{Error, Interrupt, Result};
 use crate::grid::Grid;
 use crate::influence::Boundary;
@@ -44,6 +44,9 @@ pub struct RunConfig {
     /// Where the contact solver computes.
     pub device: Device,
     pub sliding: Option<SlidingConfig>,
+    /// When the contact solves of a sliding run stop (`[sliding] stopping`); single solves stop at
+    /// the tolerance of `solver`.
+    pub stopping: Stopping,
 }
 
 impl RunConfig {
@@ -103,6 +106,11 @@ impl RunConfig {
         device
             .available()
             .map_err(|e| Error::run_file(format!("[contact] `device`: {e}")))?;
+        let stopping = raw
+            .sliding
+            .as_ref()
+            .and_then(|sl| sl.stopping)
+            .unwrap_or(SLIDING_STOPPING);
         let sliding = match raw.sliding {
             None => None,
             Some(sl) => {
@@ -153,6 +161,7 @@ impl RunConfig {
             boundary,
             device,
             sliding,
+            stopping,
         })
     }
 
@@ -332,6 +341,7 @@ impl RunConfig {
                 .as_ref()
                 .filter(|s| s.particle_rule != ParticleRuleKind::default())
                 .map(|s| s.particle_rule.name.to_string()),
+            stopping: (self.sliding.is_some() && self.stopping != SLIDING_STOPPING).then_some(self.stopping),
         };
         match &self.surfaces {
             SurfaceSource::Generated { grid, spectrum, seed } => {
@@ -384,7 +394,7 @@ impl<'a> SlidingSetup<'a> {
         Self {
             material: &run.material,
             effective_modulus: run.effective_modulus(),
-            solver: run.solver,
+            solver: run.solver.with_stopping(run.stopping),
             device: run.device,
             connectivity: run.connectivity,
             sliding,
@@ -526,6 +536,33 @@ loads = [1e-3]
         let typo = RUN.replace("modulus = \"composite\"", "device = \"gpu\"");
         let err = RunConfig::from_toml(&typo, Path::new(".")).unwrap_err().to_string();
         assert!(err.contains("device"), "{err}");
+    }
+
+    #[test]
+    fn sliding_solves_stop_at_a_settled_map_unless_the_run_file_says_tolerance() {
+        use crate::contact::Stopping;
+        let default = RunConfig::from_toml(RUN, Path::new(".")).unwrap();
+        assert_eq!(default.stopping, Stopping::SettledMap);
+        // Single solves keep the tolerance; a sliding setup takes the run's rule.
+        assert_eq!(default.solver.stopping(), Stopping::Tolerance);
+        let sliding = default.sliding.clone().unwrap();
+        assert_eq!(
+            SlidingSetup::from_run(&default, &sliding).solver.stopping(),
+            Stopping::SettledMap
+        );
+        assert_eq!(default.inputs().stopping, None);
+        let tight = RunConfig::from_toml(&format!("{RUN}stopping = \"tolerance\"\n"), Path::new(".")).unwrap();
+        assert_eq!(tight.stopping, Stopping::Tolerance);
+        assert_eq!(tight.inputs().stopping, Some(Stopping::Tolerance));
+        assert_eq!(
+            SlidingSetup::from_run(&tight, &sliding).solver.stopping(),
+            Stopping::Tolerance
+        );
+        assert_ne!(default.inputs(), tight.inputs());
+        let err = RunConfig::from_toml(&format!("{RUN}stopping = \"loose\"\n"), Path::new("."))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("stopping") && err.contains("settled-map"), "{err}");
     }
 
     #[test]

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use serde::Deserialize;
 
-use crate::contact::Device;
+use crate::contact::{Device, Stopping};
 use crate::influence::Boundary;
 use crate::material::ModulusConvention;
 use crate::surface::Generation;
@@ -100,6 +100,7 @@ pub(super) struct RawSliding {
     pub(super) step_running_in: Option<usize>,
     pub(super) step: Option<usize>,
     pub(super) particle_rule: Option<String>,
+    pub(super) stopping: Option<Stopping>,
 }
 
 /// A TOML error message on one line (they come with a source excerpt over several lines).

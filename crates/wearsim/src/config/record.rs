@@ -2,7 +2,7 @@
 
 use serde::Deserialize;
 
-use crate::contact::Device;
+use crate::contact::{Device, Stopping};
 use crate::material::ModulusConvention;
 use crate::surface::Generation;
 
@@ -82,6 +82,11 @@ pub struct InputRecord {
     /// The particle rule, when not the paper's; absent in job files written before it was recorded.
     #[serde(rename = "sliding.particle_rule", default)]
     pub particle_rule: Option<String>,
+    /// When each step's contact solve stopped, when not the default (the contact map settled);
+    /// absent in job files written before it was recorded, whose runs stopped at the tolerance and
+    /// whose wear results the settled map reproduces.
+    #[serde(rename = "sliding.stopping", default)]
+    pub stopping: Option<Stopping>,
 }
 
 impl InputRecord {

@@ -34,6 +34,10 @@ pub(crate) fn contact_bit(bits: &[u64], k: usize) -> bool {
     bits[k / 64] >> (k % 64) & 1 == 1
 }
 
+/// κ of the settled-map stopping rule of `ContactSolver`: a pixel's margin from flipping must exceed
+/// κ times what its gap or pressure moved in the last iteration ([`Stats::add_change`]).
+pub(crate) const SETTLED_CHANGE_FACTOR: f64 = 2.0;
+
 /// Statistics of g = u − h over the three regions of the pressure field (free 0 < p < p_m,
 /// non-contact p = 0, plastic p = p_m), gathered by one pass; per-row partials are combined in row
 /// order so that results do not depend on the thread count.
@@ -51,6 +55,15 @@ pub(crate) struct Stats {
     /// Largest g over plastic pixels.
     pub max_plastic: f64,
     pub n_plastic: f64,
+    /// Smallest p over contact pixels: how close the contact map is to losing a pixel (the
+    /// settled-map stopping rule of `ContactSolver`).
+    pub min_pressure: f64,
+    /// Smallest g − κ|Δu| over non-contact pixels and p − κ|Δp| over contact pixels, with Δ the
+    /// change of the last iteration and κ = [`SETTLED_CHANGE_FACTOR`] ([`Stats::add_change`]):
+    /// how close a pixel is to flipping in units of its own last move. Gathered by the update pass
+    /// of a conjugate-gradient step only (∞ elsewhere).
+    pub settle_gap: f64,
+    pub settle_pressure: f64,
     /// Objective ½⟨p, 𝒦p⟩ − ⟨p, h⟩ (its merit for the step safeguard).
     pub energy: f64,
     /// Load carried by free and by plastic pixels, and the largest free pressure (for the load
@@ -101,6 +114,9 @@ impl Default for Stats {
             min_zero: f64::INFINITY,
             max_plastic: f64::NEG_INFINITY,
             n_plastic: 0.0,
+            min_pressure: f64::INFINITY,
+            settle_gap: f64::INFINITY,
+            settle_pressure: f64::INFINITY,
             energy: 0.0,
             load: LoadSums::default(),
         }
@@ -117,6 +133,7 @@ impl Stats {
             self.min_zero = self.min_zero.min(g);
         } else {
             self.energy += p * (0.5 * u - h);
+            self.min_pressure = self.min_pressure.min(p);
             if p >= flow_pressure {
                 self.n_plastic += 1.0;
                 self.max_plastic = self.max_plastic.max(g);
@@ -128,6 +145,17 @@ impl Stats {
                 self.max_free = self.max_free.max(g);
                 self.min_free = self.min_free.min(g);
             }
+        }
+    }
+
+    /// Adds the last move of a pixel after a conjugate-gradient step: its new pressure p, the change
+    /// Δp of this step, its new g = u − h and the change −Δu = τr of its displacement.
+    #[inline]
+    pub fn add_change(&mut self, p: f64, dp: f64, g: f64, du: f64) {
+        if p > 0.0 {
+            self.settle_pressure = self.settle_pressure.min(p - SETTLED_CHANGE_FACTOR * dp.abs());
+        } else {
+            self.settle_gap = self.settle_gap.min(g - SETTLED_CHANGE_FACTOR * du.abs());
         }
     }
 
@@ -143,6 +171,9 @@ impl Stats {
             s.min_zero = s.min_zero.min(p.min_zero);
             s.max_plastic = s.max_plastic.max(p.max_plastic);
             s.n_plastic += p.n_plastic;
+            s.min_pressure = s.min_pressure.min(p.min_pressure);
+            s.settle_gap = s.settle_gap.min(p.settle_gap);
+            s.settle_pressure = s.settle_pressure.min(p.settle_pressure);
             s.energy += p.energy;
             s.load = LoadSums::merge(s.load, p.load);
         }
@@ -287,7 +318,8 @@ pub(crate) trait ContactBackend: Send + Sync {
     /// The update pass (copying p first, for [`ContactBackend::undo`]): with `shift` finite, free
     /// pixels take the CG step p −= τ(t − shift), clipped to [0, p_m], and u follows (u −= τr);
     /// non-contact pixels that penetrate and plastic pixels whose gap opens take a gradient step
-    /// p −= τ(g − `mean`). With `shift` NaN no CG step is taken.
+    /// p −= τ(g − `mean`). With `shift` NaN no CG step is taken. The statistics of a CG step also
+    /// hold each pixel's move ([`Stats::add_change`]).
     fn update(&mut self, mean: f64, tau: f64, shift: f64, pm: f64) -> Update;
 
     /// Swaps u with its spare buffer: the carried-along u is kept there (for an undo) while the

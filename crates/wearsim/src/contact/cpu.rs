@@ -414,6 +414,7 @@ impl ContactBackend for CpuBackend {
                 let mut sum_p = 0.0;
                 let (mut released, mut clipped) = (0.0, 0.0);
                 for ((((p, u), &t), &r), &h) in p.iter_mut().zip(u.iter_mut()).zip(t).zip(r).zip(h) {
+                    let before = *p;
                     let d = *u - h - mean;
                     if *p <= 0.0 {
                         if d < 0.0 {
@@ -442,6 +443,9 @@ impl ContactBackend for CpuBackend {
                     }
                     sum_p += *p;
                     s.add(*p, *u, h, mean, pm);
+                    if cg_step {
+                        s.add_change(*p, *p - before, *u - h, tau * r);
+                    }
                 }
                 *acc = s;
                 *total = sum_p;

@@ -1,0 +1,73 @@
+//! The cost estimate (`wearsim::cost`) against the measured time of sliding runs, calibrated just
+//! before them: within a factor of three on small grids. Calibration and runs are timed in
+//! processor time on one thread, which other work on a shared machine does not inflate as it does
+//! the wall clock (on an idle machine the two agree); the estimate is for sizing a Slurm job, not a
+//! benchmark.
+
+use wearsim::config::{RunConfig, SurfacePair, SurfaceSource, Units};
+use wearsim::cost::Calibration;
+use wearsim::run::SlidingRun;
+use wearsim::sliding::SlidingConfig;
+use wearsim::surface::pair_seeds;
+use wearsim::{Grid, Interrupt, Material, ModulusConvention, SolverOptions, SpectrumParams, Stopping, Surface};
+
+/// Processor time of this process (user + system), in seconds, from /proc/self/stat (Linux; clock
+/// ticks of 1/100 s, the kernel's fixed USER_HZ).
+fn processor_seconds() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").expect("Linux /proc");
+    let fields: Vec<&str> = stat[stat.rfind(')').unwrap() + 2..].split_whitespace().collect();
+    // utime and stime are fields 14 and 15 of the line, 12 and 13 after the command name.
+    let ticks: f64 = fields[11].parse::<f64>().unwrap() + fields[12].parse::<f64>().unwrap();
+    ticks / 100.0
+}
+
+#[test]
+fn the_estimate_is_within_a_factor_of_three_of_the_measured_time() {
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+    pool.install(|| {
+        let calibration = Calibration::measure_with(&Interrupt::default(), &processor_seconds).unwrap();
+        assert_eq!(calibration.threads, 1);
+        let a = calibration.seconds_per_iteration;
+        assert!(a.tolerance > 0.0 && a.settled_map > 0.0);
+        let material = Material::new(1.0, 0.3, 0.012, vec![0.5e-6], 3.0).unwrap();
+        for (n, loads) in [(256, vec![5e-4, 2e-3]), (512, vec![1e-3])] {
+            let grid = Grid::square(n, 1.0).unwrap();
+            let spectrum = SpectrumParams::paper_roughness(n, 1.0);
+            let (a, b) = pair_seeds(3);
+            let (top, bottom) = (
+                Surface::generate(grid, &spectrum, a).unwrap(),
+                Surface::generate(grid, &spectrum, b).unwrap(),
+            );
+            let sliding = SlidingConfig::new(loads, 0.3, 0.2, 4, 1, Some(n)).unwrap();
+            let config = RunConfig {
+                units: Units::Reduced,
+                surfaces: SurfaceSource::Arrays { grid, length: 1.0 },
+                material: material.clone(),
+                modulus: ModulusConvention::HalfSpace,
+                solver: SolverOptions::default(),
+                connectivity: 4,
+                boundary: Default::default(),
+                device: Default::default(),
+                sliding: Some(sliding.clone()),
+                stopping: Stopping::SettledMap,
+            };
+            let t = processor_seconds();
+            let runs = SlidingRun::with_surfaces(&config, SurfacePair::of_arrays(top, bottom))
+                .unwrap()
+                .run(|_| {})
+                .unwrap()
+                .runs;
+            let measured = processor_seconds() - t;
+            let estimate = calibration.estimate(grid, &sliding, Stopping::SettledMap);
+            let steps: usize = runs.iter().map(|r| r.steps.len()).sum();
+            let iterations: usize = runs.iter().map(|r| r.total_iterations).sum();
+            assert_eq!(estimate.steps, steps);
+            let ratio = estimate.seconds / measured;
+            println!(
+                "{n}²: estimated {:.2} s ({:.0} iterations), measured {measured:.2} s ({iterations} iterations): {ratio:.2}",
+                estimate.seconds, estimate.iterations
+            );
+            assert!((1.0 / 3.0..3.0).contains(&ratio), "{n}²: estimate / measured = {ratio:.2}");
+        }
+    });
+}
