@@ -66,6 +66,7 @@ pub const QUANTITIES: &[(&str, &str, &str)] = &[
     ("connectivity", "", ""),
     ("device", "", ""),
     ("particle_rule", "", ""),
+    ("stopping", "", ""),
     ("warnings", "", ""),
     // Columns the aggregated table adds.
     ("curve", "", ""),
