@@ -37,7 +37,7 @@ const LAYERS: [&str; 19] = [
 const SUBLAYERS: [(&str, &[&str]); 8] = [
     ("io", &["atomic", "npy", "zarr"]),
     ("stats", &["fit", "interval", "judge"]),
-    ("contact", &["backend", "cpu", "conformance"]),
+    ("contact", &["backend", "options", "cpu", "conformance"]),
     ("topography", &["formats", "prepare", "load", "fit"]),
     ("sliding", &["schedule", "records", "fit", "checkpoint", "state"]),
     ("config", &["raw", "source", "record"]),

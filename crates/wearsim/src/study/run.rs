@@ -99,6 +99,24 @@ pub struct RunSummary {
     pub checkpoint_warnings: Vec<String>,
 }
 
+/// The jobs of `jobs` left to compute: those without a job file and those whose file cannot be
+/// read (counted in the summary with the reason); the others are counted as skipped.
+fn pending_jobs<'j>(dir: &Path, jobs: &[&'j Job]) -> Result<(Vec<&'j Job>, RunSummary)> {
+    let mut summary = RunSummary::default();
+    let mut pending = Vec::new();
+    for &job in jobs {
+        match stored_result(job, dir)? {
+            Stored::Done(_) => summary.skipped += 1,
+            Stored::Missing => pending.push(job),
+            Stored::Unreadable(why) => {
+                summary.recomputed.push(why);
+                pending.push(job);
+            }
+        }
+    }
+    Ok((pending, summary))
+}
+
 /// Refreshes the claims of the jobs under way every [`CLAIM_REFRESH`] until `stop`, so that other
 /// runs sharing the folder see them alive.
 fn keep_claims_fresh(stop: &std::sync::atomic::AtomicBool, held: &Mutex<Vec<PathBuf>>) {
@@ -167,18 +185,7 @@ pub fn run_jobs(
     interrupt: &Interrupt,
     progress: impl Fn(StudyProgress) + Sync,
 ) -> Result<RunSummary> {
-    let mut summary = RunSummary::default();
-    let mut pending: Vec<&Job> = Vec::new();
-    for &job in jobs {
-        match stored_result(job, dir)? {
-            Stored::Done(_) => summary.skipped += 1,
-            Stored::Missing => pending.push(job),
-            Stored::Unreadable(why) => {
-                summary.recomputed.push(why);
-                pending.push(job);
-            }
-        }
-    }
+    let (pending, mut summary) = pending_jobs(dir, jobs)?;
     let next = AtomicUsize::new(0);
     let done = AtomicUsize::new(0);
     let steps_done = AtomicUsize::new(0);
