@@ -119,7 +119,7 @@ impl SolverOptions {
         self.stopping
     }
 
-    /// Iteration limit; reaching it is an [`Error::NotConverged`] from [`ContactSolver::solve`](super::ContactSolver::solve).
+    /// Iteration limit; reaching it is an [`Error::NotConverged`] from `ContactSolver::solve`.
     pub fn max_iterations(&self) -> usize {
         self.max_iterations
     }
@@ -151,7 +151,7 @@ pub enum Termination {
 /// What one solve reports beside the pressure field.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct SolveInfo {
-    /// Why the solve stopped ([`ContactSolver::solve`](super::ContactSolver::solve) returns only converged or settled solves).
+    /// Why the solve stopped (`ContactSolver::solve` returns only converged or settled solves).
     pub termination: Termination,
     /// Conjugate-gradient iterations (one convolution 𝒦t each).
     pub iterations: usize,
