@@ -119,7 +119,7 @@ TITLE = "Per-step contact fields of a wearsim sliding run"
 def _written_by_to_netcdf(path: Path) -> bool:
     """Whether ``path`` is a NetCDF file that :func:`to_netcdf` wrote (its source and references)."""
     try:
-        import h5py
+        import h5py  # type: ignore[import-untyped]
 
         with h5py.File(path, "r") as f:
             source, references = f.attrs.get("source"), f.attrs.get("references")

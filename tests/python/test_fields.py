@@ -89,12 +89,14 @@ def test_the_fields_are_the_contact_solutions_of_the_run(run, wearsim_bin):
             p_fields = ds.pressure.isel(load=load_index, s=step).values
             contact = ds.contact.isel(load=load_index, s=step).values
             assert p_fields.shape == p_contact.shape == (64, 48)
+            # The run's solves stop once the contact map is settled (residual ≤ 1e-5), `contact`'s at
+            # the tolerance (1e-8): pressures within 1e-3 p_m (measured: 1.1e-4 p_m at most here).
+            assert np.abs(p_fields - p_contact).max() < 1e-3 * pm
             if step == 0:
-                # Both start cold at s = 0: the same solve, bit for bit.
-                np.testing.assert_array_equal(p_fields, p_contact)
+                # Both start cold at s = 0: the same contact map, pixel for pixel.
+                np.testing.assert_array_equal(contact, p_contact > 0)
             else:
-                # The run warm-starts from the previous step; both are converged solutions.
-                assert np.abs(p_fields - p_contact).max() < 1e-6 * pm
+                # The run warm-starts from the previous step.
                 assert np.count_nonzero(contact != (p_contact > 0)) <= 2
             np.testing.assert_array_equal(contact, p_fields > 0)
             labels = ds.junctions.isel(load=load_index, s=step).values
