@@ -177,9 +177,10 @@ fn sliding_results_do_not_depend_on_thread_count() {
     );
 }
 
-/// A run stopped after `stop_after` steps (of all loads) with a checkpoint after every step, then
-/// resumed, equals the uninterrupted run bit for bit (steps, results, warnings); a checkpoint of other
-/// inputs is set aside with a reason.
+/// A run stopped after `stop_after` steps (of all loads), then resumed, equals the uninterrupted run
+/// bit for bit (steps, results, warnings), whether its state was saved by a checkpoint after every
+/// step or only when it was stopped (the last step of a load included: the next load begins cold); a
+/// checkpoint of other inputs is set aside with a reason.
 #[test]
 fn a_checkpointed_run_stopped_anywhere_resumes_to_the_uninterrupted_results() {
     use wearsim::sliding::{Checkpointing, Resumed};
@@ -188,18 +189,22 @@ fn a_checkpointed_run_stopped_anywhere_resumes_to_the_uninterrupted_results() {
     let pair = || SurfacePair::of_arrays(top.clone(), bottom.clone());
     let total = 2 * schedule(top.nx(), &sliding).len();
     let dir = tempfile::tempdir().unwrap();
-    for stop_after in [1, 7, total / 2, total / 2 + 1, total - 1] {
+    let cases = [1, 7, total / 2, total / 2 + 1, total - 1]
+        .into_iter()
+        .flat_map(|stop_after| [(stop_after, 0), (stop_after, 3600)]);
+    for (stop_after, every) in cases {
         let checkpointing = Checkpointing {
-            path: dir.path().join(format!("run-{stop_after}.checkpoint")),
-            every: std::time::Duration::ZERO,
+            path: dir.path().join(format!("run-{stop_after}-{every}.checkpoint")),
+            every: std::time::Duration::from_secs(every),
         };
         let interrupt = wearsim::Interrupt::default();
+        let mut said = Vec::new();
         let first = SlidingRun::with_surfaces(&config, pair())
             .unwrap()
             .interrupted_by(&interrupt)
             .run_resumable(
                 Some(&checkpointing),
-                |_| {},
+                |r| said.push(r.clone()),
                 |v| {
                     if v.done == stop_after {
                         interrupt.request();
@@ -207,6 +212,16 @@ fn a_checkpointed_run_stopped_anywhere_resumes_to_the_uninterrupted_results() {
                 },
             );
         assert!(matches!(first, Err(wearsim::Error::Interrupted)), "{first:?}");
+        // Saved on the way out only when no checkpoint held that state already.
+        let saved_on_stop = Resumed::Saved {
+            done: stop_after,
+            total,
+        };
+        assert_eq!(
+            said.contains(&saved_on_stop),
+            every > 0,
+            "stopped after {stop_after}: {said:?}"
+        );
         let mut resumed = None;
         let runs = SlidingRun::with_surfaces(&config, pair())
             .unwrap()
@@ -225,7 +240,7 @@ fn a_checkpointed_run_stopped_anywhere_resumes_to_the_uninterrupted_results() {
             assert_eq!(
                 (&a.steps, &a.results, &a.warnings),
                 (&b.steps, &b.results, &b.warnings),
-                "stopped after {stop_after}"
+                "stopped after {stop_after}, checkpoints every {every} s"
             );
         }
     }
@@ -235,7 +250,7 @@ fn a_checkpointed_run_stopped_anywhere_resumes_to_the_uninterrupted_results() {
         ..sliding.clone()
     };
     let checkpointing = Checkpointing {
-        path: dir.path().join(format!("run-{}.checkpoint", total - 1)),
+        path: dir.path().join(format!("run-{}-0.checkpoint", total - 1)),
         every: std::time::Duration::from_secs(3600),
     };
     let mut resumed = None;
