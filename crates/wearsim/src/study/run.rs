@@ -100,13 +100,17 @@ pub struct RunSummary {
 }
 
 /// The jobs of `jobs` left to compute: those without a job file and those whose file cannot be
-/// read (counted in the summary with the reason); the others are counted as skipped.
+/// read (counted in the summary with the reason); the others are counted as skipped, the claim and
+/// checkpoint a killed run left beside a finished job removed.
 fn pending_jobs<'j>(dir: &Path, jobs: &[&'j Job]) -> Result<(Vec<&'j Job>, RunSummary)> {
     let mut summary = RunSummary::default();
     let mut pending = Vec::new();
     for &job in jobs {
         match stored_result(job, dir)? {
-            Stored::Done(_) => summary.skipped += 1,
+            Stored::Done(_) => {
+                summary.skipped += 1;
+                Claim::release_abandoned(dir, job.index, &checkpoint_path(dir, job.index));
+            }
             Stored::Missing => pending.push(job),
             Stored::Unreadable(why) => {
                 summary.recomputed.push(why);

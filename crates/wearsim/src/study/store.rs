@@ -284,6 +284,20 @@ impl Claim {
         Ok(None)
     }
 
+    /// After a run killed between writing job `index`'s file and releasing its claim: removes that
+    /// claim when its process is gone, and then the job's `checkpoint` (a finished job needs none).
+    /// A live run's claim, and so its checkpoint, are left to it.
+    pub fn release_abandoned(dir: &Path, index: usize, checkpoint: &Path) {
+        let path = claim_path(dir, index);
+        if path.exists() {
+            if !Self::is_stale(&path) {
+                return;
+            }
+            let _ = std::fs::remove_file(&path);
+        }
+        let _ = std::fs::remove_file(checkpoint);
+    }
+
     fn is_stale(path: &Path) -> bool {
         let owner = std::fs::read_to_string(path).unwrap_or_default();
         let mut words = owner.split_whitespace();
@@ -484,6 +498,27 @@ mod tests {
         assert!(checksum_matches(json));
         let v: serde_json::Value = serde_json::from_str(&text).unwrap();
         assert_eq!(v["results"][0]["wear_rate"], 1.2345e-4);
+    }
+
+    #[test]
+    fn a_finished_jobs_claim_and_checkpoint_left_by_a_killed_run_are_removed_a_live_ones_kept() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir_all(dir.path().join("jobs")).unwrap();
+        let checkpoint = |i: usize| dir.path().join("jobs").join(format!("job-{i}.checkpoint"));
+        // Killed after writing the job file: the claim of a process that does not exist.
+        std::fs::write(claim_path(dir.path(), 1), format!("{} 4000000000\n", host_name())).unwrap();
+        std::fs::write(checkpoint(1), "state").unwrap();
+        Claim::release_abandoned(dir.path(), 1, &checkpoint(1));
+        assert!(!claim_path(dir.path(), 1).exists() && !checkpoint(1).exists());
+        // A live run finishing the job: its claim and checkpoint are its own.
+        let live = Claim::take(dir.path(), 2).unwrap().expect("free");
+        std::fs::write(checkpoint(2), "state").unwrap();
+        Claim::release_abandoned(dir.path(), 2, &checkpoint(2));
+        assert!(live.path().exists() && checkpoint(2).exists());
+        drop(live);
+        // No claim: a checkpoint left behind goes.
+        Claim::release_abandoned(dir.path(), 2, &checkpoint(2));
+        assert!(!checkpoint(2).exists());
     }
 
     #[test]
