@@ -4,7 +4,7 @@
 use crate::stats::Region;
 
 use super::rules::{compare, curve_label, exponents_by_seed, judge_values, pair_exponents, per_setting, Compared};
-use super::setting::{curves, d_star_pairs, fmt, high, param, Setting};
+use super::setting::{curves, curves_differing_in_g, d_star_pairs, fmt, high, param, Setting};
 use super::{finding, Finding, Tally};
 
 /// §4.1: k an order of magnitude below the static model's, per setting.
@@ -135,34 +135,24 @@ pub(super) fn k_rises_with_load(all: &[Setting]) -> Finding {
 pub(super) fn tougher_reaches_k_max_later(all: &[Setting]) -> Finding {
     let mut tally = Tally::default();
     let curves = curves(all);
-    for a in curves.iter().filter(|c| c.len() >= 2) {
-        for b in curves.iter().filter(|c| c.len() >= 2) {
-            let (a0, b0) = (a[0], b[0]);
-            if a0.family != b0.family
-                || a0.material != b0.material
-                || a0.shear_strength != b0.shear_strength
-                || a0.fracture_energy <= b0.fracture_energy
-            {
-                continue;
-            }
-            let (ma, mb) = (
-                exponents_by_seed(a, true, |_, p| p.get("wear_coefficient")),
-                exponents_by_seed(b, true, |_, p| p.get("wear_coefficient")),
-            );
-            let diff: Vec<f64> = ma
-                .iter()
-                .filter_map(|(seed, x)| mb.iter().find(|(s, _)| s == seed).map(|(_, y)| x - y))
-                .collect();
-            let label = format!("{} vs {}", curve_label(a), curve_label(b));
-            tally.file(judge_values(
-                &label,
-                "d ln k/d ln F_N (tougher) − (less tough)",
-                &diff,
-                Region::Above(0.0),
-                "",
-                a[0].pairs.len(),
-            ));
-        }
+    for (a, b) in curves_differing_in_g(&curves) {
+        let (ma, mb) = (
+            exponents_by_seed(a, true, |_, p| p.get("wear_coefficient")),
+            exponents_by_seed(b, true, |_, p| p.get("wear_coefficient")),
+        );
+        let diff: Vec<f64> = ma
+            .iter()
+            .filter_map(|(seed, x)| mb.iter().find(|(s, _)| s == seed).map(|(_, y)| x - y))
+            .collect();
+        let label = format!("{} vs {}", curve_label(a), curve_label(b));
+        tally.file(judge_values(
+            &label,
+            "d ln k/d ln F_N (tougher) − (less tough)",
+            &diff,
+            Region::Above(0.0),
+            "",
+            a[0].pairs.len(),
+        ));
     }
     finding(
         "tougher-reaches-k-max-later",

@@ -4,7 +4,7 @@
 use crate::stats::{count_ratio, judge::smallest, Interval, Region, Side};
 
 use super::rules::{all_of, compare, curve_label, show, Compared, Outcome};
-use super::setting::{curves, high, param, pressures, Pair, Setting};
+use super::setting::{curves, curves_differing_in_g, high, param, pressures, Pair, Setting};
 use super::{finding, Finding, Tally};
 
 /// Particles of the seeds `a` and `b` share, both run in: (particles of a, of b, pairs).
@@ -26,18 +26,8 @@ fn shared_counts(a: &Setting, b: &Setting) -> (u64, u64, usize) {
 pub(super) fn delayed_onset_for_large_g(all: &[Setting]) -> Finding {
     let mut tally = Tally::default();
     let curves = curves(all);
-    for a in curves.iter().filter(|c| c.len() >= 2) {
-        for b in curves.iter().filter(|c| c.len() >= 2) {
-            let (a0, b0) = (a[0], b[0]);
-            if a0.family != b0.family
-                || a0.material != b0.material
-                || a0.shear_strength != b0.shear_strength
-                || a0.fracture_energy <= b0.fracture_energy
-            {
-                continue;
-            }
-            tally.file(onset(a, b));
-        }
+    for (a, b) in curves_differing_in_g(&curves) {
+        tally.file(onset(a, b));
     }
     finding(
         "delayed-onset-for-large-g",

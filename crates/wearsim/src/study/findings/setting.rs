@@ -243,6 +243,24 @@ pub(super) fn curves(all: &[Setting]) -> Vec<Vec<&Setting>> {
         .collect()
 }
 
+/// Pairs of curves against load (each of two loads or more) of one family, material and τ̃ that
+/// differ in 𝒢: (the curve of the larger 𝒢, the tougher; the curve of the smaller).
+pub(super) fn curves_differing_in_g<'c, 's>(
+    curves: &'c [Vec<&'s Setting>],
+) -> Vec<(&'c [&'s Setting], &'c [&'s Setting])> {
+    let long = || curves.iter().filter(|c| c.len() >= 2);
+    long()
+        .flat_map(|a| long().map(move |b| (a.as_slice(), b.as_slice())))
+        .filter(|(a, b)| {
+            let (a0, b0) = (a[0], b[0]);
+            a0.family == b0.family
+                && a0.material == b0.material
+                && a0.shear_strength == b0.shear_strength
+                && a0.fracture_energy > b0.fracture_energy
+        })
+        .collect()
+}
+
 /// Whether two settings differ in the study axes `axes` (at least one of them) and in no other
 /// input but the material's name (a study may name its boxes as materials), at equal τ̃ and 𝒢.
 pub(super) fn differ_only_in(a: &Setting, b: &Setting, axes: &[&str]) -> bool {
