@@ -22,7 +22,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 # The commands the tests run skip the cost estimate printed before `slide` and `study run` (its
 # calibration, about 10 s per thread count on a first run, would be repeated by every fresh test
-# machine); the estimate's own tests (crates/wearsim/tests/cost.rs, the CLI's tests/estimate.rs)
+# machine); the estimate's own tests (crates/wearsim/tests/cost.rs, the CLI's tests/cost.rs)
 # calibrate and check it.
 export WEARSIM_NO_ESTIMATE=1
 root="$PWD"

@@ -47,7 +47,7 @@ from .surface import (
     read_surface,
     surface_statistics,
 )
-from .wear import ResolutionWarning, RunFile, load_run, slide, static_wear
+from .wear import ResolutionWarning, RunFile, estimate, load_run, slide, static_wear
 
 __all__ = [
     "DEFAULT_CONNECTIVITY",
@@ -69,6 +69,7 @@ __all__ = [
     "__version__",
     "composite_heights",
     "contact",
+    "estimate",
     "fit_surface",
     "generate_pair",
     "generate_surface",

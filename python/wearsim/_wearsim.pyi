@@ -258,6 +258,12 @@ class RunFile:
     def slide(
         self, threads: Optional[int] = None, progress: Optional[Callable[[int, int], None]] = None
     ) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]: ...
+    def estimate(
+        self,
+        samples: Optional[int] = None,
+        threads: Optional[int] = None,
+        progress: Optional[Callable[[int, int], None]] = None,
+    ) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]: ...
 
 @final
 class Study:

@@ -155,6 +155,14 @@ class RunFile:
         _warn(summary)
         return _series(columns), summary
 
+    def estimate(
+        self, *, samples: Optional[int] = None, threads: Optional[int] = None, progress: ProgressArg = None
+    ) -> Tuple[pd.DataFrame, Dict[str, Any]]:
+        """The static estimate exactly as ``wearsim estimate RUN`` makes it (see :func:`estimate`)."""
+        columns, summary = self._run.estimate(samples, threads, callback(progress, "estimate: solve"))
+        _warn(summary)
+        return pd.DataFrame(columns), summary
+
     def __repr__(self) -> str:
         return f"RunFile({str(self.path)!r})"
 
@@ -162,3 +170,32 @@ class RunFile:
 def load_run(path: Union[str, os.PathLike]) -> RunFile:
     """Reads and validates a run file."""
     return RunFile(path)
+
+
+def estimate(
+    run: Union[str, os.PathLike, RunFile],
+    *,
+    samples: Optional[int] = None,
+    threads: Optional[int] = None,
+    progress: ProgressArg = None,
+) -> Tuple[pd.DataFrame, Dict[str, Any]]:
+    """A static estimate of the sliding model's wear rate W, Archard coefficient k and particle rate
+    dN*₊/ds for every load and fracture energy of a run file, from a few static contact solutions
+    instead of a sliding run (Brink, Frérot & Molinari 2021, §5 outlook): N* and the critical
+    junctions' mean diameter d̄ from static maps at offsets spread over the box, a critical
+    junction's residence R = c₁ d̄ (1 + c₂ θ) with θ = N* d̄²/(Lx Ly), dN*₊/ds = N*/R,
+    W = c_v (π/6) d*³ dN*₊/ds and k = W p_m/F_N, the constants calibrated on sliding runs
+    (``summary["calibration"]``).
+
+    Returns ``(results, summary)``: one row per load and fracture energy with ``wear_rate``,
+    ``wear_coefficient`` and ``particle_rate`` and their ``_low``/``_high`` 95 % interval for a
+    sliding run of the same box and distance, and the static features (``critical_junctions_mean``,
+    its ``critical_junctions_sampling_error``, ``mean_critical_diameter``, ``critical_coverage``,
+    ``critical_residence``, ``expected_particles``); the summary equals ``wearsim estimate``'s
+    ``summary.json`` and is marked ``"model": "estimate"``. ``samples`` fixes the static maps per
+    load (1 to 16; default: from 4 until N*'s sampling error is at most 10 %). It is an estimate, not
+    a sliding run: it gives no wear-volume curve, running-in or memory, and its warnings (also
+    issued as :class:`ResolutionWarning`) say where it rests on few junctions.
+    """
+    run_file = run if isinstance(run, RunFile) else RunFile(run)
+    return run_file.estimate(samples=samples, threads=threads, progress=progress)

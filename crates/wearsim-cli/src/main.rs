@@ -9,7 +9,7 @@ mod figures;
 mod progress;
 mod raster;
 
-use commands::{animate, bench, contact, fields, junctions, plot, slide, study, surface};
+use commands::{animate, bench, contact, estimate, fields, junctions, plot, slide, study, surface};
 
 #[derive(Parser)]
 #[command(
@@ -40,6 +40,13 @@ enum Command {
     Contact(contact::Args),
     /// Run the sliding wear model on every load of the run file; write summary.json and series.csv.
     Slide(slide::Args),
+    /// Estimate W, k and dN*₊/ds of every load from a few static contact solutions instead of
+    /// sliding (minutes instead of hours on large boxes); write summary.json and results.csv,
+    /// marked as an estimate, with 95 % intervals.
+    Estimate(estimate::Args),
+    /// Compare the static estimate with the finished sliding jobs of a study folder (errors,
+    /// coverage of the intervals); with --fit, fit its constants on them.
+    EstimateCheck(estimate::CheckArgs),
     /// Animate the sliding run of one load as a GIF: contact maps coloured by junction state.
     Animate(animate::Args),
     /// Label the junctions of a contact map (.npy, bool or numbers > 0); write labels.npy and
@@ -106,6 +113,8 @@ fn main() {
         Command::Surface(args) => surface::run(&args),
         Command::Contact(args) => contact::run(&args),
         Command::Slide(args) => slide::run(&args),
+        Command::Estimate(args) => estimate::run(&args),
+        Command::EstimateCheck(args) => estimate::check(&args),
         Command::Animate(args) => animate::run(&args),
         Command::Junctions(args) => junctions::run(&args),
         Command::Fields(FieldsCommand::ToNetcdf(args)) => fields::to_netcdf(&args),

@@ -6,8 +6,9 @@ use numpy::PyReadonlyArray2;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use wearsim::config::{RunConfig, SurfacePair, SurfaceSource, Units};
+use wearsim::estimate::{Sampling, CALIBRATION};
 use wearsim::junctions::DEFAULT_CONNECTIVITY;
-use wearsim::output::Table;
+use wearsim::output::{estimate_rows, Table};
 use wearsim::run::{SlidingOutcome, SlidingRun};
 use wearsim::sliding::{SlidingConfig, DEFAULT_DISTANCE, DEFAULT_RUNNING_IN, DEFAULT_STEP, DEFAULT_STEP_RUNNING_IN};
 use wearsim::wear::{ParticleRuleKind, DEFAULT_PARTICLE_RULE};
@@ -75,6 +76,8 @@ fn slide<'py>(
                 .with_particle_rule(rule),
         ),
         stopping: stopping.parse().map_err(to_py)?,
+        model: wearsim::estimate::WearModel::Sliding,
+        estimate_samples: None,
     };
     let pair = SurfacePair::of_arrays(t, b);
     let outcome = interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, steps| {
@@ -186,6 +189,27 @@ impl PyRunFile {
         })?;
         let (series, summary) = series_and_summary(py, &outcome)?;
         Ok((series, json_to_py(py, &summary)?))
+    }
+
+    /// The static estimate exactly as `wearsim estimate RUN` makes it: (results columns, summary).
+    #[pyo3(signature = (samples = None, threads = None, progress = None))]
+    fn estimate<'py>(
+        &self,
+        py: Python<'py>,
+        samples: Option<usize>,
+        threads: Option<usize>,
+        progress: Option<Bound<'py, PyAny>>,
+    ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
+        let config = &self.config;
+        wearsim::run::sliding_schedule(config).map_err(to_py)?;
+        let sampling = Sampling::of(samples.or(config.estimate_samples)).map_err(to_py)?;
+        let outcome = interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, solves| {
+            SlidingRun::prepare(config)?
+                .interrupted_by(interrupt)
+                .estimate(sampling, &CALIBRATION, |done, most| solves.set(done, most))
+        })?;
+        let rows = estimate_rows(&outcome.loads);
+        Ok((table_to_py(py, &Table::of(&rows))?, json_to_py(py, &outcome.summary())?))
     }
 }
 

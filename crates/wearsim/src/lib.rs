@@ -145,6 +145,7 @@ pub mod config;
 pub mod contact;
 pub mod cost;
 pub mod error;
+pub mod estimate;
 pub mod fft;
 pub mod grid;
 pub mod influence;

@@ -21,8 +21,11 @@ use serde_json::Value;
 
 use crate::config::{RunConfig, SurfacePair, SurfaceSource};
 use crate::error::{Error, Interrupt, Result};
+use crate::estimate::{Calibration, Estimator, LoadEstimate, Sampling, MAX_SAMPLES, TARGET_SAMPLING_ERROR};
 use crate::grid::Grid;
-use crate::output::{series_csv, series_rows, sliding_summary, SeriesRow, SlidingInputs};
+use crate::output::{
+    estimate_rows, estimate_summary, series_csv, series_rows, sliding_summary, SeriesRow, SlidingInputs, Table,
+};
 use crate::sliding::{
     resolution_warnings, Checkpointing, LoadRun, Resumed, SlidingConfig, SlidingSetup, SlidingState, StepView,
 };
@@ -230,6 +233,95 @@ impl<'a> SlidingRun<'a> {
             }
         }
         slide.finish()
+    }
+}
+
+impl<'a> SlidingRun<'a> {
+    /// The static estimate of the run instead of sliding it (`crate::estimate`): static maps at
+    /// offsets spread over the box, taken as `sampling` says, every load solved at each offset;
+    /// `on_solve` is told the solves done and the most there can be. The outcome is marked as an
+    /// estimate in every document it gives.
+    pub fn estimate(
+        self,
+        sampling: Sampling,
+        calibration: &Calibration,
+        mut on_solve: impl FnMut(usize, usize),
+    ) -> Result<EstimateOutcome<'a>> {
+        let start = Instant::now();
+        let SurfacePair { top, bottom, .. } = self.pair;
+        let mut estimator = Estimator::new(top, bottom, &self.setup)?;
+        let loads = self.sliding.loads.len();
+        let most = loads
+            * match sampling {
+                Sampling::Fixed(k) => k,
+                Sampling::Auto => MAX_SAMPLES,
+            };
+        let mut done = 0;
+        estimator.sample(sampling, || {
+            done += 1;
+            on_solve(done, most);
+        })?;
+        let samples = estimator.samples_done();
+        let sampling_error = estimator.sampling_error();
+        let estimates = estimator.finish(calibration);
+        let mut warnings = self.warnings;
+        if sampling == Sampling::Auto && sampling_error > TARGET_SAMPLING_ERROR {
+            warnings.push(format!(
+                "after {samples} static maps N* still varies by {:.0} % (standard error) between maps for some load \
+                 and 𝒢 (target {:.0} %): the interval includes it; a larger box samples more junctions per map",
+                100.0 * sampling_error,
+                100.0 * TARGET_SAMPLING_ERROR
+            ));
+        }
+        let warnings = distinct(
+            warnings
+                .into_iter()
+                .chain(estimates.iter().flat_map(|l| l.warnings.iter().cloned())),
+        );
+        Ok(EstimateOutcome {
+            config: self.config,
+            sliding: self.sliding,
+            loads: estimates,
+            calibration: *calibration,
+            warnings,
+            samples,
+            seconds: self.surfaces_seconds + start.elapsed().as_secs_f64(),
+        })
+    }
+}
+
+/// What an estimate gives: per load, the estimate of every fracture energy and the static maps.
+#[derive(Debug, Clone)]
+pub struct EstimateOutcome<'a> {
+    config: &'a RunConfig,
+    sliding: &'a SlidingConfig,
+    pub loads: Vec<LoadEstimate>,
+    /// The constants used.
+    pub calibration: Calibration,
+    /// Every warning once: the run's inputs', its surfaces', d* against the pixel size, then the
+    /// estimates'.
+    pub warnings: Vec<String>,
+    /// Static maps taken per load.
+    pub samples: usize,
+    /// Wall time in seconds, making the surfaces included.
+    pub seconds: f64,
+}
+
+impl EstimateOutcome<'_> {
+    /// `summary.json`, marked as an estimate.
+    pub fn summary(&self) -> Value {
+        estimate_summary(
+            &SlidingInputs::of_run(self.config, self.sliding),
+            &self.loads,
+            &self.calibration,
+            &self.warnings,
+            self.seconds,
+        )
+    }
+
+    /// `results.csv`: one row per load and fracture energy.
+    pub fn results_csv(&self) -> String {
+        Table::of(&estimate_rows(&self.loads)).to_csv()
     }
 }
 

@@ -50,6 +50,8 @@ fn the_estimate_is_within_a_factor_of_three_of_the_measured_time() {
                 device: Default::default(),
                 sliding: Some(sliding.clone()),
                 stopping: Stopping::SettledMap,
+                model: wearsim::estimate::WearModel::Sliding,
+                estimate_samples: None,
             };
             let t = processor_seconds();
             let runs = SlidingRun::with_surfaces(&config, SurfacePair::of_arrays(top, bottom))

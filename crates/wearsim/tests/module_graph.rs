@@ -11,7 +11,7 @@
 use std::collections::BTreeSet;
 use std::path::Path;
 
-const LAYERS: [&str; 19] = [
+const LAYERS: [&str; 20] = [
     "error",
     "check",
     "io",
@@ -26,6 +26,7 @@ const LAYERS: [&str; 19] = [
     "junctions",
     "wear",
     "sliding",
+    "estimate",
     "config",
     "cost",
     "output",
@@ -54,7 +55,7 @@ const SUBLAYERS: [(&str, &[&str]); 8] = [
             "fields",
         ],
     ),
-    ("study", &["expand", "store", "run", "collect", "findings"]),
+    ("study", &["expand", "store", "run", "collect", "compare", "findings"]),
 ];
 
 /// Module paths (up to two components) named by `prefix…` paths in `text`, including grouped

@@ -108,6 +108,8 @@ fn slide(top: &Surface, bottom: &Surface, loads: Vec<f64>) -> Vec<LoadRun> {
         device: Default::default(),
         sliding: Some(sliding),
         stopping: wearsim::contact::SLIDING_STOPPING,
+        model: wearsim::estimate::WearModel::Sliding,
+        estimate_samples: None,
     };
     slide_config(&config, SurfacePair::of_arrays(top.clone(), bottom.clone()))
 }

@@ -26,6 +26,8 @@ fn arrays_run(top: &Surface, material: &Material, sliding: &SlidingConfig) -> Ru
         device: Default::default(),
         sliding: Some(sliding.clone()),
         stopping: wearsim::contact::SLIDING_STOPPING,
+        model: wearsim::estimate::WearModel::Sliding,
+        estimate_samples: None,
     }
 }
 

@@ -143,6 +143,8 @@ fn a_sliding_run_gives_the_same_wear_results_with_either_rule() {
             device: Default::default(),
             sliding: Some(sliding.clone()),
             stopping,
+            model: wearsim::estimate::WearModel::Sliding,
+            estimate_samples: None,
         };
         SlidingRun::with_surfaces(&config, SurfacePair::of_arrays(top.clone(), bottom.clone()))
             .unwrap()

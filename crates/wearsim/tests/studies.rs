@@ -20,6 +20,10 @@ fn shipped_study_files_expand() {
         ("appendix-area-reduced.toml", 24),
         ("appendix-lambda-h.toml", 36),
         ("appendix-lambda-h-reduced.toml", 24),
+        ("estimate-calibration.toml", 15),
+        ("estimate-holdout-tau.toml", 20),
+        ("estimate-holdout-box.toml", 6),
+        ("paper-box-estimate.toml", 24),
     ];
     for (file, jobs) in expected {
         let text = std::fs::read_to_string(dir.join(file)).unwrap();

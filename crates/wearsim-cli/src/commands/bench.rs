@@ -78,7 +78,7 @@ fn paper_pair(n: usize) -> Result<(Surface, Surface)> {
 
 pub fn run(args: &Args) -> Result<()> {
     if args.calibrate {
-        return super::estimate::recalibrate();
+        return super::cost::recalibrate();
     }
     for &n in &args.sizes {
         check_size(n).with_context(|| format!("--sizes {n}"))?;
@@ -189,6 +189,11 @@ pub struct SlideArgs {
     /// Where the contact solver computes: cpu (or cuda, in builds with a GPU backend).
     #[arg(long, default_value = "cpu")]
     device: wearsim::Device,
+    /// After the warm steps, time the static estimate (`wearsim estimate`) of the same load at
+    /// `--warm-n` with this many static maps, against the sliding load extrapolated from the warm
+    /// steps (0 to skip).
+    #[arg(long, default_value_t = 8)]
+    estimate_samples: usize,
 }
 
 pub fn run_slide(args: &SlideArgs) -> Result<()> {
@@ -222,6 +227,8 @@ pub fn run_slide(args: &SlideArgs) -> Result<()> {
         device: args.device,
         sliding: Some(sliding),
         stopping: wearsim::contact::SLIDING_STOPPING,
+        model: wearsim::estimate::WearModel::Sliding,
+        estimate_samples: None,
     };
     let material = &config.material;
     let prepared = SlidingRun::prepare(&config)?;
@@ -322,5 +329,21 @@ fn warm_steps(args: &SlideArgs, full: &RunConfig) -> Result<()> {
         per_step * offsets as f64 / 60.0,
         peak_memory_mib().unwrap_or(f64::NAN)
     );
+    if args.estimate_samples > 0 {
+        // The same load of the same pair, estimated as a study job of it is: its static maps cold.
+        let sampling = wearsim::estimate::Sampling::of(Some(args.estimate_samples)).context("--estimate-samples")?;
+        let t = Instant::now();
+        let outcome = SlidingRun::prepare(&config)?.estimate(sampling, &wearsim::estimate::CALIBRATION, |_, _| {})?;
+        let seconds = t.elapsed().as_secs_f64();
+        let sliding_load = per_step * offsets as f64;
+        println!(
+            "static estimate at N = {n} (F_N = 1e-3, {} static maps, surfaces made included): {seconds:.1} s per load; \
+             sliding / estimate = {:.0}× per load; N* = {:.1} at d* = {:.1} px",
+            outcome.samples,
+            sliding_load / seconds,
+            outcome.loads[0].results[0].critical_junctions_mean,
+            outcome.loads[0].results[0].critical_diameter * n as f64,
+        );
+    }
     Ok(())
 }

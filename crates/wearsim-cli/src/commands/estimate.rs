@@ -1,204 +1,231 @@
-//! Cost estimates before the work (`slide`, `study run` and their `--dry-run`, `bench --calibrate`):
-//! wall time and peak memory on this machine from the library's cost model (`wearsim::cost`), so
-//! that a Slurm job's `--time` and `--mem` can be sized before it is submitted.
+//! `wearsim estimate`: the static estimate of W, k and dN*₊/ds from a few contact solutions;
+//! `wearsim estimate-check`: the estimate against the sliding runs of a study, and the fit of its
+//! constants.
+
+use std::path::PathBuf;
 
 use anyhow::{Context, Result};
-use wearsim::config::RunConfig;
-use wearsim::cost::{cache_dir, Calibration, Estimate};
-use wearsim::study::Job;
+use wearsim::config::Units;
+use wearsim::estimate::{Calibration, Sampling, CALIBRATION, MAX_SAMPLES};
+use wearsim::io::{write_json, write_text, OutputDir};
+use wearsim::output::{Provenance, Table, ESTIMATE_NOTICE};
+use wearsim::run::SlidingRun;
+use wearsim::study::compare::{compare, map_jobs, summarize, ComparisonSummary};
 
-/// This machine's calibration: the cached one, or measured now (about ten seconds) and cached.
-pub fn calibration() -> Result<Calibration> {
-    let dir = cache_dir();
-    if let Some(c) = dir.as_deref().and_then(Calibration::cached) {
-        return Ok(c);
+use super::load_run;
+use super::slide::with_unit;
+use crate::progress::Progress;
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// Run file (TOML, see README) with a `[sliding]` table: its loads, and the sliding distance of
+    /// the run whose 95 % interval is given.
+    run: PathBuf,
+    /// Output folder (created if missing; an earlier `estimate` there is replaced whole).
+    #[arg(long)]
+    out: PathBuf,
+    /// Replace the output folder even when it holds another command's results or other files.
+    #[arg(long)]
+    overwrite: bool,
+    /// Static maps per load (1 to 16; default: the run file's `estimate_samples`, else from 4 until
+    /// N*'s sampling error is at most 10 %).
+    #[arg(long, value_name = "K")]
+    samples: Option<usize>,
+}
+
+#[derive(clap::Args)]
+pub struct CheckArgs {
+    /// Study folder of finished sliding jobs (`wearsim study run`); unfinished jobs are left out.
+    dir: PathBuf,
+    /// Output folder for comparison.csv and summary.json.
+    #[arg(long)]
+    out: PathBuf,
+    /// Replace the output folder even when it holds another command's results or other files.
+    #[arg(long)]
+    overwrite: bool,
+    /// Fit the constants on these runs (and compare with the fitted ones), printing them as the
+    /// library's `CALIBRATION` is written.
+    #[arg(long)]
+    fit: bool,
+    /// Settings counted in the errors and the coverage: at least this many particles in the sliding
+    /// run's fit window.
+    #[arg(long, default_value_t = 20)]
+    min_particles: usize,
+    /// Static maps per job (default: chosen by the sampling error, as `estimate` does).
+    #[arg(long, value_name = "K")]
+    samples: Option<usize>,
+}
+
+fn maybe(units: Units, quantity: &str, value: Option<f64>) -> String {
+    value.map_or("undefined".into(), |v| with_unit(units, quantity, v))
+}
+
+fn interval(units: Units, quantity: &str, lo: Option<f64>, hi: Option<f64>) -> String {
+    match (lo, hi) {
+        (Some(lo), Some(hi)) => format!(
+            "[{}, {}]",
+            with_unit(units, quantity, lo),
+            with_unit(units, quantity, hi)
+        ),
+        _ => "".into(),
     }
-    eprintln!(
-        "calibrating this machine for cost estimates on {} (about ten seconds, once per machine, wearsim version \
-         and thread count)",
-        counted(rayon::current_num_threads(), "thread")
+}
+
+pub fn run(args: &Args) -> Result<()> {
+    let run = &args.run;
+    super::polls_interrupt();
+    let config = load_run(run)?;
+    wearsim::run::sliding_schedule(&config).with_context(|| format!("run file {}", run.display()))?;
+    let sampling = Sampling::of(args.samples.or(config.estimate_samples)).context("--samples")?;
+    let grid = config.grid()?;
+    wearsim::check::memory("an estimate", grid.nx(), grid.ny(), wearsim::check::CONTACT_ARRAYS)?;
+    let out = OutputDir::begin(&args.out, "estimate", args.overwrite, &super::run_inputs(run, &config))?;
+    let prepared = SlidingRun::prepare(&config)?.interrupted_by(super::interrupt());
+    super::report_surfaces(prepared.surfaces(), false);
+    let units = config.units;
+    let pixel = prepared.grid().pixel_size();
+    for (g, d) in config
+        .material
+        .fracture_energies
+        .iter()
+        .zip(config.material.critical_diameters())
+    {
+        eprintln!(
+            "𝒢 = {}: critical diameter d* = {} ({:.1} px)",
+            with_unit(units, "fracture_energy", *g),
+            with_unit(units, "critical_diameter", d),
+            d / pixel
+        );
+    }
+    let loads = prepared.sliding().loads.len();
+    let progress = Progress::new("estimate", "solves", (loads * MAX_SAMPLES) as u64);
+    let outcome = prepared.estimate(sampling, &CALIBRATION, |done, most| {
+        progress.set(done as u64, most as u64, "static maps")
+    });
+    progress.finish();
+    let outcome = outcome?;
+    write_text(&out.join("results.csv"), &outcome.results_csv())?;
+    write_json(&out.join("summary.json"), &outcome.summary())?;
+    super::check_interrupt()?;
+    out.commit()?;
+    println!("ESTIMATE ({ESTIMATE_NOTICE})");
+    for l in &outcome.loads {
+        for r in &l.results {
+            println!(
+                "F_N = {}, d* = {}: W = {} {}, k = {} {}, dN*₊/ds = {} {}; N* = {:.2} (sampling error {}), d̄ = {}",
+                with_unit(units, "load", l.load),
+                with_unit(units, "critical_diameter", r.critical_diameter),
+                maybe(units, "wear_rate", r.wear_rate),
+                interval(units, "wear_rate", r.wear_rate_low, r.wear_rate_high),
+                maybe(units, "wear_coefficient", r.wear_coefficient),
+                interval(
+                    units,
+                    "wear_coefficient",
+                    r.wear_coefficient_low,
+                    r.wear_coefficient_high
+                ),
+                maybe(units, "particle_rate", r.particle_rate),
+                interval(units, "particle_rate", r.particle_rate_low, r.particle_rate_high),
+                r.critical_junctions_mean,
+                r.critical_junctions_sampling_error
+                    .map_or("undefined".into(), |e| format!("{:.1} %", 100.0 * e)),
+                maybe(units, "mean_critical_diameter", r.mean_critical_diameter),
+            );
+        }
+    }
+    for w in &outcome.warnings {
+        eprintln!("warning: {w}");
+    }
+    println!(
+        "{} static maps per load (intervals: 95 % for a sliding run of this box and distance), {} loads in {:.1} s; \
+         wrote {}",
+        outcome.samples,
+        loads,
+        outcome.seconds,
+        args.out.display()
     );
-    measure_and_save(dir)
-}
-
-fn measure_and_save(dir: Option<std::path::PathBuf>) -> Result<Calibration> {
-    let c = Calibration::measure(super::interrupt()).context("calibration of the cost estimates")?;
-    match dir {
-        Some(dir) => match c.save(&dir) {
-            Ok(path) => eprintln!("calibration cached in {}", path.display()),
-            Err(e) => eprintln!("note: the calibration is not cached: {e}"),
-        },
-        None => eprintln!("note: neither $XDG_CACHE_HOME nor $HOME is set: the calibration is not cached"),
-    }
-    Ok(c)
-}
-
-/// `wearsim bench --calibrate`: measures anew, caches and prints the calibration.
-pub fn recalibrate() -> Result<()> {
-    let c = measure_and_save(cache_dir())?;
-    println!("{}", serde_json::to_string_pretty(&c)?);
     Ok(())
 }
 
-/// "1 thread", "2 threads".
-fn counted(n: usize, noun: &str) -> String {
-    format!("{n} {noun}{}", if n == 1 { "" } else { "s" })
-}
-
-/// A duration for people: seconds, minutes or hours.
-fn duration(seconds: f64) -> String {
-    if seconds < 90.0 {
-        format!("{seconds:.0} s")
-    } else if seconds < 5400.0 {
-        format!("{:.0} min", seconds / 60.0)
-    } else {
-        format!("{:.1} h", seconds / 3600.0)
+fn describe(what: &str, s: &ComparisonSummary) {
+    let pct = |v: Option<f64>| v.map_or("undefined".into(), |v| format!("{:.1} %", 100.0 * v));
+    println!(
+        "{what}: {} settings with at least {} particles ({} left out): W and k median |error| {}, worst {}; dN*₊/ds \
+         median {}, worst {}; the 95 % interval covers W in {}/{} and dN*₊/ds in {}/{}",
+        s.settings,
+        s.min_particles,
+        s.left_out,
+        pct(s.wear_rate_median_error),
+        pct(s.wear_rate_worst_error),
+        pct(s.particle_rate_median_error),
+        pct(s.particle_rate_worst_error),
+        s.wear_rate_covered,
+        s.settings,
+        s.particle_rate_covered,
+        s.settings
+    );
+    for n in &s.not_covered {
+        println!("  not covered: {n}");
     }
 }
 
-/// Bytes in MiB or GiB.
-fn memory(bytes: f64) -> String {
-    let mib = bytes / (1u64 << 20) as f64;
-    if mib < 1024.0 {
-        format!("{mib:.0} MiB")
-    } else {
-        format!("{:.1} GiB", mib / 1024.0)
+pub fn check(args: &CheckArgs) -> Result<()> {
+    super::polls_interrupt();
+    let sampling = Sampling::of(args.samples).context("--samples")?;
+    wearsim::io::refuse_inputs_inside(&args.out, &[args.dir.as_path()])?;
+    let out = OutputDir::begin(&args.out, "estimate-check", args.overwrite, &[args.dir.as_path()])?;
+    let progress = Progress::new("estimate-check", "jobs", 0);
+    let mapped = map_jobs(&args.dir, sampling, super::interrupt(), |done, total| {
+        progress.set(done as u64, total as u64, "jobs estimated")
+    });
+    progress.finish();
+    let (jobs, left_out) = mapped?;
+    if left_out > 0 {
+        eprintln!("note: {left_out} jobs of the study are unfinished or estimates, and are left out");
     }
-}
-
-/// Slurm's `--time` (D-HH:MM:SS) and `--mem` (MiB) for an estimate, with room to spare: half the
-/// time again, a quarter of the memory and 100 MiB for the process itself.
-fn slurm(seconds: f64, bytes: f64) -> String {
-    let s = (seconds * 1.5).ceil().max(60.0) as u64;
-    let mem = (bytes * 1.25 / (1u64 << 20) as f64 + 100.0).ceil() as u64;
-    format!(
-        "--time={}-{:02}:{:02}:{:02} --mem={mem}M",
-        s / 86_400,
-        s % 86_400 / 3600,
-        s % 3600 / 60,
-        s % 60
-    )
-}
-
-/// What an estimate assumes, one line.
-fn assumptions(c: &Calibration) -> String {
-    let loaded = match c.load_average {
-        Some(l) if l > 0.5 * c.cores as f64 => format!(
-            "; measured while the machine was busy (load average {l:.1} on {} cores), so estimates run high: \
-             `wearsim bench --calibrate` on an idle machine measures again",
-            c.cores
-        ),
-        _ => String::new(),
+    let fitted = if args.fit {
+        let points: Vec<_> = compare(&jobs, &CALIBRATION).iter().map(|r| r.point()).collect();
+        Some(Calibration::fit(&points)?)
+    } else {
+        None
     };
-    format!(
-        "assumes {} and the machine as free as at its calibration ({}, {} days ago), iterations as on the \
-         paper's roughness{loaded}",
-        counted(c.threads, "thread"),
-        c.machine,
-        c.age_days()
-    )
-}
-
-/// Set (non-empty) in the environment, runs print no estimate and calibrate nothing; a dry run
-/// still estimates.
-pub const NO_ESTIMATE: &str = "WEARSIM_NO_ESTIMATE";
-
-fn skipped(dry_run: bool) -> bool {
-    !dry_run && std::env::var_os(NO_ESTIMATE).is_some_and(|v| !v.is_empty())
-}
-
-/// Prints the estimate of a run before it starts. An estimate that cannot be made is an error on a
-/// dry run (it is all the dry run does) and a note otherwise (the run goes on), unless the
-/// calibration was interrupted (Ctrl-C stops the command).
-pub fn report_run(config: &RunConfig, dry_run: bool) -> Result<()> {
-    if skipped(dry_run) {
-        return Ok(());
+    let calibration = fitted.unwrap_or(CALIBRATION);
+    let rows = compare(&jobs, &calibration);
+    let summary = summarize(&rows, args.min_particles);
+    let in_use = summarize(&compare(&jobs, &CALIBRATION), args.min_particles);
+    write_text(&out.join("comparison.csv"), &Table::of(&rows).to_csv())?;
+    write_json(
+        &out.join("summary.json"),
+        &serde_json::json!({
+            "provenance": Provenance::current(),
+            "study": args.dir,
+            "jobs_compared": jobs.len(),
+            "jobs_left_out": left_out,
+            "calibration": calibration,
+            "fitted": fitted.is_some(),
+            "calibration_in_use": CALIBRATION,
+            "summary": summary,
+            "summary_with_calibration_in_use": in_use,
+            "error_convention": "estimate/sliding − 1 per setting; W and k share it (both W p_m/F_N)",
+        }),
+    )?;
+    super::check_interrupt()?;
+    out.commit()?;
+    if let Some(c) = fitted {
+        println!(
+            "fitted on {} settings ({} particles): residence_factor (c₁) = {:.3}, merging_factor (c₂) = {:.2}, \
+             volume_factor (c_v) = {:.3}, rate_spread = {:.3}, wear_spread = {:.3}",
+            c.settings,
+            c.particles,
+            c.residence_factor,
+            c.merging_factor,
+            c.volume_factor,
+            c.rate_spread,
+            c.wear_spread
+        );
+        describe("with the fitted constants", &summary);
     }
-    lenient(print_run(config).map(|_| ()), dry_run)
-}
-
-/// [`report_run`] for a study's jobs.
-pub fn report_study(jobs: &[&Job], workers: usize, dry_run: bool) -> Result<()> {
-    if skipped(dry_run) {
-        return Ok(());
-    }
-    lenient(print_study(jobs, workers), dry_run)
-}
-
-fn lenient(result: Result<()>, dry_run: bool) -> Result<()> {
-    match result {
-        Err(e) if !dry_run && !is_interrupted(&e) => {
-            eprintln!("note: no cost estimate: {e:#}");
-            Ok(())
-        }
-        other => other,
-    }
-}
-
-fn is_interrupted(e: &anyhow::Error) -> bool {
-    e.chain()
-        .any(|c| matches!(c.downcast_ref::<wearsim::Error>(), Some(wearsim::Error::Interrupted)))
-}
-
-/// Prints the estimate of a run file's sliding run.
-pub fn print_run(config: &RunConfig) -> Result<Estimate> {
-    let sliding = config.sliding.as_ref().context("a [sliding] table is needed")?;
-    let grid = config.grid()?;
-    let c = calibration()?;
-    let e = c.estimate(grid, sliding, config.stopping);
-    eprintln!(
-        "estimate: {} steps at {}×{} ({} per load × {}, about {:.1} iterations per step): {} wall on {} \
-         ({:.2} CPU hours), peak memory {}; Slurm: {}",
-        e.steps,
-        grid.nx(),
-        grid.ny(),
-        e.steps / sliding.loads.len(),
-        counted(sliding.loads.len(), "load"),
-        e.iterations / e.steps as f64,
-        duration(e.seconds),
-        counted(e.threads, "thread"),
-        e.cpu_hours(),
-        memory(e.peak_memory),
-        slurm(e.seconds, e.peak_memory)
-    );
-    eprintln!("  ({})", assumptions(&c));
-    Ok(e)
-}
-
-/// Prints the estimate of a study's (shard's) jobs run `workers` at a time on this machine's
-/// threads.
-pub fn print_study(jobs: &[&Job], workers: usize) -> Result<()> {
-    if jobs.is_empty() {
-        return Ok(());
-    }
-    let c = calibration()?;
-    let mut estimates = Vec::with_capacity(jobs.len());
-    for job in jobs {
-        let sliding = job.run.sliding.as_ref().context("a study job has a [sliding] table")?;
-        estimates.push(c.estimate(job.run.grid()?, sliding, job.run.stopping));
-    }
-    // Jobs side by side share the threads: about the wall time of running them one after another on
-    // all threads (side by side is, if anything, a little faster).
-    let seconds: f64 = estimates.iter().map(|e| e.seconds).sum();
-    let longest = estimates.iter().map(|e| e.seconds).fold(0.0, f64::max);
-    let per_job = estimates.iter().map(|e| e.peak_memory).fold(0.0, f64::max);
-    let peak = per_job * workers.min(jobs.len()) as f64;
-    eprintln!(
-        "estimate: {}: {} wall on {} ({:.2} CPU hours; the longest job {}), peak memory {} ({} per job, {} \
-         at once); Slurm, this shard: {}",
-        counted(jobs.len(), "job"),
-        duration(seconds),
-        counted(c.threads, "thread"),
-        seconds * c.threads as f64 / 3600.0,
-        duration(longest),
-        memory(peak),
-        memory(per_job),
-        workers.min(jobs.len()),
-        slurm(seconds, peak)
-    );
-    eprintln!(
-        "  (jobs already done are skipped when the study runs; {})",
-        assumptions(&c)
-    );
+    describe("with the constants in use", &in_use);
+    println!("wrote {}", args.out.display());
     Ok(())
 }

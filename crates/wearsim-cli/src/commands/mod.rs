@@ -3,6 +3,7 @@
 pub mod animate;
 pub mod bench;
 pub mod contact;
+pub mod cost;
 pub mod estimate;
 pub mod fields;
 pub mod junctions;

@@ -133,9 +133,15 @@ pub fn run(args: &Args) -> Result<()> {
     super::polls_interrupt();
     let config = load_run(run)?;
     wearsim::run::sliding_schedule(&config).with_context(|| format!("run file {}", run.display()))?;
+    if config.model == wearsim::estimate::WearModel::Estimate {
+        eprintln!(
+            "note: the run file asks for the static estimate (`[sliding] model = \"estimate\"`), which `wearsim \
+             estimate` and study jobs make; `slide` runs the sliding model"
+        );
+    }
     let interrupt = super::interrupt();
     // The estimate comes first: a dry run on a login node sizes a job for the nodes it will run on.
-    super::estimate::report_run(&config, args.dry_run)?;
+    super::cost::report_run(&config, args.dry_run)?;
     if args.dry_run {
         return Ok(());
     }

@@ -112,7 +112,7 @@ pub fn run(args: &RunArgs) -> Result<()> {
     if let Some(note) = note {
         eprintln!("note: {note}");
     }
-    super::estimate::report_study(&jobs, workers, args.dry_run)?;
+    super::cost::report_study(&jobs, workers, args.dry_run)?;
     if args.dry_run {
         return Ok(());
     }

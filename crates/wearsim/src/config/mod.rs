@@ -14,6 +14,7 @@ use std::path::Path;
 use crate::check::connectivity as check_connectivity;
 use crate::contact::{Device, SolverOptions, Stopping, SLIDING_STOPPING};
 use crate::error::{Error, Interrupt, Result};
+use crate::estimate::{Sampling, WearModel};
 use crate::grid::Grid;
 use crate::influence::Boundary;
 use crate::io::{parent_or_dot, read_text};
@@ -47,6 +48,12 @@ pub struct RunConfig {
     /// When the contact solves of a sliding run stop (`[sliding] stopping`); single solves stop at
     /// the tolerance of `solver`.
     pub stopping: Stopping,
+    /// Which model turns the run into wear results (`[sliding] model`): the sliding simulation, or
+    /// the static estimate of `crate::estimate`.
+    pub model: WearModel,
+    /// The static maps of an estimate (`[sliding] estimate_samples`; absent: chosen by the
+    /// sampling error).
+    pub estimate_samples: Option<usize>,
 }
 
 impl RunConfig {
@@ -111,6 +118,9 @@ impl RunConfig {
             .as_ref()
             .and_then(|sl| sl.stopping)
             .unwrap_or(SLIDING_STOPPING);
+        let model = raw.sliding.as_ref().and_then(|sl| sl.model).unwrap_or_default();
+        let estimate_samples = raw.sliding.as_ref().and_then(|sl| sl.estimate_samples);
+        Sampling::of(estimate_samples).map_err(|e| Error::run_file(format!("[sliding] {e}")))?;
         let sliding = match raw.sliding {
             None => None,
             Some(sl) => {
@@ -162,6 +172,8 @@ impl RunConfig {
             device,
             sliding,
             stopping,
+            model,
+            estimate_samples,
         })
     }
 
@@ -342,6 +354,8 @@ impl RunConfig {
                 .filter(|s| s.particle_rule != ParticleRuleKind::default())
                 .map(|s| s.particle_rule.name.to_string()),
             stopping: (self.sliding.is_some() && self.stopping != SLIDING_STOPPING).then_some(self.stopping),
+            model: (self.model != WearModel::default()).then_some(self.model),
+            estimate_samples: self.estimate_samples,
         };
         match &self.surfaces {
             SurfaceSource::Generated { grid, spectrum, seed } => {

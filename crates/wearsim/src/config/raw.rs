@@ -6,6 +6,7 @@ use std::path::PathBuf;
 use serde::Deserialize;
 
 use crate::contact::{Device, Stopping};
+use crate::estimate::WearModel;
 use crate::influence::Boundary;
 use crate::material::ModulusConvention;
 use crate::surface::Generation;
@@ -101,6 +102,8 @@ pub(super) struct RawSliding {
     pub(super) step: Option<usize>,
     pub(super) particle_rule: Option<String>,
     pub(super) stopping: Option<Stopping>,
+    pub(super) model: Option<WearModel>,
+    pub(super) estimate_samples: Option<usize>,
 }
 
 /// A TOML error message on one line (they come with a source excerpt over several lines).

@@ -3,6 +3,7 @@
 use serde::Deserialize;
 
 use crate::contact::{Device, Stopping};
+use crate::estimate::WearModel;
 use crate::material::ModulusConvention;
 use crate::surface::Generation;
 
@@ -87,6 +88,12 @@ pub struct InputRecord {
     /// whose wear results the settled map reproduces.
     #[serde(rename = "sliding.stopping", default)]
     pub stopping: Option<Stopping>,
+    /// The wear model, when not the sliding simulation (`estimate`: the static estimate).
+    #[serde(rename = "sliding.model", default)]
+    pub model: Option<WearModel>,
+    /// The static maps of an estimate, when fixed in the run file.
+    #[serde(rename = "sliding.estimate_samples", default)]
+    pub estimate_samples: Option<usize>,
 }
 
 impl InputRecord {

@@ -3,6 +3,7 @@
 //! and whether a study holds them, and numbers as legends print them.
 
 use crate::config::Units;
+use crate::estimate::WearModel;
 use crate::stats::{power_law_fit, PowerLawFit};
 
 use super::jobs::curves;
@@ -86,8 +87,9 @@ fn setting_label(column: &str, cell: &Cell, units: Units) -> String {
     }
 }
 
-/// The label of every curve of a tidy or aggregated table, by curve index (`output::curves`): the
-/// material when it is named, each setting that tells the curves apart, then 𝒢 with its d*
+/// The label of every curve of a tidy or aggregated table, by curve index (`output::curves`):
+/// "static estimate" for the curves of the static estimate (`sliding.model`), the material when it
+/// is named, each setting that tells the curves apart, then 𝒢 with its d*
 /// ("τ̃ = 0.012 E, 𝒢 = 2.5×10⁻⁷ E L (d* = 0.00401 L)").
 pub fn curve_labels(table: &Table) -> Vec<String> {
     let found = curves(table);
@@ -107,6 +109,12 @@ pub fn curve_labels(table: &Table) -> Vec<String> {
             continue;
         }
         let mut parts: Vec<String> = Vec::new();
+        // A curve of the static estimate says so first, wherever it is drawn.
+        if let Some(m) = table.column("sliding.model") {
+            if row[m].text() == WearModel::Estimate.name() {
+                parts.push("static estimate".into());
+            }
+        }
         if let Some(m) = table.column("material") {
             if row[m].text() != "material" {
                 parts.push(row[m].text());
@@ -115,7 +123,7 @@ pub fn curve_labels(table: &Table) -> Vec<String> {
         for s in found
             .settings
             .iter()
-            .filter(|s| !["material", "fracture_energy"].contains(&s.as_str()))
+            .filter(|s| !["material", "fracture_energy", "sliding.model"].contains(&s.as_str()))
         {
             if let Some(i) = table.column(s) {
                 parts.push(setting_label(s, &row[i], units));

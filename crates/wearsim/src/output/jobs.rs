@@ -7,6 +7,7 @@ use serde_json::json;
 
 use crate::config::{InputRecord, Units};
 use crate::error::{Error, Result};
+use crate::estimate::EstimateResult;
 use crate::sliding::WearResult;
 
 use super::provenance::Provenance;
@@ -43,6 +44,11 @@ pub struct JobResult {
     pub seconds: f64,
     /// What makes a result of this job under-resolved or undefined.
     pub warnings: Vec<String>,
+    /// A job of the static estimate (`sliding.model = "estimate"`): the estimate of every
+    /// fracture energy with its intervals; `results` then holds the estimate's W, k, dN*₊/ds, N*,
+    /// N and static model in the sliding model's columns, and `steps` is empty. Absent for sliding jobs.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub estimates: Vec<EstimateResult>,
 }
 
 impl JobResult {
@@ -553,6 +559,7 @@ mod tests {
             total_iterations: 0,
             seconds: 0.0,
             warnings: Vec::new(),
+            estimates: Vec::new(),
         }
     }
 

@@ -32,8 +32,9 @@ pub use jobs::{
 pub use provenance::{Provenance, DEPENDENCY_VERSIONS};
 pub use series::{job_series_rows, series_rows, SeriesRow, StepRow};
 pub use summary::{
-    contact_summary, junctions_summary, series_csv, sliding_summary, surface_fit_summary, surface_summary,
-    ContactRecord, SlidingInputs, SurfaceStatistics, PSD_CONVENTION, RESIDUAL_DEFINITION,
+    contact_summary, estimate_rows, estimate_summary, junctions_summary, series_csv, sliding_summary,
+    surface_fit_summary, surface_summary, ContactRecord, EstimateRow, SlidingInputs, SurfaceStatistics,
+    ESTIMATE_NOTICE, PSD_CONVENTION, RESIDUAL_DEFINITION,
 };
 pub use tables::{columns, Cell, Table};
 pub use units::{declared_unit, unit_of, units_map, QUANTITIES};

@@ -6,6 +6,7 @@ use serde_json::{json, Value};
 
 use crate::config::{RunConfig, SurfaceSource, Units};
 use crate::contact::{Device, SolveInfo, SolverOptions};
+use crate::estimate::{Calibration, EstimateResult, LoadEstimate, WearModel};
 use crate::influence::Boundary;
 use crate::material::{Material, ModulusConvention};
 use crate::sliding::{LoadRun, SlidingConfig, WearResult};
@@ -137,6 +138,73 @@ pub fn sliding_summary(
         "results": results,
         "units_of_results": units_map(inputs.units, columns::<WearResult>().iter().map(String::as_str).chain(["load", "flow_pressure", "effective_modulus"])),
         "units_of_series": units_map(inputs.units, columns::<SeriesRow>().iter().map(String::as_str)),
+        "warnings": warnings,
+        "seconds": seconds,
+    })
+}
+
+/// One row of an estimate's `results.csv`: a load and the estimate of one fracture energy.
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct EstimateRow {
+    pub load: f64,
+    #[serde(flatten)]
+    pub result: EstimateResult,
+}
+
+/// The rows of an estimate's `results.csv`, load by load.
+pub fn estimate_rows(loads: &[LoadEstimate]) -> Vec<EstimateRow> {
+    loads
+        .iter()
+        .flat_map(|l| {
+            l.results.iter().map(|r| EstimateRow {
+                load: l.load,
+                result: r.clone(),
+            })
+        })
+        .collect()
+}
+
+/// What an estimate is, as every document of one says it.
+pub const ESTIMATE_NOTICE: &str = "static estimate, not a sliding run: dN*₊/ds = N*/R with N* and the critical \
+junctions' mean diameter d̄ from static contact maps at spread offsets, the residence R = c₁ d̄ (1 + c₂ θ), θ = N* d̄²/(Lx Ly), \
+W = c_v (π/6) d*³ dN*₊/ds, k = W p_m/F_N; constants calibrated on sliding runs (see `calibration`)";
+
+/// `summary.json` of an estimate: marked as one (`model`, `notice`), with the calibration used,
+/// the static maps taken and the results per load and fracture energy with their 95 % intervals.
+pub fn estimate_summary(
+    inputs: &SlidingInputs,
+    loads: &[LoadEstimate],
+    calibration: &Calibration,
+    warnings: &[String],
+    seconds: f64,
+) -> Value {
+    let m = inputs.material;
+    let results: Vec<Value> = estimate_rows(loads)
+        .iter()
+        .map(|r| serde_json::to_value(r).expect("plain numbers serialise"))
+        .collect();
+    let samples: Vec<Value> = loads
+        .iter()
+        .map(|l| json!({"load": l.load, "maps": l.samples}))
+        .collect();
+    json!({
+        "model": WearModel::Estimate.name(),
+        "notice": ESTIMATE_NOTICE,
+        "provenance": Provenance::current(),
+        "units": inputs.units,
+        "inputs": inputs.to_json(),
+        "flow_pressure": m.flow_pressure(),
+        "critical_diameter": m.fracture_energies.iter().zip(m.critical_diameters()).map(|(g, d)| json!({"fracture_energy": g, "critical_diameter": d})).collect::<Vec<_>>(),
+        "effective_modulus": m.effective_modulus(inputs.modulus),
+        "modulus_convention": inputs.modulus.name(),
+        "calibration": calibration,
+        "interval_convention": "95 % interval of the value a sliding run of this box and sliding distance would give: \
+            exp(±1.96 σ) about the estimate, σ² = the rule's spread² (calibration) + the relative sampling error of N*² + \
+            1/expected_particles (the run's Poisson noise)",
+        "static_maps": loads.first().map_or(0, |l| l.samples.len()),
+        "results": results,
+        "maps": samples,
+        "units_of_results": units_map(inputs.units, columns::<EstimateRow>().iter().map(String::as_str).chain(["flow_pressure", "effective_modulus"])),
         "warnings": warnings,
         "seconds": seconds,
     })

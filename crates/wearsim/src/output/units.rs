@@ -1,6 +1,7 @@
 //! Units of quantities and columns in the run's unit system (reduced: E, L; SI: Pa, m, N, J/m²).
 //!
-//! Every unit is declared once: a result field's beside the field (`WearResult::UNITS`), a series
+//! Every unit is declared once: a result field's beside the field (`WearResult::UNITS`, and
+//! `EstimateResult::UNITS` for the static estimate's), a series
 //! column's beside the column ([`SeriesRow::UNITS`]), and every other quantity a table, summary
 //! or front end names (the inputs, the tidy and aggregated tables' own columns, the fields) in
 //! [`QUANTITIES`]. A name declared nowhere has no unit ([`declared_unit`] says so); the tests
@@ -9,6 +10,7 @@
 use std::collections::BTreeMap;
 
 use crate::config::Units;
+use crate::estimate::EstimateResult;
 use crate::sliding::WearResult;
 
 use super::series::SeriesRow;
@@ -67,6 +69,8 @@ pub const QUANTITIES: &[(&str, &str, &str)] = &[
     ("device", "", ""),
     ("particle_rule", "", ""),
     ("stopping", "", ""),
+    ("model", "", ""),
+    ("estimate_samples", "", ""),
     ("warnings", "", ""),
     // Columns the aggregated table adds.
     ("curve", "", ""),
@@ -87,7 +91,7 @@ const STATISTICS: [&str; 7] = ["_mean", "_std", "_min", "_max", "_total", "_ci_l
 pub fn declared_unit(units: Units, quantity: &str) -> Option<&'static str> {
     let si = units == Units::Si;
     let declared = |name: &str| {
-        [WearResult::UNITS, SeriesRow::UNITS, QUANTITIES]
+        [WearResult::UNITS, EstimateResult::UNITS, SeriesRow::UNITS, QUANTITIES]
             .iter()
             .find_map(|table| table.iter().find(|u| u.0 == name))
             .map(|&(_, reduced, si_unit)| if si { si_unit } else { reduced })
@@ -147,7 +151,7 @@ mod tests {
 
     #[test]
     fn a_quantity_declared_twice_has_one_unit() {
-        let tables = [WearResult::UNITS, SeriesRow::UNITS, QUANTITIES];
+        let tables = [WearResult::UNITS, EstimateResult::UNITS, SeriesRow::UNITS, QUANTITIES];
         for (i, a) in tables.iter().enumerate() {
             for b in &tables[i + 1..] {
                 for x in a.iter() {

@@ -9,9 +9,12 @@
 //! - [`run`]: runs pending jobs, several at once, resumably (a killed study resumes where it
 //!   stopped);
 //! - [`collect`](mod@collect): job files → the tidy table and its aggregate over surface pairs;
+//! - [`compare`]: the static estimate against the study's sliding runs (errors, coverage, the
+//!   calibration's points);
 //! - [`findings`]: the paper's qualitative findings checked on a tidy table.
 
 pub mod collect;
+pub mod compare;
 pub mod expand;
 pub mod findings;
 pub mod run;

@@ -6,6 +6,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
 use crate::error::{Error, Interrupt, Result};
+use crate::estimate::{EstimateResult, Sampling, WearModel, CALIBRATION, MAX_SAMPLES};
 use crate::output::{JobResult, Provenance, StepRow};
 use crate::run::SlidingRun;
 use crate::sliding::{Checkpointing, Resumed};
@@ -22,9 +23,17 @@ pub fn checkpoint_path(dir: &Path, index: usize) -> PathBuf {
     dir.join("jobs").join(format!("job-{index:06}.checkpoint"))
 }
 
-/// Sliding steps of a job (its schedule on its grid), for progress in steps.
+/// Sliding steps of a job (its schedule on its grid), for progress in steps; for a job of the
+/// static estimate, the most static solves it may take.
 pub fn job_steps(job: &Job) -> usize {
     match (job.run.sliding.as_ref(), job.run.grid()) {
+        (Some(s), Ok(_)) if job.run.model == WearModel::Estimate => {
+            let maps = match Sampling::of(job.run.estimate_samples) {
+                Ok(Sampling::Fixed(k)) => k,
+                _ => MAX_SAMPLES,
+            };
+            maps * s.loads.len()
+        }
         (Some(s), Ok(grid)) => s.offsets(grid.nx()).len() * s.loads.len(),
         _ => 0,
     }
@@ -42,6 +51,9 @@ pub fn run_job_observed(
     on_checkpoint: impl FnMut(&Resumed),
 ) -> Result<JobResult> {
     let run = &job.run;
+    if run.model == WearModel::Estimate {
+        return estimate_job(job, interrupt, on_step);
+    }
     let mut outcome =
         SlidingRun::prepare(run)?
             .interrupted_by(interrupt)
@@ -64,6 +76,39 @@ pub fn run_job_observed(
         total_iterations: r.total_iterations,
         seconds: outcome.seconds,
         warnings: outcome.warnings,
+        estimates: Vec::new(),
+    })
+}
+
+/// A job of the static estimate (`[sliding] model = "estimate"`): its static maps, the estimate in
+/// the sliding model's result columns for the tables, and the estimate itself with its intervals.
+/// `on_step` is called after every static solve.
+fn estimate_job(job: &Job, interrupt: &Interrupt, on_step: impl Fn()) -> Result<JobResult> {
+    let run = &job.run;
+    let sampling = Sampling::of(run.estimate_samples)?;
+    let mut outcome =
+        SlidingRun::prepare(run)?
+            .interrupted_by(interrupt)
+            .estimate(sampling, &CALIBRATION, |_, _| on_step())?;
+    let l = outcome
+        .loads
+        .pop()
+        .ok_or_else(|| Error::param("loads", "job without a load"))?;
+    Ok(JobResult {
+        format: crate::output::JOB_FORMAT,
+        provenance: Provenance::current(),
+        index: job.index,
+        material: job.material.clone(),
+        inputs: job.inputs(),
+        load: l.load,
+        flow_pressure: run.material.flow_pressure(),
+        effective_modulus: run.effective_modulus(),
+        results: l.results.iter().map(EstimateResult::as_wear_result).collect(),
+        steps: Vec::new(),
+        total_iterations: l.samples.iter().map(|s| s.iterations).sum(),
+        seconds: outcome.seconds,
+        warnings: outcome.warnings,
+        estimates: l.results,
     })
 }
 

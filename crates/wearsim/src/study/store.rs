@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, SystemTime};
 
 use crate::error::{Error, Result};
+use crate::estimate::WearModel;
 use crate::io::{
     create_claim_file, folder_owner, host_name, make_folder, marker, process_gone, read_text, temporary_sibling,
     write_json, write_text, FolderOwner, MARKER,
@@ -135,6 +136,18 @@ pub fn out_of_range(r: &JobResult, job: &Job) -> Option<String> {
         if let Some((name, value, rule)) = bad {
             return Some(format!("`results[{e}].{name}` = {value:e}, which must be {rule}"));
         }
+    }
+    if job.run.model == WearModel::Estimate {
+        // An estimate takes no sliding step; it keeps its estimates, one per fracture energy.
+        if !r.steps.is_empty() || r.estimates.len() != energies.len() {
+            return Some(format!(
+                "an estimate's file with {} sliding steps and {} estimates where it has none and {}",
+                r.steps.len(),
+                r.estimates.len(),
+                energies.len()
+            ));
+        }
+        return None;
     }
     if r.steps.is_empty() {
         return Some("no sliding step".into());

@@ -88,6 +88,9 @@ pub(super) struct Curve {
     pub rows: Vec<Vec<Cell>>,
     /// The aggregated table's columns.
     pub columns: Arc<Vec<String>>,
+    /// A curve of the static estimate (`sliding.model = "estimate"`): it counts no particle (its
+    /// uncertainty is its interval, in the job files), so none of its points is drawn hollow.
+    pub estimate: bool,
 }
 
 impl Curve {
@@ -98,8 +101,12 @@ impl Curve {
             .map_or(f64::NAN, |i| row[i].number())
     }
 
-    /// Per load: the particles formed in the fit window, summed over the surface pairs.
+    /// Per load: the particles formed in the fit window, summed over the surface pairs; none for a
+    /// curve of the static estimate.
     pub fn particles(&self) -> Vec<(f64, f64)> {
+        if self.estimate {
+            return Vec::new();
+        }
         self.rows
             .iter()
             .map(|r| (self.get(r, "nominal_pressure"), self.get(r, "particles_in_fit_total")))
@@ -180,6 +187,7 @@ impl Data {
                 area: inputs.length * inputs.length_y.unwrap_or(inputs.length),
                 rows: Vec::new(),
                 columns: Arc::clone(&columns),
+                estimate: inputs.model == Some(wearsim::estimate::WearModel::Estimate),
             });
         }
         let curve = aggregated

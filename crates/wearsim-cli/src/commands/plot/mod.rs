@@ -170,7 +170,7 @@ fn fig4(cx: &Context) -> Result<()> {
             LoadPanel::new("wear_coefficient", "wear coefficient k = W p_m / F_N", true),
         ],
         true,
-        "sliding model (the paper's Fig. 4 rows: W, k)",
+        "sliding model (the paper's Fig. 4 rows: W, k); curves labelled \"static estimate\" are the estimate",
     );
     cx.save("fig4_sliding_wear", WIDE, &fig)
 }
@@ -308,8 +308,15 @@ fn app_f(cx: &Context) -> Result<()> {
     cx.save("appF_contact_severity", NARROW, &figure)
 }
 
+/// What the figures of one job's sliding series draw instead when that job is a static estimate.
+const NO_SERIES: &str = "this job is a static estimate: it takes no sliding step, so it has no wear-volume curve, \
+particle counts or memory of the initial contact (those are the sliding model's; `--job` picks a sliding job)";
+
 fn fig3(cx: &Context) -> Result<()> {
     let (job, result) = cx.series;
+    if result.steps.is_empty() {
+        return cx.save("fig3_wear_volume", NARROW, &Note(NO_SERIES));
+    }
     let fig = VolumeFigure {
         job,
         result,
@@ -320,6 +327,9 @@ fn fig3(cx: &Context) -> Result<()> {
 
 fn app_b(cx: &Context) -> Result<()> {
     let (job, result) = cx.series;
+    if result.steps.is_empty() {
+        return cx.save("appB_particle_counts", NARROW, &Note(NO_SERIES));
+    }
     let fig = CountsFigure {
         job,
         result,
@@ -329,6 +339,9 @@ fn app_b(cx: &Context) -> Result<()> {
 }
 
 fn memory(cx: &Context) -> Result<()> {
+    if cx.series.1.steps.is_empty() {
+        return cx.save("memory_of_initial_contact", NARROW, &Note(NO_SERIES));
+    }
     let fig = MemoryFigure {
         pairs: cx.data.pairs_of(cx.series.0),
         units: cx.data.units,
@@ -351,6 +364,20 @@ fn draw(data: &Data, job: Option<usize>, figures: Option<&[String]>, out: &Path)
     Ok(cx.series.1.index)
 }
 
+/// The rows of a tidy table that are sliding runs (not `sliding.model = "estimate"`), and how many
+/// rows were estimates.
+fn sliding_rows(tidy: &wearsim::output::Table) -> (wearsim::output::Table, usize) {
+    let mut sliding = tidy.clone();
+    let Some(m) = tidy.column("sliding.model") else {
+        return (sliding, 0);
+    };
+    sliding
+        .rows
+        .retain(|r| r[m].text() != wearsim::estimate::WearModel::Estimate.name());
+    let estimates = tidy.rows.len() - sliding.rows.len();
+    (sliding, estimates)
+}
+
 pub fn run(args: &Args) -> Result<()> {
     let dir = &args.dir;
     let (study, results) = load_results(dir)?;
@@ -358,10 +385,26 @@ pub fn run(args: &Args) -> Result<()> {
     let figures = wearsim::io::OutputDir::begin(&dir.join("figures"), "study plot", false, &[])?;
     let out = figures.join("");
     let series = draw(&data, args.job, args.figures.as_deref(), &out)?;
-    // The paper's findings on this study.
-    let found = findings(&data.tidy);
+    // The paper's findings on this study, judged on its sliding jobs: an estimate is no sliding run.
+    let (sliding, estimates) = sliding_rows(&data.tidy);
+    let found = if sliding.rows.is_empty() {
+        Vec::new()
+    } else {
+        findings(&sliding)
+    };
+    let note = match (estimates, sliding.rows.len()) {
+        (0, _) => String::new(),
+        (_, 0) => "This study holds static estimates only (`sliding.model = \"estimate\"`): the paper's findings are \
+                   judged on sliding runs, so none is judged here. Its figures draw the estimates, labelled \
+                   \"static estimate\".\n\n"
+            .to_string(),
+        (n, _) => format!(
+            "{n} rows of this study are static estimates (`sliding.model = \"estimate\"`); the findings below are \
+             judged on its sliding jobs only.\n\n"
+        ),
+    };
     let text = format!(
-        "# The paper's findings on this study\n\nBrink, Frérot & Molinari (2021); `wearsim study plot` on {}.\n\n{}",
+        "# The paper's findings on this study\n\nBrink, Frérot & Molinari (2021); `wearsim study plot` on {}.\n\n{note}{}",
         dir.display(),
         markdown(&found)
     );

@@ -121,6 +121,7 @@ fn result_of(job: &Job) -> JobResult {
         total_iterations: 0,
         seconds: 1.0,
         warnings: Vec::new(),
+        estimates: Vec::new(),
     }
 }
 

@@ -1,0 +1,217 @@
+//! Cost estimates before the work (`slide`, `study run` and their `--dry-run`, `bench --calibrate`):
+//! wall time and peak memory on this machine from the library's cost model (`wearsim::cost`), so
+//! that a Slurm job's `--time` and `--mem` can be sized before it is submitted.
+
+use anyhow::{Context, Result};
+use wearsim::config::RunConfig;
+use wearsim::cost::{cache_dir, Calibration, Estimate};
+use wearsim::study::Job;
+
+/// This machine's calibration: the cached one, or measured now (about ten seconds) and cached.
+pub fn calibration() -> Result<Calibration> {
+    let dir = cache_dir();
+    if let Some(c) = dir.as_deref().and_then(Calibration::cached) {
+        return Ok(c);
+    }
+    eprintln!(
+        "calibrating this machine for cost estimates on {} (about ten seconds, once per machine, wearsim version \
+         and thread count)",
+        counted(rayon::current_num_threads(), "thread")
+    );
+    measure_and_save(dir)
+}
+
+fn measure_and_save(dir: Option<std::path::PathBuf>) -> Result<Calibration> {
+    let c = Calibration::measure(super::interrupt()).context("calibration of the cost estimates")?;
+    match dir {
+        Some(dir) => match c.save(&dir) {
+            Ok(path) => eprintln!("calibration cached in {}", path.display()),
+            Err(e) => eprintln!("note: the calibration is not cached: {e}"),
+        },
+        None => eprintln!("note: neither $XDG_CACHE_HOME nor $HOME is set: the calibration is not cached"),
+    }
+    Ok(c)
+}
+
+/// `wearsim bench --calibrate`: measures anew, caches and prints the calibration.
+pub fn recalibrate() -> Result<()> {
+    let c = measure_and_save(cache_dir())?;
+    println!("{}", serde_json::to_string_pretty(&c)?);
+    Ok(())
+}
+
+/// "1 thread", "2 threads".
+fn counted(n: usize, noun: &str) -> String {
+    format!("{n} {noun}{}", if n == 1 { "" } else { "s" })
+}
+
+/// A duration for people: seconds, minutes or hours.
+fn duration(seconds: f64) -> String {
+    if seconds < 90.0 {
+        format!("{seconds:.0} s")
+    } else if seconds < 5400.0 {
+        format!("{:.0} min", seconds / 60.0)
+    } else {
+        format!("{:.1} h", seconds / 3600.0)
+    }
+}
+
+/// Bytes in MiB or GiB.
+fn memory(bytes: f64) -> String {
+    let mib = bytes / (1u64 << 20) as f64;
+    if mib < 1024.0 {
+        format!("{mib:.0} MiB")
+    } else {
+        format!("{:.1} GiB", mib / 1024.0)
+    }
+}
+
+/// Slurm's `--time` (D-HH:MM:SS) and `--mem` (MiB) for an estimate, with room to spare: half the
+/// time again, a quarter of the memory and 100 MiB for the process itself.
+fn slurm(seconds: f64, bytes: f64) -> String {
+    let s = (seconds * 1.5).ceil().max(60.0) as u64;
+    let mem = (bytes * 1.25 / (1u64 << 20) as f64 + 100.0).ceil() as u64;
+    format!(
+        "--time={}-{:02}:{:02}:{:02} --mem={mem}M",
+        s / 86_400,
+        s % 86_400 / 3600,
+        s % 3600 / 60,
+        s % 60
+    )
+}
+
+/// What an estimate assumes, one line.
+fn assumptions(c: &Calibration) -> String {
+    let loaded = match c.load_average {
+        Some(l) if l > 0.5 * c.cores as f64 => format!(
+            "; measured while the machine was busy (load average {l:.1} on {} cores), so estimates run high: \
+             `wearsim bench --calibrate` on an idle machine measures again",
+            c.cores
+        ),
+        _ => String::new(),
+    };
+    format!(
+        "assumes {} and the machine as free as at its calibration ({}, {} days ago), iterations as on the \
+         paper's roughness{loaded}",
+        counted(c.threads, "thread"),
+        c.machine,
+        c.age_days()
+    )
+}
+
+/// Set (non-empty) in the environment, runs print no estimate and calibrate nothing; a dry run
+/// still estimates.
+pub const NO_ESTIMATE: &str = "WEARSIM_NO_ESTIMATE";
+
+fn skipped(dry_run: bool) -> bool {
+    !dry_run && std::env::var_os(NO_ESTIMATE).is_some_and(|v| !v.is_empty())
+}
+
+/// Prints the estimate of a run before it starts. An estimate that cannot be made is an error on a
+/// dry run (it is all the dry run does) and a note otherwise (the run goes on), unless the
+/// calibration was interrupted (Ctrl-C stops the command).
+pub fn report_run(config: &RunConfig, dry_run: bool) -> Result<()> {
+    if skipped(dry_run) {
+        return Ok(());
+    }
+    lenient(print_run(config).map(|_| ()), dry_run)
+}
+
+/// [`report_run`] for a study's jobs.
+pub fn report_study(jobs: &[&Job], workers: usize, dry_run: bool) -> Result<()> {
+    if skipped(dry_run) {
+        return Ok(());
+    }
+    lenient(print_study(jobs, workers), dry_run)
+}
+
+fn lenient(result: Result<()>, dry_run: bool) -> Result<()> {
+    match result {
+        Err(e) if !dry_run && !is_interrupted(&e) => {
+            eprintln!("note: no cost estimate: {e:#}");
+            Ok(())
+        }
+        other => other,
+    }
+}
+
+fn is_interrupted(e: &anyhow::Error) -> bool {
+    e.chain()
+        .any(|c| matches!(c.downcast_ref::<wearsim::Error>(), Some(wearsim::Error::Interrupted)))
+}
+
+/// Prints the estimate of a run file's sliding run.
+pub fn print_run(config: &RunConfig) -> Result<Estimate> {
+    let sliding = config.sliding.as_ref().context("a [sliding] table is needed")?;
+    let grid = config.grid()?;
+    let c = calibration()?;
+    let e = c.estimate(grid, sliding, config.stopping);
+    eprintln!(
+        "estimate: {} steps at {}×{} ({} per load × {}, about {:.1} iterations per step): {} wall on {} \
+         ({:.2} CPU hours), peak memory {}; Slurm: {}",
+        e.steps,
+        grid.nx(),
+        grid.ny(),
+        e.steps / sliding.loads.len(),
+        counted(sliding.loads.len(), "load"),
+        e.iterations / e.steps as f64,
+        duration(e.seconds),
+        counted(e.threads, "thread"),
+        e.cpu_hours(),
+        memory(e.peak_memory),
+        slurm(e.seconds, e.peak_memory)
+    );
+    eprintln!("  ({})", assumptions(&c));
+    Ok(e)
+}
+
+/// Prints the estimate of a study's (shard's) jobs run `workers` at a time on this machine's
+/// threads.
+pub fn print_study(jobs: &[&Job], workers: usize) -> Result<()> {
+    let all = jobs.len();
+    let jobs: Vec<&Job> = jobs
+        .iter()
+        .copied()
+        .filter(|j| j.run.model == wearsim::estimate::WearModel::Sliding)
+        .collect();
+    if jobs.len() < all {
+        eprintln!(
+            "note: {} of the static estimate are not in the cost estimate: each takes 4 to 16 static contact solves \
+             (its static maps), seconds at 1024², minutes at 4096²",
+            counted(all - jobs.len(), "job")
+        );
+    }
+    if jobs.is_empty() {
+        return Ok(());
+    }
+    let c = calibration()?;
+    let mut estimates = Vec::with_capacity(jobs.len());
+    for job in &jobs {
+        let sliding = job.run.sliding.as_ref().context("a study job has a [sliding] table")?;
+        estimates.push(c.estimate(job.run.grid()?, sliding, job.run.stopping));
+    }
+    // Jobs side by side share the threads: about the wall time of running them one after another on
+    // all threads (side by side is, if anything, a little faster).
+    let seconds: f64 = estimates.iter().map(|e| e.seconds).sum();
+    let longest = estimates.iter().map(|e| e.seconds).fold(0.0, f64::max);
+    let per_job = estimates.iter().map(|e| e.peak_memory).fold(0.0, f64::max);
+    let peak = per_job * workers.min(jobs.len()) as f64;
+    eprintln!(
+        "estimate: {}: {} wall on {} ({:.2} CPU hours; the longest job {}), peak memory {} ({} per job, {} \
+         at once); Slurm, this shard: {}",
+        counted(jobs.len(), "job"),
+        duration(seconds),
+        counted(c.threads, "thread"),
+        seconds * c.threads as f64 / 3600.0,
+        duration(longest),
+        memory(peak),
+        memory(per_job),
+        workers.min(jobs.len()),
+        slurm(seconds, peak)
+    );
+    eprintln!(
+        "  (jobs already done are skipped when the study runs; {})",
+        assumptions(&c)
+    );
+    Ok(())
+}

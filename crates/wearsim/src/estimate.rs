@@ -1,0 +1,762 @@
+//! A static estimate of the sliding model's wear rate from a few contact solutions, the "closed form"
+//! the paper asks for in its outlook (§5): N* from static maps, and the sliding distance a critical
+//! junction lives, instead of sliding through every offset.
+//!
+//! The rule (derived from the sliding model of §3, its constants calibrated on sliding runs):
+//!
+//! 1. **N* and d̄ from static maps.** The top surface is put at `samples` offsets spread over the
+//!    box (a van der Corput sequence over sixteenths of Lx, so that any number of samples is
+//!    spread), the contact solved (the settled contact map, as a sliding step), and the junctions
+//!    labelled. N* is the mean number of junctions with d_i ≥ d*, d̄ the mean diameter of those
+//!    junctions, θ = N* d̄²/(Lx Ly) the area they cover in units of the box.
+//! 2. **The life of a critical junction.** In the sliding model a junction forms one particle and
+//!    stays disabled while it overlaps its previous self (§3): a lineage ends only when its patch of
+//!    contact has slid off. Two asperities of size ~d̄ overlap over a sliding distance proportional
+//!    to d̄; a lineage that meets a neighbouring critical junction on its way merges with it and
+//!    lives on, with a chance that grows with the area the critical junctions cover. So the
+//!    residence is R = c₁ d̄ (1 + c₂ θ) (Little's law: N* = R · dN*₊/ds).
+//! 3. **Rates.** dN*₊/ds = N*/R; the wear rate W = c_v ω d*³ dN*₊/ds (Eq. 5, with c_v the mean
+//!    particle volume over ω d*³: a junction forms its particle when it first reaches d*, a little
+//!    above it on a discrete grid, appendix B); k = W p_m/F_N (Eq. 2).
+//!
+//! The constants c₁, c₂, c_v and the spread of the rule about the sliding runs are [`CALIBRATION`],
+//! fitted by [`Calibration::fit`] on the sliding runs of a study (`wearsim estimate-check --fit`).
+//! The interval given with every estimate is where a sliding run of the same box and sliding
+//! distance would fall with 95 % probability: the rule's own spread, the sampling error of N* over
+//! the static maps, and the Poisson noise of the particles such a run counts.
+//!
+//! What it is not: it predicts the rates after running-in, not the running-in itself, the memory of
+//! the initial contact, or the wear-volume curve; it is as good as its calibration, which spans the
+//! settings its documentation lists.
+
+use std::sync::Arc;
+
+use crate::contact::{ContactSolver, Stopping};
+use crate::error::{Error, Result};
+use crate::influence::Boundary;
+use crate::junctions::{circle_area, particle_volume, Junction, JunctionLabeller};
+use crate::material::Material;
+use crate::sliding::{SlidingSetup, WearResult};
+use crate::surface::Surface;
+use crate::wear::static_wear;
+
+/// Which model turns a run into wear results (`[sliding] model`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum WearModel {
+    /// The sliding model of §3: every offset of the schedule solved and its junctions followed.
+    #[default]
+    Sliding,
+    /// This module's static estimate.
+    Estimate,
+}
+
+impl WearModel {
+    /// The name used in run files, tables and Python.
+    pub fn name(self) -> &'static str {
+        match self {
+            WearModel::Sliding => "sliding",
+            WearModel::Estimate => "estimate",
+        }
+    }
+}
+
+impl std::str::FromStr for WearModel {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        match s {
+            "sliding" => Ok(WearModel::Sliding),
+            "estimate" => Ok(WearModel::Estimate),
+            other => Err(Error::param(
+                "model",
+                format!(
+                    "{other:?} is not a wear model; use \"sliding\" (the paper's sliding simulation) or \"estimate\" \
+                     (the static estimate from a few contact solutions)"
+                ),
+            )),
+        }
+    }
+}
+
+/// Fewest static maps of an estimate with samples chosen automatically.
+pub const MIN_SAMPLES: usize = 4;
+/// Most static maps of an estimate (the slots of the offset sequence).
+pub const MAX_SAMPLES: usize = 16;
+/// With samples chosen automatically, maps are added until the relative standard error of N* over
+/// the maps is at most this for every load and 𝒢 with N* ≥ [`RESOLVED_CRITICAL_JUNCTIONS`]: small
+/// beside the rule's own spread about the sliding runs.
+pub const TARGET_SAMPLING_ERROR: f64 = 0.10;
+/// Below this mean number of critical junctions per map, N* is a count of a few junctions and the
+/// estimate is flagged as under-resolved.
+pub const RESOLVED_CRITICAL_JUNCTIONS: f64 = 2.0;
+/// Two-sided 95 % quantile of the normal distribution, for the intervals in ln.
+const Z95: f64 = 1.959_963_984_540_054;
+
+/// The constants of the rule (module documentation), with what they were fitted on.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Calibration {
+    /// c₁: the residence of a lone critical junction in units of d̄ (about 2: two asperities of
+    /// size d̄ slide past each other completely).
+    pub residence_factor: f64,
+    /// c₂: how much longer a lineage lives per unit of critical coverage θ (merging).
+    pub merging_factor: f64,
+    /// c_v: the mean particle volume over ω d*³.
+    pub volume_factor: f64,
+    /// The rule's own spread about the sliding runs, as the standard deviation of ln(sliding/estimate)
+    /// of the particle rate, once the calibration runs' Poisson noise is taken out.
+    pub rate_spread: f64,
+    /// The same for the wear rate W.
+    pub wear_spread: f64,
+    /// Settings (load, 𝒢, pair) and particles the constants were fitted on.
+    pub settings: usize,
+    pub particles: usize,
+}
+
+/// The calibration in use: fitted by `wearsim estimate-check studies/estimate-calibration.toml`'s
+/// folder `--fit` (docs/estimate.md gives the runs, the command and the fit).
+pub const CALIBRATION: Calibration = Calibration {
+    residence_factor: 1.750,
+    merging_factor: 17.35,
+    volume_factor: 1.121,
+    rate_spread: 0.087,
+    wear_spread: 0.063,
+    settings: 25,
+    particles: 754,
+};
+
+/// One point of a calibration: the static features of a setting and what its sliding run measured.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CalibrationPoint {
+    /// N*, d̄ and θ of the static maps.
+    pub critical_junctions: f64,
+    pub mean_critical_diameter: f64,
+    pub critical_coverage: f64,
+    /// d* of the setting.
+    pub critical_diameter: f64,
+    /// The sliding run's dN*₊/ds and W, and the particles they were fitted on.
+    pub particle_rate: f64,
+    pub wear_rate: f64,
+    pub particles: usize,
+}
+
+/// Settings with fewer particles than this are left out of a fit: their rates are mostly noise.
+pub const FIT_MIN_PARTICLES: usize = 10;
+
+impl Calibration {
+    /// Fits c₁, c₂ and c_v to sliding runs, by weighted least squares in ln with each setting
+    /// weighted by its particles (the inverse of its Poisson variance): c₂ by a search over
+    /// [0, 100] (steps of 0.05), c₁ and c_v then in closed form. The spreads are the weighted
+    /// residual variances less the mean Poisson variance 1/n of the runs (at least 0). Points with
+    /// fewer than [`FIT_MIN_PARTICLES`] particles are left out; at least three must remain.
+    pub fn fit(points: &[CalibrationPoint]) -> Result<Calibration> {
+        let used: Vec<&CalibrationPoint> = points
+            .iter()
+            .filter(|p| {
+                p.particles >= FIT_MIN_PARTICLES
+                    && p.particle_rate > 0.0
+                    && p.wear_rate > 0.0
+                    && p.critical_junctions > 0.0
+                    && p.mean_critical_diameter > 0.0
+            })
+            .collect();
+        if used.len() < 3 {
+            return Err(Error::param(
+                "calibration",
+                format!(
+                    "{} setting(s) with at least {FIT_MIN_PARTICLES} particles and critical junctions in the static \
+                     maps; the fit needs at least 3: slide longer, larger boxes or higher loads",
+                    used.len()
+                ),
+            ));
+        }
+        let w: Vec<f64> = used.iter().map(|p| p.particles as f64).collect();
+        let wsum: f64 = w.iter().sum();
+        let wmean = |v: &dyn Fn(usize) -> f64| (0..used.len()).map(|i| w[i] * v(i)).sum::<f64>() / wsum;
+        // ln(R/d̄) = ln c₁ + ln(1 + c₂ θ), R = N*/(dN*₊/ds).
+        let y: Vec<f64> = used
+            .iter()
+            .map(|p| (p.critical_junctions / p.particle_rate / p.mean_critical_diameter).ln())
+            .collect();
+        let mut best = (f64::INFINITY, 0.0, 0.0);
+        for step in 0..=2000 {
+            let c2 = step as f64 * 0.05;
+            let z = |i: usize| y[i] - (c2 * used[i].critical_coverage).ln_1p();
+            let ln_c1 = wmean(&z);
+            let var = wmean(&|i| (z(i) - ln_c1).powi(2));
+            if var < best.0 {
+                best = (var, c2, ln_c1);
+            }
+        }
+        let (rate_var, merging_factor, ln_c1) = best;
+        // ln(W / (ω d*³ dN*₊/ds)) = ln c_v on the sliding runs themselves.
+        let v: Vec<f64> = used
+            .iter()
+            .map(|p| (p.wear_rate / (particle_volume(p.critical_diameter) * p.particle_rate)).ln())
+            .collect();
+        let ln_cv = wmean(&|i| v[i]);
+        let residence_factor = ln_c1.exp();
+        let volume_factor = ln_cv.exp();
+        let cal = Calibration {
+            residence_factor,
+            merging_factor,
+            volume_factor,
+            rate_spread: 0.0,
+            wear_spread: 0.0,
+            settings: used.len(),
+            particles: used.iter().map(|p| p.particles).sum(),
+        };
+        let wear_var = wmean(&|i| {
+            let p = used[i];
+            (p.wear_rate / cal.wear_rate(p.critical_diameter, cal.particle_rate(p)))
+                .ln()
+                .powi(2)
+        });
+        // The Poisson part of each run's ln-rate variance is 1/n; weighted by n it averages to
+        // (settings)/(particles).
+        let poisson = used.len() as f64 / wsum;
+        Ok(Calibration {
+            rate_spread: (rate_var - poisson).max(0.0).sqrt(),
+            wear_spread: (wear_var - poisson).max(0.0).sqrt(),
+            ..cal
+        })
+    }
+
+    /// The residence R = c₁ d̄ (1 + c₂ θ).
+    pub fn residence(&self, mean_critical_diameter: f64, critical_coverage: f64) -> f64 {
+        self.residence_factor * mean_critical_diameter * (1.0 + self.merging_factor * critical_coverage)
+    }
+
+    /// dN*₊/ds = N*/R of a point's static features.
+    pub fn particle_rate(&self, p: &CalibrationPoint) -> f64 {
+        p.critical_junctions / self.residence(p.mean_critical_diameter, p.critical_coverage)
+    }
+
+    /// W = c_v ω d*³ dN*₊/ds.
+    pub fn wear_rate(&self, critical_diameter: f64, particle_rate: f64) -> f64 {
+        self.volume_factor * particle_volume(critical_diameter) * particle_rate
+    }
+}
+
+/// What one static map gives for one d*.
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct SampleCount {
+    /// Junctions with d_i ≥ d*.
+    pub critical_junctions: usize,
+    /// The sum of their diameters.
+    pub diameter_sum: f64,
+    /// The static model's k (paper §2) of this map.
+    pub static_wear_coefficient: f64,
+}
+
+/// One static map of one load.
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Sample {
+    /// The offset of the top surface, pixels along x.
+    pub offset: usize,
+    /// All junctions of the map.
+    pub junctions: usize,
+    /// The fraction of the box in contact.
+    pub contact_area: f64,
+    /// Solver iterations.
+    pub iterations: usize,
+    /// Per fracture energy, in the material's order.
+    pub counts: Vec<SampleCount>,
+}
+
+/// The estimate for one load and fracture energy.
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct EstimateResult {
+    pub fracture_energy: f64,
+    pub critical_diameter: f64,
+    /// W, the wear rate (volume per sliding distance), and its 95 % interval for a sliding run of
+    /// this box and distance (module documentation); absent without a critical junction.
+    pub wear_rate: Option<f64>,
+    pub wear_rate_low: Option<f64>,
+    pub wear_rate_high: Option<f64>,
+    /// k = W p_m/F_N (Eq. 2), with its interval.
+    pub wear_coefficient: Option<f64>,
+    pub wear_coefficient_low: Option<f64>,
+    pub wear_coefficient_high: Option<f64>,
+    /// dN*₊/ds = N*/R (particles per sliding distance), with its interval.
+    pub particle_rate: Option<f64>,
+    pub particle_rate_low: Option<f64>,
+    pub particle_rate_high: Option<f64>,
+    /// N*, the mean number of critical junctions over the static maps.
+    pub critical_junctions_mean: f64,
+    /// The relative standard error of N* over the maps (the estimate's own sampling error).
+    pub critical_junctions_sampling_error: Option<f64>,
+    /// d̄, the mean diameter of the critical junctions.
+    pub mean_critical_diameter: Option<f64>,
+    /// θ = N* d̄²/(Lx Ly).
+    pub critical_coverage: f64,
+    /// R = c₁ d̄ (1 + c₂ θ): the sliding distance a critical junction lives per particle.
+    pub critical_residence: Option<f64>,
+    /// Particles a sliding run of this box would count after running-in (dN*₊/ds times the fit
+    /// window), whose Poisson noise the interval includes.
+    pub expected_particles: Option<f64>,
+    /// N, the mean number of junctions over the maps.
+    pub junctions_mean: f64,
+    /// The static model (paper §2) over the maps: mean and standard deviation of k_static.
+    pub static_wear_coefficient_mean: f64,
+    pub static_wear_coefficient_std: f64,
+}
+
+impl EstimateResult {
+    /// The unit of every field: (field, reduced units, SI units), as `WearResult::UNITS`.
+    pub const UNITS: &'static [(&'static str, &'static str, &'static str)] = &[
+        ("fracture_energy", "E L", "J/m²"),
+        ("critical_diameter", "L", "m"),
+        ("wear_rate", "L²", "m²"),
+        ("wear_rate_low", "L²", "m²"),
+        ("wear_rate_high", "L²", "m²"),
+        ("wear_coefficient", "1", "1"),
+        ("wear_coefficient_low", "1", "1"),
+        ("wear_coefficient_high", "1", "1"),
+        ("particle_rate", "1/L", "1/m"),
+        ("particle_rate_low", "1/L", "1/m"),
+        ("particle_rate_high", "1/L", "1/m"),
+        ("critical_junctions_mean", "", ""),
+        ("critical_junctions_sampling_error", "1", "1"),
+        ("mean_critical_diameter", "L", "m"),
+        ("critical_coverage", "1", "1"),
+        ("critical_residence", "L", "m"),
+        ("expected_particles", "", ""),
+        ("junctions_mean", "", ""),
+        ("static_wear_coefficient_mean", "1", "1"),
+        ("static_wear_coefficient_std", "1", "1"),
+    ];
+}
+
+impl EstimateResult {
+    /// The estimate in the sliding model's result columns, for a study's tables and figures: W, k,
+    /// dN*₊/ds, N*, N, the residence and the static model over the maps; what only a sliding run
+    /// measures (R² of the fits, V₀, the memory, particles counted) is absent or zero. The job that
+    /// holds it is marked `sliding.model = "estimate"`.
+    pub fn as_wear_result(&self) -> WearResult {
+        WearResult {
+            fracture_energy: self.fracture_energy,
+            critical_diameter: self.critical_diameter,
+            wear_rate: self.wear_rate,
+            wear_coefficient: self.wear_coefficient,
+            particle_rate: self.particle_rate,
+            wear_rate_estimate: self.wear_rate,
+            static_wear_coefficient_mean: self.static_wear_coefficient_mean,
+            static_wear_coefficient_std: self.static_wear_coefficient_std,
+            junctions_mean: self.junctions_mean,
+            critical_junctions_mean: self.critical_junctions_mean,
+            critical_residence: self.critical_residence,
+            ..WearResult::default()
+        }
+    }
+}
+
+/// The estimate of one load.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct LoadEstimate {
+    pub load: f64,
+    pub results: Vec<EstimateResult>,
+    pub samples: Vec<Sample>,
+    pub warnings: Vec<String>,
+}
+
+/// The offsets of the static maps: slot j of sixteen at j·Lx/16, taken in van der Corput order
+/// (0, 8, 4, 12, 2, …), so that the first k of them are spread over the box for every k.
+pub fn sample_offsets(nx: usize, samples: usize) -> Vec<usize> {
+    (0..samples.min(MAX_SAMPLES))
+        .map(|k| {
+            let slot = (k as u32).reverse_bits() >> 28;
+            (slot as usize * nx) / MAX_SAMPLES
+        })
+        .collect()
+}
+
+/// How many static maps: a fixed number, or chosen as the sampling error asks
+/// ([`TARGET_SAMPLING_ERROR`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Sampling {
+    Auto,
+    Fixed(usize),
+}
+
+impl Sampling {
+    /// `[sliding] estimate_samples`, checked: absent is [`Sampling::Auto`].
+    pub fn of(samples: Option<usize>) -> Result<Sampling> {
+        match samples {
+            None => Ok(Sampling::Auto),
+            Some(k) if (1..=MAX_SAMPLES).contains(&k) => Ok(Sampling::Fixed(k)),
+            Some(k) => Err(Error::param(
+                "estimate_samples",
+                format!(
+                    "{k} static maps: give 1 to {MAX_SAMPLES}, or leave it out to choose them by the sampling error"
+                ),
+            )),
+        }
+    }
+}
+
+/// An estimate under way: the solver bound to the surfaces, and the maps solved so far.
+pub struct Estimator<'a> {
+    setup: &'a SlidingSetup<'a>,
+    solver: ContactSolver,
+    labeller: JunctionLabeller,
+    junctions: Vec<Junction>,
+    diameters: Vec<f64>,
+    nx: usize,
+    area: f64,
+    dx: f64,
+    /// Per load, the maps so far.
+    samples: Vec<Vec<Sample>>,
+}
+
+impl<'a> Estimator<'a> {
+    /// Binds the solver to the surfaces (periodic, the settled contact map as in a sliding step).
+    pub fn new(top: Surface, bottom: Surface, setup: &'a SlidingSetup<'a>) -> Result<Self> {
+        let grid = top.grid();
+        if bottom.grid() != grid {
+            return Err(Error::param(
+                "surface",
+                "the top and bottom surfaces lie on different grids; give both on one grid",
+            ));
+        }
+        let mut solver = ContactSolver::on_device(setup.device, grid, setup.effective_modulus, Boundary::Periodic)?
+            .with_options(setup.solver.with_stopping(Stopping::SettledMap))
+            .with_interrupt(setup.interrupt.clone());
+        solver.bind_surfaces(Arc::new(top), Arc::new(bottom))?;
+        Ok(Self {
+            setup,
+            solver,
+            labeller: JunctionLabeller::new(grid.nx(), grid.ny(), setup.connectivity),
+            junctions: Vec::new(),
+            diameters: setup.material.critical_diameters(),
+            nx: grid.nx(),
+            area: grid.area(),
+            dx: grid.pixel_size(),
+            samples: vec![Vec::new(); setup.sliding.loads.len()],
+        })
+    }
+
+    /// Maps solved so far per load.
+    pub fn samples_done(&self) -> usize {
+        self.samples.first().map_or(0, Vec::len)
+    }
+
+    /// Solves the next offset of the sequence at every load (each load warm-started from the
+    /// previous one's pressure, the first cold) and labels its junctions. `on_solve` is called after
+    /// each solve.
+    pub fn add_sample(&mut self, mut on_solve: impl FnMut()) -> Result<()> {
+        let k = self.samples_done();
+        if k >= MAX_SAMPLES {
+            return Err(Error::param(
+                "estimate_samples",
+                format!("at most {MAX_SAMPLES} static maps"),
+            ));
+        }
+        let offset = sample_offsets(self.nx, k + 1)[k];
+        self.solver.compose(offset)?;
+        self.solver.set_pressure(|p| p.fill(0.0));
+        let pm = self.setup.material.flow_pressure();
+        for (l, &load) in self.setup.sliding.loads.iter().enumerate() {
+            self.setup.interrupt.check()?;
+            let info = self.solver.solve_in_place(load / self.area, pm)?;
+            let map = self.solver.contact_map();
+            let count = self.labeller.label(|i| map.contains(i));
+            self.labeller.junctions_into(self.dx, &mut self.junctions);
+            let counts = self
+                .diameters
+                .iter()
+                .map(|&d| {
+                    let a = circle_area(d);
+                    let (n, sum) = self
+                        .junctions
+                        .iter()
+                        .filter(|j| j.area >= a)
+                        .fold((0, 0.0), |(n, s), j| (n + 1, s + j.diameter));
+                    SampleCount {
+                        critical_junctions: n,
+                        diameter_sum: sum,
+                        static_wear_coefficient: static_wear(&self.junctions, d).wear_coefficient,
+                    }
+                })
+                .collect();
+            self.samples[l].push(Sample {
+                offset,
+                junctions: count,
+                contact_area: info.contact_pixels as f64 / (self.area / (self.dx * self.dx)),
+                iterations: info.iterations,
+                counts,
+            });
+            on_solve();
+        }
+        Ok(())
+    }
+
+    /// The largest relative standard error of N* over the maps among the loads and 𝒢 with
+    /// N* ≥ [`RESOLVED_CRITICAL_JUNCTIONS`] (0 when there is none).
+    pub fn sampling_error(&self) -> f64 {
+        self.samples
+            .iter()
+            .flat_map(|s| (0..self.diameters.len()).map(move |e| critical_stats(s, e)))
+            .filter(|(mean, _)| *mean >= RESOLVED_CRITICAL_JUNCTIONS)
+            .filter_map(|(_, err)| err)
+            .fold(0.0, f64::max)
+    }
+
+    /// Takes maps until `sampling` is met: a fixed number, or from [`MIN_SAMPLES`] until the
+    /// sampling error is at most [`TARGET_SAMPLING_ERROR`] (or [`MAX_SAMPLES`] are taken).
+    pub fn sample(&mut self, sampling: Sampling, mut on_solve: impl FnMut()) -> Result<()> {
+        loop {
+            let k = self.samples_done();
+            let enough = match sampling {
+                Sampling::Fixed(n) => k >= n,
+                Sampling::Auto => {
+                    k >= MAX_SAMPLES || (k >= MIN_SAMPLES && self.sampling_error() <= TARGET_SAMPLING_ERROR)
+                }
+            };
+            if enough {
+                return Ok(());
+            }
+            self.add_sample(&mut on_solve)?;
+        }
+    }
+
+    /// The estimate of every load from the maps taken, with `calibration`'s constants.
+    pub fn finish(self, calibration: &Calibration) -> Vec<LoadEstimate> {
+        let fit_distance = fit_distance(self.setup.sliding, self.nx as f64 * self.dx);
+        self.setup
+            .sliding
+            .loads
+            .iter()
+            .zip(self.samples)
+            .map(|(&load, samples)| {
+                let (results, warnings) = results_of(
+                    &samples,
+                    self.setup.material,
+                    load,
+                    self.area,
+                    fit_distance,
+                    calibration,
+                );
+                LoadEstimate {
+                    load,
+                    results,
+                    samples,
+                    warnings,
+                }
+            })
+            .collect()
+    }
+}
+
+/// The sliding distance over which a sliding run of this schedule fits its rates (after
+/// running-in), for a box of side `length` along x.
+pub fn fit_distance(sliding: &crate::sliding::SlidingConfig, length: f64) -> f64 {
+    (sliding.distance - sliding.running_in) * length
+}
+
+/// The estimate of one load for every fracture energy of `material` from its static maps, with
+/// `calibration`'s constants, and the warnings about it: `area` is the box's Lx Ly, `fit_distance`
+/// the sliding distance of the run whose interval is given ([`fit_distance`]).
+pub fn results_of(
+    samples: &[Sample],
+    material: &Material,
+    load: f64,
+    area: f64,
+    fit_distance: f64,
+    calibration: &Calibration,
+) -> (Vec<EstimateResult>, Vec<String>) {
+    let pm = material.flow_pressure();
+    let mut warnings = Vec::new();
+    let results = material
+        .fracture_energies
+        .iter()
+        .zip(material.critical_diameters())
+        .enumerate()
+        .map(|(e, (&g, d))| {
+            let r = estimate_of(samples, e, g, d, load, pm, area, fit_distance, calibration);
+            warnings.extend(result_warnings(&r, samples.len()));
+            r
+        })
+        .collect();
+    (results, warnings)
+}
+
+/// Mean N* over the maps of fracture energy `e`, and its relative standard error (absent with
+/// fewer than two maps or no critical junction).
+fn critical_stats(samples: &[Sample], e: usize) -> (f64, Option<f64>) {
+    let n: Vec<f64> = samples.iter().map(|s| s.counts[e].critical_junctions as f64).collect();
+    let k = n.len() as f64;
+    let mean = n.iter().sum::<f64>() / k.max(1.0);
+    if n.len() < 2 || mean <= 0.0 {
+        return (mean, None);
+    }
+    let var = n.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (k - 1.0);
+    (mean, Some((var / k).sqrt() / mean))
+}
+
+/// The estimate of one load and fracture energy (module documentation).
+#[allow(clippy::too_many_arguments)]
+fn estimate_of(
+    samples: &[Sample],
+    e: usize,
+    fracture_energy: f64,
+    critical_diameter: f64,
+    load: f64,
+    pm: f64,
+    area: f64,
+    fit_distance: f64,
+    c: &Calibration,
+) -> EstimateResult {
+    let (n_crit, sampling_error) = critical_stats(samples, e);
+    let count: usize = samples.iter().map(|s| s.counts[e].critical_junctions).sum();
+    let diameter_sum: f64 = samples.iter().map(|s| s.counts[e].diameter_sum).sum();
+    let k = samples.len().max(1) as f64;
+    let static_k: Vec<f64> = samples.iter().map(|s| s.counts[e].static_wear_coefficient).collect();
+    let (static_mean, static_std) = crate::stats::mean_std(static_k.iter().copied());
+    let mut r = EstimateResult {
+        fracture_energy,
+        critical_diameter,
+        critical_junctions_mean: n_crit,
+        critical_junctions_sampling_error: sampling_error,
+        junctions_mean: samples.iter().map(|s| s.junctions as f64).sum::<f64>() / k,
+        static_wear_coefficient_mean: static_mean,
+        static_wear_coefficient_std: static_std,
+        ..Default::default()
+    };
+    if count == 0 {
+        return r;
+    }
+    let d_bar = diameter_sum / count as f64;
+    let coverage = n_crit * d_bar * d_bar / area;
+    let residence = c.residence(d_bar, coverage);
+    let rate = n_crit / residence;
+    let wear = c.wear_rate(critical_diameter, rate);
+    let expected = rate * fit_distance;
+    // ln-variance of a sliding run about the estimate: the rule's spread, the sampling error of N*
+    // (a map's critical junctions counted once each when there is one map), the run's Poisson noise.
+    let sampling = sampling_error.unwrap_or(1.0 / (count as f64).sqrt());
+    let poisson = 1.0 / expected.max(1e-300);
+    let interval = |value: f64, spread: f64| {
+        let s = (spread * spread + sampling * sampling + poisson).sqrt();
+        (value * (-Z95 * s).exp(), value * (Z95 * s).exp())
+    };
+    let (w_lo, w_hi) = interval(wear, c.wear_spread);
+    let (r_lo, r_hi) = interval(rate, c.rate_spread);
+    let to_k = |w: f64| w * pm / load;
+    r.mean_critical_diameter = Some(d_bar);
+    r.critical_coverage = coverage;
+    r.critical_residence = Some(residence);
+    r.expected_particles = Some(expected);
+    r.particle_rate = Some(rate);
+    r.particle_rate_low = Some(r_lo);
+    r.particle_rate_high = Some(r_hi);
+    r.wear_rate = Some(wear);
+    r.wear_rate_low = Some(w_lo);
+    r.wear_rate_high = Some(w_hi);
+    r.wear_coefficient = Some(to_k(wear));
+    r.wear_coefficient_low = Some(to_k(w_lo));
+    r.wear_coefficient_high = Some(to_k(w_hi));
+    r
+}
+
+/// What a result cannot promise, said loudly.
+fn result_warnings(r: &EstimateResult, samples: usize) -> Vec<String> {
+    let mut out = Vec::new();
+    let what = format!("𝒢 = {:.4e} (d* = {:.4e})", r.fracture_energy, r.critical_diameter);
+    if r.wear_rate.is_none() {
+        out.push(format!(
+            "{what}: no junction of the {samples} static map(s) reaches d*, so no particle is expected and W, k and \
+             dN*₊/ds are undefined (the sliding model may still form a rare particle); raise the load or take a larger box"
+        ));
+    } else if r.critical_junctions_mean < RESOLVED_CRITICAL_JUNCTIONS {
+        out.push(format!(
+            "{what}: {:.2} critical junctions per static map, under {RESOLVED_CRITICAL_JUNCTIONS}: the estimate rests \
+             on a few junctions and its interval is wide; take a larger box",
+            r.critical_junctions_mean
+        ));
+    }
+    if let Some(n) = r.expected_particles.filter(|&n| n < 20.0) {
+        out.push(format!(
+            "{what}: a sliding run of this box would count about {n:.1} particles after running-in, so its own W would \
+             scatter by more than ±{:.0} % (Poisson); the interval includes that",
+            100.0 / n.max(1e-9).sqrt()
+        ));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn offsets_are_spread_for_every_count() {
+        assert_eq!(sample_offsets(1024, 4), vec![0, 512, 256, 768]);
+        let all = sample_offsets(1024, 16);
+        let mut sorted = all.clone();
+        sorted.sort_unstable();
+        assert_eq!(sorted, (0..16).map(|j| j * 64).collect::<Vec<_>>());
+    }
+
+    fn point(n: f64, d: f64, theta: f64, c: &Calibration, particles: usize) -> CalibrationPoint {
+        let p = CalibrationPoint {
+            critical_junctions: n,
+            mean_critical_diameter: d,
+            critical_coverage: theta,
+            critical_diameter: 0.8 * d,
+            particle_rate: 0.0,
+            wear_rate: 0.0,
+            particles,
+        };
+        let rate = c.particle_rate(&p);
+        CalibrationPoint {
+            particle_rate: rate,
+            wear_rate: c.wear_rate(p.critical_diameter, rate),
+            ..p
+        }
+    }
+
+    #[test]
+    fn the_fit_recovers_known_constants() {
+        let truth = Calibration {
+            residence_factor: 2.1,
+            merging_factor: 12.5,
+            volume_factor: 1.15,
+            ..CALIBRATION
+        };
+        let points: Vec<_> = (0..12)
+            .map(|i| {
+                point(
+                    3.0 + i as f64,
+                    0.01 + 0.001 * i as f64,
+                    0.005 * i as f64,
+                    &truth,
+                    10_000,
+                )
+            })
+            .collect();
+        let fit = Calibration::fit(&points).unwrap();
+        assert!((fit.residence_factor - 2.1).abs() < 1e-9, "{fit:?}");
+        assert!((fit.merging_factor - 12.5).abs() < 1e-9, "{fit:?}");
+        assert!((fit.volume_factor - 1.15).abs() < 1e-9, "{fit:?}");
+        assert_eq!(fit.rate_spread, 0.0);
+        assert_eq!(fit.settings, 12);
+    }
+
+    #[test]
+    fn a_fit_needs_three_settings_with_particles() {
+        let points: Vec<_> = (0..5)
+            .map(|i| point(3.0, 0.01, 0.01 * i as f64, &CALIBRATION, 5))
+            .collect();
+        let e = Calibration::fit(&points).unwrap_err().to_string();
+        assert!(e.contains("at least 3"), "{e}");
+    }
+
+    #[test]
+    fn the_model_is_named() {
+        assert_eq!("estimate".parse::<WearModel>().unwrap(), WearModel::Estimate);
+        let e = "static".parse::<WearModel>().unwrap_err().to_string();
+        assert!(e.contains("model") && e.contains("\"estimate\""), "{e}");
+        assert!(Sampling::of(Some(0)).is_err());
+        assert_eq!(Sampling::of(None).unwrap(), Sampling::Auto);
+    }
+}

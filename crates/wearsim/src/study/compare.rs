@@ -1,0 +1,281 @@
+//! The static estimate against the sliding runs of a study: every finished sliding job estimated on
+//! its own surfaces and schedule, row by row (W, k, dN*₊/ds of both, the estimate's interval and
+//! whether it covers the sliding value), the errors summarised, and the points a calibration is
+//! fitted on (`wearsim estimate-check`).
+
+use std::path::Path;
+
+use crate::error::{Error, Interrupt, Result};
+use crate::estimate::{
+    fit_distance, results_of, Calibration, CalibrationPoint, EstimateResult, Sample, Sampling, WearModel,
+};
+use crate::run::SlidingRun;
+use crate::study::expand::expand_stored;
+use crate::study::store::{job_path, read_result, stored_study};
+
+/// One setting (job × fracture energy): what the sliding run measured beside the estimate.
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
+pub struct ComparisonRow {
+    pub job: usize,
+    #[serde(rename = "surface.seed")]
+    pub seed: Option<u64>,
+    #[serde(rename = "surface.grid")]
+    pub grid: Option<usize>,
+    #[serde(rename = "surface.length")]
+    pub length: f64,
+    #[serde(rename = "material.shear_strength")]
+    pub shear_strength: f64,
+    pub load: f64,
+    pub nominal_pressure: f64,
+    pub fracture_energy: f64,
+    pub critical_diameter: f64,
+    /// d* in pixels.
+    pub critical_diameter_pixels: f64,
+    /// Particles the sliding run fitted its rates on.
+    pub particles_in_fit: usize,
+    pub sliding_wear_rate: Option<f64>,
+    pub sliding_wear_coefficient: Option<f64>,
+    pub sliding_particle_rate: Option<f64>,
+    pub sliding_critical_junctions_mean: f64,
+    pub wear_rate: Option<f64>,
+    pub wear_rate_low: Option<f64>,
+    pub wear_rate_high: Option<f64>,
+    pub wear_coefficient: Option<f64>,
+    pub particle_rate: Option<f64>,
+    pub particle_rate_low: Option<f64>,
+    pub particle_rate_high: Option<f64>,
+    pub critical_junctions_mean: f64,
+    pub mean_critical_diameter: Option<f64>,
+    pub critical_coverage: f64,
+    pub static_maps: usize,
+    /// estimate/sliding − 1 of W (k's is the same: both are W times p_m/F_N) and of dN*₊/ds.
+    pub wear_rate_error: Option<f64>,
+    pub particle_rate_error: Option<f64>,
+    /// The sliding W lies in the estimate's interval.
+    pub wear_rate_covered: Option<bool>,
+    pub particle_rate_covered: Option<bool>,
+}
+
+impl ComparisonRow {
+    /// The calibration point of this row.
+    pub fn point(&self) -> CalibrationPoint {
+        CalibrationPoint {
+            critical_junctions: self.critical_junctions_mean,
+            mean_critical_diameter: self.mean_critical_diameter.unwrap_or(0.0),
+            critical_coverage: self.critical_coverage,
+            critical_diameter: self.critical_diameter,
+            particle_rate: self.sliding_particle_rate.unwrap_or(0.0),
+            wear_rate: self.sliding_wear_rate.unwrap_or(0.0),
+            particles: self.particles_in_fit,
+        }
+    }
+}
+
+/// A finished sliding job with its static maps: estimated again under any calibration without
+/// solving again.
+#[derive(Debug, Clone)]
+pub struct MappedJob {
+    pub job: crate::output::JobResult,
+    pub samples: Vec<Sample>,
+    material: crate::material::Material,
+    area: f64,
+    fit_distance: f64,
+    pixel_size: f64,
+}
+
+/// The finished sliding jobs of study folder `dir` with the static maps of each (taken as
+/// `sampling` says); unfinished jobs and jobs of the estimate are left out and counted.
+/// `on_job(done, total)` is told after each job.
+pub fn map_jobs(
+    dir: &Path,
+    sampling: Sampling,
+    interrupt: &Interrupt,
+    mut on_job: impl FnMut(usize, usize),
+) -> Result<(Vec<MappedJob>, usize)> {
+    let (text, base) = stored_study(dir)?;
+    let study = expand_stored(&text, &base)?;
+    let finished: Vec<_> = study
+        .jobs
+        .iter()
+        .filter(|j| j.run.model == WearModel::Sliding && job_path(dir, j.index).is_file())
+        .collect();
+    if finished.is_empty() {
+        return Err(Error::StudyFolder {
+            dir: dir.into(),
+            message: "no finished sliding job to compare with: run `wearsim study run` first".into(),
+        });
+    }
+    let left_out = study.jobs.len() - finished.len();
+    let mut out = Vec::with_capacity(finished.len());
+    for (i, job) in finished.iter().enumerate() {
+        let result = read_result(job, dir)?;
+        let sliding = crate::run::sliding_schedule(&job.run)?;
+        let prepared = SlidingRun::prepare(&job.run)?.interrupted_by(interrupt);
+        let grid = prepared.grid();
+        let outcome = prepared.estimate(sampling, &crate::estimate::CALIBRATION, |_, _| {})?;
+        let samples = outcome.loads.into_iter().next().map(|l| l.samples).unwrap_or_default();
+        out.push(MappedJob {
+            job: result,
+            samples,
+            material: job.run.material.clone(),
+            area: grid.area(),
+            fit_distance: fit_distance(sliding, grid.length_x()),
+            pixel_size: grid.pixel_size(),
+        });
+        on_job(i + 1, finished.len());
+    }
+    Ok((out, left_out))
+}
+
+/// The rows of the mapped jobs under `calibration`.
+pub fn compare(jobs: &[MappedJob], calibration: &Calibration) -> Vec<ComparisonRow> {
+    let mut rows = Vec::new();
+    for m in jobs {
+        let (estimates, _) = results_of(&m.samples, &m.material, m.job.load, m.area, m.fit_distance, calibration);
+        for (w, e) in m.job.results.iter().zip(&estimates) {
+            rows.push(row(m, w, e));
+        }
+    }
+    rows
+}
+
+fn row(m: &MappedJob, w: &crate::sliding::WearResult, e: &EstimateResult) -> ComparisonRow {
+    let inputs = &m.job.inputs;
+    let error = |est: Option<f64>, slid: Option<f64>| match (est, slid) {
+        (Some(a), Some(b)) if b > 0.0 => Some(a / b - 1.0),
+        _ => None,
+    };
+    let covered = |lo: Option<f64>, hi: Option<f64>, slid: Option<f64>| match (lo, hi, slid) {
+        (Some(lo), Some(hi), Some(v)) => Some(lo <= v && v <= hi),
+        _ => None,
+    };
+    ComparisonRow {
+        job: m.job.index,
+        seed: inputs.seed,
+        grid: inputs.grid,
+        length: inputs.length,
+        shear_strength: inputs.shear_strength,
+        load: m.job.load,
+        nominal_pressure: inputs.nominal_pressure(m.job.load),
+        fracture_energy: w.fracture_energy,
+        critical_diameter: w.critical_diameter,
+        critical_diameter_pixels: w.critical_diameter / m.pixel_size,
+        particles_in_fit: w.particles_in_fit,
+        sliding_wear_rate: w.wear_rate,
+        sliding_wear_coefficient: w.wear_coefficient,
+        sliding_particle_rate: w.particle_rate,
+        sliding_critical_junctions_mean: w.critical_junctions_mean,
+        wear_rate: e.wear_rate,
+        wear_rate_low: e.wear_rate_low,
+        wear_rate_high: e.wear_rate_high,
+        wear_coefficient: e.wear_coefficient,
+        particle_rate: e.particle_rate,
+        particle_rate_low: e.particle_rate_low,
+        particle_rate_high: e.particle_rate_high,
+        critical_junctions_mean: e.critical_junctions_mean,
+        mean_critical_diameter: e.mean_critical_diameter,
+        critical_coverage: e.critical_coverage,
+        static_maps: m.samples.len(),
+        wear_rate_error: error(e.wear_rate, w.wear_rate),
+        particle_rate_error: error(e.particle_rate, w.particle_rate),
+        wear_rate_covered: covered(e.wear_rate_low, e.wear_rate_high, w.wear_rate),
+        particle_rate_covered: covered(e.particle_rate_low, e.particle_rate_high, w.particle_rate),
+    }
+}
+
+/// The errors over the rows with at least `min_particles` particles in the sliding run.
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
+pub struct ComparisonSummary {
+    pub min_particles: usize,
+    /// Settings counted, and those left out for having fewer particles.
+    pub settings: usize,
+    pub left_out: usize,
+    /// Median and largest |estimate/sliding − 1| of W (and k) and of dN*₊/ds.
+    pub wear_rate_median_error: Option<f64>,
+    pub wear_rate_worst_error: Option<f64>,
+    pub particle_rate_median_error: Option<f64>,
+    pub particle_rate_worst_error: Option<f64>,
+    /// Settings whose sliding W (dN*₊/ds) lies in the estimate's 95 % interval.
+    pub wear_rate_covered: usize,
+    pub particle_rate_covered: usize,
+    /// The settings whose W lies outside the interval (job and 𝒢 index in the job's order).
+    pub not_covered: Vec<String>,
+}
+
+fn median(mut v: Vec<f64>) -> Option<f64> {
+    if v.is_empty() {
+        return None;
+    }
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    Some(if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    })
+}
+
+/// Summarises `rows` over the settings with at least `min_particles` particles.
+pub fn summarize(rows: &[ComparisonRow], min_particles: usize) -> ComparisonSummary {
+    let used: Vec<&ComparisonRow> = rows
+        .iter()
+        .filter(|r| r.particles_in_fit >= min_particles && r.sliding_wear_rate.is_some())
+        .collect();
+    let abs = |f: fn(&ComparisonRow) -> Option<f64>| used.iter().filter_map(|r| f(r).map(f64::abs)).collect::<Vec<_>>();
+    let (w, p) = (abs(|r| r.wear_rate_error), abs(|r| r.particle_rate_error));
+    ComparisonSummary {
+        min_particles,
+        settings: used.len(),
+        left_out: rows.len() - used.len(),
+        wear_rate_worst_error: w.iter().copied().reduce(f64::max),
+        wear_rate_median_error: median(w),
+        particle_rate_worst_error: p.iter().copied().reduce(f64::max),
+        particle_rate_median_error: median(p),
+        wear_rate_covered: used.iter().filter(|r| r.wear_rate_covered == Some(true)).count(),
+        particle_rate_covered: used.iter().filter(|r| r.particle_rate_covered == Some(true)).count(),
+        not_covered: used
+            .iter()
+            .filter(|r| r.wear_rate_covered != Some(true))
+            .map(|r| {
+                format!(
+                    "job {} (seed {}, p_N = {:.3e}, d* = {:.1} px, {} particles): estimate/sliding = {}",
+                    r.job,
+                    r.seed.map_or("-".into(), |s| s.to_string()),
+                    r.nominal_pressure,
+                    r.critical_diameter_pixels,
+                    r.particles_in_fit,
+                    r.wear_rate_error
+                        .map_or("undefined".into(), |e| format!("{:.2}", 1.0 + e))
+                )
+            })
+            .collect(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn r(particles: usize, error: f64, covered: bool) -> ComparisonRow {
+        ComparisonRow {
+            particles_in_fit: particles,
+            sliding_wear_rate: Some(1.0),
+            wear_rate_error: Some(error),
+            particle_rate_error: Some(error),
+            wear_rate_covered: Some(covered),
+            particle_rate_covered: Some(covered),
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn summary_counts_the_settings_with_enough_particles() {
+        let rows = [r(25, 0.1, true), r(30, -0.3, false), r(40, 0.2, true), r(5, 3.0, false)];
+        let s = summarize(&rows, 20);
+        assert_eq!((s.settings, s.left_out), (3, 1));
+        assert_eq!(s.wear_rate_median_error, Some(0.2));
+        assert_eq!(s.wear_rate_worst_error, Some(0.3));
+        assert_eq!(s.wear_rate_covered, 2);
+        assert_eq!(s.not_covered.len(), 1);
+    }
+}
