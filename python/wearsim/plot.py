@@ -113,6 +113,13 @@ def per_area_label(label: str, tidy: pd.DataFrame) -> str:
     return f"{label} / (Lx·Ly) (per unit nominal area, {unit})"
 
 
+def _is_estimate(stats: pd.DataFrame) -> np.ndarray:
+    """Per point: the static estimate (``sliding.model = "estimate"``), not a sliding run."""
+    if "sliding.model" not in stats:
+        return np.zeros(len(stats), dtype=bool)
+    return (stats["sliding.model"].astype(str) == "estimate").to_numpy()
+
+
 def _particles(stats: pd.DataFrame) -> np.ndarray:
     """Per point, the particles in the fit window summed over its surface pairs (the library's
     ``particles_in_fit_total``)."""
@@ -265,7 +272,10 @@ def _load_figure(
     fig, axes = plt.subplots(1, len(panels), figsize=(6.5 * len(panels) + 3.5, 5.0), squeeze=False)
     data = curves(tidy)
     styles = _styles(data, list(dict.fromkeys(tidy["material"])), by_material)
-    thin = [fitted & (_particles(stats) < RESOLVED_PARTICLES) for _, stats in data]
+    # A curve of the static estimate counts no particle: its points are never drawn hollow.
+    thin = [
+        fitted & (_particles(stats) < RESOLVED_PARTICLES) & ~_is_estimate(stats) for _, stats in data
+    ]
     zeros_drawn = False
     for p, (ax, spec) in enumerate(zip(axes[0], panels)):
         shown = band if p == len(panels) - 1 else None

@@ -246,6 +246,8 @@ pub struct SampleCount {
     pub diameter_sum: f64,
     /// The static model's k (paper §2) of this map.
     pub static_wear_coefficient: f64,
+    /// The static model's W_static/ω = k Σ A_i of this map.
+    pub static_wear_rate: f64,
 }
 
 /// One static map of one load.
@@ -296,9 +298,14 @@ pub struct EstimateResult {
     pub expected_particles: Option<f64>,
     /// N, the mean number of junctions over the maps.
     pub junctions_mean: f64,
-    /// The static model (paper §2) over the maps: mean and standard deviation of k_static.
+    /// The static model (paper §2) over the maps: mean and standard deviation of k_static and of
+    /// W_static/ω.
     pub static_wear_coefficient_mean: f64,
     pub static_wear_coefficient_std: f64,
+    #[serde(default)]
+    pub static_wear_rate_mean: f64,
+    #[serde(default)]
+    pub static_wear_rate_std: f64,
 }
 
 impl EstimateResult {
@@ -324,24 +331,31 @@ impl EstimateResult {
         ("junctions_mean", "", ""),
         ("static_wear_coefficient_mean", "1", "1"),
         ("static_wear_coefficient_std", "1", "1"),
+        ("static_wear_rate_mean", "L²", "m²"),
+        ("static_wear_rate_std", "L²", "m²"),
     ];
 }
 
 impl EstimateResult {
     /// The estimate in the sliding model's result columns, for a study's tables and figures: W, k,
-    /// dN*₊/ds, N*, N, the residence and the static model over the maps; what only a sliding run
-    /// measures (R² of the fits, V₀, the memory, particles counted) is absent or zero. The job that
-    /// holds it is marked `sliding.model = "estimate"`.
-    pub fn as_wear_result(&self) -> WearResult {
+    /// dN*₊/ds, Eq. 5's ω d*³ dN*₊/ds (W/c_v), N*, N, the residence and the static model over the
+    /// maps (its "s = 0" columns from the first map, at offset 0); what only a sliding run measures
+    /// (R² of the fits, V₀, the memory, particles counted) is absent or zero. The job that holds it
+    /// is marked `sliding.model = "estimate"`.
+    pub fn as_wear_result(&self, first_map: Option<&SampleCount>) -> WearResult {
         WearResult {
             fracture_energy: self.fracture_energy,
             critical_diameter: self.critical_diameter,
             wear_rate: self.wear_rate,
             wear_coefficient: self.wear_coefficient,
             particle_rate: self.particle_rate,
-            wear_rate_estimate: self.wear_rate,
+            wear_rate_estimate: self.particle_rate.map(|r| particle_volume(self.critical_diameter) * r),
+            static_wear_coefficient: first_map.map_or(0.0, |m| m.static_wear_coefficient),
+            static_wear_rate: first_map.map_or(0.0, |m| m.static_wear_rate),
             static_wear_coefficient_mean: self.static_wear_coefficient_mean,
             static_wear_coefficient_std: self.static_wear_coefficient_std,
+            static_wear_rate_mean: self.static_wear_rate_mean,
+            static_wear_rate_std: self.static_wear_rate_std,
             junctions_mean: self.junctions_mean,
             critical_junctions_mean: self.critical_junctions_mean,
             critical_residence: self.critical_residence,
@@ -471,10 +485,12 @@ impl<'a> Estimator<'a> {
                         .iter()
                         .filter(|j| j.area >= a)
                         .fold((0, 0.0), |(n, s), j| (n + 1, s + j.diameter));
+                    let statics = static_wear(&self.junctions, d);
                     SampleCount {
                         critical_junctions: n,
                         diameter_sum: sum,
-                        static_wear_coefficient: static_wear(&self.junctions, d).wear_coefficient,
+                        static_wear_coefficient: statics.wear_coefficient,
+                        static_wear_rate: statics.wear_rate_over_omega,
                     }
                 })
                 .collect();
@@ -573,7 +589,7 @@ pub fn results_of(
         .enumerate()
         .map(|(e, (&g, d))| {
             let r = estimate_of(samples, e, g, d, load, pm, area, fit_distance, calibration);
-            warnings.extend(result_warnings(&r, samples.len()));
+            warnings.extend(result_warnings(&r, load, samples.len()));
             r
         })
         .collect();
@@ -610,8 +626,8 @@ fn estimate_of(
     let count: usize = samples.iter().map(|s| s.counts[e].critical_junctions).sum();
     let diameter_sum: f64 = samples.iter().map(|s| s.counts[e].diameter_sum).sum();
     let k = samples.len().max(1) as f64;
-    let static_k: Vec<f64> = samples.iter().map(|s| s.counts[e].static_wear_coefficient).collect();
-    let (static_mean, static_std) = crate::stats::mean_std(static_k.iter().copied());
+    let (static_mean, static_std) = crate::stats::mean_std(samples.iter().map(|s| s.counts[e].static_wear_coefficient));
+    let (static_w_mean, static_w_std) = crate::stats::mean_std(samples.iter().map(|s| s.counts[e].static_wear_rate));
     let mut r = EstimateResult {
         fracture_energy,
         critical_diameter,
@@ -620,6 +636,8 @@ fn estimate_of(
         junctions_mean: samples.iter().map(|s| s.junctions as f64).sum::<f64>() / k,
         static_wear_coefficient_mean: static_mean,
         static_wear_coefficient_std: static_std,
+        static_wear_rate_mean: static_w_mean,
+        static_wear_rate_std: static_w_std,
         ..Default::default()
     };
     if count == 0 {
@@ -631,9 +649,11 @@ fn estimate_of(
     let rate = n_crit / residence;
     let wear = c.wear_rate(critical_diameter, rate);
     let expected = rate * fit_distance;
-    // ln-variance of a sliding run about the estimate: the rule's spread, the sampling error of N*
-    // (a map's critical junctions counted once each when there is one map), the run's Poisson noise.
-    let sampling = sampling_error.unwrap_or(1.0 / (count as f64).sqrt());
+    // ln-variance of a sliding run about the estimate: the rule's spread, the sampling error of N*,
+    // the run's Poisson noise.
+    // The spread between maps, but never below the Poisson error of the junctions counted: maps
+    // that happen to agree (or a single map) do not make N* exact.
+    let sampling = sampling_error.unwrap_or(0.0).max(1.0 / (count as f64).sqrt());
     let poisson = 1.0 / expected.max(1e-300);
     let interval = |value: f64, spread: f64| {
         let s = (spread * spread + sampling * sampling + poisson).sqrt();
@@ -659,9 +679,12 @@ fn estimate_of(
 }
 
 /// What a result cannot promise, said loudly.
-fn result_warnings(r: &EstimateResult, samples: usize) -> Vec<String> {
+fn result_warnings(r: &EstimateResult, load: f64, samples: usize) -> Vec<String> {
     let mut out = Vec::new();
-    let what = format!("𝒢 = {:.4e} (d* = {:.4e})", r.fracture_energy, r.critical_diameter);
+    let what = format!(
+        "F_N = {load:.4e}, 𝒢 = {:.4e} (d* = {:.4e})",
+        r.fracture_energy, r.critical_diameter
+    );
     if r.wear_rate.is_none() {
         out.push(format!(
             "{what}: no junction of the {samples} static map(s) reaches d*, so no particle is expected and W, k and \

@@ -102,6 +102,15 @@ fn an_estimate_job_is_marked_and_its_results_fill_the_tables() {
     // The job file round-trips with its estimates; a sliding job's file has none.
     let back = wearsim::output::JobResult::from_json(&r.to_json()).unwrap();
     assert_eq!(back, r);
+    // Its file is checked as an estimate's: an interval that does not hold its value, or sliding
+    // steps, are refused as edited or damaged.
+    assert_eq!(wearsim::study::store::out_of_range(&r, job), None);
+    let mut edited = r.clone();
+    if let Some(w) = edited.estimates[0].wear_rate {
+        edited.estimates[0].wear_rate_low = Some(2.0 * w);
+        let why = wearsim::study::store::out_of_range(&edited, job).expect("refused");
+        assert!(why.contains("estimates[0].wear_rate"), "{why}");
+    }
     let rows = wearsim::output::TidyRow::of_job(&r);
     let table = wearsim::output::Table::of(&rows);
     let model = table.column("sliding.model").expect("the tidy table names the model");

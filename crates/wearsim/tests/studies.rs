@@ -24,6 +24,7 @@ fn shipped_study_files_expand() {
         ("estimate-holdout-tau.toml", 20),
         ("estimate-holdout-box.toml", 6),
         ("paper-box-estimate.toml", 24),
+        ("paper-window-estimate.toml", 30),
     ];
     for (file, jobs) in expected {
         let text = std::fs::read_to_string(dir.join(file)).unwrap();

@@ -54,6 +54,14 @@ fn every_column_of_every_table_has_a_declared_unit() {
         .collect();
     let missing = undeclared(keys.iter().map(String::as_str));
     assert!(missing.is_empty(), "a job file's steps: no unit for {missing:?}");
+    // The static estimate's results.csv and `estimate-check`'s comparison.csv.
+    for (name, cols) in [
+        ("an estimate's results.csv", columns::<wearsim::output::EstimateRow>()),
+        ("comparison.csv", columns::<wearsim::study::compare::ComparisonRow>()),
+    ] {
+        let missing = undeclared(cols.iter().map(String::as_str));
+        assert!(missing.is_empty(), "{name}: no unit for {missing:?}");
+    }
 }
 
 #[test]

@@ -176,8 +176,9 @@ pub fn print_study(jobs: &[&Job], workers: usize) -> Result<()> {
         .collect();
     if jobs.len() < all {
         eprintln!(
-            "note: {} of the static estimate are not in the cost estimate: each takes 4 to 16 static contact solves \
-             (its static maps), seconds at 1024², minutes at 4096²",
+            "note: {} of the static estimate are not in the cost estimate: each takes up to 16 static contact solves \
+             per load (its static maps; 4 to 16 unless `estimate_samples` fixes them), seconds at 1024², a minute or two \
+             at 4096²",
             counted(all - jobs.len(), "job")
         );
     }

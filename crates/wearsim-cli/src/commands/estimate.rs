@@ -43,8 +43,8 @@ pub struct CheckArgs {
     /// Replace the output folder even when it holds another command's results or other files.
     #[arg(long)]
     overwrite: bool,
-    /// Fit the constants on these runs (and compare with the fitted ones), printing them as the
-    /// library's `CALIBRATION` is written.
+    /// Fit the constants on these runs and print them; comparison.csv and the summary's `summary`
+    /// then use the fitted constants (`summary_with_calibration_in_use` the library's).
     #[arg(long)]
     fit: bool,
     /// Settings counted in the errors and the coverage: at least this many particles in the sliding
@@ -207,6 +207,10 @@ pub fn check(args: &CheckArgs) -> Result<()> {
             "summary": summary,
             "summary_with_calibration_in_use": in_use,
             "error_convention": "estimate/sliding − 1 per setting; W and k share it (both W p_m/F_N)",
+            "units_of_comparison": wearsim::output::units_map(
+                jobs.first().map_or(Units::Reduced, |m| m.job.inputs.units),
+                wearsim::output::columns::<wearsim::study::compare::ComparisonRow>().iter().map(String::as_str)
+            ),
         }),
     )?;
     super::check_interrupt()?;

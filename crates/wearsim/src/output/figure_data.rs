@@ -240,6 +240,9 @@ pub struct MaterialSeverity {
 /// rows with W > 0 and a contact severity (generated surfaces), the fit W = α S_cⁿ in log–log, and
 /// the fit over all materials' points.
 pub fn severity_fits(tidy: &Table) -> (Vec<MaterialSeverity>, Option<PowerLawFit>) {
+    // Appendix F fits the sliding model's W: rows of the static estimate are left out.
+    let (sliding, _) = super::jobs::sliding_rows(tidy);
+    let tidy = &sliding;
     let (Some(s_c), Some(w)) = (tidy.column("contact_severity"), tidy.column("wear_rate")) else {
         return (Vec::new(), None);
     };

@@ -7,7 +7,7 @@ use serde_json::json;
 
 use crate::config::{InputRecord, Units};
 use crate::error::{Error, Result};
-use crate::estimate::EstimateResult;
+use crate::estimate::{EstimateResult, WearModel};
 use crate::sliding::WearResult;
 
 use super::provenance::Provenance;
@@ -139,6 +139,19 @@ fn result_columns() -> Vec<String> {
         .collect();
     c.push("flow_pressure".into());
     c
+}
+
+/// The rows of a tidy table that are sliding runs: those of the static estimate
+/// (`sliding.model = "estimate"`) left out, and how many they were. The paper's findings and the
+/// fits of appendix F are about the sliding model, so they read these rows only.
+pub fn sliding_rows(tidy: &Table) -> (Table, usize) {
+    let mut sliding = tidy.clone();
+    let Some(m) = tidy.column("sliding.model") else {
+        return (sliding, 0);
+    };
+    sliding.rows.retain(|r| r[m].text() != WearModel::Estimate.name());
+    let estimates = tidy.rows.len() - sliding.rows.len();
+    (sliding, estimates)
 }
 
 /// Columns that neither identify a setting nor are averaged: the job index, the seed, the warnings.

@@ -25,7 +25,7 @@ pub use figure_data::{
     KIM_1986, KIM_EXPERIMENTAL_K, KIM_SEVERITY_FIT, PAPER_SEVERITY_FIT,
 };
 pub use jobs::{
-    aggregate, curves, equal_critical_diameter, interval_method, read_job_file, series_job, settings,
+    aggregate, curves, equal_critical_diameter, interval_method, read_job_file, series_job, settings, sliding_rows,
     write_results_tables, CurveMaterial, Curves, JobResult, SettingRows, Settings, TidyRow, AGGREGATE_SUFFIXES,
     ALONG_A_CURVE, JOB_FORMAT, NOT_A_SETTING, STATISTICS, TOTALLED,
 };

@@ -71,6 +71,18 @@ pub const QUANTITIES: &[(&str, &str, &str)] = &[
     ("stopping", "", ""),
     ("model", "", ""),
     ("estimate_samples", "", ""),
+    // The static estimate's maps and its comparison with sliding runs (`estimate-check`).
+    ("offset", "px", "px"),
+    ("static_maps", "", ""),
+    ("critical_diameter_pixels", "px", "px"),
+    ("sliding_wear_rate", "L²", "m²"),
+    ("sliding_wear_coefficient", "1", "1"),
+    ("sliding_particle_rate", "1/L", "1/m"),
+    ("sliding_critical_junctions_mean", "", ""),
+    ("wear_rate_error", "1", "1"),
+    ("particle_rate_error", "1", "1"),
+    ("wear_rate_covered", "", ""),
+    ("particle_rate_covered", "", ""),
     ("warnings", "", ""),
     // Columns the aggregated table adds.
     ("curve", "", ""),

@@ -6,7 +6,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
 use crate::error::{Error, Interrupt, Result};
-use crate::estimate::{EstimateResult, Sampling, WearModel, CALIBRATION, MAX_SAMPLES};
+use crate::estimate::{Sampling, WearModel, CALIBRATION, MAX_SAMPLES};
 use crate::output::{JobResult, Provenance, StepRow};
 use crate::run::SlidingRun;
 use crate::sliding::{Checkpointing, Resumed};
@@ -103,7 +103,12 @@ fn estimate_job(job: &Job, interrupt: &Interrupt, on_step: impl Fn()) -> Result<
         load: l.load,
         flow_pressure: run.material.flow_pressure(),
         effective_modulus: run.effective_modulus(),
-        results: l.results.iter().map(EstimateResult::as_wear_result).collect(),
+        results: l
+            .results
+            .iter()
+            .enumerate()
+            .map(|(e, r)| r.as_wear_result(l.samples.first().map(|m| &m.counts[e])))
+            .collect(),
         steps: Vec::new(),
         total_iterations: l.samples.iter().map(|s| s.iterations).sum(),
         seconds: outcome.seconds,

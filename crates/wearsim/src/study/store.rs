@@ -138,16 +138,10 @@ pub fn out_of_range(r: &JobResult, job: &Job) -> Option<String> {
         }
     }
     if job.run.model == WearModel::Estimate {
-        // An estimate takes no sliding step; it keeps its estimates, one per fracture energy.
-        if !r.steps.is_empty() || r.estimates.len() != energies.len() {
-            return Some(format!(
-                "an estimate's file with {} sliding steps and {} estimates where it has none and {}",
-                r.steps.len(),
-                r.estimates.len(),
-                energies.len()
-            ));
-        }
-        return None;
+        return estimate_out_of_range(r, energies);
+    }
+    if !r.estimates.is_empty() {
+        return Some("estimates in the file of a sliding job".into());
     }
     if r.steps.is_empty() {
         return Some("no sliding step".into());
@@ -175,6 +169,61 @@ pub fn out_of_range(r: &JobResult, job: &Job) -> Option<String> {
                 "a step out of range (step {k}, s = {:e}: volumes and particle counts only grow along the slide, \
                  the contact area is within [0, 1])",
                 st.s
+            ));
+        }
+    }
+    None
+}
+
+/// What in an estimate job's file is out of the range an estimate gives: sliding steps, estimates
+/// for other fracture energies, negative or non-finite values, a value outside its interval.
+fn estimate_out_of_range(r: &JobResult, energies: &[f64]) -> Option<String> {
+    if !r.steps.is_empty() {
+        return Some(format!(
+            "{} sliding steps in the file of an estimate, which takes none",
+            r.steps.len()
+        ));
+    }
+    if r.estimates.len() != energies.len() || r.estimates.iter().zip(energies).any(|(e, &g)| e.fracture_energy != g) {
+        return Some(format!(
+            "estimates for {} fracture energies where the job has {}",
+            r.estimates.len(),
+            energies.len()
+        ));
+    }
+    for (i, e) in r.estimates.iter().enumerate() {
+        let triples = [
+            ("wear_rate", e.wear_rate_low, e.wear_rate, e.wear_rate_high),
+            (
+                "wear_coefficient",
+                e.wear_coefficient_low,
+                e.wear_coefficient,
+                e.wear_coefficient_high,
+            ),
+            (
+                "particle_rate",
+                e.particle_rate_low,
+                e.particle_rate,
+                e.particle_rate_high,
+            ),
+        ];
+        for (name, lo, v, hi) in triples {
+            let ok = match (lo, v, hi) {
+                (None, None, None) => true,
+                (Some(lo), Some(v), Some(hi)) => lo.is_finite() && hi.is_finite() && 0.0 <= lo && lo <= v && v <= hi,
+                _ => false,
+            };
+            if !ok {
+                return Some(format!(
+                    "`estimates[{i}].{name}` = {v:?} with the interval [{lo:?}, {hi:?}], which must be finite, ≥ 0 \
+                     and within it"
+                ));
+            }
+        }
+        if !(e.critical_junctions_mean.is_finite() && e.critical_junctions_mean >= 0.0) {
+            return Some(format!(
+                "`estimates[{i}].critical_junctions_mean` = {:e}, which must be ≥ 0",
+                e.critical_junctions_mean
             ));
         }
     }

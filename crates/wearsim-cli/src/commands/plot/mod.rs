@@ -364,20 +364,6 @@ fn draw(data: &Data, job: Option<usize>, figures: Option<&[String]>, out: &Path)
     Ok(cx.series.1.index)
 }
 
-/// The rows of a tidy table that are sliding runs (not `sliding.model = "estimate"`), and how many
-/// rows were estimates.
-fn sliding_rows(tidy: &wearsim::output::Table) -> (wearsim::output::Table, usize) {
-    let mut sliding = tidy.clone();
-    let Some(m) = tidy.column("sliding.model") else {
-        return (sliding, 0);
-    };
-    sliding
-        .rows
-        .retain(|r| r[m].text() != wearsim::estimate::WearModel::Estimate.name());
-    let estimates = tidy.rows.len() - sliding.rows.len();
-    (sliding, estimates)
-}
-
 pub fn run(args: &Args) -> Result<()> {
     let dir = &args.dir;
     let (study, results) = load_results(dir)?;
@@ -386,11 +372,11 @@ pub fn run(args: &Args) -> Result<()> {
     let out = figures.join("");
     let series = draw(&data, args.job, args.figures.as_deref(), &out)?;
     // The paper's findings on this study, judged on its sliding jobs: an estimate is no sliding run.
-    let (sliding, estimates) = sliding_rows(&data.tidy);
+    let (sliding, estimates) = wearsim::output::sliding_rows(&data.tidy);
     let found = if sliding.rows.is_empty() {
         Vec::new()
     } else {
-        findings(&sliding)
+        findings(&data.tidy)
     };
     let note = match (estimates, sliding.rows.len()) {
         (0, _) => String::new(),

@@ -185,7 +185,9 @@ fn finding(key: &'static str, paper: &'static str, rule: String, unit: &str, tal
 
 /// The paper's findings judged on a study's tidy table (`results.csv`), each under its rule.
 pub fn findings(tidy: &Table) -> Vec<Finding> {
-    let all = setting::settings(tidy);
+    // The findings are the sliding model's: rows of the static estimate are not judged.
+    let (sliding, _) = crate::output::sliding_rows(tidy);
+    let all = setting::settings(&sliding);
     vec![
         static_model::static_k_below_one_and_rising(&all),
         static_model::static_wear_superlinear(&all),
