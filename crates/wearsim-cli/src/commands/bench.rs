@@ -329,6 +329,8 @@ fn warm_steps(args: &SlideArgs, full: &RunConfig) -> Result<()> {
         per_step * offsets as f64 / 60.0,
         peak_memory_mib().unwrap_or(f64::NAN)
     );
+    // The sliding run's fields are freed before the estimate, so that the peak is either's.
+    drop(slide);
     if args.estimate_samples > 0 {
         // The same load of the same pair, estimated as a study job of it is: its static maps cold.
         let sampling = wearsim::estimate::Sampling::of(Some(args.estimate_samples)).context("--estimate-samples")?;
