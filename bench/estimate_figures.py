@@ -56,7 +56,9 @@ def main() -> None:
         ax.set_xlabel("nominal pressure p_N = F_N/(Lx·Ly) (E)")
         ax.set_ylabel(ylabel)
         ax.set_yscale("log")
-        ax.set_title(f"{name}: static estimate beside sliding runs (bars: 95 % interval over surface pairs)", fontsize=9)
+        ax.set_title(
+            f"{name}: static estimate beside sliding runs (bars: 95 % interval over surface pairs)", fontsize=9
+        )
         ax.legend(fontsize=7)
         fig.tight_layout()
         fig.savefig(args.out / f"{name}_estimate.png", dpi=120)

@@ -33,15 +33,20 @@ def main() -> None:
             err = num(r["wear_rate_error"])
             print(
                 f"| {label} | {r['job']} | {r['surface.seed'] or 'file'} | {num(r['material.shear_strength']):.3f} "
-                f"| {num(r['nominal_pressure']):.2e} | {num(r['critical_diameter_pixels']):.1f} | {r['particles_in_fit']} "
+                f"| {num(r['nominal_pressure']):.2e} | {num(r['critical_diameter_pixels']):.1f} "
+                f"| {r['particles_in_fit']} "
                 f"| {num(r['sliding_wear_rate']):.3e} | {num(r['wear_rate']):.3e} [{num(r['wear_rate_low']):.2e}, "
-                f"{num(r['wear_rate_high']):.2e}] | {num(r['sliding_wear_coefficient']):.3f} | {num(r['wear_coefficient']):.3f} "
+                f"{num(r['wear_rate_high']):.2e}] | {num(r['sliding_wear_coefficient']):.3f} "
+                f"| {num(r['wear_coefficient']):.3f} "
                 f"| {num(r['sliding_particle_rate']):.1f} | {num(r['particle_rate']):.1f} | {100 * err:+.0f} % "
                 f"| {'yes' if r['wear_rate_covered'] == 'true' else '**no**'} |"
             )
         every.extend(rows)
     print()
-    print("| set | settings | W, k: median \\|error\\| | worst | dN*₊/ds: median | worst | interval covers W | covers dN*₊/ds |")
+    print(
+        "| set | settings | W, k: median \\|error\\| | worst | dN*₊/ds: median | worst "
+        "| interval covers W | covers dN*₊/ds |"
+    )
     print("|---|---|---|---|---|---|---|---|")
     for label, rows in sets + [("all held-out", every)]:
         if not rows:

@@ -54,7 +54,10 @@ background() {
     (
         start=$SECONDS
         status=0
-        "$@" || status=$?
+        # Run as its own process and wait for it: a shell function on the left of `||` would run
+        # with `set -e` off, so a failing command inside it (a lint) would not fail the phase.
+        "$@" &
+        wait $! || status=$?
         cpu_seconds
         printf '(%s: from %ds to %ds, %s s of CPU, exit status %d)\n' "$name" "$start" "$SECONDS" "$cpu" "$status"
         echo "$status" >"$logs/$name.status"

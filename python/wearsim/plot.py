@@ -273,9 +273,7 @@ def _load_figure(
     data = curves(tidy)
     styles = _styles(data, list(dict.fromkeys(tidy["material"])), by_material)
     # A curve of the static estimate counts no particle: its points are never drawn hollow.
-    thin = [
-        fitted & (_particles(stats) < RESOLVED_PARTICLES) & ~_is_estimate(stats) for _, stats in data
-    ]
+    thin = [fitted & (_particles(stats) < RESOLVED_PARTICLES) & ~_is_estimate(stats) for _, stats in data]
     zeros_drawn = False
     for p, (ax, spec) in enumerate(zip(axes[0], panels)):
         shown = band if p == len(panels) - 1 else None

@@ -5,7 +5,6 @@ import json
 import subprocess
 
 import pandas as pd
-
 import wearsim
 
 RUN = """units = "reduced"
