@@ -285,7 +285,9 @@ pub struct EstimateResult {
     pub particle_rate_high: Option<f64>,
     /// N*, the mean number of critical junctions over the static maps.
     pub critical_junctions_mean: f64,
-    /// The relative standard error of N* over the maps (the estimate's own sampling error).
+    /// The relative standard error of N* over the maps, and at least the Poisson error 1/√n of
+    /// the n critical junctions counted (the estimate's own sampling error, as its interval takes
+    /// it); absent without a critical junction.
     pub critical_junctions_sampling_error: Option<f64>,
     /// d̄, the mean diameter of the critical junctions.
     pub mean_critical_diameter: Option<f64>,
@@ -632,7 +634,7 @@ fn estimate_of(
         fracture_energy,
         critical_diameter,
         critical_junctions_mean: n_crit,
-        critical_junctions_sampling_error: sampling_error,
+        critical_junctions_sampling_error: None,
         junctions_mean: samples.iter().map(|s| s.junctions as f64).sum::<f64>() / k,
         static_wear_coefficient_mean: static_mean,
         static_wear_coefficient_std: static_std,
@@ -654,6 +656,7 @@ fn estimate_of(
     // The spread between maps, but never below the Poisson error of the junctions counted: maps
     // that happen to agree (or a single map) do not make N* exact.
     let sampling = sampling_error.unwrap_or(0.0).max(1.0 / (count as f64).sqrt());
+    r.critical_junctions_sampling_error = Some(sampling);
     let poisson = 1.0 / expected.max(1e-300);
     let interval = |value: f64, spread: f64| {
         let s = (spread * spread + sampling * sampling + poisson).sqrt();
