@@ -13,7 +13,7 @@ use wearsim::run::SlidingRun;
 use wearsim::study::compare::{compare, map_jobs, summarize, ComparisonSummary};
 
 use super::load_run;
-use super::slide::with_unit;
+use super::slide::{report_critical_diameters, with_unit};
 use crate::progress::Progress;
 
 #[derive(clap::Args)]
@@ -83,20 +83,7 @@ pub fn run(args: &Args) -> Result<()> {
     let prepared = SlidingRun::prepare(&config)?.interrupted_by(super::interrupt());
     super::report_surfaces(prepared.surfaces(), false);
     let units = config.units;
-    let pixel = prepared.grid().pixel_size();
-    for (g, d) in config
-        .material
-        .fracture_energies
-        .iter()
-        .zip(config.material.critical_diameters())
-    {
-        eprintln!(
-            "𝒢 = {}: critical diameter d* = {} ({:.1} px)",
-            with_unit(units, "fracture_energy", *g),
-            with_unit(units, "critical_diameter", d),
-            d / pixel
-        );
-    }
+    report_critical_diameters(&config, prepared.grid().pixel_size());
     let loads = prepared.sliding().loads.len();
     let progress = Progress::new("estimate", "solves", (loads * MAX_SAMPLES) as u64);
     let outcome = prepared.estimate(sampling, &CALIBRATION, |done, most| {

@@ -77,6 +77,25 @@ pub fn with_unit(units: Units, quantity: &str, value: f64) -> String {
     }
 }
 
+/// Says on stderr the critical diameter d* of every fracture energy of the run, with its unit and
+/// in pixels of `pixel_size`.
+pub fn report_critical_diameters(config: &wearsim::config::RunConfig, pixel_size: f64) {
+    let units = config.units;
+    for (g, d) in config
+        .material
+        .fracture_energies
+        .iter()
+        .zip(config.material.critical_diameters())
+    {
+        eprintln!(
+            "𝒢 = {}: critical diameter d* = {} ({:.1} px)",
+            with_unit(units, "fracture_energy", *g),
+            with_unit(units, "critical_diameter", d),
+            d / pixel_size
+        );
+    }
+}
+
 /// An optional value with its unit, or "undefined".
 fn maybe(units: Units, quantity: &str, value: Option<f64>) -> String {
     value.map_or("undefined".into(), |v| with_unit(units, quantity, v))
@@ -158,19 +177,7 @@ pub fn run(args: &Args) -> Result<()> {
         "flow pressure p_m = {}",
         with_unit(units, "flow_pressure", config.material.flow_pressure())
     );
-    for (g, d) in config
-        .material
-        .fracture_energies
-        .iter()
-        .zip(config.material.critical_diameters())
-    {
-        eprintln!(
-            "𝒢 = {}: critical diameter d* = {} ({:.1} px)",
-            with_unit(units, "fracture_energy", *g),
-            with_unit(units, "critical_diameter", d),
-            d / grid.pixel_size()
-        );
-    }
+    report_critical_diameters(&config, grid.pixel_size());
     let steps_per_load = prepared.offsets().len();
     let mut fields = if args.save_fields {
         Some(fields_writer(args, &out, &prepared)?)

@@ -85,6 +85,29 @@ fn contact_inputs(modulus: ModulusConvention, solver: SolverOptions, connectivit
 pub const RESIDUAL_DEFINITION: &str = "max over pixels of the violation of the optimality conditions (|g+c| on \
 free, max(0,-(g+c)) on non-contact, max(0,g+c) on plastic pixels) divided by std(h)";
 
+/// What the summary of every run starts with, slid or estimated: provenance, units, inputs, p_m,
+/// d* per 𝒢 and E* with its convention.
+fn run_header(inputs: &SlidingInputs) -> serde_json::Map<String, Value> {
+    let m = inputs.material;
+    fields(json!({
+        "provenance": Provenance::current(),
+        "units": inputs.units,
+        "inputs": inputs.to_json(),
+        "flow_pressure": m.flow_pressure(),
+        "critical_diameter": m.fracture_energies.iter().zip(m.critical_diameters()).map(|(g, d)| json!({"fracture_energy": g, "critical_diameter": d})).collect::<Vec<_>>(),
+        "effective_modulus": m.effective_modulus(inputs.modulus),
+        "modulus_convention": inputs.modulus.name(),
+    }))
+}
+
+/// The fields of a JSON object (`json!` of `{…}` is one).
+fn fields(value: Value) -> serde_json::Map<String, Value> {
+    match value {
+        Value::Object(map) => map,
+        _ => unreachable!("json!({{…}}) makes an object"),
+    }
+}
+
 /// `summary.json` of a sliding run: provenance, inputs, derived quantities, solver statistics and
 /// the results per load and fracture energy, with the conventions they follow, and `warnings`, every
 /// warning of the run (its inputs, its surfaces, d* against the pixel size, each load's results).
@@ -95,7 +118,6 @@ pub fn sliding_summary(
     seconds: f64,
     steps_per_load: usize,
 ) -> Value {
-    let m = inputs.material;
     let results: Vec<Value> = runs
         .iter()
         .flat_map(|r| {
@@ -121,14 +143,8 @@ pub fn sliding_summary(
             })
         })
         .collect();
-    json!({
-        "provenance": Provenance::current(),
-        "units": inputs.units,
-        "inputs": inputs.to_json(),
-        "flow_pressure": m.flow_pressure(),
-        "critical_diameter": m.fracture_energies.iter().zip(m.critical_diameters()).map(|(g, d)| json!({"fracture_energy": g, "critical_diameter": d})).collect::<Vec<_>>(),
-        "effective_modulus": m.effective_modulus(inputs.modulus),
-        "modulus_convention": inputs.modulus.name(),
+    let mut summary = run_header(inputs);
+    summary.extend(fields(json!({
         "solver": {"tolerance": inputs.solver.tolerance(), "stopping": inputs.solver.stopping().name(), "residual_definition": RESIDUAL_DEFINITION, "per_load": solver},
         "steps_per_load": steps_per_load,
         "fit": "least-squares lines of V and N*₊ against s over the steps with s ≥ running_in·L",
@@ -140,7 +156,8 @@ pub fn sliding_summary(
         "units_of_series": units_map(inputs.units, columns::<SeriesRow>().iter().map(String::as_str)),
         "warnings": warnings,
         "seconds": seconds,
-    })
+    })));
+    Value::Object(summary)
 }
 
 /// One row of an estimate's `results.csv`: a load and the estimate of one fracture energy.
@@ -178,7 +195,6 @@ pub fn estimate_summary(
     warnings: &[String],
     seconds: f64,
 ) -> Value {
-    let m = inputs.material;
     let results: Vec<Value> = estimate_rows(loads)
         .iter()
         .map(|r| serde_json::to_value(r).expect("plain numbers serialise"))
@@ -187,16 +203,12 @@ pub fn estimate_summary(
         .iter()
         .map(|l| json!({"load": l.load, "maps": l.samples}))
         .collect();
-    json!({
+    let mut summary = fields(json!({
         "model": WearModel::Estimate.name(),
         "notice": ESTIMATE_NOTICE,
-        "provenance": Provenance::current(),
-        "units": inputs.units,
-        "inputs": inputs.to_json(),
-        "flow_pressure": m.flow_pressure(),
-        "critical_diameter": m.fracture_energies.iter().zip(m.critical_diameters()).map(|(g, d)| json!({"fracture_energy": g, "critical_diameter": d})).collect::<Vec<_>>(),
-        "effective_modulus": m.effective_modulus(inputs.modulus),
-        "modulus_convention": inputs.modulus.name(),
+    }));
+    summary.extend(run_header(inputs));
+    summary.extend(fields(json!({
         "calibration": calibration,
         "interval_convention": "95 % interval of the value a sliding run of this box and sliding distance would give: \
             exp(±1.96 σ) about the estimate, σ² = the rule's spread² (calibration) + the relative sampling error of N*² + \
@@ -207,7 +219,8 @@ pub fn estimate_summary(
         "units_of_results": units_map(inputs.units, columns::<EstimateRow>().iter().map(String::as_str).chain(["flow_pressure", "effective_modulus"])),
         "warnings": warnings,
         "seconds": seconds,
-    })
+    })));
+    Value::Object(summary)
 }
 
 /// What one contact solve reports: the numbers of `wearsim contact`'s summary and of the Python

@@ -63,21 +63,32 @@ pub fn run_job_observed(
         .pop()
         .ok_or_else(|| Error::param("loads", "job without a load"))?;
     Ok(JobResult {
+        results: r.results,
+        steps: r.steps.iter().map(StepRow::from).collect(),
+        total_iterations: r.total_iterations,
+        ..job_result(job, r.load, outcome.seconds, outcome.warnings)
+    })
+}
+
+/// The job file of `job` at `load` without results: what every job's file says of the job, its
+/// material and the run's time and warnings, whichever model made the results.
+fn job_result(job: &Job, load: f64, seconds: f64, warnings: Vec<String>) -> JobResult {
+    JobResult {
         format: crate::output::JOB_FORMAT,
         provenance: Provenance::current(),
         index: job.index,
         material: job.material.clone(),
         inputs: job.inputs(),
-        load: r.load,
-        flow_pressure: run.material.flow_pressure(),
-        effective_modulus: run.effective_modulus(),
-        results: r.results,
-        steps: r.steps.iter().map(StepRow::from).collect(),
-        total_iterations: r.total_iterations,
-        seconds: outcome.seconds,
-        warnings: outcome.warnings,
+        load,
+        flow_pressure: job.run.material.flow_pressure(),
+        effective_modulus: job.run.effective_modulus(),
+        results: Vec::new(),
+        steps: Vec::new(),
+        total_iterations: 0,
+        seconds,
+        warnings,
         estimates: Vec::new(),
-    })
+    }
 }
 
 /// A job of the static estimate (`[sliding] model = "estimate"`): its static maps, the estimate in
@@ -95,25 +106,15 @@ fn estimate_job(job: &Job, interrupt: &Interrupt, on_step: impl Fn()) -> Result<
         .pop()
         .ok_or_else(|| Error::param("loads", "job without a load"))?;
     Ok(JobResult {
-        format: crate::output::JOB_FORMAT,
-        provenance: Provenance::current(),
-        index: job.index,
-        material: job.material.clone(),
-        inputs: job.inputs(),
-        load: l.load,
-        flow_pressure: run.material.flow_pressure(),
-        effective_modulus: run.effective_modulus(),
         results: l
             .results
             .iter()
             .enumerate()
             .map(|(e, r)| r.as_wear_result(l.samples.first().map(|m| &m.counts[e])))
             .collect(),
-        steps: Vec::new(),
         total_iterations: l.samples.iter().map(|s| s.iterations).sum(),
-        seconds: outcome.seconds,
-        warnings: outcome.warnings,
         estimates: l.results,
+        ..job_result(job, l.load, outcome.seconds, outcome.warnings)
     })
 }
 
