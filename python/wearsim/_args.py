@@ -4,7 +4,7 @@ OverflowError: each message names the argument, the value given and the fix."""
 from __future__ import annotations
 
 import numbers
-from typing import Any, List, Tuple, Union
+from typing import Any, List, Optional, Tuple, Union
 
 
 def _whole(value: Any) -> bool:
@@ -28,6 +28,19 @@ def seed(name: str, value: Any) -> int:
     if _whole(value) and 0 <= int(value) < 2**64:
         return int(value)
     raise ValueError(f"invalid `{name}`: {value!r} is not a seed; give a whole number from 0 to 2**64 - 1")
+
+
+def count(name: str, value: Any, low: int = 0, high: Optional[int] = None, fix: str = "") -> int:
+    """A whole number from ``low`` to ``high`` (a count the extension takes as unsigned)."""
+    if _whole(value) and int(value) >= low and (high is None or int(value) <= high):
+        return int(value)
+    span = f"from {low} to {high}" if high is not None else f"of at least {low}"
+    raise ValueError(f"invalid `{name}`: {value!r}; give a whole number {span}{fix}")
+
+
+def optional_count(name: str, value: Any, low: int = 0, high: Optional[int] = None, fix: str = "") -> Optional[int]:
+    """``None``, or a count as :func:`count` checks it."""
+    return None if value is None else count(name, value, low, high, fix)
 
 
 def floats(name: str, values: Any) -> List[float]:

@@ -84,12 +84,26 @@ def label_junctions(
 
     A junction that wraps the periodic box (``Junctions.wraps``) is flagged and warned about
     (``RuntimeWarning``): it is no particle of the model (paper §3), so its diameter and volume are
-    not those of a particle."""
+    not those of a particle. A NaN or masked pixel is neither contact nor no contact, so a map with
+    one is refused (``ValueError``), as ``wearsim junctions`` refuses it."""
+    if np.ma.isMaskedArray(contact) and np.ma.getmaskarray(contact).any():
+        raise ValueError(
+            f"invalid `contact`: a masked array with {int(np.ma.getmaskarray(contact).sum())} masked pixel(s), "
+            "which are neither contact nor no contact: fill them (e.g. `contact.filled(0)`) or crop them"
+        )
     contact = np.asarray(contact)
-    if contact.dtype != np.bool_:
-        contact = contact > 0
     if contact.ndim != 2:
         raise ValueError(f"invalid `contact`: a 2-D array is needed, got {contact.ndim} dimensions")
+    if contact.dtype != np.bool_:
+        if np.issubdtype(contact.dtype, np.floating):
+            undefined = np.isnan(contact)
+            if undefined.any():
+                i, j = np.argwhere(undefined)[0]
+                raise ValueError(
+                    f"invalid `contact`: the contact map holds NaN at ({i}, {j}) ({int(undefined.sum())} pixel(s)); "
+                    "a contact map is bool, or numbers where > 0 is contact: fill or crop the undefined pixels"
+                )
+        contact = contact > 0
     if not (math.isfinite(pixel_size) and pixel_size > 0):
         raise ValueError(f"invalid `pixel_size`: {pixel_size} must be a finite positive number")
     labels, pixels, wraps = _wearsim.label_junctions(np.ascontiguousarray(contact), connectivity)

@@ -27,7 +27,7 @@ from typing import Any, Dict, Optional, Tuple, Union
 
 import pandas as pd
 
-from . import _wearsim
+from . import _args, _wearsim
 from ._progress import ProgressArg, callback
 
 PathLike = Union[str, os.PathLike]
@@ -127,6 +127,8 @@ def run(
     """
     study = _as_study(study)
     out = Path(out) if out is not None else _default_out(study)
+    workers = _args.optional_count("workers", workers, 1, fix=", or None for one per thread")
+    threads = _args.optional_count("threads", threads, 1, fix=", or None for all cores")
     report = callback(progress, "study: job")
     if client is None:
         outcome = study._study.run(out, workers, shard, threads, report)

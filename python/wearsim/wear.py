@@ -106,16 +106,16 @@ def slide(
         _args.floats("loads", loads),
         modulus,
         tolerance,
-        max_iterations,
-        connectivity,
+        _args.count("max_iterations", max_iterations),
+        _args.count("connectivity", connectivity, fix=" (4 or 8)"),
         distance,
         running_in,
-        step_running_in,
-        step,
+        _args.count("step_running_in", step_running_in),
+        _args.count("step", step),
         particle_rule,
         device,
         stopping,
-        threads,
+        _args.optional_count("threads", threads, 1, fix=", or None for all cores"),
         callback(progress, "slide: step"),
     )
     _warn(summary)
@@ -151,6 +151,7 @@ class RunFile:
     ) -> Tuple[pd.DataFrame, Dict[str, Any]]:
         """The sliding model exactly as ``wearsim slide RUN`` runs it: ``(series, summary)`` equal to
         its ``series.csv`` and ``summary.json`` (timings aside). ``progress`` as for :func:`slide`."""
+        threads = _args.optional_count("threads", threads, 1, fix=", or None for all cores")
         columns, summary = self._run.slide(threads, callback(progress, "slide: step"))
         _warn(summary)
         return _series(columns), summary
@@ -159,6 +160,14 @@ class RunFile:
         self, *, samples: Optional[int] = None, threads: Optional[int] = None, progress: ProgressArg = None
     ) -> Tuple[pd.DataFrame, Dict[str, Any]]:
         """The static estimate exactly as ``wearsim estimate RUN`` makes it (see :func:`estimate`)."""
+        samples = _args.optional_count(
+            "samples",
+            samples,
+            1,
+            _wearsim.MAX_ESTIMATE_SAMPLES,
+            " static maps per load, or None to choose them by the sampling error",
+        )
+        threads = _args.optional_count("threads", threads, 1, fix=", or None for all cores")
         columns, summary = self._run.estimate(samples, threads, callback(progress, "estimate: solve"))
         _warn(summary)
         return pd.DataFrame(columns), summary

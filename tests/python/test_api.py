@@ -150,6 +150,24 @@ def test_a_junction_around_the_periodic_box_is_flagged_and_warned_about():
         assert not wearsim.label_junctions(band).wrapping.any()
 
 
+def test_a_contact_map_with_undefined_pixels_is_refused_as_the_cli_refuses_it(tmp_path, wearsim_bin):
+    pressure = np.zeros((8, 8))
+    pressure[2:4, 2:4] = 1.0
+    pressure[6, 5] = np.nan
+    with pytest.raises(ValueError, match=r"NaN at \(6, 5\)"):
+        wearsim.label_junctions(pressure)
+    np.save(tmp_path / "map.npy", pressure)
+    cli = subprocess.run(
+        [wearsim_bin, "junctions", str(tmp_path / "map.npy"), "--out", str(tmp_path / "j")], capture_output=True
+    )
+    assert cli.returncode != 0 and b"NaN at (6, 5)" in cli.stderr
+    # A masked pixel is as undefined; a mask with nothing masked is an ordinary map.
+    masked = np.ma.masked_invalid(pressure)
+    with pytest.raises(ValueError, match="1 masked pixel"):
+        wearsim.label_junctions(masked)
+    assert wearsim.label_junctions(np.ma.masked_array(pressure[:6], mask=False)).count == 1
+
+
 def test_slide_equals_the_cli(tmp_path, run_file, wearsim_bin):
     out = tmp_path / "slide"
     subprocess.run([wearsim_bin, "slide", str(run_file), "--out", str(out)], check=True, capture_output=True)

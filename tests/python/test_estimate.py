@@ -5,6 +5,7 @@ import json
 import subprocess
 
 import pandas as pd
+import pytest
 import wearsim
 
 RUN = """units = "reduced"
@@ -46,3 +47,15 @@ def test_estimate_equals_the_cli_and_is_marked(tmp_path, wearsim_bin):
     defined = fixed.dropna(subset=["wear_rate"])
     assert (defined.wear_rate_low < defined.wear_rate).all()
     assert (defined.wear_rate < defined.wear_rate_high).all()
+
+
+def test_bad_counts_are_named_not_overflow_errors(tmp_path):
+    run = tmp_path / "run.toml"
+    run.write_text(RUN)
+    for samples in (-1, 0, 17, 2.5, "4"):
+        with pytest.raises(ValueError, match="invalid `samples`"):
+            wearsim.estimate(run, samples=samples)
+    with pytest.raises(ValueError, match="invalid `threads`"):
+        wearsim.estimate(run, threads=-1)
+    with pytest.raises(ValueError, match="invalid `threads`"):
+        wearsim.load_run(run).slide(threads=-2)

@@ -323,3 +323,104 @@ fn staging_folders_of_killed_runs_are_removed_by_the_next_run_but_never_another_
     );
     assert!(elsewhere.exists(), "another host's staging folder was removed");
 }
+
+/// The bytes of every file under `dir`, by path.
+fn snapshot(dir: &Path) -> Vec<(std::path::PathBuf, Vec<u8>)> {
+    let mut files = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap().flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                stack.push(p);
+            } else {
+                files.push((p.clone(), std::fs::read(&p).unwrap()));
+            }
+        }
+    }
+    files.sort();
+    files
+}
+
+#[test]
+fn estimate_check_never_writes_over_the_study_it_reads_nor_compares_changed_surfaces() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = measured_folder(dir.path());
+    file(
+        &m,
+        "s.toml",
+        &MEASURED_STUDY.replace("running_in = 0.125", "running_in = 0.125\nestimate_samples = 2"),
+    );
+    let o = run_in(&m, &["study", "run", "s.toml", "--out", "st", "--quiet"]);
+    assert!(ok(&o), "{}", stderr(&o));
+    let before = snapshot(dir.path());
+    // The study folder, its job folder (and a folder inside it), the folder of its surface files,
+    // however spelled, and with --overwrite: refused, nothing touched.
+    for out in [
+        "st/jobs",
+        "st/jobs/",
+        "./st/jobs",
+        "st/../st/jobs",
+        "st",
+        "st/",
+        ".",
+        "..",
+        "st/jobs/check",
+    ] {
+        for overwrite in [false, true] {
+            let mut args = vec!["estimate-check", "st", "--out", out, "--quiet"];
+            if overwrite {
+                args.push("--overwrite");
+            }
+            let o = run_in(&m, &args);
+            assert!(!ok(&o), "estimate-check --out {out} was not refused");
+            let e = stderr(&o);
+            assert!(
+                e.contains("input") || e.contains("job folder") || e.contains("current folder"),
+                "{out}: {e}"
+            );
+            assert_eq!(
+                snapshot(dir.path()),
+                before,
+                "--out {out} (overwrite {overwrite}) changed files"
+            );
+        }
+    }
+    // From the parent folder, the surfaces' folder itself.
+    let o = run_in(
+        dir.path(),
+        &["estimate-check", "m/st", "--out", "m", "--overwrite", "--quiet"],
+    );
+    assert!(!ok(&o) && stderr(&o).contains("holds the input"), "{}", stderr(&o));
+    assert_eq!(snapshot(dir.path()), before);
+    // A folder of its own: the study's estimate_samples is used (2 static maps per job).
+    let o = run_in(
+        &m,
+        &[
+            "estimate-check",
+            "st",
+            "--out",
+            "check",
+            "--min-particles",
+            "0",
+            "--quiet",
+        ],
+    );
+    assert!(ok(&o), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(m.join("check/comparison.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let maps = header.iter().position(|c| *c == "static_maps").unwrap();
+    for line in csv.lines().skip(1) {
+        assert_eq!(line.split(',').nth(maps), Some("2"), "{csv}");
+    }
+    // A surface file changed since the study ran: refused, naming it, rather than comparing maps of
+    // the new surfaces with sliding runs of the old.
+    let mut bytes = std::fs::read(m.join("a.npy")).unwrap();
+    let last = bytes.len() - 3;
+    bytes[last] ^= 0x40;
+    std::fs::write(m.join("a.npy"), bytes).unwrap();
+    let o = run_in(&m, &["estimate-check", "st", "--out", "check2", "--quiet"]);
+    assert!(!ok(&o), "estimate-check compared changed surfaces");
+    assert!(stderr(&o).contains("changed since its jobs were run"), "{}", stderr(&o));
+    assert!(!m.join("check2").exists());
+}

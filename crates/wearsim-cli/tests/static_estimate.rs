@@ -110,3 +110,45 @@ fn estimate_check_compares_a_studys_sliding_runs_and_fits() {
     let said = format!("{}{}", stdout(&o), stderr(&o));
     assert!(o.status.success() || said.contains("at least 3"), "{said}");
 }
+
+#[test]
+fn a_fit_on_unresolved_critical_diameters_is_warned_about() {
+    // A 64² box of side L/4: Δx = L/256, so d* = 1.5 px for 𝒢 = 0.25×10⁻⁶ E L.
+    let coarse = STUDY
+        .replace("grid = 128", "grid = 64")
+        .replace("length = 0.03125", "length = 0.25")
+        .replace("lambda_lower = 0.00390625", "lambda_lower = 0.0625")
+        .replace("lambda_upper = 0.0078125", "lambda_upper = 0.125")
+        .replace(
+            "loads = [1.5e-6, 2.4e-6]",
+            "loads = [9.375e-5, 1.5e-4]\ndistance = 0.5\nrunning_in = 0.25",
+        );
+    let dir = tempfile::tempdir().unwrap();
+    let study = file(dir.path(), "study.toml", &coarse);
+    let folder = dir.path().join("study");
+    let o = wearsim()
+        .args(["study", "run", s(&study), "--out", s(&folder), "--quiet"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = wearsim()
+        .args([
+            "estimate-check",
+            s(&folder),
+            "--out",
+            s(&dir.path().join("fit")),
+            "--fit",
+            "--min-particles",
+            "1",
+            "--quiet",
+        ])
+        .output()
+        .unwrap();
+    let e = stderr(&o);
+    // The estimates' own warning of d* against the pixel size, naming the jobs, and the fit's.
+    assert!(e.contains("pixels, under 4") && e.contains("(jobs 0–3)"), "{e}");
+    assert!(
+        e.contains("the fit uses") && e.contains("refine the study's `grid`"),
+        "{e}"
+    );
+}

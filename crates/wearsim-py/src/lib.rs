@@ -133,6 +133,7 @@ fn _wearsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("DEFAULT_STEP_RUNNING_IN", wearsim::sliding::DEFAULT_STEP_RUNNING_IN)?;
     m.add("DEFAULT_STEP", wearsim::sliding::DEFAULT_STEP)?;
     m.add("DEFAULT_PARTICLE_RULE", wearsim::wear::DEFAULT_PARTICLE_RULE.name)?;
+    m.add("MAX_ESTIMATE_SAMPLES", wearsim::estimate::MAX_SAMPLES)?;
     m.add(
         "PARTICLE_RULES",
         wearsim::wear::PARTICLE_RULES.iter().map(|k| k.name).collect::<Vec<_>>(),

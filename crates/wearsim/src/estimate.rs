@@ -38,7 +38,7 @@ use crate::junctions::{circle_area, particle_volume, Junction, JunctionLabeller}
 use crate::material::Material;
 use crate::sliding::{SlidingSetup, WearResult};
 use crate::surface::Surface;
-use crate::wear::static_wear;
+use crate::wear::{box_wrapping_warning, is_critical, static_wear};
 
 /// Which model turns a run into wear results (`[sliding] model`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
@@ -82,8 +82,10 @@ impl std::str::FromStr for WearModel {
 pub const MIN_SAMPLES: usize = 4;
 /// Most static maps of an estimate (the slots of the offset sequence).
 pub const MAX_SAMPLES: usize = 16;
-/// With samples chosen automatically, maps are added until the relative standard error of N* over
-/// the maps is at most this for every load and 𝒢 with N* ≥ [`RESOLVED_CRITICAL_JUNCTIONS`]: small
+/// With samples chosen automatically, maps are added until the sampling error of N* that each
+/// result reports ([`sampling_error`]: the standard error between maps, at least the Poisson error of
+/// the junctions counted) is at most this for every load and 𝒢 with N* ≥
+/// [`RESOLVED_CRITICAL_JUNCTIONS`], or [`MAX_SAMPLES`] are taken (then a warning says so): small
 /// beside the rule's own spread about the sliding runs.
 pub const TARGET_SAMPLING_ERROR: f64 = 0.10;
 /// Below this mean number of critical junctions per map, N* is a count of a few junctions and the
@@ -259,6 +261,10 @@ pub struct Sample {
     pub junctions: usize,
     /// The fraction of the box in contact.
     pub contact_area: f64,
+    /// Junctions that wrap the periodic box (no particles of the model, paper §3; counted as the
+    /// sliding model counts them, and warned about).
+    #[serde(default)]
+    pub wrapping_junctions: usize,
     /// Solver iterations.
     pub iterations: usize,
     /// Per fracture energy, in the material's order.
@@ -485,7 +491,7 @@ impl<'a> Estimator<'a> {
                     let (n, sum) = self
                         .junctions
                         .iter()
-                        .filter(|j| j.area >= a)
+                        .filter(|j| is_critical(j, a))
                         .fold((0, 0.0), |(n, s), j| (n + 1, s + j.diameter));
                     let statics = static_wear(&self.junctions, d);
                     SampleCount {
@@ -499,6 +505,7 @@ impl<'a> Estimator<'a> {
             self.samples[l].push(Sample {
                 offset,
                 junctions: count,
+                wrapping_junctions: self.labeller.wrapping(),
                 contact_area: info.contact_pixels as f64 / (self.area / (self.dx * self.dx)),
                 iterations: info.iterations,
                 counts,
@@ -508,12 +515,13 @@ impl<'a> Estimator<'a> {
         Ok(())
     }
 
-    /// The largest relative standard error of N* over the maps among the loads and 𝒢 with
-    /// N* ≥ [`RESOLVED_CRITICAL_JUNCTIONS`] (0 when there is none).
+    /// The largest sampling error of N* ([`sampling_error`], the one each result reports and its
+    /// interval takes) among the loads and 𝒢 with N* ≥ [`RESOLVED_CRITICAL_JUNCTIONS`] (0 when
+    /// there is none).
     pub fn sampling_error(&self) -> f64 {
         self.samples
             .iter()
-            .flat_map(|s| (0..self.diameters.len()).map(move |e| critical_stats(s, e)))
+            .flat_map(|s| (0..self.diameters.len()).map(move |e| (critical_stats(s, e).0, sampling_error(s, e))))
             .filter(|(mean, _)| *mean >= RESOLVED_CRITICAL_JUNCTIONS)
             .filter_map(|(_, err)| err)
             .fold(0.0, f64::max)
@@ -584,6 +592,19 @@ pub fn results_of(
 ) -> (Vec<EstimateResult>, Vec<String>) {
     let pm = material.flow_pressure();
     let mut warnings = Vec::new();
+    let wrapping: Vec<&Sample> = samples.iter().filter(|s| s.wrapping_junctions > 0).collect();
+    if let Some(first) = wrapping.first() {
+        warnings.push(box_wrapping_warning(
+            load,
+            &format!(
+                "in {} of {} static maps (the first at offset {} px)",
+                wrapping.len(),
+                samples.len(),
+                first.offset
+            ),
+            wrapping.iter().map(|s| s.contact_area).fold(0.0, f64::max),
+        ));
+    }
     let results = material
         .fracture_energies
         .iter()
@@ -596,6 +617,19 @@ pub fn results_of(
         })
         .collect();
     (results, warnings)
+}
+
+/// The sampling error of N* over the maps of fracture energy `e`, as a result reports it and its
+/// interval takes it: the relative standard error between maps, and never below the Poisson error
+/// 1/√n of the n critical junctions counted (maps that happen to agree, or a single map, do not make
+/// N* exact); absent without a critical junction. Automatic sampling stops on this same number.
+pub fn sampling_error(samples: &[Sample], e: usize) -> Option<f64> {
+    let count: usize = samples.iter().map(|s| s.counts[e].critical_junctions).sum();
+    if count == 0 {
+        return None;
+    }
+    let (_, between_maps) = critical_stats(samples, e);
+    Some(between_maps.unwrap_or(0.0).max(1.0 / (count as f64).sqrt()))
 }
 
 /// Mean N* over the maps of fracture energy `e`, and its relative standard error (absent with
@@ -624,7 +658,7 @@ fn estimate_of(
     fit_distance: f64,
     c: &Calibration,
 ) -> EstimateResult {
-    let (n_crit, sampling_error) = critical_stats(samples, e);
+    let (n_crit, _) = critical_stats(samples, e);
     let count: usize = samples.iter().map(|s| s.counts[e].critical_junctions).sum();
     let diameter_sum: f64 = samples.iter().map(|s| s.counts[e].diameter_sum).sum();
     let k = samples.len().max(1) as f64;
@@ -653,9 +687,7 @@ fn estimate_of(
     let expected = rate * fit_distance;
     // ln-variance of a sliding run about the estimate: the rule's spread, the sampling error of N*,
     // the run's Poisson noise.
-    // The spread between maps, but never below the Poisson error of the junctions counted: maps
-    // that happen to agree (or a single map) do not make N* exact.
-    let sampling = sampling_error.unwrap_or(0.0).max(1.0 / (count as f64).sqrt());
+    let sampling = sampling_error(samples, e).unwrap_or(0.0);
     r.critical_junctions_sampling_error = Some(sampling);
     let poisson = 1.0 / expected.max(1e-300);
     let interval = |value: f64, spread: f64| {

@@ -267,8 +267,9 @@ impl<'a> SlidingRun<'a> {
         let mut warnings = self.warnings;
         if sampling == Sampling::Auto && sampling_error > TARGET_SAMPLING_ERROR {
             warnings.push(format!(
-                "after {samples} static maps N* still varies by {:.0} % (standard error) between maps for some load \
-                 and 𝒢 (target {:.0} %): the interval includes it; a larger box samples more junctions per map",
+                "after {samples} static maps the sampling error of N* is still {:.1} % for some load and 𝒢 (target \
+                 {:.0} %; the standard error between maps, at least the Poisson error of the junctions counted): the \
+                 interval includes it; a larger box samples more junctions per map",
                 100.0 * sampling_error,
                 100.0 * TARGET_SAMPLING_ERROR
             ));

@@ -16,6 +16,28 @@ pub struct StaticWear {
     pub critical_junctions: usize,
 }
 
+/// Whether a junction is critical for the critical area A* = π d*²/4: A_i ≥ A*, i.e. d_i ≥ d*
+/// (paper §2–3). The one test of every model: the static model, the particle rules of the sliding
+/// model and the static estimate count the same junctions. A junction that wraps the periodic box
+/// is tested like any other (its area is that of a band or a sheet); every model that meets one
+/// says so with [`box_wrapping_warning`].
+pub fn is_critical(junction: &Junction, critical_area: f64) -> bool {
+    junction.area >= critical_area
+}
+
+/// The warning of every model that met a junction wrapping the periodic box at load `load`: `where_`
+/// says where (e.g. "at 3 of 120 steps (the first at s = 0.1)", "in 2 of 8 static maps (the first
+/// at offset 64 px)"), `largest_contact_area` is the largest contact area of those maps as a
+/// fraction of the box. Such a junction has no finite extent, so it is no particle of the model
+/// (paper §3), yet it is counted as one: the results are not those of the model.
+pub fn box_wrapping_warning(load: f64, where_: &str, largest_contact_area: f64) -> String {
+    format!(
+        "F_N = {load:.4e}: {where_} a junction wraps the periodic box (contact area up to {largest_contact_area:.3} \
+         of the box): it is no particle of the model, which needs finite junctions (paper §3), yet it is counted as \
+         one in N, N*, V and k_static; lower the load or enlarge the box"
+    )
+}
+
 /// Evaluates the static model for critical diameter d* on the labelled junctions.
 pub fn static_wear(junctions: &[Junction], critical_diameter: f64) -> StaticWear {
     let critical_area = circle_area(critical_diameter);
@@ -23,7 +45,7 @@ pub fn static_wear(junctions: &[Junction], critical_diameter: f64) -> StaticWear
     let total = junctions.iter().fold(0.0, |a, j| a + j.area);
     let (large, critical_junctions) = junctions
         .iter()
-        .filter(|j| j.area >= critical_area)
+        .filter(|j| is_critical(j, critical_area))
         .fold((0.0, 0), |(a, c), j| (a + j.area, c + 1));
     let k = if total > 0.0 { large / total } else { 0.0 };
     StaticWear {
@@ -216,7 +238,7 @@ impl ParticleRule for OverlapRule {
         let mut n_critical = 0;
         self.states.clear();
         for (j, overlap) in step.junctions.iter().zip(self.overlap.iter_mut()) {
-            let critical = j.area >= self.critical_area;
+            let critical = is_critical(j, self.critical_area);
             if critical {
                 n_critical += 1;
             }

@@ -129,3 +129,101 @@ fn a_bad_model_or_sample_count_is_named() {
     let e = bad("estimate_samples = 0\n");
     assert!(e.contains("estimate_samples") && e.contains("16"), "{e}");
 }
+
+/// A 64² box at a load near the flow pressure: the whole box is in contact, one junction around the
+/// torus (as in the sliding test of full contact).
+fn full_contact_run() -> String {
+    let pm_fraction = 0.999 * 3.0 * 3f64.sqrt() * 0.010; // p_m = 3√3 τ̃, τ̃ = 0.010 E
+    let area = 0.015625_f64 * 0.015625;
+    HELD_OUT
+        .replace("grid = 512", "grid = 64")
+        .replace("length = 0.125", "length = 0.015625")
+        .replace("lambda_upper = 0.03125", "lambda_upper = 0.0078125")
+        .replace(
+            "loads = [2.34375e-5, 3.90625e-5]",
+            &format!("loads = [{:e}, {:e}]", 1.5e-3 * area, pm_fraction * area),
+        )
+}
+
+#[test]
+fn the_estimate_flags_a_junction_around_the_box_as_the_sliding_model_does() {
+    let config = RunConfig::from_toml(&full_contact_run(), Path::new(".")).unwrap();
+    let estimate = SlidingRun::prepare(&config)
+        .unwrap()
+        .estimate(Sampling::Fixed(2), &CALIBRATION, |_, _| {})
+        .unwrap();
+    let slid = SlidingRun::prepare(&config).unwrap().run(|_| {}).unwrap();
+    let (light, full) = (&estimate.loads[0], &estimate.loads[1]);
+    assert!(light.samples.iter().all(|s| s.wrapping_junctions == 0));
+    assert!(!light.warnings.iter().any(|w| w.contains("wraps the periodic box")));
+    assert!(
+        full.samples.iter().all(|s| s.wrapping_junctions == 1),
+        "{:?}",
+        full.samples
+    );
+    // The same rule and the same words as the sliding run's, naming where it met it.
+    let said = |warnings: &[String]| {
+        warnings
+            .iter()
+            .find(|w| w.contains("wraps the periodic box"))
+            .cloned()
+            .unwrap_or_default()
+    };
+    let (estimated, slid_warning) = (said(&full.warnings), said(&slid.runs[1].warnings));
+    assert!(estimated.contains("in 2 of 2 static maps"), "{estimated}");
+    assert!(slid_warning.contains("steps (the first at s = "), "{slid_warning}");
+    let tail = |w: &str| w.split(" a junction wraps").nth(1).unwrap_or("").to_string();
+    assert_eq!(tail(&estimated), tail(&slid_warning), "one warning for both models");
+    assert!(estimate.warnings.contains(&estimated));
+    // It is counted as a critical junction by both, as the sliding model counts it.
+    assert_eq!(
+        full.results[0].critical_junctions_mean,
+        slid.runs[1].results[0].critical_junctions_mean
+    );
+}
+
+#[test]
+fn automatic_sampling_keeps_its_promise_or_says_it_could_not() {
+    // A 128² box at the paper's pixel size: few critical junctions per map, so the Poisson floor of
+    // the sampling error (1/√n over the junctions counted) is what decides when to stop.
+    let config = RunConfig::from_toml(
+        &HELD_OUT
+            .replace("grid = 512", "grid = 128")
+            .replace("length = 0.125", "length = 0.03125")
+            .replace("lambda_upper = 0.03125", "lambda_upper = 0.0078125")
+            .replace(
+                "fracture_energies = [0.25e-6]",
+                "fracture_energies = [0.05e-6, 0.25e-6]",
+            )
+            .replace("loads = [2.34375e-5, 3.90625e-5]", "loads = [1.5e-6, 2.4e-6]"),
+        Path::new("."),
+    )
+    .unwrap();
+    let estimate = SlidingRun::prepare(&config)
+        .unwrap()
+        .estimate(Sampling::Auto, &CALIBRATION, |_, _| {})
+        .unwrap();
+    let target = wearsim::estimate::TARGET_SAMPLING_ERROR;
+    let worst = estimate
+        .loads
+        .iter()
+        .flat_map(|l| &l.results)
+        .filter(|r| r.critical_junctions_mean >= wearsim::estimate::RESOLVED_CRITICAL_JUNCTIONS)
+        .filter_map(|r| r.critical_junctions_sampling_error)
+        .fold(0.0, f64::max);
+    let warned = estimate
+        .warnings
+        .iter()
+        .any(|w| w.contains("sampling error of N* is still"));
+    assert!(worst > 0.0, "the box has resolved settings");
+    if worst > target {
+        assert_eq!(estimate.samples, wearsim::estimate::MAX_SAMPLES);
+        assert!(
+            warned,
+            "{worst} over the target without a warning: {:?}",
+            estimate.warnings
+        );
+    } else {
+        assert!(!warned);
+    }
+}

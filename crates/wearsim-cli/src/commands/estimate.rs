@@ -10,7 +10,7 @@ use wearsim::estimate::{Calibration, Sampling, CALIBRATION, MAX_SAMPLES};
 use wearsim::io::{write_json, write_text, OutputDir};
 use wearsim::output::{Provenance, Table, ESTIMATE_NOTICE};
 use wearsim::run::SlidingRun;
-use wearsim::study::compare::{compare, map_jobs, summarize, ComparisonSummary};
+use wearsim::study::compare::{compare, fit_warnings, map_jobs, refuse_output_in_study, summarize, ComparisonSummary};
 
 use super::load_run;
 use super::slide::{report_critical_diameters, with_unit};
@@ -51,7 +51,8 @@ pub struct CheckArgs {
     /// run's fit window.
     #[arg(long, default_value_t = 20)]
     min_particles: usize,
-    /// Static maps per job (default: chosen by the sampling error, as `estimate` does).
+    /// Static maps per job (default: the study's `estimate_samples`, else chosen by the sampling
+    /// error, as `estimate` does).
     #[arg(long, value_name = "K")]
     samples: Option<usize>,
 }
@@ -156,30 +157,49 @@ fn describe(what: &str, s: &ComparisonSummary) {
     }
 }
 
+/// Warnings printed in full before the rest is left to summary.json.
+const WARNINGS_SHOWN: usize = 12;
+
 pub fn check(args: &CheckArgs) -> Result<()> {
     super::polls_interrupt();
-    let sampling = Sampling::of(args.samples).context("--samples")?;
-    wearsim::io::refuse_inputs_inside(&args.out, &[args.dir.as_path()])?;
-    let out = OutputDir::begin(&args.out, "estimate-check", args.overwrite, &[args.dir.as_path()])?;
+    if let Some(k) = args.samples {
+        Sampling::of(Some(k)).context("--samples")?;
+    }
+    refuse_output_in_study(&args.out, &args.dir)?;
+    let inputs = wearsim::study::compare::study_inputs(&args.dir)?;
+    let inputs: Vec<&std::path::Path> = inputs.iter().map(PathBuf::as_path).collect();
+    let out = OutputDir::begin(&args.out, "estimate-check", args.overwrite, &inputs)?;
     let progress = Progress::new("estimate-check", "jobs", 0);
-    let mapped = map_jobs(&args.dir, sampling, super::interrupt(), |done, total| {
+    let mapped = map_jobs(&args.dir, args.samples, super::interrupt(), |done, total| {
         progress.set(done as u64, total as u64, "jobs estimated")
     });
     progress.finish();
-    let (jobs, left_out) = mapped?;
+    let mapped = mapped?;
+    let (jobs, left_out) = (&mapped.jobs, mapped.left_out);
     if left_out > 0 {
         eprintln!("note: {left_out} jobs of the study are unfinished or estimates, and are left out");
     }
+    let mut warnings: Vec<String> = mapped
+        .warnings
+        .iter()
+        .map(|(w, on)| format!("{w} (job{} {})", if on.len() == 1 { "" } else { "s" }, job_list(on)))
+        .collect();
     let fitted = if args.fit {
-        let points: Vec<_> = compare(&jobs, &CALIBRATION).iter().map(|r| r.point()).collect();
+        let rows = compare(jobs, &CALIBRATION);
+        // Said before the fit, which may fail on the same settings.
+        for w in fit_warnings(&rows) {
+            eprintln!("warning: {w}");
+            warnings.push(w);
+        }
+        let points: Vec<_> = rows.iter().map(|r| r.point()).collect();
         Some(Calibration::fit(&points)?)
     } else {
         None
     };
     let calibration = fitted.unwrap_or(CALIBRATION);
-    let rows = compare(&jobs, &calibration);
+    let rows = compare(jobs, &calibration);
     let summary = summarize(&rows, args.min_particles);
-    let in_use = summarize(&compare(&jobs, &CALIBRATION), args.min_particles);
+    let in_use = summarize(&compare(jobs, &CALIBRATION), args.min_particles);
     write_text(&out.join("comparison.csv"), &Table::of(&rows).to_csv())?;
     write_json(
         &out.join("summary.json"),
@@ -188,11 +208,14 @@ pub fn check(args: &CheckArgs) -> Result<()> {
             "study": args.dir,
             "jobs_compared": jobs.len(),
             "jobs_left_out": left_out,
+            "samples": args.samples.map_or("per job: the study's estimate_samples, else by the sampling error".into(),
+                |k| format!("{k} static maps per job (--samples)")),
             "calibration": calibration,
             "fitted": fitted.is_some(),
             "calibration_in_use": CALIBRATION,
             "summary": summary,
             "summary_with_calibration_in_use": in_use,
+            "warnings": warnings,
             "error_convention": "estimate/sliding − 1 per setting; W and k share it (both W p_m/F_N)",
             "units_of_comparison": wearsim::output::units_map(
                 jobs.first().map_or(Units::Reduced, |m| m.job.inputs.units),
@@ -202,6 +225,20 @@ pub fn check(args: &CheckArgs) -> Result<()> {
     )?;
     super::check_interrupt()?;
     out.commit()?;
+    for w in warnings
+        .iter()
+        .filter(|w| !w.starts_with("the fit uses"))
+        .take(WARNINGS_SHOWN)
+    {
+        eprintln!("warning: {w}");
+    }
+    if warnings.len() > WARNINGS_SHOWN {
+        eprintln!(
+            "warning: … and {} more, in {}/summary.json (`warnings`)",
+            warnings.len() - WARNINGS_SHOWN,
+            args.out.display()
+        );
+    }
     if let Some(c) = fitted {
         println!(
             "fitted on {} settings ({} particles): residence_factor (c₁) = {:.3}, merging_factor (c₂) = {:.2}, \
@@ -219,4 +256,23 @@ pub fn check(args: &CheckArgs) -> Result<()> {
     describe("with the constants in use", &in_use);
     println!("wrote {}", args.out.display());
     Ok(())
+}
+
+/// Job numbers as ranges: 0–3, 7, 9–10.
+fn job_list(jobs: &[usize]) -> String {
+    let mut parts: Vec<String> = Vec::new();
+    let mut i = 0;
+    while i < jobs.len() {
+        let mut j = i;
+        while j + 1 < jobs.len() && jobs[j + 1] == jobs[j] + 1 {
+            j += 1;
+        }
+        parts.push(if j == i {
+            jobs[i].to_string()
+        } else {
+            format!("{}–{}", jobs[i], jobs[j])
+        });
+        i = j + 1;
+    }
+    parts.join(", ")
 }

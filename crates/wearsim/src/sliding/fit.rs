@@ -110,13 +110,14 @@ fn load_fits(load: f64, steps: &[StepRecord], fitted: &[&StepRecord], warnings: 
     let (junctions_mean, _) = mean_std(fitted.iter().map(|r| r.junctions as f64));
     let wrapping: Vec<&StepRecord> = steps.iter().filter(|r| r.wrapping_junctions > 0).collect();
     if let Some(first) = wrapping.first() {
-        warnings.push(format!(
-            "F_N = {load:.4e}: at {} of {} steps (the first at s = {:.4e}) a junction wraps the periodic box \
-             (contact area up to {:.3} of the box): it is no particle of the model, which needs finite junctions \
-             (paper §3), yet it is counted as one in N, V and k_static; lower the load or enlarge the box",
-            wrapping.len(),
-            steps.len(),
-            first.s,
+        warnings.push(crate::wear::box_wrapping_warning(
+            load,
+            &format!(
+                "at {} of {} steps (the first at s = {:.4e})",
+                wrapping.len(),
+                steps.len(),
+                first.s
+            ),
             wrapping.iter().map(|r| r.contact_area).fold(0.0, f64::max),
         ));
     }

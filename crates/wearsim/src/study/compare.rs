@@ -3,14 +3,15 @@
 //! whether it covers the sliding value), the errors summarised, and the points a calibration is
 //! fitted on (`wearsim estimate-check`).
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
+use crate::config::SurfaceSource;
 use crate::error::{Error, Interrupt, Result};
 use crate::estimate::{
     fit_distance, results_of, Calibration, CalibrationPoint, EstimateResult, Sample, Sampling, WearModel,
 };
 use crate::run::SlidingRun;
-use crate::study::expand::expand_stored;
+use crate::study::expand::{expand, expand_stored, Study};
 use crate::study::store::{job_path, read_result, stored_study};
 
 /// One setting (job × fracture energy): what the sliding run measured beside the estimate.
@@ -83,17 +84,101 @@ pub struct MappedJob {
     pixel_size: f64,
 }
 
-/// The finished sliding jobs of study folder `dir` with the static maps of each (taken as
-/// `sampling` says); unfinished jobs and jobs of the estimate are left out and counted.
-/// `on_job(done, total)` is told after each job.
-pub fn map_jobs(
-    dir: &Path,
-    sampling: Sampling,
-    interrupt: &Interrupt,
-    mut on_job: impl FnMut(usize, usize),
-) -> Result<(Vec<MappedJob>, usize)> {
+/// The files a command that reads study folder `dir` reads: its stored study, its hash, its job
+/// folder and the surface files its jobs name. An output folder may be none of them and hold none
+/// of them ([`crate::io::refuse_inputs_inside`]), nor lie inside the job folder, which holds only
+/// the study's own files.
+pub fn study_inputs(dir: &Path) -> Result<Vec<PathBuf>> {
     let (text, base) = stored_study(dir)?;
     let study = expand_stored(&text, &base)?;
+    let mut inputs = vec![dir.join("study.toml"), dir.join("study.hash"), dir.join("jobs")];
+    for job in &study.jobs {
+        if let SurfaceSource::Files { top, bottom, .. } = &job.run.surfaces {
+            for file in [top, bottom] {
+                if !inputs.contains(file) {
+                    inputs.push(file.clone());
+                }
+            }
+        }
+    }
+    Ok(inputs)
+}
+
+/// Refuses `out` as the output folder of a command reading study folder `dir`: one that is or
+/// holds one of its inputs ([`study_inputs`]), or lies inside its job folder, whatever `--overwrite`
+/// says (replacing it would delete job results or surfaces the study reads).
+pub fn refuse_output_in_study(out: &Path, dir: &Path) -> Result<()> {
+    let inputs = study_inputs(dir)?;
+    let refs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
+    crate::io::refuse_inputs_inside(out, &refs)?;
+    let jobs = crate::io::canonical_path(&dir.join("jobs"));
+    if crate::io::canonical_path(out).starts_with(&jobs) {
+        return Err(Error::file(
+            out,
+            format!(
+                "lies inside the study's job folder {}, which holds only the study's job files; give an --out folder \
+                 outside it, e.g. --out check",
+                jobs.display()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The study of folder `dir` as its jobs were run: the stored study expanded with its surface
+/// files read again, refused when their contents (or the stored study) no longer give the hash the
+/// folder was made with, since a static map of changed surfaces would be compared with sliding runs
+/// of the old ones.
+fn study_as_run(dir: &Path) -> Result<Study> {
+    let (text, base) = stored_study(dir)?;
+    let study = expand(&text, &base).map_err(|e| Error::StudyFolder {
+        dir: dir.into(),
+        message: format!(
+            "its jobs cannot be estimated again: {e}; the surface files the study was run with must be where the \
+             study file named them"
+        ),
+    })?;
+    let hash_path = dir.join("study.hash");
+    let stored = crate::io::read_text(&hash_path)?;
+    if stored.trim() != study.hash {
+        return Err(Error::StudyFolder {
+            dir: dir.into(),
+            message: format!(
+                "its surface files (or its stored study.toml) changed since its jobs were run (hash {} ≠ {} in {}): \
+                 the static maps would be of other surfaces than the sliding runs; restore the surface files, or run \
+                 the study again into a new folder",
+                study.hash,
+                stored.trim(),
+                hash_path.display()
+            ),
+        });
+    }
+    Ok(study)
+}
+
+/// The finished sliding jobs of a study folder with the static maps of each, the jobs left out and
+/// every warning of the estimates (each with the jobs it concerns).
+#[derive(Debug, Clone)]
+pub struct MappedStudy {
+    pub jobs: Vec<MappedJob>,
+    /// Jobs unfinished or of another model.
+    pub left_out: usize,
+    /// Each distinct warning of the jobs' estimates (the run's inputs, d* against the pixel size,
+    /// junctions around the box, sampling, the results) with the jobs that gave it, in order.
+    pub warnings: Vec<(String, Vec<usize>)>,
+}
+
+/// The finished sliding jobs of study folder `dir` with the static maps of each, taken as `samples`
+/// says (else as each job's `estimate_samples`, else chosen by the sampling error); unfinished
+/// jobs and jobs of the estimate are left out and counted. The surface files must be those the
+/// study ran with. `on_job(done, total)` is told after each job.
+pub fn map_jobs(
+    dir: &Path,
+    samples: Option<usize>,
+    interrupt: &Interrupt,
+    mut on_job: impl FnMut(usize, usize),
+) -> Result<MappedStudy> {
+    let study = study_as_run(dir)?;
     let finished: Vec<_> = study
         .jobs
         .iter()
@@ -107,12 +192,20 @@ pub fn map_jobs(
     }
     let left_out = study.jobs.len() - finished.len();
     let mut out = Vec::with_capacity(finished.len());
+    let mut warnings: Vec<(String, Vec<usize>)> = Vec::new();
     for (i, job) in finished.iter().enumerate() {
         let result = read_result(job, dir)?;
         let sliding = crate::run::sliding_schedule(&job.run)?;
+        let sampling = Sampling::of(samples.or(job.run.estimate_samples))?;
         let prepared = SlidingRun::prepare(&job.run)?.interrupted_by(interrupt);
         let grid = prepared.grid();
         let outcome = prepared.estimate(sampling, &crate::estimate::CALIBRATION, |_, _| {})?;
+        for w in &outcome.warnings {
+            match warnings.iter_mut().find(|(text, _)| text == w) {
+                Some((_, jobs)) => jobs.push(job.index),
+                None => warnings.push((w.clone(), vec![job.index])),
+            }
+        }
         let samples = outcome.loads.into_iter().next().map(|l| l.samples).unwrap_or_default();
         out.push(MappedJob {
             job: result,
@@ -124,7 +217,37 @@ pub fn map_jobs(
         });
         on_job(i + 1, finished.len());
     }
-    Ok((out, left_out))
+    Ok(MappedStudy {
+        jobs: out,
+        left_out,
+        warnings,
+    })
+}
+
+/// What a fit of the constants on `rows` rests on that it should not: settings whose d* is under
+/// [`crate::check::RESOLVED_PIXELS`] pixels (the same rule as the sliding run's and the estimate's
+/// resolution warning), among those [`Calibration::fit`] uses.
+pub fn fit_warnings(rows: &[ComparisonRow]) -> Vec<String> {
+    let coarse: Vec<&ComparisonRow> = rows
+        .iter()
+        .filter(|r| r.particles_in_fit >= crate::estimate::FIT_MIN_PARTICLES)
+        .filter(|r| r.critical_diameter_pixels < crate::check::RESOLVED_PIXELS)
+        .collect();
+    if coarse.is_empty() {
+        return Vec::new();
+    }
+    let fewest = coarse
+        .iter()
+        .map(|r| r.critical_diameter_pixels)
+        .fold(f64::INFINITY, f64::min);
+    let most = coarse.iter().map(|r| r.critical_diameter_pixels).fold(0.0, f64::max);
+    vec![format!(
+        "the fit uses {} setting(s) whose d* is {fewest:.2}–{most:.2} pixels, under {}: junctions of the critical \
+         size are not resolved there and their rates follow the grid, so constants fitted on them follow it too; \
+         refine the study's `grid` (or raise its fracture energies) before fitting",
+        coarse.len(),
+        crate::check::RESOLVED_PIXELS
+    )]
 }
 
 /// The rows of the mapped jobs under `calibration`.
