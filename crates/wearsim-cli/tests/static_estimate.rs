@@ -113,15 +113,15 @@ fn estimate_check_compares_a_studys_sliding_runs_and_fits() {
 
 #[test]
 fn a_fit_on_unresolved_critical_diameters_is_warned_about() {
-    // A 64² box of side L/4: Δx = L/256, so d* = 1.5 px for 𝒢 = 0.25×10⁻⁶ E L.
+    // A 128² box of side L/2: Δx = L/256, so d* = 1.5 px for 𝒢 = 0.25×10⁻⁶ E L; 16–35 particles
+    // per setting, enough for a fit.
     let coarse = STUDY
-        .replace("grid = 128", "grid = 64")
-        .replace("length = 0.03125", "length = 0.25")
+        .replace("length = 0.03125", "length = 0.5")
         .replace("lambda_lower = 0.00390625", "lambda_lower = 0.0625")
-        .replace("lambda_upper = 0.0078125", "lambda_upper = 0.125")
+        .replace("lambda_upper = 0.0078125", "lambda_upper = 0.25")
         .replace(
             "loads = [1.5e-6, 2.4e-6]",
-            "loads = [9.375e-5, 1.5e-4]\ndistance = 0.5\nrunning_in = 0.25",
+            "loads = [3.75e-4, 6e-4]\ndistance = 1.0\nrunning_in = 0.25",
         );
     let dir = tempfile::tempdir().unwrap();
     let study = file(dir.path(), "study.toml", &coarse);

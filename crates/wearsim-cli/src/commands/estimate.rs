@@ -184,6 +184,17 @@ pub fn check(args: &CheckArgs) -> Result<()> {
         .iter()
         .map(|(w, on)| format!("{w} (job{} {})", if on.len() == 1 { "" } else { "s" }, job_list(on)))
         .collect();
+    // Said before the fit, which may fail on the settings they concern.
+    for w in warnings.iter().take(WARNINGS_SHOWN) {
+        eprintln!("warning: {w}");
+    }
+    if warnings.len() > WARNINGS_SHOWN {
+        eprintln!(
+            "warning: … and {} more, in {}/summary.json (`warnings`)",
+            warnings.len() - WARNINGS_SHOWN,
+            args.out.display()
+        );
+    }
     let fitted = if args.fit {
         let rows = compare(jobs, &CALIBRATION);
         // Said before the fit, which may fail on the same settings.
@@ -225,20 +236,6 @@ pub fn check(args: &CheckArgs) -> Result<()> {
     )?;
     super::check_interrupt()?;
     out.commit()?;
-    for w in warnings
-        .iter()
-        .filter(|w| !w.starts_with("the fit uses"))
-        .take(WARNINGS_SHOWN)
-    {
-        eprintln!("warning: {w}");
-    }
-    if warnings.len() > WARNINGS_SHOWN {
-        eprintln!(
-            "warning: … and {} more, in {}/summary.json (`warnings`)",
-            warnings.len() - WARNINGS_SHOWN,
-            args.out.display()
-        );
-    }
     if let Some(c) = fitted {
         println!(
             "fitted on {} settings ({} particles): residence_factor (c₁) = {:.3}, merging_factor (c₂) = {:.2}, \

@@ -85,13 +85,14 @@ pub struct MappedJob {
 }
 
 /// The files a command that reads study folder `dir` reads: its stored study, its hash, its job
-/// folder and the surface files its jobs name. An output folder may be none of them and hold none
-/// of them ([`crate::io::refuse_inputs_inside`]), nor lie inside the job folder, which holds only
-/// the study's own files.
+/// folder, the surface files its jobs name and the folder of the study file it was run from (where
+/// its relative paths resolve: the user's study file and surfaces live there). An output folder may
+/// be none of them and hold none of them ([`crate::io::refuse_inputs_inside`]), nor lie inside the
+/// job folder, which holds only the study's own files.
 pub fn study_inputs(dir: &Path) -> Result<Vec<PathBuf>> {
     let (text, base) = stored_study(dir)?;
     let study = expand_stored(&text, &base)?;
-    let mut inputs = vec![dir.join("study.toml"), dir.join("study.hash"), dir.join("jobs")];
+    let mut inputs = vec![dir.join("study.toml"), dir.join("study.hash"), dir.join("jobs"), base];
     for job in &study.jobs {
         if let SurfaceSource::Files { top, bottom, .. } = &job.run.surfaces {
             for file in [top, bottom] {
