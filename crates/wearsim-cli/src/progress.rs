@@ -3,6 +3,7 @@
 //! (a Slurm log) or with `--log`; nothing with `--quiet`. The numerics never print: the commands
 //! feed this from the library's observers and callbacks.
 
+use crate::out::tell;
 use std::io::IsTerminal;
 use std::sync::{Mutex, OnceLock};
 use std::time::{Duration, Instant};
@@ -86,7 +87,7 @@ impl Progress {
                     } else {
                         f64::NAN
                     };
-                    eprintln!(
+                    tell!(
                         "{}: {done}/{total} {} ({:.0} %), {:.1} s elapsed, {} left{}{note}",
                         self.label,
                         self.unit,

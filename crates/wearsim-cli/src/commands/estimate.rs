@@ -14,6 +14,7 @@ use wearsim::study::compare::{compare, map_jobs, summarize, ComparisonSummary};
 
 use super::load_run;
 use super::slide::{report_critical_diameters, with_unit};
+use crate::out::{say, tell};
 use crate::progress::Progress;
 
 #[derive(clap::Args)]
@@ -95,10 +96,10 @@ pub fn run(args: &Args) -> Result<()> {
     write_json(&out.join("summary.json"), &outcome.summary())?;
     super::check_interrupt()?;
     out.commit()?;
-    println!("ESTIMATE ({ESTIMATE_NOTICE})");
+    say!("ESTIMATE ({ESTIMATE_NOTICE})");
     for l in &outcome.loads {
         for r in &l.results {
-            println!(
+            say!(
                 "F_N = {}, d* = {}: W = {} {}, k = {} {}, dN*₊/ds = {} {}; N* = {:.2} (sampling error {}), d̄ = {}",
                 with_unit(units, "load", l.load),
                 with_unit(units, "critical_diameter", r.critical_diameter),
@@ -121,9 +122,9 @@ pub fn run(args: &Args) -> Result<()> {
         }
     }
     for w in &outcome.warnings {
-        eprintln!("warning: {w}");
+        tell!("warning: {w}");
     }
-    println!(
+    say!(
         "{} static maps per load (intervals: 95 % for a sliding run of this box and distance), {} loads in {:.1} s; \
          wrote {}",
         outcome.samples,
@@ -136,7 +137,7 @@ pub fn run(args: &Args) -> Result<()> {
 
 fn describe(what: &str, s: &ComparisonSummary) {
     let pct = |v: Option<f64>| v.map_or("undefined".into(), |v| format!("{:.1} %", 100.0 * v));
-    println!(
+    say!(
         "{what}: {} settings with at least {} particles ({} left out): W and k median |error| {}, worst {}; dN*₊/ds \
          median {}, worst {}; the 95 % interval covers W in {}/{} and dN*₊/ds in {}/{}",
         s.settings,
@@ -152,7 +153,7 @@ fn describe(what: &str, s: &ComparisonSummary) {
         s.settings
     );
     for n in &s.not_covered {
-        println!("  not covered: {n}");
+        say!("  not covered: {n}");
     }
 }
 
@@ -168,7 +169,7 @@ pub fn check(args: &CheckArgs) -> Result<()> {
     progress.finish();
     let (jobs, left_out) = mapped?;
     if left_out > 0 {
-        eprintln!("note: {left_out} jobs of the study are unfinished or estimates, and are left out");
+        tell!("note: {left_out} jobs of the study are unfinished or estimates, and are left out");
     }
     let fitted = if args.fit {
         let points: Vec<_> = compare(&jobs, &CALIBRATION).iter().map(|r| r.point()).collect();
@@ -203,7 +204,7 @@ pub fn check(args: &CheckArgs) -> Result<()> {
     super::check_interrupt()?;
     out.commit()?;
     if let Some(c) = fitted {
-        println!(
+        say!(
             "fitted on {} settings ({} particles): residence_factor (c₁) = {:.3}, merging_factor (c₂) = {:.2}, \
              volume_factor (c_v) = {:.3}, rate_spread = {:.3}, wear_spread = {:.3}",
             c.settings,
@@ -217,6 +218,6 @@ pub fn check(args: &CheckArgs) -> Result<()> {
         describe("with the fitted constants", &summary);
     }
     describe("with the constants in use", &in_use);
-    println!("wrote {}", args.out.display());
+    say!("wrote {}", args.out.display());
     Ok(())
 }

@@ -2,6 +2,7 @@
 
 use std::path::PathBuf;
 
+use crate::out::say;
 use anyhow::{bail, Context, Result};
 use wearsim::io::{read_npy_2d, write_json, write_npy_i64, NpyType, OutputDir};
 use wearsim::junctions::{JunctionLabeller, NO_JUNCTION};
@@ -71,6 +72,6 @@ pub fn run(args: &Args) -> Result<()> {
         &junctions_summary(connectivity, labeller.sizes()),
     )?;
     out.commit()?;
-    println!("{count} junctions; wrote {}", args.out.display());
+    say!("{count} junctions; wrote {}", args.out.display());
     Ok(())
 }

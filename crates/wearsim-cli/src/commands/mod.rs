@@ -15,6 +15,7 @@ pub mod surface;
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, AtomicI32, Ordering};
 
+use crate::out::tell;
 use anyhow::{Context, Result};
 use wearsim::config::RunConfig;
 
@@ -91,7 +92,7 @@ fn inherited_ignored(signal: i32) -> bool {
 /// Stops the command now: removes its temporary files and claims and exits with 128 + `signal`.
 fn stop_now(signal: i32) -> ! {
     let _in_place = wearsim::io::abandon_outputs();
-    eprintln!("error: stopped by {}; nothing was written", signal_name(signal));
+    tell!("error: stopped by {}; nothing was written", signal_name(signal));
     std::process::exit(128 + signal);
 }
 
@@ -140,11 +141,11 @@ pub fn run_inputs<'a>(run: &'a Path, config: &'a RunConfig) -> Vec<&'a Path> {
 /// and, with `warnings`, what about them may spoil the results (a surface far from periodic).
 pub fn report_surfaces(pair: &wearsim::config::SurfacePair, warnings: bool) {
     for note in &pair.notes {
-        eprintln!("note: {note}");
+        tell!("note: {note}");
     }
     if warnings {
         for w in &pair.warnings {
-            eprintln!("warning: {w}");
+            tell!("warning: {w}");
         }
     }
 }

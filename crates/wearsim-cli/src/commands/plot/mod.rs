@@ -19,6 +19,7 @@ use wearsim::study::{load_results, Job};
 
 use crate::figures::{number, save, Figure};
 
+use crate::out::say;
 use data::{equal_d_star, series_job, Data};
 use load::{Eq5Figure, LoadFigure, LoadPanel};
 use series::{CountsFigure, MemoryFigure, VolumeFigure};
@@ -194,7 +195,7 @@ fn fig4c(cx: &Context) -> Result<()> {
     let groups = equal_d_star(&cx.data.curves);
     if groups.is_empty() {
         let note = "Fig. 4c compares settings of equal d* (within 15 %) with different τ̃ or 𝒢; this study has none";
-        println!("fig4c: {note}");
+        say!("fig4c: {note}");
         cx.save("fig4c_constant_d_star", NARROW, &Note(note))?;
     }
     for (g, group) in groups.iter().enumerate() {
@@ -286,12 +287,12 @@ fn app_b_eq5(cx: &Context) -> Result<()> {
 fn app_f(cx: &Context) -> Result<()> {
     let (materials, all) = severity_fits(&cx.data.tidy);
     let Some(all) = all else {
-        println!("appF: fewer than two jobs with W > 0 on generated surfaces; not drawn");
+        say!("appF: fewer than two jobs with W > 0 on generated surfaces; not drawn");
         return Ok(());
     };
     for m in &materials {
         if let Some(fit) = m.fit {
-            println!(
+            say!(
                 "contact severity fit, {}: W = α S_cⁿ with α = {} {}, n = {:.3}",
                 m.material,
                 number(fit.prefactor),
@@ -397,9 +398,9 @@ pub fn run(args: &Args) -> Result<()> {
     wearsim::io::write_text(&figures.join("findings.md"), &text)?;
     figures.commit()?;
     for f in &found {
-        println!("{:<18} {}: {}", f.verdict.name(), f.key, f.observed);
+        say!("{:<18} {}: {}", f.verdict.name(), f.key, f.observed);
     }
-    println!(
+    say!(
         "wrote figures and findings.md to {} (series of job {series})",
         dir.join("figures").display()
     );
