@@ -12,12 +12,12 @@ mod severity;
 
 use std::path::{Path, PathBuf};
 
-use anyhow::Result;
+use anyhow::{Context as _, Result};
 use wearsim::output::{has_kim_materials, severity_fits, KIM_EXPERIMENTAL_K};
 use wearsim::study::findings::{findings, markdown};
 use wearsim::study::{load_results, Job};
 
-use crate::figures::{number, save, Figure};
+use crate::figures::{number, save, write_into, Figure};
 
 use crate::out::say;
 use data::{equal_d_star, series_job, Data};
@@ -45,6 +45,8 @@ struct Context<'a> {
     data: &'a Data,
     series: (&'a Job, &'a wearsim::output::JobResult),
     out: &'a Path,
+    /// The folder the figures end up in (`out` is its temporary stand-in until the end).
+    shown: &'a Path,
 }
 
 impl<'a> Context<'a> {
@@ -62,7 +64,7 @@ impl<'a> Context<'a> {
     }
 
     fn save(&self, name: &str, size: (u32, u32), figure: &impl Figure) -> Result<()> {
-        save(self.out, name, size, figure)
+        save(self.out, self.shown, name, size, figure)
     }
 }
 
@@ -351,11 +353,12 @@ fn memory(cx: &Context) -> Result<()> {
 }
 
 /// Draws the figures asked for (all without a list) of a loaded study into `out`.
-fn draw(data: &Data, job: Option<usize>, figures: Option<&[String]>, out: &Path) -> Result<usize> {
+fn draw(data: &Data, job: Option<usize>, figures: Option<&[String]>, out: &Path, shown: &Path) -> Result<usize> {
     let cx = Context {
         data,
         series: series_job(data, job)?,
         out,
+        shown,
     };
     for figure in &FIGURES {
         if figures.is_none_or(|w| w.iter().any(|n| n == figure.name)) {
@@ -371,7 +374,7 @@ pub fn run(args: &Args) -> Result<()> {
     let data = Data::new(study.jobs, results)?;
     let figures = wearsim::io::OutputDir::begin(&dir.join("figures"), "study plot", false, &[])?;
     let out = figures.join("");
-    let series = draw(&data, args.job, args.figures.as_deref(), &out)?;
+    let series = draw(&data, args.job, args.figures.as_deref(), &out, &dir.join("figures"))?;
     // The paper's findings on this study, judged on its sliding jobs: an estimate is no sliding run.
     let (sliding, estimates) = wearsim::output::sliding_rows(&data.tidy);
     let found = if sliding.rows.is_empty() {
@@ -395,7 +398,9 @@ pub fn run(args: &Args) -> Result<()> {
         dir.display(),
         markdown(&found)
     );
-    wearsim::io::write_text(&figures.join("findings.md"), &text)?;
+    let shown = dir.join("figures");
+    write_into(&out, &shown, "findings.md", text.as_bytes())
+        .with_context(|| format!("cannot write findings.md into {}", shown.display()))?;
     figures.commit()?;
     for f in &found {
         say!("{:<18} {}: {}", f.verdict.name(), f.key, f.observed);
