@@ -3,10 +3,11 @@
 //! (a Slurm log) or with `--log`; nothing with `--quiet`. The numerics never print: the commands
 //! feed this from the library's observers and callbacks.
 
-use crate::out::tell;
 use std::io::IsTerminal;
 use std::sync::{Mutex, OnceLock};
 use std::time::{Duration, Instant};
+
+use crate::out::tell;
 
 /// How progress is shown.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -6,7 +6,6 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
-use crate::out::say;
 use anyhow::{Context, Result};
 use serde_json::json;
 use wearsim::config::{RunConfig, SurfaceSource, Units};
@@ -18,6 +17,8 @@ use wearsim::sliding::{
 };
 use wearsim::surface::pair_seeds;
 use wearsim::{ContactSolver, Material, ModulusConvention, SpectrumParams, Surface};
+
+use crate::out::say;
 
 #[derive(clap::Args)]
 pub struct Args {

@@ -2,11 +2,12 @@
 //! wall time and peak memory on this machine from the library's cost model (`wearsim::cost`), so
 //! that a Slurm job's `--time` and `--mem` can be sized before it is submitted.
 
-use crate::out::{say, tell};
 use anyhow::{Context, Result};
 use wearsim::config::RunConfig;
 use wearsim::cost::{cache_dir, Calibration, Estimate};
 use wearsim::study::Job;
+
+use crate::out::{say, tell};
 
 /// This machine's calibration: the cached one, or measured now (about ten seconds) and cached.
 pub fn calibration() -> Result<Calibration> {

@@ -2,11 +2,12 @@
 
 use std::path::PathBuf;
 
-use crate::out::say;
 use anyhow::{bail, Context, Result};
 use wearsim::io::{read_npy_2d, write_json, write_npy_i64, NpyType, OutputDir};
 use wearsim::junctions::{JunctionLabeller, NO_JUNCTION};
 use wearsim::output::junctions_summary;
+
+use crate::out::say;
 
 #[derive(clap::Args)]
 pub struct Args {

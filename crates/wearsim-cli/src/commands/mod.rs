@@ -15,9 +15,10 @@ pub mod surface;
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, AtomicI32, Ordering};
 
-use crate::out::tell;
 use anyhow::{Context, Result};
 use wearsim::config::RunConfig;
+
+use crate::out::tell;
 
 /// The signals that stop a command: Ctrl-C, a closed terminal, `kill`, and a Slurm job's time
 /// limit (SIGTERM, then SIGKILL after a grace period) and `--signal` (SIGUSR1, SIGUSR2).

@@ -2,10 +2,11 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::out::{say, tell};
 use crate::progress::Progress;
 use anyhow::{bail, Context, Result};
 use wearsim::study::{collect as collect_study, expand, prepare_folder, run_jobs, shard, workers_for_memory};
+
+use crate::out::{say, tell};
 
 #[derive(clap::Args)]
 pub struct RunArgs {

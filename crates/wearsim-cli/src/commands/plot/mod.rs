@@ -18,8 +18,8 @@ use wearsim::study::findings::{findings, markdown};
 use wearsim::study::{load_results, Job};
 
 use crate::figures::{number, save, write_into, Figure};
-
 use crate::out::say;
+
 use data::{equal_d_star, series_job, Data};
 use load::{Eq5Figure, LoadFigure, LoadPanel};
 use series::{CountsFigure, MemoryFigure, VolumeFigure};
@@ -373,8 +373,8 @@ pub fn run(args: &Args) -> Result<()> {
     let (study, results) = load_results(dir)?;
     let data = Data::new(study.jobs, results)?;
     let figures = wearsim::io::OutputDir::begin(&dir.join("figures"), "study plot", false, &[])?;
-    let out = figures.join("");
-    let series = draw(&data, args.job, args.figures.as_deref(), &out, &dir.join("figures"))?;
+    let (out, shown) = (figures.join(""), dir.join("figures"));
+    let series = draw(&data, args.job, args.figures.as_deref(), &out, &shown)?;
     // The paper's findings on this study, judged on its sliding jobs: an estimate is no sliding run.
     let (sliding, estimates) = wearsim::output::sliding_rows(&data.tidy);
     let found = if sliding.rows.is_empty() {
@@ -398,7 +398,6 @@ pub fn run(args: &Args) -> Result<()> {
         dir.display(),
         markdown(&found)
     );
-    let shown = dir.join("figures");
     write_into(&out, &shown, "findings.md", text.as_bytes())
         .with_context(|| format!("cannot write findings.md into {}", shown.display()))?;
     figures.commit()?;
@@ -407,7 +406,7 @@ pub fn run(args: &Args) -> Result<()> {
     }
     say!(
         "wrote figures and findings.md to {} (series of job {series})",
-        dir.join("figures").display()
+        shown.display()
     );
     Ok(())
 }
