@@ -208,13 +208,28 @@ def main(argv: Optional[List[str]] = None) -> int:
     try:
         path = to_netcdf(args.store, args.out, complevel=args.complevel, overwrite=args.overwrite)
     except (ImportError, OSError, ValueError) as e:
-        print(f"error: {e}", file=sys.stderr)
+        _say(f"error: {e}", sys.stderr)
         return 1
     except KeyboardInterrupt:
-        print("error: stopped by a signal; nothing was written", file=sys.stderr)
+        _say("error: stopped by a signal; nothing was written", sys.stderr)
         return 130
-    print(f"wrote {path}")
+    _say(f"wrote {path}", sys.stdout)
     return 0
+
+
+def _say(text: str, stream) -> None:
+    """Prints a line to ``stream``. A write that fails (a pipe whose reader has gone, ``| head``)
+    ends the printing there, silently, and changes nothing else: the conversion is done and its exit
+    status stays what it is (as the ``wearsim`` command does)."""
+    try:
+        print(text, file=stream, flush=True)
+    except OSError:
+        # What is left in the stream's buffer goes nowhere at exit, rather than failing again there.
+        try:
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, stream.fileno())
+        except (OSError, ValueError):
+            pass
 
 
 def _stop_on_signals() -> None:

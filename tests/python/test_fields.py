@@ -157,6 +157,24 @@ def test_the_fields_convert_to_cf_netcdf_that_another_reader_opens(run, wearsim_
     assert missing.returncode != 0 and 'pip install "wearsim[fields]"' in missing.stderr
 
 
+def test_the_conversion_finishes_when_its_output_pipes_are_closed(run, wearsim_bin, tmp_path):
+    # `wearsim fields to-netcdf … | head -0`: the printing ends, not the conversion or its status.
+    pytest.importorskip("h5netcdf")
+    import sys
+
+    store = run / "slide" / "fields.zarr"
+    for name, command in [
+        ("module.nc", [sys.executable, "-m", "wearsim.fields", "to-netcdf"]),
+        ("cli.nc", [wearsim_bin, "fields", "to-netcdf", "--python", sys.executable]),
+    ]:
+        out = tmp_path / name
+        child = subprocess.Popen([*command, store, out], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        child.stdout.close()
+        child.stderr.close()
+        assert child.wait(timeout=300) == 0, name
+        assert out.is_file(), name
+
+
 def test_the_conversion_never_writes_over_a_file_it_did_not_make(run, wearsim_bin, tmp_path):
     import os
     import sys

@@ -8,7 +8,8 @@
 
 use std::path::Path;
 
-use anyhow::{anyhow, Result};
+use anyhow::{anyhow, Context, Result};
+use image::ImageEncoder;
 use plotters::coord::ranged1d::{KeyPointHint, NoDefaultFormatting, Ranged};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -37,14 +38,12 @@ pub trait Figure {
     fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()>;
 }
 
-/// Draws `figure` into `dir/name.png` and `dir/name.svg` (each written to a temporary file and
-/// renamed into place, so a failed drawing leaves no half-written figure).
-pub fn save(dir: &Path, name: &str, size: (u32, u32), figure: &impl Figure) -> Result<()> {
+/// Draws `figure` into `dir/name.png` and `dir/name.svg`: both are drawn in memory, then written by
+/// the library's atomic writer (a temporary file renamed into place, removed by a stop), so a failed
+/// drawing or write leaves no half-written figure. `shown` is the folder the figures end up in,
+/// named by a write that fails (a full disk).
+pub fn save(dir: &Path, shown: &Path, name: &str, size: (u32, u32), figure: &impl Figure) -> Result<()> {
     register_font();
-    let svg = dir.join(format!("{name}.svg"));
-    let png = dir.join(format!("{name}.png"));
-    let tmp_svg = dir.join(format!(".{name}.{}.tmp.svg", std::process::id()));
-    let tmp_png = dir.join(format!(".{name}.{}.tmp.png", std::process::id()));
     // A first drawing, thrown away, measures the legend; the figure is then widened so that the
     // legend column fits its longest entry on one line and the panels keep at least three quarters
     // of the width (and no less than they were given).
@@ -62,29 +61,42 @@ pub fn save(dir: &Path, name: &str, size: (u32, u32), figure: &impl Figure) -> R
         LEGEND.with(|l| l.set((needed, 0)));
         (panels + needed, size.1)
     };
-    let drawn = (|| -> Result<()> {
-        {
-            let root = SVGBackend::new(&tmp_svg, size).into_drawing_area();
-            root.fill(&WHITE).map_err(drawing)?;
-            figure.draw(&root)?;
-            root.present().map_err(drawing)?;
-        }
-        {
-            let root = crate::raster::Raster::new(BitMapBackend::new(&tmp_png, size)).into_drawing_area();
-            root.fill(&WHITE).map_err(drawing)?;
-            figure.draw(&root)?;
-            root.present().map_err(drawing)?;
-        }
-        std::fs::rename(&tmp_svg, &svg)?;
-        std::fs::rename(&tmp_png, &png)?;
-        Ok(())
-    })();
-    if drawn.is_err() {
-        let _ = std::fs::remove_file(&tmp_svg);
-        let _ = std::fs::remove_file(&tmp_png);
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
+        root.fill(&WHITE).map_err(drawing)?;
+        figure.draw(&root)?;
+        root.present().map_err(drawing)?;
     }
-    // A write that fails (a full disk) names the figure it could not write.
-    drawn.map_err(|e| e.context(format!("cannot write the figure {name}.png / {name}.svg")))
+    let mut pixels = vec![0u8; 3 * size.0 as usize * size.1 as usize];
+    {
+        let backend = BitMapBackend::with_buffer(&mut pixels, size);
+        let root = crate::raster::Raster::new(backend).into_drawing_area();
+        root.fill(&WHITE).map_err(drawing)?;
+        figure.draw(&root)?;
+        root.present().map_err(drawing)?;
+    }
+    let mut png = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut png)
+        .write_image(&pixels, size.0, size.1, image::ColorType::Rgb8)
+        .map_err(drawing)?;
+    for (file, bytes) in [
+        (format!("{name}.svg"), svg.as_bytes()),
+        (format!("{name}.png"), &png[..]),
+    ] {
+        write_into(dir, shown, &file, bytes)
+            .with_context(|| format!("cannot write the figure {name} into {}", shown.display()))?;
+    }
+    Ok(())
+}
+
+/// Writes `bytes` to `dir/file` atomically; a failed write (a full disk, in words) names the file
+/// as it will be once `dir` is put in place as `shown`, not its place in the temporary folder.
+pub fn write_into(dir: &Path, shown: &Path, file: &str, bytes: &[u8]) -> Result<()> {
+    wearsim::io::atomic_write(&dir.join(file), |w| w.write_all(bytes)).map_err(|e| match e {
+        wearsim::Error::Io { source, .. } => wearsim::Error::io(shown.join(file), source).into(),
+        other => other.into(),
+    })
 }
 
 /// Colour-blind-safe palette (Okabe & Ito), then greys.

@@ -1,13 +1,18 @@
 //! `wearsim`: the command-line front end. Parses arguments, calls the library and says what it
 //! wrote; one file per subcommand under `commands/`, the figures in `figures.rs`. All numerics and
-//! every result document live in the `wearsim` library crate.
+//! every result document live in the `wearsim` library crate. Everything it prints goes through
+//! [`out`], which survives a closed pipe; `println!` and `eprintln!` (which panic there) are denied.
+#![deny(clippy::print_stdout, clippy::print_stderr)]
 
 use clap::{Parser, Subcommand};
 
 mod commands;
 mod figures;
+mod out;
 mod progress;
 mod raster;
+
+use out::tell;
 
 use commands::{animate, bench, contact, estimate, fields, junctions, plot, slide, study, surface};
 
@@ -92,17 +97,17 @@ fn main() {
         let threads = match wearsim::check::threads(requested) {
             Ok((t, note)) => {
                 if let Some(note) = note {
-                    eprintln!("warning: --threads: {note}");
+                    tell!("warning: --threads: {note}");
                 }
                 t
             }
             Err(e) => {
-                eprintln!("error: --threads: {e}");
+                tell!("error: --threads: {e}");
                 std::process::exit(2);
             }
         };
         if let Err(e) = rayon::ThreadPoolBuilder::new().num_threads(threads).build_global() {
-            eprintln!("error: --threads: {e}");
+            tell!("error: --threads: {e}");
             std::process::exit(2);
         }
     }
@@ -130,8 +135,8 @@ fn main() {
             .chain()
             .any(|c| matches!(c.downcast_ref::<wearsim::Error>(), Some(wearsim::Error::Interrupted)));
         match (interrupted, stopped) {
-            (true, Some(sig)) => eprintln!("error: stopped by {}", commands::signal_name(sig)),
-            _ => eprintln!("error: {}", message(&e)),
+            (true, Some(sig)) => tell!("error: stopped by {}", commands::signal_name(sig)),
+            _ => tell!("error: {}", message(&e)),
         }
         std::process::exit(match (interrupted, stopped) {
             (true, Some(sig)) => 128 + sig,

@@ -7,6 +7,8 @@ use std::io::IsTerminal;
 use std::sync::{Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
+use crate::out::tell;
+
 /// How progress is shown.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Mode {
@@ -86,7 +88,7 @@ impl Progress {
                     } else {
                         f64::NAN
                     };
-                    eprintln!(
+                    tell!(
                         "{}: {done}/{total} {} ({:.0} %), {:.1} s elapsed, {} left{}{note}",
                         self.label,
                         self.unit,

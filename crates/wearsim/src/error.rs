@@ -92,6 +92,17 @@ fn explain(e: &std::io::Error) -> String {
         ErrorKind::IsADirectory => "is a folder, where a file is needed; give the file's path".into(),
         ErrorKind::NotADirectory => "a part of this path is a file, where a folder is needed; check the path".into(),
         ErrorKind::NotFound => "does not exist; check the path".into(),
+        ErrorKind::StorageFull => {
+            "the disk is full (no space left on device); free space on it, or write to another disk".into()
+        }
+        ErrorKind::QuotaExceeded => {
+            "the disk quota is full (disk quota exceeded); free space within the quota, or write to another disk".into()
+        }
+        ErrorKind::FileTooLarge => {
+            "the file-size limit is reached (file too large: a `ulimit -f`, a quota or the file \
+                                    system's largest file); free space, raise the limit, or write to another disk"
+                .into()
+        }
         _ => e.to_string(),
     }
 }
@@ -188,6 +199,20 @@ mod tests {
         );
         let e = Error::io("/dev/null/x", std::fs::read_to_string("/dev/null/x").unwrap_err()).to_string();
         assert!(e.contains("is a file, where a folder is needed"), "{e}");
+    }
+
+    #[test]
+    fn a_full_disk_quota_or_file_size_limit_is_said_in_words_with_the_fix() {
+        for (errno, words) in [
+            (28, "the disk is full"),
+            (122, "the disk quota is full"),
+            (27, "the file-size limit is reached (file too large"),
+        ] {
+            let e = Error::io("out/a.png", std::io::Error::from_raw_os_error(errno)).to_string();
+            assert!(e.starts_with("out/a.png: ") && e.contains(words), "{e}");
+            assert!(e.contains("free space") && e.contains("write to another disk"), "{e}");
+            assert!(!e.contains("os error"), "{e}");
+        }
     }
 
     #[test]

@@ -16,6 +16,7 @@ use wearsim::wear::JunctionState;
 
 use super::load_run;
 use crate::figures::{register_font, FONT};
+use crate::out::say;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -251,6 +252,6 @@ pub fn run(args: &Args) -> Result<()> {
         return Err(e);
     }
     std::fs::rename(&tmp, out).with_context(|| format!("cannot write {}", out.display()))?;
-    println!("wrote {}", out.display());
+    say!("wrote {}", out.display());
     Ok(())
 }

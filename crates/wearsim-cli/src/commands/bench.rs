@@ -18,6 +18,8 @@ use wearsim::sliding::{
 use wearsim::surface::pair_seeds;
 use wearsim::{ContactSolver, Material, ModulusConvention, SpectrumParams, Surface};
 
+use crate::out::say;
+
 #[derive(clap::Args)]
 pub struct Args {
     /// Grid sizes to time.
@@ -84,11 +86,11 @@ pub fn run(args: &Args) -> Result<()> {
         check_size(n).with_context(|| format!("--sizes {n}"))?;
     }
     let threads = rayon::current_num_threads();
-    println!(
+    say!(
         "wearsim {} bench, {threads} threads; paper roughness, τ̃ = 0.010 E, F_N = 1e-3 E L²",
         wearsim::VERSION
     );
-    println!(
+    say!(
         "{:>5} {:>9} {:>10} {:>6} {:>6} {:>9} {:>10} {:>6} {:>6} {:>9} {:>9} {:>9} {:>9}",
         "N",
         "fft_ms",
@@ -141,7 +143,7 @@ pub fn run(args: &Args) -> Result<()> {
         let per_iter = cold_s / cold.iterations.max(1) as f64;
         let per_conv = cold_s / cold.convolutions.max(1) as f64;
         let peak = peak_memory_mib().unwrap_or(f64::NAN);
-        println!(
+        say!(
             "{:>5} {:>9.2} {:>10.3} {:>6} {:>6} {:>9.2} {:>10.3} {:>6} {:>6} {:>9.2} {:>9.2} {:>9.2} {:>9.0}",
             n,
             fft_s * 1e3,
@@ -245,8 +247,8 @@ pub fn run_slide(args: &SlideArgs) -> Result<()> {
         )
     });
     let iterations: usize = runs.iter().map(|r| r.total_iterations).sum();
-    println!("wearsim {} bench-slide, {threads} threads", wearsim::VERSION);
-    println!(
+    say!("wearsim {} bench-slide, {threads} threads", wearsim::VERSION);
+    say!(
         "sliding run N = {}: {} loads × {} offsets × {} fracture energies, {steps} contact solves in {total:.2} s ({:.2} ms/step; {:.1} iterations/step)",
         args.n,
         sliding.loads.len(),
@@ -255,7 +257,7 @@ pub fn run_slide(args: &SlideArgs) -> Result<()> {
         total / steps as f64 * 1e3,
         iterations as f64 / steps as f64
     );
-    println!(
+    say!(
         "  per step: solve {:.3} ms, labelling {:.3} ms, bookkeeping {:.3} ms; labelling + bookkeeping = {:.2} % of a step; peak memory {:.0} MiB",
         solve / steps as f64 * 1e3,
         label / steps as f64 * 1e3,
@@ -318,7 +320,7 @@ fn warm_steps(args: &SlideArgs, full: &RunConfig) -> Result<()> {
     )?
     .offsets(n)
     .len();
-    println!(
+    say!(
         "warm steps at N = {n} (F_N = 1e-3): {:.3} s/step ({:.1} iterations; solve {:.3} s, labelling {:.1} ms, \
          bookkeeping {:.1} ms); × {offsets} offsets = {:.1} min per load; peak memory {:.0} MiB",
         per_step,
@@ -338,7 +340,7 @@ fn warm_steps(args: &SlideArgs, full: &RunConfig) -> Result<()> {
         let outcome = SlidingRun::prepare(&config)?.estimate(sampling, &wearsim::estimate::CALIBRATION, |_, _| {})?;
         let seconds = t.elapsed().as_secs_f64();
         let sliding_load = per_step * offsets as f64;
-        println!(
+        say!(
             "static estimate at N = {n} (F_N = 1e-3, {} static maps, surfaces made included): {seconds:.1} s per load; \
              sliding / estimate = {:.0}× per load; N* = {:.1} at d* = {:.1} px",
             outcome.samples,

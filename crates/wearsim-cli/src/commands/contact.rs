@@ -10,6 +10,7 @@ use wearsim::output::{contact_summary, ContactRecord};
 use wearsim::{composite_heights, Boundary, ContactSolver};
 
 use super::load_run;
+use crate::out::{say, tell};
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -72,7 +73,7 @@ pub fn run(args: &Args) -> Result<()> {
             let pixels = offset / dx;
             let shift = (pixels.round() as usize) % n;
             if (pixels - pixels.round()).abs() > 1e-6 {
-                eprintln!(
+                tell!(
                     "note: --offset {offset} {unit} is {pixels:.3} pixels (Δx = {dx:e} {unit}); using {shift} pixels = {} {unit}",
                     shift as f64 * dx
                 );
@@ -130,10 +131,10 @@ pub fn run(args: &Args) -> Result<()> {
     )?;
     super::check_interrupt()?;
     out.commit()?;
-    println!(
+    say!(
         "contact area {:.6} of the apparent area, approach {:.6e} {unit}, {} iterations, residual {:.2e} (tolerance {:.0e}), {:.3} s",
         record.contact_area, record.approach, record.iterations, record.residual, record.tolerance, record.seconds
     );
-    println!("wrote {}", args.out.display());
+    say!("wrote {}", args.out.display());
     Ok(())
 }

@@ -7,13 +7,15 @@ use wearsim::config::RunConfig;
 use wearsim::cost::{cache_dir, Calibration, Estimate};
 use wearsim::study::Job;
 
+use crate::out::{say, tell};
+
 /// This machine's calibration: the cached one, or measured now (about ten seconds) and cached.
 pub fn calibration() -> Result<Calibration> {
     let dir = cache_dir();
     if let Some(c) = dir.as_deref().and_then(Calibration::cached) {
         return Ok(c);
     }
-    eprintln!(
+    tell!(
         "calibrating this machine for cost estimates on {} (about ten seconds, once per machine, wearsim version \
          and thread count)",
         counted(rayon::current_num_threads(), "thread")
@@ -25,10 +27,10 @@ fn measure_and_save(dir: Option<std::path::PathBuf>) -> Result<Calibration> {
     let c = Calibration::measure(super::interrupt()).context("calibration of the cost estimates")?;
     match dir {
         Some(dir) => match c.save(&dir) {
-            Ok(path) => eprintln!("calibration cached in {}", path.display()),
-            Err(e) => eprintln!("note: the calibration is not cached: {e}"),
+            Ok(path) => tell!("calibration cached in {}", path.display()),
+            Err(e) => tell!("note: the calibration is not cached: {e}"),
         },
-        None => eprintln!("note: neither $XDG_CACHE_HOME nor $HOME is set: the calibration is not cached"),
+        None => tell!("note: neither $XDG_CACHE_HOME nor $HOME is set: the calibration is not cached"),
     }
     Ok(c)
 }
@@ -36,7 +38,7 @@ fn measure_and_save(dir: Option<std::path::PathBuf>) -> Result<Calibration> {
 /// `wearsim bench --calibrate`: measures anew, caches and prints the calibration.
 pub fn recalibrate() -> Result<()> {
     let c = measure_and_save(cache_dir())?;
-    println!("{}", serde_json::to_string_pretty(&c)?);
+    say!("{}", serde_json::to_string_pretty(&c)?);
     Ok(())
 }
 
@@ -128,7 +130,7 @@ pub fn report_study(jobs: &[&Job], workers: usize, dry_run: bool) -> Result<()> 
 fn lenient(result: Result<()>, dry_run: bool) -> Result<()> {
     match result {
         Err(e) if !dry_run && !is_interrupted(&e) => {
-            eprintln!("note: no cost estimate: {e:#}");
+            tell!("note: no cost estimate: {e:#}");
             Ok(())
         }
         other => other,
@@ -146,7 +148,7 @@ pub fn print_run(config: &RunConfig) -> Result<Estimate> {
     let grid = config.grid()?;
     let c = calibration()?;
     let e = c.estimate(grid, sliding, config.stopping);
-    eprintln!(
+    tell!(
         "estimate: {} steps at {}×{} ({} per load × {}, about {:.1} iterations per step): {} wall on {} \
          ({:.2} CPU hours), peak memory {}; Slurm: {}",
         e.steps,
@@ -161,7 +163,7 @@ pub fn print_run(config: &RunConfig) -> Result<Estimate> {
         memory(e.peak_memory),
         slurm(e.seconds, e.peak_memory)
     );
-    eprintln!("  ({})", assumptions(&c));
+    tell!("  ({})", assumptions(&c));
     Ok(e)
 }
 
@@ -175,7 +177,7 @@ pub fn print_study(jobs: &[&Job], workers: usize) -> Result<()> {
         .filter(|j| j.run.model == wearsim::estimate::WearModel::Sliding)
         .collect();
     if jobs.len() < all {
-        eprintln!(
+        tell!(
             "note: {} of the static estimate are not in the cost estimate: each takes up to 16 static contact solves \
              per load (its static maps; 4 to 16 unless `estimate_samples` fixes them), seconds at 1024², a minute or two \
              at 4096²",
@@ -197,7 +199,7 @@ pub fn print_study(jobs: &[&Job], workers: usize) -> Result<()> {
     let longest = estimates.iter().map(|e| e.seconds).fold(0.0, f64::max);
     let per_job = estimates.iter().map(|e| e.peak_memory).fold(0.0, f64::max);
     let peak = per_job * workers.min(jobs.len()) as f64;
-    eprintln!(
+    tell!(
         "estimate: {}: {} wall on {} ({:.2} CPU hours; the longest job {}), peak memory {} ({} per job, {} \
          at once); Slurm, this shard: {}",
         counted(jobs.len(), "job"),
@@ -210,7 +212,7 @@ pub fn print_study(jobs: &[&Job], workers: usize) -> Result<()> {
         workers.min(jobs.len()),
         slurm(seconds, peak)
     );
-    eprintln!(
+    tell!(
         "  (jobs already done are skipped when the study runs; {})",
         assumptions(&c)
     );

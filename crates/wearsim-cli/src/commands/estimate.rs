@@ -14,6 +14,7 @@ use wearsim::study::compare::{compare, fit_warnings, map_jobs, refuse_output_in_
 
 use super::load_run;
 use super::slide::{report_critical_diameters, with_unit};
+use crate::out::{say, tell};
 use crate::progress::Progress;
 
 #[derive(clap::Args)]
@@ -96,10 +97,10 @@ pub fn run(args: &Args) -> Result<()> {
     write_json(&out.join("summary.json"), &outcome.summary())?;
     super::check_interrupt()?;
     out.commit()?;
-    println!("ESTIMATE ({ESTIMATE_NOTICE})");
+    say!("ESTIMATE ({ESTIMATE_NOTICE})");
     for l in &outcome.loads {
         for r in &l.results {
-            println!(
+            say!(
                 "F_N = {}, d* = {}: W = {} {}, k = {} {}, dN*₊/ds = {} {}; N* = {:.2} (sampling error {}), d̄ = {}",
                 with_unit(units, "load", l.load),
                 with_unit(units, "critical_diameter", r.critical_diameter),
@@ -122,9 +123,9 @@ pub fn run(args: &Args) -> Result<()> {
         }
     }
     for w in &outcome.warnings {
-        eprintln!("warning: {w}");
+        tell!("warning: {w}");
     }
-    println!(
+    say!(
         "{} static maps per load (intervals: 95 % for a sliding run of this box and distance), {} loads in {:.1} s; \
          wrote {}",
         outcome.samples,
@@ -137,7 +138,7 @@ pub fn run(args: &Args) -> Result<()> {
 
 fn describe(what: &str, s: &ComparisonSummary) {
     let pct = |v: Option<f64>| v.map_or("undefined".into(), |v| format!("{:.1} %", 100.0 * v));
-    println!(
+    say!(
         "{what}: {} settings with at least {} particles ({} left out): W and k median |error| {}, worst {}; dN*₊/ds \
          median {}, worst {}; the 95 % interval covers W in {}/{} and dN*₊/ds in {}/{}",
         s.settings,
@@ -153,7 +154,7 @@ fn describe(what: &str, s: &ComparisonSummary) {
         s.settings
     );
     for n in &s.not_covered {
-        println!("  not covered: {n}");
+        say!("  not covered: {n}");
     }
 }
 
@@ -177,7 +178,7 @@ pub fn check(args: &CheckArgs) -> Result<()> {
     let mapped = mapped?;
     let (jobs, left_out) = (&mapped.jobs, mapped.left_out);
     if left_out > 0 {
-        eprintln!("note: {left_out} jobs of the study are unfinished or estimates, and are left out");
+        tell!("note: {left_out} jobs of the study are unfinished or estimates, and are left out");
     }
     let mut warnings: Vec<String> = mapped
         .warnings
@@ -237,7 +238,7 @@ pub fn check(args: &CheckArgs) -> Result<()> {
     super::check_interrupt()?;
     out.commit()?;
     if let Some(c) = fitted {
-        println!(
+        say!(
             "fitted on {} settings ({} particles): residence_factor (c₁) = {:.3}, merging_factor (c₂) = {:.2}, \
              volume_factor (c_v) = {:.3}, rate_spread = {:.3}, wear_spread = {:.3}",
             c.settings,
@@ -251,7 +252,7 @@ pub fn check(args: &CheckArgs) -> Result<()> {
         describe("with the fitted constants", &summary);
     }
     describe("with the constants in use", &in_use);
-    println!("wrote {}", args.out.display());
+    say!("wrote {}", args.out.display());
     Ok(())
 }
 

@@ -7,6 +7,8 @@ use wearsim::io::{read_npy_2d, write_json, write_npy_i64, NpyType, OutputDir};
 use wearsim::junctions::{JunctionLabeller, NO_JUNCTION};
 use wearsim::output::junctions_summary;
 
+use crate::out::say;
+
 #[derive(clap::Args)]
 pub struct Args {
     /// Contact map (.npy: bool, or numbers where > 0 is contact, e.g. the contact.npy or
@@ -71,6 +73,6 @@ pub fn run(args: &Args) -> Result<()> {
         &junctions_summary(connectivity, labeller.sizes()),
     )?;
     out.commit()?;
-    println!("{count} junctions; wrote {}", args.out.display());
+    say!("{count} junctions; wrote {}", args.out.display());
     Ok(())
 }

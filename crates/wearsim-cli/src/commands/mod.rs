@@ -18,6 +18,8 @@ use std::sync::atomic::{AtomicBool, AtomicI32, Ordering};
 use anyhow::{Context, Result};
 use wearsim::config::RunConfig;
 
+use crate::out::tell;
+
 /// The signals that stop a command: Ctrl-C, a closed terminal, `kill`, and a Slurm job's time
 /// limit (SIGTERM, then SIGKILL after a grace period) and `--signal` (SIGUSR1, SIGUSR2).
 const STOP_SIGNALS: [i32; 5] = [
@@ -91,7 +93,7 @@ fn inherited_ignored(signal: i32) -> bool {
 /// Stops the command now: removes its temporary files and claims and exits with 128 + `signal`.
 fn stop_now(signal: i32) -> ! {
     let _in_place = wearsim::io::abandon_outputs();
-    eprintln!("error: stopped by {}; nothing was written", signal_name(signal));
+    tell!("error: stopped by {}; nothing was written", signal_name(signal));
     std::process::exit(128 + signal);
 }
 
@@ -140,11 +142,11 @@ pub fn run_inputs<'a>(run: &'a Path, config: &'a RunConfig) -> Vec<&'a Path> {
 /// and, with `warnings`, what about them may spoil the results (a surface far from periodic).
 pub fn report_surfaces(pair: &wearsim::config::SurfacePair, warnings: bool) {
     for note in &pair.notes {
-        eprintln!("note: {note}");
+        tell!("note: {note}");
     }
     if warnings {
         for w in &pair.warnings {
-            eprintln!("warning: {w}");
+            tell!("warning: {w}");
         }
     }
 }

@@ -10,6 +10,7 @@ use wearsim::run::SlidingRun;
 use wearsim::sliding::{Checkpointing, Resumed};
 
 use super::load_run;
+use crate::out::{say, tell};
 use crate::progress::Progress;
 
 #[derive(clap::Args)]
@@ -57,13 +58,13 @@ pub fn checkpoint_path(out: &std::path::Path) -> PathBuf {
 pub fn report_checkpoint(path: &std::path::Path, resumed: &Resumed) {
     match resumed {
         Resumed::Fresh => {}
-        Resumed::At { done, total } => eprintln!("resuming from the checkpoint after {done} of {total} steps"),
-        Resumed::Ignored(why) => eprintln!("warning: checkpoint not used: {why}"),
-        Resumed::Saved { done, total } => eprintln!(
+        Resumed::At { done, total } => tell!("resuming from the checkpoint after {done} of {total} steps"),
+        Resumed::Ignored(why) => tell!("warning: checkpoint not used: {why}"),
+        Resumed::Saved { done, total } => tell!(
             "saved the state after {done} of {total} steps in {}: the same command run again resumes from it",
             path.display()
         ),
-        Resumed::NotSaved(why) => eprintln!("warning: checkpoint not saved: {why}"),
+        Resumed::NotSaved(why) => tell!("warning: checkpoint not saved: {why}"),
     }
 }
 
@@ -87,7 +88,7 @@ pub fn report_critical_diameters(config: &wearsim::config::RunConfig, pixel_size
         .iter()
         .zip(config.material.critical_diameters())
     {
-        eprintln!(
+        tell!(
             "𝒢 = {}: critical diameter d* = {} ({:.1} px)",
             with_unit(units, "fracture_energy", *g),
             with_unit(units, "critical_diameter", d),
@@ -109,7 +110,7 @@ fn fields_writer(args: &Args, out: &OutputDir, prepared: &SlidingRun) -> Result<
         every: args.fields_every,
     };
     let raw = FieldsWriter::raw_bytes(grid, sliding.loads.len(), offsets.len(), &selection);
-    eprintln!(
+    tell!(
         "fields: {:.1} MB before compression (13 bytes per pixel and kept step), into {}",
         raw as f64 / 1e6,
         args.out.join("fields.zarr").display()
@@ -129,7 +130,7 @@ fn fields_writer(args: &Args, out: &OutputDir, prepared: &SlidingRun) -> Result<
 fn print_results(units: Units, runs: &[wearsim::sliding::LoadRun]) {
     for r in runs {
         for w in &r.results {
-            println!(
+            say!(
                 "F_N = {}, d* = {}: W = {} (R² = {}), k = {}, dN*₊/ds = {}, V₀ = {}, k_static = {:.4} (s = 0), {:.4} ± {:.4} \
                  (all offsets)",
                 with_unit(units, "load", r.load),
@@ -153,7 +154,7 @@ pub fn run(args: &Args) -> Result<()> {
     let config = load_run(run)?;
     wearsim::run::sliding_schedule(&config).with_context(|| format!("run file {}", run.display()))?;
     if config.model == wearsim::estimate::WearModel::Estimate {
-        eprintln!(
+        tell!(
             "note: the run file asks for the static estimate (`[sliding] model = \"estimate\"`), which `wearsim \
              estimate` and study jobs make; `slide` runs the sliding model"
         );
@@ -173,7 +174,7 @@ pub fn run(args: &Args) -> Result<()> {
     let sliding = prepared.sliding();
     let grid = prepared.grid();
     let units = config.units;
-    eprintln!(
+    tell!(
         "flow pressure p_m = {}",
         with_unit(units, "flow_pressure", config.material.flow_pressure())
     );
@@ -222,9 +223,9 @@ pub fn run(args: &Args) -> Result<()> {
     let runs = &outcome.runs;
     print_results(units, runs);
     for w in &outcome.warnings {
-        eprintln!("warning: {w}");
+        tell!("warning: {w}");
     }
-    println!(
+    say!(
         "{} steps in {:.1} s; wrote {}",
         steps_per_load * runs.len(),
         outcome.seconds,

@@ -6,6 +6,8 @@ use crate::progress::Progress;
 use anyhow::{bail, Context, Result};
 use wearsim::study::{collect as collect_study, expand, prepare_folder, run_jobs, shard, workers_for_memory};
 
+use crate::out::{say, tell};
+
 #[derive(clap::Args)]
 pub struct RunArgs {
     /// Study file (a run file whose fields may be lists, or with `[[materials]]`).
@@ -110,7 +112,7 @@ pub fn run(args: &RunArgs) -> Result<()> {
     let requested = workers.unwrap_or_else(rayon::current_num_threads);
     let (workers, note) = workers_for_memory(&jobs, requested)?;
     if let Some(note) = note {
-        eprintln!("note: {note}");
+        tell!("note: {note}");
     }
     super::cost::report_study(&jobs, workers, args.dry_run)?;
     if args.dry_run {
@@ -119,7 +121,7 @@ pub fn run(args: &RunArgs) -> Result<()> {
     // The study file is an input too: a study folder holding it would overwrite or mix with it.
     wearsim::io::refuse_inputs_inside(out, &[study_path.as_path()])?;
     prepare_folder(out, &study, base)?;
-    eprintln!(
+    tell!(
         "study {}: {} jobs, shard {k}/{n} holds {}; {workers} workers",
         study.hash,
         study.jobs.len(),
@@ -144,7 +146,7 @@ pub fn run(args: &RunArgs) -> Result<()> {
     );
     progress.finish();
     if let (Err(wearsim::Error::Interrupted), Some(sig)) = (&outcome, super::stop_signal()) {
-        eprintln!(
+        tell!(
             "{}: the finished jobs are saved in {} and the jobs under way saved their state beside them; the same \
              command run again resumes",
             super::signal_name(sig),
@@ -153,19 +155,19 @@ pub fn run(args: &RunArgs) -> Result<()> {
     }
     let summary = outcome?;
     for note in &summary.checkpoint_warnings {
-        eprintln!("warning: {note}");
+        tell!("warning: {note}");
     }
     for why in &summary.recomputed {
-        eprintln!("warning: recomputed a job whose file could not be read: {why}");
+        tell!("warning: recomputed a job whose file could not be read: {why}");
     }
-    println!(
+    say!(
         "computed {} jobs, skipped {} already done; results in {}",
         summary.computed,
         summary.skipped,
         out.join("jobs").display()
     );
     if !summary.claimed_elsewhere.is_empty() {
-        println!(
+        say!(
             "{} jobs are being computed by another run on this folder (jobs {}); run `wearsim study collect` once it \
              has finished",
             summary.claimed_elsewhere.len(),
@@ -183,7 +185,7 @@ pub fn run(args: &RunArgs) -> Result<()> {
 pub fn collect(args: &CollectArgs) -> Result<()> {
     let dir = &args.dir;
     let (rows, groups) = collect_study(dir)?;
-    println!(
+    say!(
         "wrote {} ({rows} rows) and {} ({groups} rows)",
         dir.join("results.csv").display(),
         dir.join("results_aggregated.csv").display()

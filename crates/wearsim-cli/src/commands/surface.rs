@@ -11,6 +11,7 @@ use wearsim::topography::{self, Detrend, FileSurface, Preprocess};
 use wearsim::Surface;
 
 use super::load_run;
+use crate::out::{say, say_part, tell};
 
 #[derive(clap::Args)]
 #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
@@ -97,12 +98,12 @@ pub fn run(args: &Args) -> Result<()> {
     for (name, s) in [("top", &stats[0]), ("bottom", &stats[1])] {
         print_statistics(name, s, unit);
     }
-    println!("wrote {}", out.display());
+    say!("wrote {}", out.display());
     Ok(())
 }
 
 fn print_statistics(name: &str, s: &SurfaceStatistics, unit: &str) {
-    println!(
+    say!(
         "{name:>6}: {nx}×{ny} pixels, {lx} × {ly} {unit}, h_rms = {h:.6e} {unit}, rms slope = {g:.6e}",
         nx = s.grid,
         ny = s.grid_y,
@@ -155,14 +156,14 @@ fn run_fit(args: &FitArgs) -> Result<()> {
     // The library's errors name the file already.
     let loaded = topography::load(&args.file, &how)?;
     for note in &loaded.notes {
-        eprintln!("note: {note}");
+        tell!("note: {note}");
     }
     let surface = &loaded.surface;
     let grid = surface.grid();
     let fit = topography::fit(surface)?;
     let (spectrum, notes) = fit.spectrum(&grid);
     for note in &notes {
-        eprintln!("warning: {note}");
+        tell!("warning: {note}");
     }
     let unit = if args.height_unit.is_some() {
         "m"
@@ -174,7 +175,7 @@ fn run_fit(args: &FitArgs) -> Result<()> {
         .file_name()
         .map_or_else(|| args.file.display().to_string(), |n| n.to_string_lossy().into());
     let block = topography::surface_block(&grid, &spectrum, args.seed, &source, unit.trim_matches(['(', ')']));
-    println!(
+    say!(
         "fitted C(q) ∝ q^−2(1+H) over q = {:.4e} … {:.4e} (2π/λ, {} shells), R² = {} (log–log PSD); left out: {} shells \
          at longer wavelengths than λ_u and {} at shorter than λ_l, down to the floor (round-off or noise) at {:.1e} of \
          the power law at λ_l; periodicity of the prepared map: border jumps {:.1} (x) and {:.1} (y) typical steps",
@@ -189,12 +190,12 @@ fn run_fit(args: &FitArgs) -> Result<()> {
         loaded.periodicity.border_step_y
     );
     if fit.r2.is_some_and(|r| r < 0.9) {
-        eprintln!("warning: the PSD follows a power law poorly (R² < 0.9): H is a rough estimate");
+        tell!("warning: the PSD follows a power law poorly (R² < 0.9): H is a rough estimate");
     }
     if args.height_unit.is_some() {
-        println!("# in a run file with units = \"si\"");
+        say!("# in a run file with units = \"si\"");
     }
-    print!("{block}");
+    say_part!("{block}");
     let Some(dir) = dir else { return Ok(()) };
     write_text(&dir.join("surface.toml"), &block)?;
     write_json(
@@ -210,6 +211,6 @@ fn run_fit(args: &FitArgs) -> Result<()> {
         }
     }
     dir.commit()?;
-    println!("wrote {}", args.out.as_ref().expect("an output folder").display());
+    say!("wrote {}", args.out.as_ref().expect("an output folder").display());
     Ok(())
 }

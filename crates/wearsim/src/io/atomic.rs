@@ -29,6 +29,17 @@ fn register(path: &Path) {
     live().push(path.to_path_buf());
 }
 
+/// Creates a temporary file or folder with `create` and registers it in the same step, under the
+/// lock: a stop removing this process's temporaries ([`abandon_outputs`]) finds every one that
+/// exists, and none is created after it (one created while it lists a folder's entries would
+/// keep that folder from being removed).
+fn create_registered<T>(path: &Path, create: impl FnOnce(&Path) -> std::io::Result<T>) -> std::io::Result<T> {
+    let mut list = live();
+    let made = create(path)?;
+    list.push(path.to_path_buf());
+    Ok(made)
+}
+
 fn release(list: &mut Vec<PathBuf>, path: &Path) {
     if let Some(k) = list.iter().rposition(|p| p == path) {
         list.swap_remove(k);
@@ -354,9 +365,8 @@ pub fn canonical_path(path: &Path) -> std::path::PathBuf {
 /// and `path` is untouched.
 pub fn atomic_write(path: &Path, write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>) -> Result<()> {
     let tmp = temporary_sibling(path)?;
-    register(&tmp);
     let result = (|| -> std::io::Result<()> {
-        let file = std::fs::File::create(&tmp)?;
+        let file = create_registered(&tmp, |p| std::fs::File::create(p))?;
         let mut w = BufWriter::new(file);
         write(&mut w)?;
         let file = w.into_inner().map_err(|e| e.into_error())?;
@@ -562,7 +572,7 @@ impl OutputDir {
             refuse_foreign_folder(target, command)?;
         }
         let staging = temporary_sibling(target)?;
-        register(&staging);
+        create_registered(&staging, |p| std::fs::create_dir(p)).map_err(|e| Error::io(&staging, e))?;
         let dir = Self {
             target: target.to_path_buf(),
             staging,
@@ -570,7 +580,6 @@ impl OutputDir {
             committed: false,
             _claim: claim,
         };
-        std::fs::create_dir(&dir.staging).map_err(|e| Error::io(&dir.staging, e))?;
         write_json(&dir.join(MARKER), &marker(command, None))?;
         Ok(dir)
     }
@@ -616,10 +625,12 @@ impl OutputDir {
         }
         self.committed = true;
         release(&mut list, &self.staging);
-        drop(list);
+        // The earlier folder, moved aside, is removed before the lock is let go: a stop never
+        // leaves it beside the new one.
         if let Some(aside) = aside {
             let _ = std::fs::remove_dir_all(aside);
         }
+        drop(list);
         Ok(())
     }
 }

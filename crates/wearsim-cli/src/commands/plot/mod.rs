@@ -12,12 +12,13 @@ mod severity;
 
 use std::path::{Path, PathBuf};
 
-use anyhow::Result;
+use anyhow::{Context as _, Result};
 use wearsim::output::{has_kim_materials, severity_fits, KIM_EXPERIMENTAL_K};
 use wearsim::study::findings::{findings, markdown};
 use wearsim::study::{load_results, Job};
 
-use crate::figures::{number, save, Figure};
+use crate::figures::{number, save, write_into, Figure};
+use crate::out::say;
 
 use data::{equal_d_star, series_job, Data};
 use load::{Eq5Figure, LoadFigure, LoadPanel};
@@ -44,6 +45,8 @@ struct Context<'a> {
     data: &'a Data,
     series: (&'a Job, &'a wearsim::output::JobResult),
     out: &'a Path,
+    /// The folder the figures end up in (`out` is its temporary stand-in until the end).
+    shown: &'a Path,
 }
 
 impl<'a> Context<'a> {
@@ -61,7 +64,7 @@ impl<'a> Context<'a> {
     }
 
     fn save(&self, name: &str, size: (u32, u32), figure: &impl Figure) -> Result<()> {
-        save(self.out, name, size, figure)
+        save(self.out, self.shown, name, size, figure)
     }
 }
 
@@ -194,7 +197,7 @@ fn fig4c(cx: &Context) -> Result<()> {
     let groups = equal_d_star(&cx.data.curves);
     if groups.is_empty() {
         let note = "Fig. 4c compares settings of equal d* (within 15 %) with different τ̃ or 𝒢; this study has none";
-        println!("fig4c: {note}");
+        say!("fig4c: {note}");
         cx.save("fig4c_constant_d_star", NARROW, &Note(note))?;
     }
     for (g, group) in groups.iter().enumerate() {
@@ -286,12 +289,12 @@ fn app_b_eq5(cx: &Context) -> Result<()> {
 fn app_f(cx: &Context) -> Result<()> {
     let (materials, all) = severity_fits(&cx.data.tidy);
     let Some(all) = all else {
-        println!("appF: fewer than two jobs with W > 0 on generated surfaces; not drawn");
+        say!("appF: fewer than two jobs with W > 0 on generated surfaces; not drawn");
         return Ok(());
     };
     for m in &materials {
         if let Some(fit) = m.fit {
-            println!(
+            say!(
                 "contact severity fit, {}: W = α S_cⁿ with α = {} {}, n = {:.3}",
                 m.material,
                 number(fit.prefactor),
@@ -350,11 +353,12 @@ fn memory(cx: &Context) -> Result<()> {
 }
 
 /// Draws the figures asked for (all without a list) of a loaded study into `out`.
-fn draw(data: &Data, job: Option<usize>, figures: Option<&[String]>, out: &Path) -> Result<usize> {
+fn draw(data: &Data, job: Option<usize>, figures: Option<&[String]>, out: &Path, shown: &Path) -> Result<usize> {
     let cx = Context {
         data,
         series: series_job(data, job)?,
         out,
+        shown,
     };
     for figure in &FIGURES {
         if figures.is_none_or(|w| w.iter().any(|n| n == figure.name)) {
@@ -369,8 +373,8 @@ pub fn run(args: &Args) -> Result<()> {
     let (study, results) = load_results(dir)?;
     let data = Data::new(study.jobs, results)?;
     let figures = wearsim::io::OutputDir::begin(&dir.join("figures"), "study plot", false, &[])?;
-    let out = figures.join("");
-    let series = draw(&data, args.job, args.figures.as_deref(), &out)?;
+    let (out, shown) = (figures.join(""), dir.join("figures"));
+    let series = draw(&data, args.job, args.figures.as_deref(), &out, &shown)?;
     // The paper's findings on this study, judged on its sliding jobs: an estimate is no sliding run.
     let (sliding, estimates) = wearsim::output::sliding_rows(&data.tidy);
     let found = if sliding.rows.is_empty() {
@@ -394,14 +398,15 @@ pub fn run(args: &Args) -> Result<()> {
         dir.display(),
         markdown(&found)
     );
-    wearsim::io::write_text(&figures.join("findings.md"), &text)?;
+    write_into(&out, &shown, "findings.md", text.as_bytes())
+        .with_context(|| format!("cannot write findings.md into {}", shown.display()))?;
     figures.commit()?;
     for f in &found {
-        println!("{:<18} {}: {}", f.verdict.name(), f.key, f.observed);
+        say!("{:<18} {}: {}", f.verdict.name(), f.key, f.observed);
     }
-    println!(
+    say!(
         "wrote figures and findings.md to {} (series of job {series})",
-        dir.join("figures").display()
+        shown.display()
     );
     Ok(())
 }

@@ -148,7 +148,7 @@ fn every_figure_of_the_registry_draws_its_files() {
     let data = study(REDUCED);
     for figure in &FIGURES {
         let dir = tempfile::tempdir().unwrap();
-        draw(&data, None, Some(&[figure.name.to_string()]), dir.path()).unwrap();
+        draw(&data, None, Some(&[figure.name.to_string()]), dir.path(), dir.path()).unwrap();
         let names = drawn(dir.path());
         assert!(!names.is_empty(), "{} drew nothing", figure.name);
         for n in &names {
@@ -174,7 +174,14 @@ fn rates_are_per_unit_area_with_intervals_and_kims_band_only_for_kims_ceramics()
         plain[0]
     );
     let dir = tempfile::tempdir().unwrap();
-    draw(&data, None, Some(&["fig4".into(), "fig6".into()]), dir.path()).unwrap();
+    draw(
+        &data,
+        None,
+        Some(&["fig4".into(), "fig6".into()]),
+        dir.path(),
+        dir.path(),
+    )
+    .unwrap();
     let svg = |name: &str| std::fs::read_to_string(dir.path().join(format!("{name}.svg"))).unwrap();
     assert!(svg("fig4_sliding_wear").contains("95 % confidence interval"));
     assert!(svg("fig4_sliding_wear").contains("per unit nominal area"));
@@ -182,7 +189,14 @@ fn rates_are_per_unit_area_with_intervals_and_kims_band_only_for_kims_ceramics()
     // Kim's ceramics: the band, and appendix F with the paper's fits beside them.
     let kim = study(KIM);
     let dir = tempfile::tempdir().unwrap();
-    draw(&kim, None, Some(&["fig6".into(), "appF".into()]), dir.path()).unwrap();
+    draw(
+        &kim,
+        None,
+        Some(&["fig6".into(), "appF".into()]),
+        dir.path(),
+        dir.path(),
+    )
+    .unwrap();
     let svg = |name: &str| std::fs::read_to_string(dir.path().join(format!("{name}.svg"))).unwrap();
     assert!(svg("fig6_kim_comparison").contains("rolling experiments"));
     assert!(svg("appF_contact_severity").contains("fit to their experiments"));
