@@ -187,10 +187,10 @@ pub fn check(args: &CheckArgs) -> Result<()> {
         .collect();
     // Said before the fit, which may fail on the settings they concern.
     for w in warnings.iter().take(WARNINGS_SHOWN) {
-        eprintln!("warning: {w}");
+        tell!("warning: {w}");
     }
     if warnings.len() > WARNINGS_SHOWN {
-        eprintln!(
+        tell!(
             "warning: … and {} more, in {}/summary.json (`warnings`)",
             warnings.len() - WARNINGS_SHOWN,
             args.out.display()
@@ -200,7 +200,7 @@ pub fn check(args: &CheckArgs) -> Result<()> {
         let rows = compare(jobs, &CALIBRATION);
         // Said before the fit, which may fail on the same settings.
         for w in fit_warnings(&rows) {
-            eprintln!("warning: {w}");
+            tell!("warning: {w}");
             warnings.push(w);
         }
         let points: Vec<_> = rows.iter().map(|r| r.point()).collect();
