@@ -241,7 +241,8 @@ impl Calibration {
                 return Some(format!("`seconds_per_iteration.{rule}` = {value:e} s"));
             }
             let fitted = fit(&self.runs, stopping);
-            if !((value / fitted - 1.0).abs() < 1e-9) {
+            let off = (value / fitted - 1.0).abs();
+            if off.is_nan() || off >= 1e-9 {
                 return Some(format!(
                     "`seconds_per_iteration.{rule}` = {value:e} s where its runs give {fitted:e} s"
                 ));

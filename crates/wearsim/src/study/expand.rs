@@ -410,7 +410,7 @@ fn per_model(
             let readers = models_reading(key);
             if matches!(value, Value::Array(_)) {
                 return Err(Error::param(
-                    &format!("sliding.{key}"),
+                    format!("sliding.{key}"),
                     format!(
                         "`{key} = {value}` lists values of a setting that the study's {names} {does} not use (only \
                          model {readers} reads `{key}`): every value would compute the same jobs again; give the \
