@@ -81,4 +81,25 @@ fn dry_runs_print_the_estimate_and_write_nothing_and_the_calibration_is_cached()
         "{text}"
     );
     assert!(!folder.exists(), "a dry run made the study folder");
+    // A cache edited by hand (one exponent) is set aside with a note and the machine calibrated
+    // again: never an estimate from the edited numbers.
+    let cached = cached[0].as_ref().unwrap().path();
+    let text = std::fs::read_to_string(&cached).unwrap();
+    let json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let a = serde_json::to_string(&json["seconds_per_iteration"]["settled-map"]).unwrap();
+    assert!(a.contains("e-"), "{a}");
+    let edited = text.replacen(&a, &a.replace("e-", "e-1"), 1);
+    assert_ne!(edited, text);
+    std::fs::write(&cached, edited).unwrap();
+    let o = dry(&["slide", s(&run), "--out", s(&out), "--dry-run"]);
+    let text = stderr(&o);
+    assert!(o.status.success(), "{text}");
+    assert!(
+        text.contains("the cached cost calibration is not used: its checksum does not match")
+            && text.contains("set aside")
+            && text.contains("calibrating this machine")
+            && text.contains("estimate: 40 steps"),
+        "{text}"
+    );
+    assert!(cached.with_extension("json.set-aside").is_file() && cached.is_file());
 }

@@ -238,3 +238,105 @@ fn a_checkpoints_temporary_file_cut_by_a_kill_is_removed_by_the_next_run() {
     std::fs::remove_file(&live).unwrap();
     assert_eq!(listing(dir.path()), ["out", "run.toml"]);
 }
+
+/// This host's name, as wearsim writes it in claims.
+fn host() -> String {
+    std::fs::read_to_string("/proc/sys/kernel/hostname")
+        .unwrap()
+        .trim()
+        .to_string()
+}
+
+/// Writes a claim file holding `owner` and sets its modification time `age` in the past.
+fn claim(path: &Path, owner: &str, age: std::time::Duration) {
+    std::fs::write(path, owner).unwrap();
+    let f = std::fs::OpenOptions::new().append(true).open(path).unwrap();
+    f.set_modified(std::time::SystemTime::now() - age).unwrap();
+}
+
+/// Start time of process `pid` in clock ticks since boot (field 22 of /proc/PID/stat).
+fn start_ticks(pid: u32) -> String {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).unwrap();
+    let after = &stat[stat.rfind(')').unwrap() + 1..];
+    after.split_whitespace().nth(19).unwrap().to_string()
+}
+
+#[test]
+fn a_claim_whose_process_id_now_belongs_to_another_process_is_taken_over() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = file(dir.path(), "s.toml", STUDY);
+    let out = dir.path().join("study");
+    let jobs = out.join("jobs");
+    std::fs::create_dir_all(&jobs).unwrap();
+    // An unrelated live process holds the process id the claims name.
+    let mut sleeper = std::process::Command::new("sleep").arg("60").spawn().unwrap();
+    let pid = sleeper.id();
+    let twenty_minutes = std::time::Duration::from_secs(1200);
+    // Job 0: a claim written long ago and not refreshed since (a killed run's, its id reused).
+    claim(
+        &jobs.join("job-000000.claim"),
+        &format!("{} {pid}\n", host()),
+        twenty_minutes,
+    );
+    // Job 1: a fresh claim whose process started at another time than the one holding the id now.
+    claim(
+        &jobs.join("job-000001.claim"),
+        &format!("{} {pid} 1\n", host()),
+        std::time::Duration::ZERO,
+    );
+    let o = run(&["study", "run", s(&study), "--out", s(&out)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(common::stdout(&o).contains("computed 2 jobs"), "{}", common::stdout(&o));
+    assert!(jobs.join("job-000000.json").is_file() && jobs.join("job-000001.json").is_file());
+    assert!(
+        !listing(&jobs).iter().any(|f| f.ends_with(".claim")),
+        "{:?}",
+        listing(&jobs)
+    );
+    // A live claim (the right process, refreshed) is left to its holder, and the run says that the
+    // job is not computed and who holds it.
+    std::fs::remove_file(jobs.join("job-000001.json")).unwrap();
+    let live = jobs.join("job-000001.claim");
+    claim(
+        &live,
+        &format!("{} {pid} {}\n", host(), start_ticks(pid)),
+        std::time::Duration::ZERO,
+    );
+    let o = run(&["study", "run", s(&study), "--out", s(&out)]);
+    let e = stderr(&o);
+    assert!(
+        e.contains("1 jobs of this shard are not computed")
+            && e.contains(&format!("job 1: process {pid} on"))
+            && e.contains("job-000001.claim"),
+        "{e}"
+    );
+    assert!(!jobs.join("job-000001.json").exists() && live.exists());
+    let _ = sleeper.kill();
+    let _ = sleeper.wait();
+}
+
+#[test]
+fn an_output_claim_not_refreshed_for_long_is_taken_over_whatever_its_process_id() {
+    let dir = tempfile::tempdir().unwrap();
+    let run_path = run_file(dir.path(), &sliding());
+    let out = dir.path().join("out");
+    let mut sleeper = std::process::Command::new("sleep").arg("60").spawn().unwrap();
+    claim(
+        &dir.path().join(".out.claim"),
+        &format!("{} {}\n", host(), sleeper.id()),
+        std::time::Duration::from_secs(1200),
+    );
+    let o = run(&["slide", s(&run_path), "--out", s(&out)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(out.join("summary.json").is_file());
+    // A fresh claim of the same live process with a wrong start time: another process, taken over.
+    claim(
+        &dir.path().join(".out.claim"),
+        &format!("{} {} 1\n", host(), sleeper.id()),
+        std::time::Duration::ZERO,
+    );
+    let o = run(&["slide", s(&run_path), "--out", s(&out)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let _ = sleeper.kill();
+    let _ = sleeper.wait();
+}

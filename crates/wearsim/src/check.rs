@@ -174,20 +174,29 @@ fn cgroup_limits() -> Vec<(u64, u64, &'static str)> {
 }
 
 /// Slurm's memory allocation of this job on this node (`--mem`: SLURM_MEM_PER_NODE, or
-/// `--mem-per-cpu`: SLURM_MEM_PER_CPU × the CPUs on the node), in bytes, with its name.
+/// `--mem-per-cpu`: SLURM_MEM_PER_CPU × the CPUs on the node), in bytes, with its name. An
+/// allocation of more bytes than a u64 holds is no limit: `u64::MAX`, named so.
 fn slurm_allocation(var: impl Fn(&str) -> Option<String>) -> Option<(u64, String)> {
     let mib = |name: &str| var(name)?.trim().parse::<u64>().ok().filter(|&m| m > 0);
+    let bytes = |m: u64, what: String| match m.checked_mul(1 << 20) {
+        Some(b) => (b, format!("Slurm's allocation ({what})")),
+        None => (
+            u64::MAX,
+            format!("Slurm's allocation ({what}, more than 2⁶⁴ bytes: taken as no limit)"),
+        ),
+    };
     if let Some(m) = mib("SLURM_MEM_PER_NODE") {
-        return Some((m << 20, format!("Slurm's allocation (SLURM_MEM_PER_NODE = {m} MB)")));
+        return Some(bytes(m, format!("SLURM_MEM_PER_NODE = {m} MB")));
     }
     let per_cpu = mib("SLURM_MEM_PER_CPU")?;
     let cpus = mib("SLURM_CPUS_ON_NODE")
         .or_else(|| mib("SLURM_CPUS_PER_TASK"))
         .unwrap_or(1);
-    Some((
-        (per_cpu * cpus) << 20,
-        format!("Slurm's allocation (SLURM_MEM_PER_CPU = {per_cpu} MB × {cpus} CPUs)"),
-    ))
+    let what = format!("SLURM_MEM_PER_CPU = {per_cpu} MB × {cpus} CPUs");
+    Some(match per_cpu.checked_mul(cpus) {
+        Some(m) => bytes(m, what),
+        None => bytes(u64::MAX, what),
+    })
 }
 
 /// What this process may reach in all, the smallest of: the machine's available memory, the
@@ -389,6 +398,22 @@ mod tests {
         let (bytes, name) = slurm(&[("SLURM_MEM_PER_CPU", "1000"), ("SLURM_CPUS_ON_NODE", "4")]).unwrap();
         assert!(bytes == 4000 << 20 && name.contains("SLURM_MEM_PER_CPU"), "{name}");
         assert!(slurm(&[]).is_none());
+        // 2⁴⁴ MB is 2⁶⁴ bytes: no limit, never 0 bytes.
+        for vars in [
+            &[("SLURM_MEM_PER_NODE", "17592186044416")][..],
+            &[("SLURM_MEM_PER_CPU", "17592186044416"), ("SLURM_CPUS_ON_NODE", "2")][..],
+            &[
+                ("SLURM_MEM_PER_CPU", "18446744073709551615"),
+                ("SLURM_CPUS_ON_NODE", "2"),
+            ][..],
+        ] {
+            let vars: &'static [(&'static str, &'static str)] = vars;
+            let (bytes, name) = slurm(vars).unwrap();
+            assert!(
+                bytes == u64::MAX && name.contains("taken as no limit"),
+                "{bytes} {name}"
+            );
+        }
         assert_eq!(threads(1).unwrap(), (1, None));
         let (t, warning) = threads(1_000_000).unwrap();
         assert!(t < 1_000_000 && warning.is_some());

@@ -44,7 +44,7 @@ use crate::sliding::{LoadRun, SlidingConfig, SlidingSetup, SlidingState};
 use crate::surface::{pair_seeds, SpectrumParams, Surface};
 
 /// Bumped whenever the calibration's runs or fields change: older cached calibrations are remade.
-const CALIBRATION_FORMAT: u32 = 3;
+const CALIBRATION_FORMAT: u32 = 4;
 
 /// Grid sides of the calibration runs.
 const CALIBRATION_SIZES: [usize; 3] = [128, 256, 512];
@@ -192,23 +192,109 @@ impl Calibration {
         })
     }
 
-    /// The cached calibration of this machine, version and thread count from `dir`, if there is a
-    /// usable one.
-    pub fn cached(dir: &Path) -> Option<Self> {
-        let text = std::fs::read_to_string(cache_file(dir)).ok()?;
-        let calibration: Self = serde_json::from_str(&text).ok()?;
-        (calibration.format == CALIBRATION_FORMAT
+    /// The cached calibration of this machine, version and thread count from `dir`: `Ok(None)` when
+    /// there is none (or one of another format, wearsim, machine or thread count, remade). A cached
+    /// file is trusted only when its checksum matches its contents and every number in it is within
+    /// the range a calibration gives ([`Calibration::implausible`]); one that is not is set aside
+    /// (renamed `….json.set-aside`, so that the next calibration replaces it) and the error says why:
+    /// an edited or damaged cache never gives an estimate.
+    pub fn cached(dir: &Path) -> Result<Option<Self>> {
+        let path = cache_file(dir);
+        let Ok(text) = std::fs::read_to_string(&path) else {
+            return Ok(None);
+        };
+        let Ok(calibration) = serde_json::from_str::<Self>(&text) else {
+            return Err(set_aside(&path, "it is not a calibration this wearsim reads"));
+        };
+        if !(calibration.format == CALIBRATION_FORMAT
             && calibration.software == format!("wearsim {}", crate::io::VERSION)
             && calibration.machine == machine()
             && calibration.threads == rayon::current_num_threads())
-        .then_some(calibration)
+        {
+            return Ok(None);
+        }
+        if crate::io::checksum_matches(&text) != Some(true) {
+            return Err(set_aside(
+                &path,
+                "its checksum does not match its contents: it was edited or damaged since it was written",
+            ));
+        }
+        if let Some(why) = calibration.implausible() {
+            return Err(set_aside(&path, &format!("{why}, which no calibration measures")));
+        }
+        Ok(Some(calibration))
     }
 
-    /// Writes the calibration into `dir` (made if missing), atomically; returns the file.
+    /// What in the calibration is out of the range a measurement gives, if anything: a constant `a`
+    /// that is not a positive finite number between 10⁻¹⁴ and 10⁻⁴ s (an iteration on 128² pixels
+    /// from nanoseconds to tens of seconds) or is not the fit of its runs, runs missing for a
+    /// stopping rule or a grid, steps, iterations or seconds that are not positive and finite,
+    /// iterations per step above the solver's default maximum, no threads, a negative load average, a
+    /// date in the future.
+    pub fn implausible(&self) -> Option<String> {
+        let a = self.seconds_per_iteration;
+        for (rule, stopping, value) in [
+            ("tolerance", Stopping::Tolerance, a.tolerance),
+            ("settled-map", Stopping::SettledMap, a.settled_map),
+        ] {
+            if !(value.is_finite() && (1e-14..=1e-4).contains(&value)) {
+                return Some(format!("`seconds_per_iteration.{rule}` = {value:e} s"));
+            }
+            let fitted = fit(&self.runs, stopping);
+            let off = (value / fitted - 1.0).abs();
+            if off.is_nan() || off >= 1e-9 {
+                return Some(format!(
+                    "`seconds_per_iteration.{rule}` = {value:e} s where its runs give {fitted:e} s"
+                ));
+            }
+            for n in CALIBRATION_SIZES {
+                if !self.runs.iter().any(|r| r.n == n && r.stopping == stopping) {
+                    return Some(format!("no {rule} run on {n}² pixels"));
+                }
+            }
+        }
+        let most = crate::contact::DEFAULT_MAX_ITERATIONS as f64;
+        for (k, r) in self.runs.iter().enumerate() {
+            let i = r.step_iterations;
+            let bad = if !CALIBRATION_SIZES.contains(&r.n) {
+                Some(("n", r.n as f64))
+            } else if r.steps == 0 {
+                Some(("steps", 0.0))
+            } else if r.iterations == 0 || r.iterations as f64 > most * r.steps as f64 {
+                Some(("iterations", r.iterations as f64))
+            } else if !(r.seconds.is_finite() && r.seconds > 0.0 && r.seconds < 86_400.0) {
+                Some(("seconds", r.seconds))
+            } else {
+                [("cold", i.cold), ("coarse", i.coarse), ("fine", i.fine)]
+                    .into_iter()
+                    .find(|(_, v)| !(v.is_finite() && *v > 0.0 && *v <= most))
+            };
+            if let Some((field, value)) = bad {
+                return Some(format!("`runs[{k}].{field}` = {value:e}"));
+            }
+        }
+        let now = std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| d.as_secs());
+        if self.threads == 0 || self.cores == 0 {
+            return Some(format!("{} threads on {} cores", self.threads, self.cores));
+        }
+        if let Some(l) = self.load_average.filter(|l| !(l.is_finite() && *l >= 0.0)) {
+            return Some(format!("a load average of {l}"));
+        }
+        if self.measured_at > now + 86_400 {
+            return Some(format!("a measurement dated {} s after now", self.measured_at - now));
+        }
+        None
+    }
+
+    /// Writes the calibration into `dir` (made if missing), atomically, with a checksum of its
+    /// contents; returns the file.
     pub fn save(&self, dir: &Path) -> Result<PathBuf> {
         std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
         let path = cache_file(dir);
-        crate::io::write_json(&path, self)?;
+        let json = serde_json::to_string_pretty(self).map_err(|e| Error::file(&path, e.to_string()))?;
+        crate::io::write_text(&path, &format!("{}\n", crate::io::with_checksum(&json)))?;
         Ok(path)
     }
 
@@ -278,6 +364,16 @@ impl Calibration {
             threads: self.threads,
         }
     }
+}
+
+/// Renames a cached calibration that cannot be trusted out of the way, and the error saying why.
+fn set_aside(path: &Path, why: &str) -> Error {
+    let aside = path.with_extension("json.set-aside");
+    let moved = match std::fs::rename(path, &aside) {
+        Ok(()) => format!("set aside as {}", aside.display()),
+        Err(e) => format!("not set aside ({e})"),
+    };
+    Error::file(path, format!("the cached cost calibration is not used: {why}; {moved}"))
 }
 
 /// The calibration file in `dir` of this machine, wearsim version and thread count.
@@ -460,5 +556,66 @@ mod tests {
         assert_eq!(c.iterations(small, Stopping::SettledMap).fine, 12.0);
         let fine = |n| c.iterations(Grid::square(n, 1.0).unwrap(), Stopping::Tolerance).fine;
         assert_eq!((fine(320), fine(384)), (18.0, 15.0));
+    }
+
+    /// A calibration of this machine, version and thread count as measured, from made-up runs.
+    fn plausible() -> Calibration {
+        let runs: Vec<_> = CALIBRATION_SIZES
+            .into_iter()
+            .flat_map(|n| {
+                let t = (n * n) as f64 * 1e-7;
+                [
+                    run(n, Stopping::SettledMap, 300, t, 10.0),
+                    run(n, Stopping::Tolerance, 400, 1.3 * t, 15.0),
+                ]
+            })
+            .collect();
+        Calibration {
+            software: format!("wearsim {}", crate::io::VERSION),
+            machine: machine(),
+            threads: rayon::current_num_threads(),
+            ..calibration(runs)
+        }
+    }
+
+    #[test]
+    fn an_edited_or_implausible_cache_is_set_aside_never_used() {
+        let dir = tempfile::tempdir().unwrap();
+        let good = plausible();
+        assert_eq!(good.implausible(), None);
+        let path = good.save(dir.path()).unwrap();
+        assert_eq!(Calibration::cached(dir.path()).unwrap(), Some(good.clone()));
+        // One exponent changed by hand: the checksum no longer matches.
+        let text = std::fs::read_to_string(&path).unwrap();
+        let a = serde_json::to_string(&good.seconds_per_iteration.settled_map).unwrap();
+        let (mantissa, exponent) = a.split_once('e').expect(&a);
+        let edited = text.replacen(&a, &format!("{mantissa}e{}", exponent.parse::<i32>().unwrap() - 10), 1);
+        assert_ne!(edited, text);
+        std::fs::write(&path, &edited).unwrap();
+        let e = Calibration::cached(dir.path()).unwrap_err().to_string();
+        assert!(e.contains("checksum") && e.contains("set aside"), "{e}");
+        assert!(!path.exists() && path.with_extension("json.set-aside").exists());
+        // An absurd value written with a checksum that matches: out of range.
+        let mut absurd = good.clone();
+        absurd.seconds_per_iteration.settled_map *= 1e-10;
+        absurd.save(dir.path()).unwrap();
+        let e = Calibration::cached(dir.path()).unwrap_err().to_string();
+        assert!(
+            e.contains("seconds_per_iteration.settled-map") && e.contains("set aside"),
+            "{e}"
+        );
+        assert!(!path.exists());
+        // Runs whose iterations are absurd, with the constant refitted to them.
+        let mut runs = good.runs.clone();
+        runs[0].step_iterations.fine = 0.0;
+        let absurd = Calibration { runs, ..good.clone() };
+        absurd.save(dir.path()).unwrap();
+        let e = Calibration::cached(dir.path()).unwrap_err().to_string();
+        assert!(e.contains("runs[0].fine"), "{e}");
+        // A file that is no calibration at all.
+        std::fs::write(&path, "{\"format\": 4}").unwrap();
+        assert!(Calibration::cached(dir.path()).is_err());
+        // None cached: none, no error.
+        assert_eq!(Calibration::cached(dir.path()).unwrap(), None);
     }
 }

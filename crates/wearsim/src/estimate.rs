@@ -51,13 +51,46 @@ pub enum WearModel {
     Estimate,
 }
 
+/// The keys of a run file's `[sliding]` table.
+pub const SLIDING_KEYS: [&str; 9] = [
+    "loads",
+    "distance",
+    "running_in",
+    "step_running_in",
+    "step",
+    "particle_rule",
+    "stopping",
+    "model",
+    "estimate_samples",
+];
+
 impl WearModel {
+    /// Every model.
+    pub const ALL: [WearModel; 2] = [WearModel::Sliding, WearModel::Estimate];
+
     /// The name used in run files, tables and Python.
     pub fn name(self) -> &'static str {
         match self {
             WearModel::Sliding => "sliding",
             WearModel::Estimate => "estimate",
         }
+    }
+
+    /// The `[sliding]` keys ([`SLIDING_KEYS`]) whose value this model never reads: a study that
+    /// lists several values of one varies only the jobs of the models that use it.
+    pub fn ignores(self) -> &'static [&'static str] {
+        match self {
+            WearModel::Sliding => &["estimate_samples"],
+            // Static maps at the sample offsets, solved to the settled map; the particles come
+            // from the calibration, not from a rule; only the fit window (distance, running-in)
+            // enters, through the sliding distance of its interval.
+            WearModel::Estimate => &["step_running_in", "step", "particle_rule", "stopping"],
+        }
+    }
+
+    /// Whether this model reads the `[sliding]` key `key`.
+    pub fn uses(self, key: &str) -> bool {
+        !self.ignores().contains(&key)
     }
 }
 

@@ -12,8 +12,10 @@ use crate::out::{say, tell};
 /// This machine's calibration: the cached one, or measured now (about ten seconds) and cached.
 pub fn calibration() -> Result<Calibration> {
     let dir = cache_dir();
-    if let Some(c) = dir.as_deref().and_then(Calibration::cached) {
-        return Ok(c);
+    match dir.as_deref().map(Calibration::cached) {
+        Some(Ok(Some(c))) => return Ok(c),
+        Some(Err(e)) => tell!("note: {e}; this machine is calibrated again"),
+        _ => {}
     }
     tell!(
         "calibrating this machine for cost estimates on {} (about ten seconds, once per machine, wearsim version \

@@ -71,13 +71,20 @@ fn slurm_shard(id: &str, var: impl Fn(&str) -> Option<String>) -> Result<(usize,
             .parse()
             .with_context(|| format!("{name} = {value:?} is not a whole number"))
     };
+    // Unset is `None`; set to something that is no whole number is an error naming it.
+    let optional = |name: &str| var(name).map(|v| number(name, Some(v))).transpose();
     let id = number("SLURM_ARRAY_TASK_ID", Some(id.to_string()))?;
     let count = number("SLURM_ARRAY_TASK_COUNT", var("SLURM_ARRAY_TASK_COUNT"))?;
-    let min = number("SLURM_ARRAY_TASK_MIN", var("SLURM_ARRAY_TASK_MIN")).unwrap_or(0);
-    let max = number("SLURM_ARRAY_TASK_MAX", var("SLURM_ARRAY_TASK_MAX")).ok();
-    let step = number("SLURM_ARRAY_TASK_STEP", var("SLURM_ARRAY_TASK_STEP"))
-        .unwrap_or(1)
-        .max(1);
+    let Some(min) = optional("SLURM_ARRAY_TASK_MIN")? else {
+        bail!(
+            "Slurm job array: SLURM_ARRAY_TASK_ID = {id} and SLURM_ARRAY_TASK_COUNT = {count} are set but \
+             SLURM_ARRAY_TASK_MIN is not, so the position of task {id} in the array (its shard) is unknown; give \
+             --shard K/{count} (K of {count} shards, e.g. --shard 1/{count} for the array's first task), or set \
+             SLURM_ARRAY_TASK_MIN to the array's first task ID"
+        );
+    };
+    let max = optional("SLURM_ARRAY_TASK_MAX")?;
+    let step = optional("SLURM_ARRAY_TASK_STEP")?.unwrap_or(1).max(1);
     if count == 0 {
         bail!(
             "Slurm job array: SLURM_ARRAY_TASK_COUNT = 0 for task {id}, so its shard is unknown; give --shard K/N \
@@ -107,6 +114,9 @@ pub fn run(args: &RunArgs) -> Result<()> {
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
     let study = expand(&text, base).with_context(|| format!("study file {}", study_path.display()))?;
+    for warning in &study.warnings {
+        tell!("warning: study file {}: {warning}", study_path.display());
+    }
     let (k, n) = resolve_shard(shard_arg)?;
     let jobs = shard(&study.jobs, k, n);
     let requested = workers.unwrap_or_else(rayon::current_num_threads);
@@ -167,17 +177,18 @@ pub fn run(args: &RunArgs) -> Result<()> {
         out.join("jobs").display()
     );
     if !summary.claimed_elsewhere.is_empty() {
-        say!(
-            "{} jobs are being computed by another run on this folder (jobs {}); run `wearsim study collect` once it \
-             has finished",
+        tell!(
+            "warning: {} jobs of this shard are not computed: another run on this folder claims them and had not \
+             finished them when this run ended; run the same command again once that run has finished (a claim not \
+             refreshed for {} min is taken over), then `wearsim study collect`:",
             summary.claimed_elsewhere.len(),
-            summary
-                .claimed_elsewhere
-                .iter()
-                .map(|i| i.to_string())
-                .collect::<Vec<_>>()
-                .join(", ")
+            wearsim::study::store::CLAIM_EXPIRY.as_secs() / 60
         );
+        for &i in &summary.claimed_elsewhere {
+            let holder = wearsim::study::store::Claim::holder(out, i)
+                .unwrap_or_else(|| "its claim is gone, the job is not done".into());
+            tell!("  job {i}: {holder}");
+        }
     }
     Ok(())
 }
@@ -234,5 +245,34 @@ mod tests {
             e.contains("--shard K/N") && !e.contains("1-0") && !e.contains("K/0"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn a_missing_or_garbled_array_variable_is_named_never_guessed() {
+        // Task 1 of --array=1-2 without SLURM_ARRAY_TASK_MIN: not shard 2/2.
+        let no_min = env(&[("SLURM_ARRAY_TASK_COUNT", "2"), ("SLURM_ARRAY_TASK_MAX", "2")]);
+        let e = slurm_shard("1", &no_min).unwrap_err().to_string();
+        assert!(
+            e.contains("SLURM_ARRAY_TASK_MIN is not") && e.contains("--shard K/2"),
+            "{e}"
+        );
+        for (name, value) in [
+            ("SLURM_ARRAY_TASK_MIN", "one"),
+            ("SLURM_ARRAY_TASK_MAX", "2x"),
+            ("SLURM_ARRAY_TASK_STEP", "-1"),
+        ] {
+            let vars: Vec<(&str, &str)> = [
+                ("SLURM_ARRAY_TASK_COUNT", "2"),
+                ("SLURM_ARRAY_TASK_MIN", "1"),
+                ("SLURM_ARRAY_TASK_MAX", "2"),
+            ]
+            .into_iter()
+            .filter(|(k, _)| *k != name)
+            .chain([(name, value)])
+            .collect();
+            let var = |n: &str| vars.iter().find(|(k, _)| *k == n).map(|(_, v)| v.to_string());
+            let e = format!("{:#}", slurm_shard("1", var).unwrap_err());
+            assert!(e.contains(&format!("{name} = \"{value}\"")), "{e}");
+        }
     }
 }

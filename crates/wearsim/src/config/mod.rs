@@ -419,6 +419,23 @@ impl<'a> SlidingSetup<'a> {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn every_sliding_key_is_known_to_the_models() {
+        // The keys a run file's [sliding] accepts, as serde lists them for an unknown one.
+        let e = toml::from_str::<raw::RawSliding>("loads = [1e-3]\nnot_a_key = 1\n")
+            .unwrap_err()
+            .to_string();
+        let expected = &e[e.find("expected").expect(&e)..];
+        let mut accepted: Vec<&str> = expected.split('`').skip(1).step_by(2).collect();
+        let mut known = crate::estimate::SLIDING_KEYS.to_vec();
+        accepted.sort_unstable();
+        known.sort_unstable();
+        assert_eq!(accepted, known, "{e}");
+        for m in WearModel::ALL {
+            assert!(m.ignores().iter().all(|k| known.contains(k)), "{m:?}");
+        }
+    }
+
     /// The field names serde reads for `T` (renamed as in files), without a value: a deserializer
     /// that only records the list `deserialize_struct` is handed.
     fn field_names<T: for<'de> serde::Deserialize<'de>>() -> Vec<&'static str> {

@@ -5,6 +5,7 @@ use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Mutex, MutexGuard};
+use std::time::{Duration, SystemTime};
 
 use crate::error::{Error, Result};
 
@@ -116,6 +117,37 @@ pub fn process_gone(pid: &str) -> Option<bool> {
     Some(!Path::new("/proc").join(pid).exists())
 }
 
+/// The key a JSON file's checksum is written under, last in the file.
+const CHECKSUM_KEY: &str = ",\"checksum\":\"fnv1a64:";
+
+/// FNV-1a, 64 bits.
+fn fnv1a64(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
+/// A JSON object's text with the checksum of its text appended as its last key, `checksum`, so
+/// that a file damaged or edited since it was written (one digit of a number) is found when it is
+/// read ([`checksum_matches`]).
+pub fn with_checksum(json: &str) -> String {
+    let body = json.trim_end();
+    let open = body.strip_suffix('}').unwrap_or(body);
+    format!("{open}{CHECKSUM_KEY}{:016x}\"}}", fnv1a64(body.as_bytes()))
+}
+
+/// Whether the checksum of a text written by [`with_checksum`] matches its contents; `None` for a
+/// text without one.
+pub fn checksum_matches(text: &str) -> Option<bool> {
+    let text = text.trim_end();
+    let k = text.rfind(CHECKSUM_KEY)?;
+    let given = &text[k + CHECKSUM_KEY.len()..];
+    let Some(given) = given.strip_suffix("\"}") else {
+        return Some(false);
+    };
+    Some(given == format!("{:016x}", fnv1a64(format!("{}}}", &text[..k]).as_bytes())))
+}
+
 /// Removes the temporary siblings of `path` ([`temporary_sibling`]) left by processes of this host
 /// that are gone (killed runs: a staging folder with a partial Zarr store, a half-written file).
 /// Those of another host, or of a live process, are never touched.
@@ -214,8 +246,9 @@ pub fn refuse_foreign_file(
 }
 
 /// A claim on an output path: the file `.{name}.claim` beside it, created exclusively (two processes
-/// cannot both create it) before any work and holding `host pid`; removed when dropped. A claim
-/// whose process is gone (this host, no such process) is taken over.
+/// cannot both create it) before any work and holding `host pid start`; refreshed every
+/// [`CLAIM_REFRESH`] while held and removed when dropped. A stale claim ([`claim_is_stale`]) is
+/// taken over.
 #[derive(Debug)]
 pub struct OutputClaim {
     path: std::path::PathBuf,
@@ -233,20 +266,15 @@ impl OutputClaim {
             let mut list = live();
             if create_claim_file(&path)? {
                 list.push(path.clone());
+                drop(list);
+                keep_output_claims_fresh();
                 return Ok(Self { path });
             }
             drop(list);
-            let owner = std::fs::read_to_string(&path).unwrap_or_default();
-            let mut words = owner.split_whitespace();
-            let (host, pid) = (words.next().unwrap_or(""), words.next().unwrap_or(""));
-            let age = std::fs::metadata(&path)
-                .and_then(|m| m.modified())
-                .ok()
-                .and_then(|t| std::time::SystemTime::now().duration_since(t).ok());
-            // An empty claim is one whose writer died between creating and filling it.
-            let dead = (host == host_name() && process_gone(pid) == Some(true))
-                || owner.is_empty() && age.is_some_and(|a| a.as_secs() > 5);
-            if !dead {
+            if !claim_is_stale(&path) {
+                let owner = std::fs::read_to_string(&path).unwrap_or_default();
+                let mut words = owner.split_whitespace();
+                let (host, pid) = (words.next().unwrap_or(""), words.next().unwrap_or(""));
                 let who = if owner.is_empty() {
                     "another wearsim run is starting to write this folder".to_string()
                 } else {
@@ -255,7 +283,9 @@ impl OutputClaim {
                 return Err(Error::file(
                     target,
                     format!(
-                        "{who}; wait for it to finish or give another --out (if that run is gone, remove {})",
+                        "{who}; wait for it to finish or give another --out (a claim not refreshed for {} min is \
+                         taken over; if that run is gone, remove {})",
+                        CLAIM_EXPIRY.as_secs() / 60,
                         path.display()
                     ),
                 ));
@@ -269,13 +299,105 @@ impl OutputClaim {
     }
 }
 
-/// Creates the claim file `path` exclusively, holding this process's `host pid`: `Ok(false)` when
-/// it exists already. A claim that cannot be filled (a full disk) is removed again, so that it never
-/// blocks a retry as the empty claim of a run that seems to be starting.
+/// A claim (a study's job, an output folder) not refreshed for this long is stale, whoever holds it
+/// and whatever host it names: its holder refreshes it every [`CLAIM_REFRESH`] from a thread of its
+/// own, whatever its work is doing.
+pub const CLAIM_EXPIRY: Duration = Duration::from_secs(600);
+
+/// How often a held claim's modification time is refreshed.
+pub const CLAIM_REFRESH: Duration = Duration::from_secs(60);
+
+/// Start time of process `pid` of this host, in clock ticks since boot (field 22 of
+/// `/proc/PID/stat`); `None` where that cannot be told.
+pub fn process_start(pid: &str) -> Option<u64> {
+    if pid.is_empty() || !pid.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    let stat = std::fs::read_to_string(Path::new("/proc").join(pid).join("stat")).ok()?;
+    // The command name (field 2) is in parentheses and may hold spaces: count after its end.
+    let after = &stat[stat.rfind(')')? + 1..];
+    after.split_whitespace().nth(19)?.parse().ok()
+}
+
+/// What a claim file of this process holds: `host pid start` (the start time of [`process_start`],
+/// so that a later process given the same id is not taken for the claim's holder).
+fn claim_owner() -> String {
+    let pid = std::process::id().to_string();
+    match process_start(&pid) {
+        Some(start) => format!("{} {pid} {start}\n", host_name()),
+        None => format!("{} {pid}\n", host_name()),
+    }
+}
+
+/// Whether the claim file `path` is stale, to be taken over: one rule for every claim, whatever its
+/// process id. Stale when not refreshed for [`CLAIM_EXPIRY`] (on any host); on this host also when
+/// its process is gone, or when the process now holding its id is another one (started at another
+/// time than the claim records); an empty claim (its writer died between creating and filling it)
+/// after five seconds. A claim that cannot be read is not stale.
+pub fn claim_is_stale(path: &Path) -> bool {
+    let Ok(owner) = std::fs::read_to_string(path) else {
+        return false;
+    };
+    let age = std::fs::metadata(path)
+        .and_then(|m| m.modified())
+        .ok()
+        .and_then(|t| SystemTime::now().duration_since(t).ok());
+    if age.is_some_and(|a| a > CLAIM_EXPIRY) {
+        return true;
+    }
+    let mut words = owner.split_whitespace();
+    match (words.next(), words.next()) {
+        (Some(host), Some(pid)) if host == host_name() => {
+            if process_gone(pid) == Some(true) {
+                return true;
+            }
+            let recorded = words.next().and_then(|s| s.parse::<u64>().ok());
+            matches!((recorded, process_start(pid)), (Some(r), Some(now)) if r != now)
+        }
+        (Some(_), Some(_)) => false,
+        _ => owner.trim().is_empty() && age.is_some_and(|a| a > Duration::from_secs(5)),
+    }
+}
+
+/// Sets a claim file's modification time to now (its holder is alive).
+pub fn refresh_claim(path: &Path) {
+    if let Ok(f) = std::fs::OpenOptions::new().append(true).open(path) {
+        let _ = f.set_modified(SystemTime::now());
+    }
+}
+
+/// Removes the claim file `path` if it is still this process's: a claim taken over after it went
+/// stale (a process stopped for longer than [`CLAIM_EXPIRY`]) belongs to its new holder.
+pub fn remove_own_claim(path: &Path) {
+    if std::fs::read_to_string(path).is_ok_and(|owner| owner == claim_owner()) {
+        let _ = std::fs::remove_file(path);
+    }
+}
+
+/// Starts, once per process, the thread that refreshes the output claims this process holds every
+/// [`CLAIM_REFRESH`] (a long run holds its output folder's claim for hours).
+fn keep_output_claims_fresh() {
+    static STARTED: std::sync::Once = std::sync::Once::new();
+    STARTED.call_once(|| {
+        let _ = std::thread::Builder::new()
+            .name("wearsim-claims".into())
+            .spawn(|| loop {
+                std::thread::sleep(CLAIM_REFRESH);
+                let list = live();
+                for p in list.iter().filter(|p| p.to_string_lossy().ends_with(".claim")) {
+                    refresh_claim(p);
+                }
+            });
+    });
+}
+
+/// Creates the claim file `path` exclusively, holding this process's `host pid start`: `Ok(false)`
+/// when it exists already. A claim that cannot be filled (a full disk) is removed again, so that it
+/// never blocks a retry as the empty claim of a run that seems to be starting.
 pub fn create_claim_file(path: &Path) -> Result<bool> {
     match std::fs::OpenOptions::new().write(true).create_new(true).open(path) {
         Ok(mut f) => {
-            let owner = format!("{} {}\n", host_name(), std::process::id());
+            let owner = claim_owner();
             if let Err(e) = f.write_all(owner.as_bytes()).and_then(|()| f.sync_all()) {
                 drop(f);
                 let _ = std::fs::remove_file(path);
@@ -291,7 +413,7 @@ pub fn create_claim_file(path: &Path) -> Result<bool> {
 impl Drop for OutputClaim {
     fn drop(&mut self) {
         let mut list = live();
-        let _ = std::fs::remove_file(&self.path);
+        remove_own_claim(&self.path);
         release(&mut list, &self.path);
     }
 }

@@ -126,35 +126,19 @@ pub fn refuse_output_in_study(out: &Path, dir: &Path) -> Result<()> {
     Ok(())
 }
 
-/// The study of folder `dir` as its jobs were run: the stored study expanded with its surface
-/// files read again, refused when their contents (or the stored study) no longer give the hash the
-/// folder was made with, since a static map of changed surfaces would be compared with sliding runs
-/// of the old ones.
+/// The study of folder `dir` as its jobs were run, with its surface files read again: the stored
+/// study refuses surface files changed since the jobs were run ([`stored_study`]), since a static
+/// map of changed surfaces would be compared with sliding runs of the old ones, and here they must
+/// be where the study file named them.
 fn study_as_run(dir: &Path) -> Result<Study> {
     let (text, base) = stored_study(dir)?;
-    let study = expand(&text, &base).map_err(|e| Error::StudyFolder {
+    expand(&text, &base).map_err(|e| Error::StudyFolder {
         dir: dir.into(),
         message: format!(
             "its jobs cannot be estimated again: {e}; the surface files the study was run with must be where the \
              study file named them"
         ),
-    })?;
-    let hash_path = dir.join("study.hash");
-    let stored = crate::io::read_text(&hash_path)?;
-    if stored.trim() != study.hash {
-        return Err(Error::StudyFolder {
-            dir: dir.into(),
-            message: format!(
-                "its surface files (or its stored study.toml) changed since its jobs were run (hash {} ≠ {} in {}): \
-                 the static maps would be of other surfaces than the sliding runs; restore the surface files, or run \
-                 the study again into a new folder",
-                study.hash,
-                stored.trim(),
-                hash_path.display()
-            ),
-        });
-    }
-    Ok(study)
+    })
 }
 
 /// The finished sliding jobs of a study folder with the static maps of each, the jobs left out and

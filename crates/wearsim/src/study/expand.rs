@@ -8,6 +8,7 @@ use toml::{Table, Value};
 
 use crate::config::{InputRecord, RunConfig, SurfaceFiles, SurfaceSource};
 use crate::error::{Error, Result};
+use crate::estimate::WearModel;
 use crate::output::JobResult;
 
 /// One job of a study: a single-load run and the parameters that vary across the study.
@@ -59,6 +60,9 @@ pub struct Study {
     pub hash: String,
     /// The study file's canonical TOML.
     pub canonical: String,
+    /// What the study file gives that no job reads (a single `[sliding]` setting that the study's
+    /// model ignores), one sentence each.
+    pub warnings: Vec<String>,
 }
 
 fn fnv1a(bytes: &[u8]) -> u64 {
@@ -217,6 +221,13 @@ fn section(table: &Table, name: &str) -> Result<Table> {
 /// must exist (their contents enter the study's hash).
 pub fn expand(text: &str, base: &Path) -> Result<Study> {
     let mut study = expand_with(text, base, SurfaceFiles::MustExist)?;
+    study.hash = hash_with_surfaces(&study)?;
+    Ok(study)
+}
+
+/// The hash of a study with the contents of the surface files it names: the study's own hash when
+/// it names none; an error when one cannot be read.
+pub(crate) fn hash_with_surfaces(study: &Study) -> Result<String> {
     let mut files: Vec<&Path> = Vec::new();
     for job in &study.jobs {
         if let SurfaceSource::Files { top, bottom, .. } = &job.run.surfaces {
@@ -227,15 +238,15 @@ pub fn expand(text: &str, base: &Path) -> Result<Study> {
             }
         }
     }
-    if !files.is_empty() {
-        let mut hash = u64::from_str_radix(&study.hash, 16).unwrap_or(0);
-        for file in files {
-            let bytes = std::fs::read(file).map_err(|e| Error::io(file, e))?;
-            hash = fnv1a_continue(hash, &bytes);
-        }
-        study.hash = format!("{hash:016x}");
+    if files.is_empty() {
+        return Ok(study.hash.clone());
     }
-    Ok(study)
+    let mut hash = u64::from_str_radix(&study.hash, 16).unwrap_or(0);
+    for file in files {
+        let bytes = std::fs::read(file).map_err(|e| Error::io(file, e))?;
+        hash = fnv1a_continue(hash, &bytes);
+    }
+    Ok(format!("{hash:016x}"))
 }
 
 /// Expands the study stored in a study folder, whose surface files need not be where they were
@@ -281,7 +292,7 @@ fn expand_with(text: &str, base: &Path, files: SurfaceFiles) -> Result<Study> {
         }
     };
     // Schedule settings may be lists too (e.g. `step_running_in`); `loads` are the innermost axis.
-    let schedules = product(&sliding, "sliding", &["loads"])?;
+    let (schedules, warnings) = per_model(&sliding, product(&sliding, "sliding", &["loads"])?)?;
     axis_is_unambiguous("sliding", "loads", &loads)?;
     let mut jobs = Vec::new();
     for (name, material, mv, overrides) in &materials {
@@ -341,7 +352,93 @@ fn expand_with(text: &str, base: &Path, files: SurfaceFiles) -> Result<Study> {
             }
         )));
     }
-    Ok(Study { jobs, hash, canonical })
+    Ok(Study {
+        jobs,
+        hash,
+        canonical,
+        warnings,
+    })
+}
+
+/// The model of a schedule (`[sliding] model`, the default when absent); `None` for a value that is
+/// no model (the job's validation names it).
+fn model_of(schedule: &Table) -> Option<WearModel> {
+    match schedule.get("model") {
+        None => Some(WearModel::default()),
+        Some(Value::String(s)) => s.parse().ok(),
+        Some(_) => None,
+    }
+}
+
+/// The models that read `[sliding]` key `key`, as `"a"` or `"a" and "b"`.
+fn models_reading(key: &str) -> String {
+    let names: Vec<String> = WearModel::ALL
+        .iter()
+        .filter(|m| m.uses(key))
+        .map(|m| format!("{:?}", m.name()))
+        .collect();
+    names.join(" and ")
+}
+
+/// The schedules of a study with each list of a `[sliding]` setting varied only in the jobs whose
+/// model reads it ([`WearModel::ignores`]): the jobs of a model that ignores it leave it out (they
+/// record its default) and appear once, not once per value. A list of a setting that no model of
+/// the study reads is refused (every value would be the same jobs); a single such value is a warning.
+#[allow(clippy::type_complexity)]
+fn per_model(
+    sliding: &Table,
+    schedules: Vec<(Table, BTreeMap<String, Value>)>,
+) -> Result<(Vec<(Table, BTreeMap<String, Value>)>, Vec<String>)> {
+    let mut models: Vec<WearModel> = Vec::new();
+    for m in schedules.iter().filter_map(|(t, _)| model_of(t)) {
+        if !models.contains(&m) {
+            models.push(m);
+        }
+    }
+    let mut warnings = Vec::new();
+    if !models.is_empty() {
+        let names: Vec<String> = models.iter().map(|m| format!("{:?}", m.name())).collect();
+        let (names, does) = if names.len() == 1 {
+            (format!("model {}", names[0]), "does")
+        } else {
+            (format!("models {}", names.join(" and ")), "do")
+        };
+        for (key, value) in sliding {
+            if models.iter().any(|m| m.uses(key)) {
+                continue;
+            }
+            let readers = models_reading(key);
+            if matches!(value, Value::Array(_)) {
+                return Err(Error::param(
+                    format!("sliding.{key}"),
+                    format!(
+                        "`{key} = {value}` lists values of a setting that the study's {names} {does} not use (only \
+                         model {readers} reads `{key}`): every value would compute the same jobs again; give the \
+                         model that uses it in `model`, or remove `{key}`"
+                    ),
+                ));
+            }
+            warnings.push(format!(
+                "[sliding] `{key} = {value}` is ignored: the study's {names} {does} not use `{key}` (only model \
+                 {readers} reads it)"
+            ));
+        }
+    }
+    let mut out: Vec<(Table, BTreeMap<String, Value>)> = Vec::with_capacity(schedules.len());
+    for (mut table, mut varying) in schedules {
+        if let Some(model) = model_of(&table) {
+            for key in model.ignores() {
+                if matches!(sliding.get(*key), Some(Value::Array(_))) {
+                    table.remove(*key);
+                    varying.remove(&format!("sliding.{key}"));
+                }
+            }
+        }
+        if !out.iter().any(|(t, v)| *t == table && *v == varying) {
+            out.push((table, varying));
+        }
+    }
+    Ok((out, warnings))
 }
 
 /// Puts one value (1) in place of every empty list, at the top and in every table.
@@ -438,6 +535,72 @@ loads = [5e-4, 1e-3]
         assert!(s.jobs.iter().all(|j| j.varying.contains_key("sliding.step_running_in")));
         let steps: Vec<usize> = s.jobs.iter().map(|j| j.inputs().step_running_in.unwrap()).collect();
         assert_eq!(steps.iter().filter(|&&k| k == 1).count(), 18);
+    }
+
+    #[test]
+    fn a_list_of_a_setting_one_model_ignores_varies_only_the_jobs_of_the_model_that_reads_it() {
+        let with = |extra: &str| STUDY.replace("loads = [5e-4, 1e-3]", &format!("loads = [5e-4, 1e-3]\n{extra}"));
+        let distinct = |s: &Study| {
+            let keys: Vec<String> = s
+                .jobs
+                .iter()
+                .map(|j| format!("{} {} {:?}", j.material, j.load(), j.inputs()))
+                .collect();
+            keys.iter().enumerate().all(|(i, k)| !keys[..i].contains(k))
+        };
+        // 18 jobs per schedule: sliding once, the estimate once per number of maps.
+        let s = expand(
+            &with("model = [\"sliding\", \"estimate\"]\nestimate_samples = [4, 8]"),
+            Path::new("."),
+        )
+        .unwrap();
+        let model = |m: WearModel| s.jobs.iter().filter(move |j| j.run.model == m);
+        assert_eq!(model(WearModel::Sliding).count(), 18);
+        assert_eq!(model(WearModel::Estimate).count(), 36);
+        assert!(model(WearModel::Sliding)
+            .all(|j| j.inputs().estimate_samples.is_none() && !j.varying.contains_key("sliding.estimate_samples")));
+        assert!(model(WearModel::Estimate).all(|j| j.varying.contains_key("sliding.estimate_samples")));
+        assert!(distinct(&s) && s.warnings.is_empty());
+        // The running-in step varies the sliding jobs only; the estimate's record the default.
+        let s = expand(
+            &with("model = [\"sliding\", \"estimate\"]\nstep_running_in = [1, 4]"),
+            Path::new("."),
+        )
+        .unwrap();
+        let model = |m: WearModel| s.jobs.iter().filter(move |j| j.run.model == m);
+        assert_eq!(
+            (model(WearModel::Sliding).count(), model(WearModel::Estimate).count()),
+            (36, 18)
+        );
+        assert!(model(WearModel::Estimate).all(|j| j.inputs().step_running_in
+            == Some(crate::sliding::DEFAULT_STEP_RUNNING_IN)
+            && !j.varying.contains_key("sliding.step_running_in")));
+        assert!(distinct(&s));
+        // A list that no model of the study reads is refused, naming the setting and the models.
+        for (extra, key, model) in [
+            ("estimate_samples = [4, 8]", "estimate_samples", "\"sliding\""),
+            (
+                "model = \"estimate\"\nstep_running_in = [1, 4]",
+                "step_running_in",
+                "\"estimate\"",
+            ),
+        ] {
+            let e = expand(&with(extra), Path::new(".")).unwrap_err().to_string();
+            assert!(
+                e.contains(&format!("sliding.{key}")) && e.contains(&format!("model {model}")) && e.contains("not use"),
+                "{e}"
+            );
+        }
+        // A single value that no model reads is a warning naming it.
+        let s = expand(&with("estimate_samples = 8"), Path::new(".")).unwrap();
+        assert_eq!(s.jobs.len(), 18);
+        assert!(
+            s.warnings.len() == 1
+                && s.warnings[0].contains("estimate_samples = 8")
+                && s.warnings[0].contains("model \"sliding\""),
+            "{:?}",
+            s.warnings
+        );
     }
 
     #[test]

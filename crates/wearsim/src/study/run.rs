@@ -7,6 +7,7 @@ use std::sync::Mutex;
 
 use crate::error::{Error, Interrupt, Result};
 use crate::estimate::{Sampling, WearModel, CALIBRATION, MAX_SAMPLES};
+use crate::io::refresh_claim;
 use crate::output::{JobResult, Provenance, StepRow};
 use crate::run::SlidingRun;
 use crate::sliding::{Checkpointing, Resumed};
@@ -72,7 +73,7 @@ pub fn run_job_observed(
 
 /// The job file of `job` at `load` without results: what every job's file says of the job, its
 /// material and the run's time and warnings, whichever model made the results.
-fn job_result(job: &Job, load: f64, seconds: f64, warnings: Vec<String>) -> JobResult {
+pub(crate) fn job_result(job: &Job, load: f64, seconds: f64, warnings: Vec<String>) -> JobResult {
     JobResult {
         format: crate::output::JOB_FORMAT,
         provenance: Provenance::current(),
@@ -141,7 +142,8 @@ pub struct RunSummary {
     pub computed: usize,
     /// Jobs whose result file was there already.
     pub skipped: usize,
-    /// Jobs another live run was computing (their claim files said so).
+    /// Jobs another live run was computing (their claim files said so) and that had no job file yet
+    /// when this run ended: left undone by this run.
     pub claimed_elsewhere: Vec<usize>,
     /// Job files that could not be read and were computed again, with the reason.
     pub recomputed: Vec<String>,
@@ -318,6 +320,10 @@ pub fn run_jobs(
     summary.computed = done.into_inner();
     summary.checkpoint_warnings = notes.into_inner().map_err(|_| lock_error())?;
     summary.claimed_elsewhere = elsewhere.into_inner().map_err(|_| lock_error())?;
+    // Those the other runs finished meanwhile are done; the rest are left undone by this run.
+    summary
+        .claimed_elsewhere
+        .retain(|&i| !crate::study::store::job_path(dir, i).is_file());
     summary.claimed_elsewhere.sort_unstable();
     let mut failed = failed.into_inner().map_err(|_| lock_error())?;
     if !failed.is_empty() {
@@ -374,13 +380,6 @@ pub fn workers_for_memory(jobs: &[&Job], workers: usize) -> Result<(usize, Optio
             ))
         }
         _ => Ok((workers, None)),
-    }
-}
-
-/// Refreshes a claim file's modification time.
-fn refresh_claim(path: &Path) {
-    if let Ok(f) = std::fs::OpenOptions::new().append(true).open(path) {
-        let _ = f.set_modified(std::time::SystemTime::now());
     }
 }
 

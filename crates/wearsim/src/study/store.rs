@@ -4,14 +4,15 @@
 //! mistake) never compute a job twice nor touch each other's files.
 
 use std::path::{Path, PathBuf};
-use std::time::{Duration, SystemTime};
+use std::time::SystemTime;
 
 use crate::error::{Error, Result};
 use crate::estimate::WearModel;
 use crate::io::{
-    create_claim_file, folder_owner, host_name, make_folder, marker, process_gone, read_text, temporary_sibling,
-    write_json, write_text, FolderOwner, MARKER,
+    claim_is_stale, create_claim_file, folder_owner, host_name, make_folder, marker, process_gone, read_text,
+    remove_own_claim, temporary_sibling, write_json, write_text, FolderOwner, MARKER,
 };
+pub use crate::io::{CLAIM_EXPIRY, CLAIM_REFRESH};
 use crate::output::{read_job_file, JobResult};
 use crate::study::expand::{Job, Study};
 
@@ -43,34 +44,16 @@ pub fn write_result(dir: &Path, result: &JobResult) -> Result<()> {
     write_text(&path, &with_checksum(&text))
 }
 
-/// The key a job file's checksum is written under, last in the file.
-const CHECKSUM_KEY: &str = ",\"checksum\":\"fnv1a64:";
-
 /// A job file's text with the checksum of its JSON appended as its last key, so that a file
 /// damaged or edited since it was written (one digit of a wear rate) is found when it is read.
 fn with_checksum(json: &str) -> String {
-    let body = json.trim_end();
-    let open = body.strip_suffix('}').unwrap_or(body);
-    format!("{open}{CHECKSUM_KEY}{:016x}\"}}", fnv1a64(body.as_bytes()))
-}
-
-/// FNV-1a, 64 bits.
-fn fnv1a64(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
-    })
+    crate::io::with_checksum(json)
 }
 
 /// Checks the checksum of a job file's text; files of earlier versions have none and pass (their
 /// values are still checked, [`out_of_range`]).
 fn checksum_matches(text: &str) -> bool {
-    let text = text.trim_end();
-    let Some(k) = text.rfind(CHECKSUM_KEY) else { return true };
-    let given = &text[k + CHECKSUM_KEY.len()..];
-    let Some(given) = given.strip_suffix("\"}") else {
-        return false;
-    };
-    given == format!("{:016x}", fnv1a64(format!("{}}}", &text[..k]).as_bytes()))
+    crate::io::checksum_matches(text).unwrap_or(true)
 }
 
 /// What in a job's result is out of the range any run gives, if anything: results for another
@@ -276,15 +259,26 @@ pub fn stored_result(job: &Job, dir: &Path) -> Result<Stored> {
         });
     }
     if !job.is_result_of(&r) {
+        let (theirs, ours) = (r.inputs.model.unwrap_or_default(), job.run.model);
+        let model = if theirs == ours {
+            format!("model {:?}", ours.name())
+        } else {
+            format!(
+                "a result of model {:?} where this job is one of model {:?}",
+                theirs.name(),
+                ours.name()
+            )
+        };
         return Err(Error::file(
             &path,
             format!(
-                "holds the result of job {} ({}, load {:e}) with other inputs than {}: the file was copied or renamed \
-                 from another job or study; delete it and run the study again to recompute job {}",
+                "holds the result of job {} ({}, load {:e}; {model}) with other inputs than {}{}: the file was \
+                 copied or renamed from another job or study; delete it and run the study again to recompute job {}",
                 r.index,
                 r.material,
                 r.load,
                 job.describe(),
+                differing_inputs(&r.inputs, &job.inputs()),
                 job.index
             ),
         ));
@@ -296,6 +290,32 @@ pub fn stored_result(job: &Job, dir: &Path) -> Result<Stored> {
         )));
     }
     Ok(Stored::Done(Box::new(r)))
+}
+
+/// The inputs in which a job file's record differs from its job's, for messages: " (in
+/// `sliding.model`: \"estimate\" in the file, none in the job)"; empty when they agree.
+fn differing_inputs(file: &crate::config::InputRecord, job: &crate::config::InputRecord) -> String {
+    let (Ok(serde_json::Value::Object(a)), Ok(serde_json::Value::Object(b))) =
+        (serde_json::to_value(file), serde_json::to_value(job))
+    else {
+        return String::new();
+    };
+    let none = serde_json::Value::Null;
+    let mut keys: Vec<&String> = a.keys().chain(b.keys()).collect();
+    keys.dedup();
+    let mut shown: Vec<String> = Vec::new();
+    for k in keys {
+        let (x, y) = (a.get(k).unwrap_or(&none), b.get(k).unwrap_or(&none));
+        let text = |v: &serde_json::Value| if v.is_null() { "none".to_string() } else { v.to_string() };
+        if x != y && !shown.iter().any(|s| s.starts_with(&format!("`{k}`"))) {
+            shown.push(format!("`{k}`: {} in the file, {} in the job", text(x), text(y)));
+        }
+    }
+    if shown.is_empty() {
+        String::new()
+    } else {
+        format!(" (in {})", shown.join("; "))
+    }
 }
 
 /// Reads `job`'s result file, checking that it was written for this job.
@@ -315,30 +335,25 @@ pub fn read_result(job: &Job, dir: &Path) -> Result<JobResult> {
 
 /// A claim on a job: the file `job-NNNNNN.claim`, created exclusively before the job is computed
 /// and removed when it is done (or abandoned). While it is held, the runner refreshes its
-/// modification time every [`CLAIM_REFRESH`], so that other runs can tell a live claim from one left
-/// by a killed process.
+/// modification time every [`CLAIM_REFRESH`] from a thread of its own, so that other runs can tell a
+/// live claim from one left by a killed process ([`claim_is_stale`]: the same rule as the claims of
+/// output folders).
 #[derive(Debug)]
 pub struct Claim {
     path: PathBuf,
 }
 
-/// A claim not refreshed for this long belongs to a process that is gone.
-pub const CLAIM_EXPIRY: Duration = Duration::from_secs(600);
-
-/// How often a live claim is refreshed.
-pub const CLAIM_REFRESH: Duration = Duration::from_secs(60);
-
 impl Claim {
-    /// Claims job `index`; `Ok(None)` when another live run holds it. A claim left by a process that
-    /// is gone (on this host: no such process; elsewhere: not refreshed for [`CLAIM_EXPIRY`]) is
-    /// taken over.
+    /// Claims job `index`; `Ok(None)` when another live run holds it. A stale claim (not refreshed
+    /// for [`CLAIM_EXPIRY`]; on this host also one whose process is gone or whose process id now
+    /// belongs to another process) is taken over.
     pub fn take(dir: &Path, index: usize) -> Result<Option<Claim>> {
         let path = claim_path(dir, index);
         for _ in 0..2 {
             if create_claim_file(&path)? {
                 return Ok(Some(Claim { path }));
             }
-            if !Self::is_stale(&path) {
+            if !claim_is_stale(&path) {
                 return Ok(None);
             }
             let _ = std::fs::remove_file(&path);
@@ -347,12 +362,12 @@ impl Claim {
     }
 
     /// After a run killed between writing job `index`'s file and releasing its claim: removes that
-    /// claim when its process is gone, and then the job's `checkpoint` (a finished job needs none).
-    /// A live run's claim, and so its checkpoint, are left to it.
+    /// claim when it is stale, and then the job's `checkpoint` (a finished job needs none). A live
+    /// run's claim, and so its checkpoint, are left to it.
     pub fn release_abandoned(dir: &Path, index: usize, checkpoint: &Path) {
         let path = claim_path(dir, index);
         if path.exists() {
-            if !Self::is_stale(&path) {
+            if !claim_is_stale(&path) {
                 return;
             }
             let _ = std::fs::remove_file(&path);
@@ -360,20 +375,22 @@ impl Claim {
         let _ = std::fs::remove_file(checkpoint);
     }
 
-    fn is_stale(path: &Path) -> bool {
-        let owner = std::fs::read_to_string(path).unwrap_or_default();
+    /// Who holds job `index`'s claim, for messages: "process PID on HOST, refreshed N s ago (FILE)";
+    /// `None` when there is no claim.
+    pub fn holder(dir: &Path, index: usize) -> Option<String> {
+        let path = claim_path(dir, index);
+        let owner = std::fs::read_to_string(&path).ok()?;
         let mut words = owner.split_whitespace();
-        if let (Some(host), Some(pid)) = (words.next(), words.next()) {
-            if host == host_name() && Path::new("/proc/self").exists() {
-                return !Path::new("/proc").join(pid).exists();
-            }
-        }
-        let age = std::fs::metadata(path)
+        let who = match (words.next(), words.next()) {
+            (Some(host), Some(pid)) => format!("process {pid} on {host}"),
+            _ => "a run that is starting".to_string(),
+        };
+        let age = std::fs::metadata(&path)
             .and_then(|m| m.modified())
             .ok()
-            .and_then(|t| SystemTime::now().duration_since(t).ok());
-        // An empty claim is one whose writer died between creating and filling it.
-        owner.is_empty() && age.is_some_and(|a| a > Duration::from_secs(5)) || age.is_some_and(|a| a > CLAIM_EXPIRY)
+            .and_then(|t| SystemTime::now().duration_since(t).ok())
+            .map_or(String::new(), |a| format!(", refreshed {} s ago", a.as_secs()));
+        Some(format!("{who}{age}: {}", path.display()))
     }
 
     /// The claim file.
@@ -384,7 +401,7 @@ impl Claim {
 
 impl Drop for Claim {
     fn drop(&mut self) {
-        let _ = std::fs::remove_file(&self.path);
+        remove_own_claim(&self.path);
     }
 }
 
@@ -521,7 +538,10 @@ fn abandoned_here(name: &str) -> bool {
     rest.ends_with(&format!(".{}", host_name())) && process_gone(pid) == Some(true)
 }
 
-/// The stored study of a folder and the folder its relative paths resolve against.
+/// The stored study of a folder and the folder its relative paths resolve against, checked: a
+/// stored study file that no longer expands, or that changed since the jobs were run (its hash is
+/// not the one the folder recorded), is an error naming it and what to do, before any job file is
+/// read (whose inputs would then differ from the changed study's jobs).
 pub fn stored_study(dir: &Path) -> Result<(String, PathBuf)> {
     let file = dir.join("study.toml");
     if !file.is_file() {
@@ -541,6 +561,39 @@ pub fn stored_study(dir: &Path) -> Result<(String, PathBuf)> {
     let base = std::fs::read_to_string(dir.join("study.base"))
         .map(PathBuf::from)
         .unwrap_or_else(|_| dir.to_path_buf());
+    let restore = "restore it as `wearsim study run` stored it, or run the changed study file into a new folder \
+                   (`wearsim study run STUDY.toml --out NEW_FOLDER`)";
+    let study = crate::study::expand::expand_stored(&text, &base).map_err(|e| {
+        Error::file(
+            &file,
+            format!(
+                "the copy of the study file that `wearsim study run` stored in its study folder cannot be read as a \
+                 study: {e}; it was edited or damaged since: {restore}"
+            ),
+        )
+    })?;
+    // The recorded hash covers the surface files too: checked when they can all be read (a folder
+    // whose surfaces moved is still read, without them).
+    let recorded = std::fs::read_to_string(dir.join("study.hash")).unwrap_or_default();
+    if let Ok(hash) = crate::study::expand::hash_with_surfaces(&study) {
+        if !recorded.trim().is_empty() && recorded.trim() != hash {
+            let names_files = hash != study.hash;
+            return Err(Error::file(
+                &file,
+                format!(
+                    "the study file stored in the study folder{} changed since its jobs were run (hash {hash}, where \
+                     the jobs were run for {}): the job files hold the results of the study as it was run and are \
+                     not at fault; {restore}",
+                    if names_files {
+                        ", or a surface file it names,"
+                    } else {
+                        ""
+                    },
+                    recorded.trim()
+                ),
+            ));
+        }
+    }
     Ok((text, base))
 }
 
@@ -600,5 +653,72 @@ mod tests {
         // A claim of another host, refreshed recently: live.
         std::fs::write(claim_path(dir.path(), 5), "elsewhere 12\n").unwrap();
         assert!(Claim::take(dir.path(), 5).unwrap().is_none());
+        // This process's id with another start time: a process that held the id before, gone.
+        let me = std::process::id();
+        std::fs::write(claim_path(dir.path(), 6), format!("{} {me} 1\n", host_name())).unwrap();
+        assert!(Claim::take(dir.path(), 6).unwrap().is_some());
+        // A live process's claim (this one's) not refreshed for longer than the expiry: stale, as
+        // is another host's.
+        for (k, owner) in [(7, format!("{} {me}\n", host_name())), (8, "elsewhere 12\n".into())] {
+            let path = claim_path(dir.path(), k);
+            std::fs::write(&path, owner).unwrap();
+            let f = std::fs::OpenOptions::new().append(true).open(&path).unwrap();
+            f.set_modified(SystemTime::now() - CLAIM_EXPIRY - std::time::Duration::from_secs(1))
+                .unwrap();
+            assert!(Claim::take(dir.path(), k).unwrap().is_some(), "claim {k}");
+        }
+    }
+
+    #[test]
+    fn a_changed_or_emptied_stored_study_is_named_and_the_job_files_not_blamed() {
+        use crate::study::expand::{expand, tests::STUDY};
+        let dir = tempfile::tempdir().unwrap();
+        let study = expand(STUDY, Path::new(".")).unwrap();
+        prepare_folder(dir.path(), &study, Path::new(".")).unwrap();
+        assert!(stored_study(dir.path()).is_ok());
+        let file = dir.path().join("study.toml");
+        let stored = std::fs::read_to_string(&file).unwrap();
+        // Edited: one shear strength changed.
+        std::fs::write(&file, stored.replace("0.012", "0.011")).unwrap();
+        let e = stored_study(dir.path()).unwrap_err().to_string();
+        assert!(
+            e.contains(&file.display().to_string())
+                && e.contains("changed since its jobs were run")
+                && e.contains("restore it")
+                && e.contains("new folder")
+                && !e.contains("delete"),
+            "{e}"
+        );
+        // Emptied: named as the stored copy.
+        std::fs::write(&file, "").unwrap();
+        let e = stored_study(dir.path()).unwrap_err().to_string();
+        assert!(
+            e.contains(&file.display().to_string()) && e.contains("stored in its study folder") && e.contains("loads"),
+            "{e}"
+        );
+        // Restored: read again.
+        std::fs::write(&file, stored).unwrap();
+        assert!(stored_study(dir.path()).is_ok());
+    }
+
+    #[test]
+    fn a_job_file_of_another_model_in_a_jobs_place_names_both_models() {
+        use crate::study::expand::{expand, tests::STUDY};
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir_all(dir.path().join("jobs")).unwrap();
+        let sliding = expand(STUDY, Path::new(".")).unwrap();
+        let estimate = expand(
+            &STUDY.replace("loads = [5e-4, 1e-3]", "loads = [5e-4, 1e-3]\nmodel = \"estimate\""),
+            Path::new("."),
+        )
+        .unwrap();
+        let r = crate::study::run::job_result(&estimate.jobs[0], estimate.jobs[0].load(), 1.0, Vec::new());
+        write_result(dir.path(), &r).unwrap();
+        let e = stored_result(&sliding.jobs[0], dir.path()).unwrap_err().to_string();
+        assert!(
+            e.contains("a result of model \"estimate\" where this job is one of model \"sliding\"")
+                && e.contains("`sliding.model`: \"estimate\" in the file, none in the job"),
+            "{e}"
+        );
     }
 }

@@ -77,17 +77,36 @@ pub(super) fn archard_like(all: &[Setting]) -> Finding {
     )
 }
 
-/// The load at which a curve's k (mean over its run-in pairs) is largest, in words.
+/// The load at which a curve's k (mean over its run-in pairs) is largest, in words. A setting
+/// without a run-in pair with a wear coefficient has no mean (not a mean of 0); a curve without any
+/// run-in pair takes the mean over all its pairs and says so.
 fn k_maximum(c: &[&Setting]) -> String {
+    let any_run_in = c.iter().any(|s| !s.run_in_pairs().is_empty());
     let mean_k = |s: &Setting| {
-        let k: Vec<f64> = s.run_in_pairs().iter().map(|p| p.get("wear_coefficient")).collect();
-        k.iter().sum::<f64>() / k.len().max(1) as f64
+        let pairs: Vec<&super::setting::Pair> = if any_run_in {
+            s.run_in_pairs()
+        } else {
+            s.pairs.iter().collect()
+        };
+        let k: Vec<f64> = pairs
+            .iter()
+            .map(|p| p.get("wear_coefficient"))
+            .filter(|k| k.is_finite())
+            .collect();
+        if k.is_empty() {
+            f64::NAN
+        } else {
+            k.iter().sum::<f64>() / k.len() as f64
+        }
     };
     let (i, best) = c
         .iter()
         .enumerate()
         .map(|(i, s)| (i, mean_k(s)))
         .fold((0, f64::NEG_INFINITY), |a, b| if b.1 > a.1 { b } else { a });
+    if !best.is_finite() {
+        return "no mean k: no pair has a wear coefficient".into();
+    }
     let where_ = if i == 0 {
         "at the lowest load: the maximum lies at or below it"
     } else if i + 1 == c.len() {
@@ -95,8 +114,13 @@ fn k_maximum(c: &[&Setting]) -> String {
     } else {
         "inside the load range"
     };
+    let over = if any_run_in {
+        ""
+    } else {
+        " (over all pairs: none is run in)"
+    };
     format!(
-        "largest mean k = {} at F_N/(Lx·Ly) = {}, {where_}",
+        "largest mean k = {}{over} at F_N/(Lx·Ly) = {}, {where_}",
         fmt(best),
         param(c[i].pressure)
     )

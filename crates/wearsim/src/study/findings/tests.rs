@@ -443,3 +443,34 @@ fn appendix_axes_compare_boxes_as_independent_pairs_and_lambda_pair_by_pair() {
     assert!(lambda.observed.contains("(paired, 3 pairs)"), "{}", lambda.observed);
     assert_eq!(get(&f, "appendix-e-rms-height").verdict, Verdict::NotTestable);
 }
+
+#[test]
+fn the_largest_mean_k_of_a_curve_is_never_a_zero_from_pairs_not_run_in() {
+    let observed = |tidy: &Table| get(&findings(tidy), "k-rises-with-load").observed.clone();
+    // k of τ̃ = 0.008: 2×10⁻⁵ (F_N / 10⁻³) × 3√3 × 0.008 / F_N, the same at both loads.
+    let k = 2e-5 * 3.0 * 3f64.sqrt() * 0.008 / 1e-3;
+    let expected = format!("largest mean k = {} at", setting::fmt(k));
+    let o = observed(&study(None));
+    assert!(o.contains(&expected), "{o}\nexpected {expected}");
+    // No pair is run in (the fit window starts after 1 decay length): the mean over all pairs, said so.
+    let mut tidy = study(None);
+    let c = tidy
+        .columns
+        .iter()
+        .position(|c| c == "running_in_decay_lengths")
+        .unwrap();
+    for r in tidy.rows.iter_mut() {
+        r[c] = Cell::Float(1.0);
+    }
+    let o = observed(&tidy);
+    let expected = expected.replace(" at", " (over all pairs: none is run in) at");
+    assert!(
+        o.contains(&expected) && !o.contains("k = 0 "),
+        "{o}\nexpected {expected}"
+    );
+    // One setting of a curve not run in has no mean; the other's is the curve's largest.
+    let mut tidy = study(None);
+    set(&mut tidy, 0.008, 2e-3, "running_in_decay_lengths", &[Cell::Float(1.0)]);
+    let o = observed(&tidy);
+    assert!(!o.contains("k = 0 ") && o.contains("largest mean k ="), "{o}");
+}
