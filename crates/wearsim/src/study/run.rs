@@ -395,4 +395,28 @@ mod tests {
         all.sort();
         assert_eq!(all, (0..18).collect::<Vec<_>>());
     }
+
+    // Here rather than in the store's tests: the job file is made by `job_result`, a layer above.
+    #[test]
+    fn a_job_file_of_another_model_in_a_jobs_place_names_both_models() {
+        use crate::study::expand::{expand, tests::STUDY};
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir_all(dir.path().join("jobs")).unwrap();
+        let sliding = expand(STUDY, Path::new(".")).unwrap();
+        let estimate = expand(
+            &STUDY.replace("loads = [5e-4, 1e-3]", "loads = [5e-4, 1e-3]\nmodel = \"estimate\""),
+            Path::new("."),
+        )
+        .unwrap();
+        let r = job_result(&estimate.jobs[0], estimate.jobs[0].load(), 1.0, Vec::new());
+        crate::study::store::write_result(dir.path(), &r).unwrap();
+        let e = crate::study::store::stored_result(&sliding.jobs[0], dir.path())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("a result of model \"estimate\" where this job is one of model \"sliding\"")
+                && e.contains("`sliding.model`: \"estimate\" in the file, none in the job"),
+            "{e}"
+        );
+    }
 }

@@ -700,25 +700,4 @@ mod tests {
         std::fs::write(&file, stored).unwrap();
         assert!(stored_study(dir.path()).is_ok());
     }
-
-    #[test]
-    fn a_job_file_of_another_model_in_a_jobs_place_names_both_models() {
-        use crate::study::expand::{expand, tests::STUDY};
-        let dir = tempfile::tempdir().unwrap();
-        std::fs::create_dir_all(dir.path().join("jobs")).unwrap();
-        let sliding = expand(STUDY, Path::new(".")).unwrap();
-        let estimate = expand(
-            &STUDY.replace("loads = [5e-4, 1e-3]", "loads = [5e-4, 1e-3]\nmodel = \"estimate\""),
-            Path::new("."),
-        )
-        .unwrap();
-        let r = crate::study::run::job_result(&estimate.jobs[0], estimate.jobs[0].load(), 1.0, Vec::new());
-        write_result(dir.path(), &r).unwrap();
-        let e = stored_result(&sliding.jobs[0], dir.path()).unwrap_err().to_string();
-        assert!(
-            e.contains("a result of model \"estimate\" where this job is one of model \"sliding\"")
-                && e.contains("`sliding.model`: \"estimate\" in the file, none in the job"),
-            "{e}"
-        );
-    }
 }
