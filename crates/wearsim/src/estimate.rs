@@ -761,8 +761,11 @@ fn result_warnings(r: &EstimateResult, load: f64, samples: usize) -> Vec<String>
     } else if r.critical_junctions_mean < RESOLVED_CRITICAL_JUNCTIONS {
         out.push(format!(
             "{what}: {:.2} critical junctions per static map, under {RESOLVED_CRITICAL_JUNCTIONS}: the estimate rests \
-             on a few junctions and its interval is wide; take a larger box",
-            r.critical_junctions_mean
+             on a few junctions, its sampling error is {:.0} % (maps are added for the {:.0} % target only from \
+             {RESOLVED_CRITICAL_JUNCTIONS} per map on) and its interval is wide; take a larger box",
+            r.critical_junctions_mean,
+            100.0 * r.critical_junctions_sampling_error.unwrap_or(f64::NAN),
+            100.0 * TARGET_SAMPLING_ERROR
         ));
     }
     if let Some(n) = r.expected_particles.filter(|&n| n < 20.0) {
