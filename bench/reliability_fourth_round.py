@@ -1033,7 +1033,7 @@ def messages(tmp: Path) -> None:
     one.write_text(run_file(64))
     for value in ["-1", "0", "17"]:
         python_trial(
-            cls, f"wearsim.estimate(run, samples={value})", f"wearsim.estimate('{one}', samples={value})", "samples"
+            cls, f"wearsim.estimate(run, samples={value})", f"wearsim.estimate('{one}', samples={value})", "`samples`"
         )
     # study plot under a file-size limit.
     for blocks in [50, 8]:
