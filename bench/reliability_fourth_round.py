@@ -217,6 +217,17 @@ def file_study_tree(root: Path) -> Path:
     return root
 
 
+def copy_tree(src: Path, dst: Path) -> None:
+    """A copy of a folder of studies as a user would make by copying the project: every study
+    folder's ``study.base`` (where its relative surface paths resolve) moved along, so that the
+    copy's studies read the copy's surfaces, not the original's."""
+    shutil.copytree(src, dst, symlinks=True)
+    for base in Path(dst).rglob("study.base"):
+        text = base.read_text()
+        if text.startswith(str(src)):
+            base.write_text(str(dst) + text[len(str(src)) :])
+
+
 def output_folders(tmp: Path) -> None:
     cls = "1 output folders onto inputs"
     pristine = tmp / "of-pristine"
@@ -247,7 +258,7 @@ def output_folders(tmp: Path) -> None:
         nonlocal k
         k += 1
         root = tmp / f"of{k}"
-        shutil.copytree(pristine, root, symlinks=True)
+        copy_tree(pristine, root)
         work = root / "work"
         (work / "lnjobs").symlink_to("ST/jobs")
         (work / "lnst").symlink_to("ST")
@@ -369,7 +380,7 @@ def closed_pipe(tmp: Path) -> None:
     (d / "study.toml").write_text(run_file(64, "[5e-4, 1e-3]", seed="[1, 2]"))
     run(["surface", d / "run.toml", "--out", d / "s"])
     run(["contact", d / "run.toml", "--load", "1e-3", "--out", d / "c"])
-    shutil.copytree(tmp / "of-pristine", d / "fs", symlinks=True)
+    copy_tree(tmp / "of-pristine", d / "fs")
     st = d / "fs" / "work" / "ST"
     commands = {
         "slide": (["slide", "run.toml", "--out", "o"], "o/summary.json"),
@@ -434,7 +445,7 @@ def estimate_and_studies(tmp: Path) -> None:
         ("top.npy rewritten unchanged (control)", "np.save(sys.argv[1], np.load(sys.argv[1]))"),
     ]:
         root = tmp / f"ch-{len(TRIALS)}"
-        shutil.copytree(tmp / "of-pristine", root, symlinks=True)
+        copy_tree(tmp / "of-pristine", root)
         q = subprocess.run(
             [PYTHON, "-c", import_np + change, root / "surf" / "top.npy", root / "surf" / "bottom.npy"],
             capture_output=True,
@@ -449,7 +460,9 @@ def estimate_and_studies(tmp: Path) -> None:
         if o.kind == "accepted":
             kind = "accepted" if control or named else "silently wrong"
         elif control:
-            kind = "unclear error" if o.kind == "clear error" else o.kind
+            # NumPy rewrites the header: the bytes change though the heights do not, and the study's
+            # hash covers the bytes; a refusal that says a surface file changed is clear, not wrong.
+            kind = "clear error" if o.kind == "clear error" and named else o.kind
         else:
             kind = "clear error" if o.kind == "clear error" and named else o.kind
             kind = "unclear error" if kind == "clear error" and not named else kind
