@@ -333,18 +333,21 @@ fn claim_owner() -> String {
 /// process id. Stale when not refreshed for [`CLAIM_EXPIRY`] (on any host); on this host also when
 /// its process is gone, or when the process now holding its id is another one (started at another
 /// time than the claim records); an empty claim (its writer died between creating and filling it)
-/// after five seconds. A claim that cannot be read is not stale.
+/// after five seconds. A claim that cannot be read is stale only by its age; one whose bytes are no
+/// text is read as what of it is.
 pub fn claim_is_stale(path: &Path) -> bool {
-    let Ok(owner) = std::fs::read_to_string(path) else {
-        return false;
-    };
     let age = std::fs::metadata(path)
         .and_then(|m| m.modified())
         .ok()
         .and_then(|t| SystemTime::now().duration_since(t).ok());
+    // Not refreshed for long: stale whatever it holds, bytes that are no text included.
     if age.is_some_and(|a| a > CLAIM_EXPIRY) {
         return true;
     }
+    let Ok(bytes) = std::fs::read(path) else {
+        return false;
+    };
+    let owner = String::from_utf8_lossy(&bytes);
     let mut words = owner.split_whitespace();
     match (words.next(), words.next()) {
         (Some(host), Some(pid)) if host == host_name() => {

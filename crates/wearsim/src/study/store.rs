@@ -659,7 +659,12 @@ mod tests {
         assert!(Claim::take(dir.path(), 6).unwrap().is_some());
         // A live process's claim (this one's) not refreshed for longer than the expiry: stale, as
         // is another host's.
-        for (k, owner) in [(7, format!("{} {me}\n", host_name())), (8, "elsewhere 12\n".into())] {
+        // So is one of bytes that are no text.
+        for (k, owner) in [
+            (7, format!("{} {me}\n", host_name()).into_bytes()),
+            (8, b"elsewhere 12\n".to_vec()),
+            (9, b"\x00\x01garbage\xff".to_vec()),
+        ] {
             let path = claim_path(dir.path(), k);
             std::fs::write(&path, owner).unwrap();
             let f = std::fs::OpenOptions::new().append(true).open(&path).unwrap();
