@@ -2,11 +2,21 @@
 maps read and prepared, and the self-affine parameters fitted to either.
 
 Arrays are ``(Nx, Ny)`` float64 with square pixels, ``h[i, j]`` with i along the sliding direction
-x; ``length`` is the side Lx along x, in the unit of lengths (L in reduced units, m in SI).
+x; ``length`` is the side Lx along x, in the unit of lengths (L in reduced units, m in SI), so an
+array passed with its ``length`` is square-pixel by definition (Ly = Lx Ny/Nx).
+
 Functions that take heights also take a SurfaceTopography topography object (its
-``heights()`` and ``physical_sizes``), so every instrument format SurfaceTopography reads works. A
-topography that states its ``unit`` (µm, nm, …) is converted to metres, heights and size alike, so
-that it meets SI material properties; one without a unit is taken as it is.
+``heights()``, ``physical_sizes`` and ``unit``), so every instrument format SurfaceTopography reads
+works. A topography that states its ``unit`` (µm, nm, …) is converted to metres, heights and size
+alike, so that it meets SI material properties; one without a unit is taken as it is.
+:func:`heights_and_length` gives both in that one unit; :func:`preprocess_surface` returns heights
+only (in metres for a topography with a unit, while its ``physical_sizes`` stay in its own unit).
+
+Every height must be defined: masked pixels (a ``numpy.ma.MaskedArray``, as SurfaceTopography
+returns for a map with undefined data), NaN and infinities are refused with their count; fill them
+(SurfaceTopography's ``interpolate_undefined_data()``) or crop them away first. A topography whose
+pixels are not square (``physical_sizes[0]/nb_grid_pts[0]`` ≠ ``physical_sizes[1]/nb_grid_pts[1]``)
+is refused too: resample it onto square pixels, or crop it and pass the array with its ``length``.
 """
 
 from __future__ import annotations
@@ -27,13 +37,39 @@ GridSize = Union[int, Tuple[int, int]]
 Detrend = Literal["none", "mean", "plane", "curvature"]
 
 
+#: Relative difference between a topography's pixel sizes along x and y beyond which its pixels are
+#: not square.
+SQUARE_PIXELS = 1e-6
+
+_FILL = (
+    "fill them (SurfaceTopography's `topography.interpolate_undefined_data()`) or crop the map to a region "
+    "without them, and pass that"
+)
+
+
 def _float_grid(name: str, a: Any) -> np.ndarray:
     """A 2-D field (heights, pressure; any array-like) as a contiguous float64 array, for the
-    extension module."""
+    extension module, with every value defined: a masked pixel (``numpy.ma``, as SurfaceTopography
+    returns undefined data), NaN or an infinity is refused with their count, never read."""
+    masked = 0
+    if np.ma.isMaskedArray(a):
+        masked = int(np.ma.count_masked(a))
+        a = np.ma.getdata(a)
     a = np.ascontiguousarray(a, dtype=np.float64)
     if a.ndim != 2:
         raise ValueError(f"invalid `{name}`: a 2-D array is needed, got {a.ndim} dimensions")
-    return a
+    if masked == 0 and np.isfinite(a).all():
+        return a
+    bad = int(np.count_nonzero(~np.isfinite(a)))
+    what = []
+    if masked:
+        what.append(f"{masked} masked (undefined)")
+    if bad:
+        what.append(f"{bad} NaN or infinite")
+    raise ValueError(
+        f"invalid `{name}`: {' and '.join(what)} of its {a.size} pixels ({a.shape[0]}×{a.shape[1]}); "
+        f"wearsim needs every value defined: {_FILL}"
+    )
 
 
 def _is_topography(obj: Any) -> bool:
@@ -41,28 +77,66 @@ def _is_topography(obj: Any) -> bool:
     return callable(getattr(obj, "heights", None)) and hasattr(obj, "physical_sizes")
 
 
+def _square_pixels(name: str, sizes: Any, grid: Tuple[int, int], unit: str) -> None:
+    """Refuses a topography whose pixels are not square (its physical sizes over its grid points)."""
+    if sizes is None or len(sizes) < 2:
+        return
+    (lx, ly), (nx, ny) = (float(sizes[0]), float(sizes[1])), grid
+    px, py = lx / nx, ly / ny
+    if abs(px - py) > SQUARE_PIXELS * max(abs(px), abs(py)):
+        u = f" {unit}" if unit else ""
+        raise ValueError(
+            f"invalid `{name}`: the topography's pixels are not square: {px:.6g}{u} along x "
+            f"(physical_sizes[0] / nb_grid_pts[0] = {lx:g} / {nx}) and {py:.6g}{u} along y "
+            f"({ly:g} / {ny}); wearsim's grids have square pixels, so its side along y would be taken as "
+            f"{px * ny:.6g}{u} instead of {ly:g}{u}: resample it onto square pixels (e.g. evaluate "
+            "SurfaceTopography's `topography.interpolate_bicubic()` on a square grid), or crop it, and pass "
+            "the array with `length`, its side along x"
+        )
+
+
 def as_heights(name: str, surface: Any, length: Optional[float] = None) -> Tuple[np.ndarray, float]:
-    """``(heights, length)`` of an array-like with its side ``length`` (default 1), or of a
-    SurfaceTopography topography, whose ``physical_sizes`` give the side; a topography with a
-    ``unit`` comes back in metres (a ``length`` passed here is taken in metres too)."""
-    if _is_topography(surface):
-        heights = _float_grid(name, surface.heights())
-        if not np.all(np.isfinite(heights)):
-            raise ValueError(
-                f"invalid `{name}`: the topography has missing or non-finite heights; fill or crop them "
-                "(SurfaceTopography's interpolate_undefined_data, or a crop) first"
-            )
-        unit = getattr(surface, "unit", None)
-        scale = _wearsim.metres_per(str(unit)) if unit else 1.0
-        if scale != 1.0:
-            heights = heights * scale
-        sizes = surface.physical_sizes
-        if length is None:
-            if sizes is None:
-                raise ValueError(f"invalid `{name}`: the topography has no physical size; pass `length`")
-            length = float(sizes[0]) * scale
-        return heights, float(length)
-    return _float_grid(name, surface), 1.0 if length is None else float(length)
+    """``(heights, length)`` of an array-like with its side ``length`` along x (default 1; its pixels
+    are square by definition), or of a SurfaceTopography topography, whose ``physical_sizes`` give
+    the side. A topography with a ``unit`` comes back in metres, heights and side alike; a
+    ``length`` passed with it overrides its size and is taken in metres too. Masked or non-finite
+    heights and a topography with non-square pixels are refused (``ValueError`` naming ``name``)."""
+    if not _is_topography(surface):
+        return _float_grid(name, surface), 1.0 if length is None else float(length)
+    heights = _float_grid(name, surface.heights())
+    unit = getattr(surface, "unit", None)
+    unit = str(unit) if unit else ""
+    scale = _wearsim.metres_per(unit) if unit else 1.0
+    if scale != 1.0:
+        heights = heights * scale
+    sizes = surface.physical_sizes
+    grid = getattr(surface, "nb_grid_pts", None)
+    grid = heights.shape if grid is None else tuple(grid)
+    _square_pixels(name, sizes, (int(grid[0]), int(grid[1])), unit)
+    if length is None:
+        if sizes is None:
+            raise ValueError(f"invalid `{name}`: the topography has no physical size; pass `length`")
+        return heights, float(sizes[0]) * scale
+    length = float(length)
+    if scale != 1.0 and sizes is not None and length == float(sizes[0]):
+        raise ValueError(
+            f"invalid `length` of `{name}`: {length:g} is the topography's side in its unit ({unit}), but a "
+            f"`length` passed with a topography that states its unit is taken in metres, as its heights are "
+            f"converted (its side is {length * scale:.6g} m); leave `length` out to use the topography's size"
+        )
+    return heights, length
+
+
+def heights_and_length(surface: Any, length: Optional[float] = None) -> Tuple[np.ndarray, float]:
+    """``(heights, length)`` of a height map in one unit, as every function here takes it: a
+    SurfaceTopography topography that states its ``unit`` gives heights and its side along x in
+    metres (its ``physical_sizes`` stay in its own unit); one without a unit, or an array with its
+    ``length`` (default 1), gives them as they are. Pass the pair on, e.g.
+    ``h, lx = heights_and_length(t)`` then ``slide(preprocess_surface(h), ..., length=lx)``.
+
+    Refuses (``ValueError``) masked or non-finite heights and non-square pixels (see the module
+    documentation)."""
+    return as_heights("surface", surface, length)
 
 
 def generate_surface(
@@ -173,7 +247,11 @@ def preprocess_surface(heights: Any, *, detrend: Detrend = "plane", taper: float
     """A levelled copy of a measured height map: ``detrend`` removes the mean, the least-squares
     plane (tilt) or quadratic (tilt and form); ``taper`` (a fraction of each side, 0 to 1) applies a
     Tukey window that brings the borders smoothly to the mean, so that the periodic contact solution
-    sees no ridge at the border, at the cost of flattening that strip."""
+    sees no ridge at the border, at the cost of flattening that strip.
+
+    Returns heights only: an array's in its own unit, a topography's in metres when it states its
+    ``unit`` (its ``physical_sizes`` stay in the file's unit, so take the side from
+    :func:`heights_and_length`, which gives it in metres too, not from ``physical_sizes``)."""
     h, _ = as_heights("heights", heights)
     return _wearsim.preprocess_surface(h, detrend, taper)
 
@@ -186,9 +264,17 @@ def periodicity(heights: Any) -> Tuple[float, float]:
     return _wearsim.periodicity(h)
 
 
-def fit_surface(heights: Any, length: Optional[float] = None) -> Dict[str, Any]:
+def fit_surface(
+    heights: Any, length: Optional[float] = None, *, detrend: Detrend = "plane", taper: float = 0.0
+) -> Dict[str, Any]:
     """Self-affine parameters of a surface from its radially averaged PSD C(q) (paper §4.1:
-    C(q) ∝ q^(−2(1+H)) between q = 2π/λ_u and 2π/λ_l).
+    C(q) ∝ q^(−2(1+H)) between q = 2π/λ_u and 2π/λ_l), fitted as ``wearsim surface fit`` fits a
+    file.
+
+    The map is levelled first, as the CLI does: ``detrend`` (default ``"plane"``, the CLI's
+    ``--detrend``: a tilt would put its power into the longest wavelengths and be read as the
+    roughness and λ_u) and ``taper`` (default 0, its ``--taper``), as :func:`preprocess_surface`;
+    ``detrend="none"`` fits the heights as given. ``rms_height`` is that of the levelled map.
 
     The floor of the PSD is left out first: shells below 1e-12 of the peak (round-off) and shells
     within a factor 10 of the median PSD over the outermost half octave of wavenumbers (round-off
@@ -196,18 +282,24 @@ def fit_surface(heights: Any, length: Optional[float] = None) -> Dict[str, Any]:
     the widest band of at least 6 shells over an octave that follows one line in log–log, falls
     faster than q⁻¹ and lies under no longer wavelength (the leakage of a levelled map beyond λ_l
     does), so that a floor is never read as the self-affine band. A spectrum without such a band
-    raises ``ValueError``.
+    raises ``ValueError``; a fit with R² < 0.9 warns (``UserWarning``) that H is a rough estimate.
 
     Returns ``hurst`` H (from the slope −2(1+H)), ``lambda_lower`` and ``lambda_upper`` (where the
     PSD leaves the power law at short and long wavelengths), ``rms_height``, ``r2`` of the log–log
     fit, the number of ``shells`` it used and their wavenumbers ``fitted_q`` (first and last,
     q = 2π/λ in radians per unit length), the shells left out at longer wavelengths than λ_u
     (``shells_longer``) and at shorter wavelengths than λ_l (``shells_shorter``), and ``floor``, the
-    floor's level relative to the power law at λ_l. Pass the parameters to :func:`generate_pair` to
-    get periodic surfaces with the measured statistics (the paper's model assumes periodic
-    self-affine surfaces)."""
+    floor's level relative to the power law at λ_l. Lengths are in the unit of the heights (metres
+    for a topography that states its unit). Pass the parameters to :func:`generate_pair` to get
+    periodic surfaces with the measured statistics (the paper's model assumes periodic self-affine
+    surfaces)."""
     h, lx = as_heights("heights", heights, length)
-    return _wearsim.fit_surface(h, lx)
+    h = _wearsim.preprocess_surface(h, detrend, taper)
+    fit = _wearsim.fit_surface(h, lx)
+    r2 = fit.get("r2")
+    if r2 is not None and r2 < 0.9:
+        warnings.warn("the PSD follows a power law poorly (R² < 0.9): H is a rough estimate", stacklevel=2)
+    return fit
 
 
 def composite_heights(top: np.ndarray, bottom: np.ndarray, offset: int = 0) -> np.ndarray:

@@ -21,7 +21,7 @@ import pandas as pd
 from . import _args, _wearsim
 from ._progress import ProgressArg, callback
 from .junctions import Junctions
-from .surface import as_heights
+from .surface import SQUARE_PIXELS, _is_topography, as_heights
 
 #: Columns of the series, in order: those of ``series.csv`` (defined once, in the library).
 SERIES_COLUMNS = list(_wearsim.SERIES_COLUMNS)
@@ -55,6 +55,19 @@ def _warn(summary: Dict[str, Any]) -> None:
         warnings.warn(message, ResolutionWarning, stacklevel=3)
 
 
+def _pair_length(top: Any, lx_top: float, bottom: Any, lx_bottom: float) -> float:
+    """The side Lx of a surface pair passed without ``length``: a topography's (in metres when it
+    states its unit); the two topographies of a pair must agree on it."""
+    top_sized, bottom_sized = _is_topography(top), _is_topography(bottom)
+    if top_sized and bottom_sized and abs(lx_top - lx_bottom) > SQUARE_PIXELS * max(lx_top, lx_bottom):
+        raise ValueError(
+            f"invalid `bottom`: its side along x is {lx_bottom:.6g} but the top's is {lx_top:.6g} (each in metres "
+            "when its topography states a unit); the two surfaces of a pair share one box: give both the same "
+            "physical size (and unit), or pass `length`"
+        )
+    return lx_bottom if bottom_sized and not top_sized else lx_top
+
+
 def slide(
     top: Any,
     bottom: Any,
@@ -79,7 +92,10 @@ def slide(
     """Slides ``top`` over ``bottom`` along x and runs the sliding wear model for every normal load in
     ``loads`` (F_N, pressure × length²) and every fracture energy of ``material``. ``top`` and
     ``bottom`` are height arrays (length unit) of one shape (Nx, Ny) with side ``length`` along x
-    (default 1), or SurfaceTopography topographies, whose physical size gives ``length``.
+    (default 1) and square pixels, or SurfaceTopography topographies, whose physical size gives
+    ``length`` (both converted to metres when the topography states its ``unit``; a ``length`` passed
+    with one is then taken in metres too). Masked or non-finite heights and non-square pixels are
+    refused (see :mod:`wearsim.surface`).
 
     Schedule (paper §3): offsets from 0 in steps of ``step_running_in`` pixels up to the running-in
     distance ``running_in``·Lx, then in steps of ``step`` pixels up to ``distance``·Lx; each step is a
@@ -97,7 +113,9 @@ def slide(
     documentation.
     """
     top_heights, lx = as_heights("top", top, length)
-    bottom_heights, _ = as_heights("bottom", bottom, lx)
+    bottom_heights, lx_bottom = as_heights("bottom", bottom, length)
+    if length is None:
+        lx = _pair_length(top, lx, bottom, lx_bottom)
     columns, summary = _wearsim.slide(
         top_heights,
         bottom_heights,

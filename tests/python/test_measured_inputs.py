@@ -1,0 +1,161 @@
+"""Measured maps as they come from instruments (through SurfaceTopography or as arrays): undefined
+pixels, non-square pixels and units never pass silently into a wearsim function, and the PSD fit
+levels a map first, as `wearsim surface fit` does."""
+
+import json
+import subprocess
+import warnings
+
+import numpy as np
+import pytest
+import wearsim
+
+N = 64
+MATERIAL = wearsim.Material(1.0, 0.3, 0.01, [1e-6])
+
+
+def surface(seed=1, rms=0.005):
+    return wearsim.generate_surface(N, lambda_lower=4 / N, lambda_upper=0.25, rms_height=rms, seed=seed)
+
+
+def with_holes(h, count=5):
+    """``h`` with ``count`` undefined pixels: masked, with instrument garbage (a spike) underneath."""
+    mask = np.zeros(h.shape, bool)
+    mask.flat[np.linspace(0, h.size - 1, count).astype(int)] = True
+    return np.ma.masked_array(np.where(mask, 1e3, h), mask=mask)
+
+
+class FakeTopography:
+    """What wearsim uses of a SurfaceTopography topography."""
+
+    def __init__(self, heights, physical_sizes, unit=None):
+        self._heights = heights
+        self.physical_sizes = physical_sizes
+        self.nb_grid_pts = heights.shape
+        self.unit = unit
+        self.has_undefined_data = bool(np.ma.is_masked(heights))
+
+    def heights(self):
+        return self._heights
+
+
+# Every Python entry that takes heights, called on `h` (an array or a topography).
+ENTRIES = {
+    "surface_statistics": lambda h: wearsim.surface_statistics(h),
+    "radial_psd": lambda h: wearsim.radial_psd(h),
+    "preprocess_surface": lambda h: wearsim.preprocess_surface(h),
+    "periodicity": lambda h: wearsim.periodicity(h),
+    "fit_surface": lambda h: wearsim.fit_surface(h),
+    "heights_and_length": lambda h: wearsim.heights_and_length(h),
+    "slide": lambda h: wearsim.slide(h, surface(2), MATERIAL, [1e-3], distance=0.05, running_in=0.02),
+}
+ARRAY_ENTRIES = {
+    **ENTRIES,
+    "solve_contact": lambda h: wearsim.solve_contact(h, 1e-3, effective_modulus=1.0),
+    "ContactSolver.solve": lambda h: wearsim.ContactSolver(N, 1.0, 1.0).solve(h, 1e-3),
+}
+
+
+@pytest.mark.parametrize("entry", ARRAY_ENTRIES)
+def test_a_masked_array_is_refused_not_read_under_its_mask(entry):
+    with pytest.raises(ValueError, match=r"5 masked \(undefined\) of its 4096 pixels.*interpolate_undefined_data"):
+        ARRAY_ENTRIES[entry](with_holes(surface()))
+
+
+@pytest.mark.parametrize("entry", ENTRIES)
+def test_a_topography_with_undefined_data_is_refused(entry):
+    t = FakeTopography(with_holes(surface() * 1e6, count=3), (64.0, 64.0), unit="um")
+    with pytest.raises(ValueError, match=r"3 masked \(undefined\) of its 4096 pixels.*crop"):
+        ENTRIES[entry](t)
+
+
+def test_non_finite_heights_are_counted():
+    h = surface()
+    h[3, 4], h[10, 11] = np.nan, np.inf
+    with pytest.raises(ValueError, match=r"invalid `heights`: 2 NaN or infinite of its 4096 pixels"):
+        wearsim.surface_statistics(h)
+
+
+def test_a_masked_array_with_nothing_masked_is_taken():
+    h = surface()
+    np.testing.assert_array_equal(wearsim.preprocess_surface(np.ma.masked_array(h)), wearsim.preprocess_surface(h))
+
+
+@pytest.mark.parametrize("entry", ENTRIES)
+def test_a_topography_with_non_square_pixels_is_refused(entry):
+    # An .x3p map with 0.128 × 0.315 µm pixels.
+    t = FakeTopography(surface() * 1e6, (N * 0.128, N * 0.315), unit="um")
+    with pytest.raises(ValueError, match=r"not square: 0\.128 um along x .* 0\.315 um along y.*resample"):
+        ENTRIES[entry](t)
+
+
+def test_a_topography_comes_back_in_metres_heights_and_side_alike():
+    h = surface() * 1e3
+    t = FakeTopography(h, (0.1, 0.1), unit="mm")
+    # The side in the file's unit alongside converted heights is the mismatch that gave full contact.
+    with pytest.raises(ValueError, match=r"`length`.*0\.1 is the topography's side in its unit \(mm\).*metres"):
+        wearsim.fit_surface(t, 0.1)
+    heights, length = wearsim.heights_and_length(t)
+    np.testing.assert_allclose(heights, h * 1e-3)
+    assert length == pytest.approx(1e-4)
+    # A length in metres overrides the size.
+    assert wearsim.heights_and_length(t, 2e-4)[1] == 2e-4
+
+
+def test_the_two_topographies_of_a_slide_share_one_box():
+    top = FakeTopography(surface(1), (64.0, 64.0), unit="um")
+    bottom = FakeTopography(surface(2), (64.0, 64.0), unit="nm")
+    with pytest.raises(ValueError, match=r"invalid `bottom`: its side along x is 6\.4e-08 but the top's is 6\.4e-05"):
+        wearsim.slide(top, bottom, MATERIAL, [1e-3], distance=0.05, running_in=0.02)
+
+
+def test_fit_surface_levels_the_map_first_as_the_cli_does(tmp_path, wearsim_bin):
+    h = wearsim.generate_surface(
+        128, hurst=0.8, lambda_lower=1 / 32, lambda_upper=1 / 4, rms_height=0.01, seed=5, generation="filtered-noise"
+    )
+    tilted = h + 0.5 * np.linspace(-1, 1, 128)[:, None] + 0.2 * np.linspace(-1, 1, 128)[None, :]
+    fit = wearsim.fit_surface(tilted, 1.0)
+    assert fit["rms_height"] == pytest.approx(0.01, rel=0.1)
+    assert fit["hurst"] == pytest.approx(0.8, abs=0.1)
+    # The same numbers as `wearsim surface fit` with its default levelling.
+    np.save(tmp_path / "tilted.npy", tilted)
+    cli = ["surface", "fit", tmp_path / "tilted.npy", "--length", "1", "--out", tmp_path / "fit"]
+    subprocess.run([wearsim_bin, "--quiet", *cli], check=True, capture_output=True)
+    assert fit == json.loads((tmp_path / "fit" / "fit.json").read_text())["fit"]
+    # Without levelling, the tilt is the "roughness".
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        try:
+            raw = wearsim.fit_surface(tilted, 1.0, detrend="none")
+            assert raw["rms_height"] > 10 * fit["rms_height"]
+        except ValueError as e:
+            assert "H cannot be fitted" in str(e)
+    with pytest.raises(ValueError, match="detrend"):
+        wearsim.fit_surface(tilted, 1.0, detrend="tilt")
+
+
+def test_a_poor_power_law_fit_warns_as_the_cli_does(monkeypatch):
+    fit = wearsim.fit_surface(surface(), 1.0)
+    monkeypatch.setattr(wearsim.surface._wearsim, "fit_surface", lambda h, lx: {**fit, "r2": 0.5})
+    with pytest.warns(UserWarning, match=r"R² < 0\.9"):
+        wearsim.fit_surface(surface(), 1.0)
+
+
+def test_surface_topography_maps_with_undefined_or_non_square_pixels():
+    st = pytest.importorskip("SurfaceTopography")
+    h = surface() * 1e6
+    holes = with_holes(h, count=4)
+    t = st.Topography(holes, (64.0, 64.0), unit="um")
+    assert t.has_undefined_data
+    with pytest.raises(ValueError, match=r"4 masked \(undefined\)"):
+        wearsim.fit_surface(t)
+    with pytest.raises(ValueError, match=r"4 masked \(undefined\)"):
+        wearsim.slide(t, t, MATERIAL, [1e-3], distance=0.05, running_in=0.02)
+    # The fix the message names works: the spikes under the mask are gone.
+    filled, length = wearsim.heights_and_length(t.interpolate_undefined_data())
+    assert length == pytest.approx(64e-6) and np.abs(filled).max() < 2 * np.abs(h).max() * 1e-6
+    wide = st.Topography(h, (N * 0.128, N * 0.315), unit="um")
+    with pytest.raises(ValueError, match=r"not square: 0\.128 um along x"):
+        wearsim.surface_statistics(wide)
+    square = st.Topography(h, (N * 0.128, N * 0.128), unit="um")
+    assert wearsim.surface_statistics(square)["length"] == pytest.approx(N * 0.128e-6)
