@@ -1,0 +1,350 @@
+"""Instrument height maps (AFM ``.di``, confocal ``.plu``, ISO 25178 ``.x3p``, Wyko ``.opd``, Digital
+Surf ``.sur``, ``.mi`` and every other format SurfaceTopography reads) turned into the map a run
+file reads: ``wearsim surface import FILE --out DIR`` runs :func:`import_topography`
+(``python -m wearsim.measured FILE DIR``).
+
+Needs the ``measured`` extra (``pip install "wearsim[measured]"``: SurfaceTopography).
+
+The folder ``DIR`` gets
+
+- ``heights.npy``: float64 heights in metres, the (Nx, Ny) array ``h[i, j]`` with i along x, as
+  wearsim reads it. SurfaceTopography's ``heights()`` has the same orientation (its first index
+  runs along x, ``physical_sizes[0]``), so the array is written as it comes, never transposed;
+- ``import.json``: what was done (source, reader, channel, grid, size and unit, pixel sizes, the
+  conversion to metres, undefined pixels, resampling, levelling, cropping, the side in metres) and
+  ``surface_toml``, a ready ``[surface]`` block: ``top = "DIR/heights.npy"`` with ``length = Lx``
+  in a run file with ``units = "si"``.
+
+Undefined pixels are refused unless ``fill`` names how to fill them (SurfaceTopography's
+``interpolate_undefined_data``: ``"harmonic"``); non-square pixels are refused unless ``resample``,
+which puts the map on square pixels of the smaller pixel size (bicubic interpolation for a periodic
+topography, linear otherwise, within the measured span); the tilt is removed (``detrend``, as
+:func:`wearsim.preprocess_surface` does); an odd side loses its last row or column, as a run file's
+reader does.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import shutil
+import signal
+import socket
+import sys
+from pathlib import Path
+from typing import Any, Callable, Dict, List, Optional, Union
+
+import numpy as np
+
+from ._wearsim import __version__
+from .surface import SQUARE_PIXELS, Detrend, heights_and_length, preprocess_surface
+
+#: Fill methods of SurfaceTopography's ``interpolate_undefined_data`` (1.27).
+FILL_METHODS = ("harmonic",)
+DETRENDS = ("none", "mean", "plane", "curvature")
+WRITER = "wearsim surface import"
+
+Say = Callable[[str], None]
+
+
+def _surface_topography():
+    try:
+        import SurfaceTopography
+    except ImportError as e:  # pragma: no cover - depends on the environment
+        raise ImportError('wearsim.measured needs SurfaceTopography: pip install "wearsim[measured]"') from e
+    return SurfaceTopography
+
+
+def _written_by_import(path: Path) -> bool:
+    """Whether the folder ``path`` is one that :func:`import_topography` wrote (its import.json)."""
+    try:
+        with open(path / "import.json", encoding="utf-8") as f:
+            return json.load(f).get("written_by") == WRITER
+    except (OSError, ValueError, AttributeError):
+        return False
+
+
+def _check_out(source: Path, out: Path, overwrite: bool) -> None:
+    """Refuses an ``out`` that is or holds the source file or the current folder (whatever the
+    spelling), and, unless ``overwrite``, one that exists and is not a folder this import wrote."""
+    real_out = out.resolve()
+    for what, real in (("the instrument file", source.resolve()), ("the current folder", Path.cwd().resolve())):
+        if real == real_out or real_out in real.parents:
+            raise ValueError(f"{out} is or holds {what}, which the import would replace; give another folder")
+    if out.exists() or out.is_symlink():
+        if not overwrite and not (out.is_dir() and _written_by_import(out)):
+            what = "a folder" if out.is_dir() else "a file"
+            raise FileExistsError(
+                f"{out} exists and is {what} that `{WRITER}` did not write; give another folder, or overwrite=True "
+                "(--overwrite) to replace it"
+            )
+
+
+def _sibling(out: Path, k: int) -> Path:
+    """``.NAME.HOST.PID-K.tmp`` beside ``out``: the name ``wearsim`` gives its temporary files and
+    folders, whose host and process tell a later run that a killed import left it (and remove it)."""
+    return out.parent / f".{out.name}.{socket.gethostname()}.{os.getpid()}-{k}.tmp"
+
+
+def _resample(topo: Any, say: Say) -> Any:
+    """The topography on square pixels of its smaller pixel size, evaluated with SurfaceTopography's
+    interpolation: bicubic for a periodic topography (the period kept), linear for a measured one,
+    on the points inside its measured span (a side shrinks by less than a pixel)."""
+    from SurfaceTopography import Topography
+
+    (nx, ny), (lx, ly) = topo.nb_grid_pts, topo.physical_sizes
+    px, py = lx / nx, ly / ny
+    p = min(px, py)
+    periodic = bool(topo.is_periodic)
+    if periodic:
+        mx, my = round(lx / p), round(ly / p)
+        interpolate = topo.interpolate_bicubic()
+    else:
+        # The last sample lies at (n − 1)·pixel: no point beyond it (that would be extrapolation).
+        mx = int(math.floor((nx - 1) * px / p + 1e-9)) + 1
+        my = int(math.floor((ny - 1) * py / p + 1e-9)) + 1
+        interpolate = topo.interpolate_linear()
+    x, y = np.meshgrid(np.arange(mx) * p, np.arange(my) * p, indexing="ij")
+    if not periodic:  # round-off at the last sample
+        x, y = np.minimum(x, (nx - 1) * px), np.minimum(y, (ny - 1) * py)
+    h = np.asarray(interpolate(x, y), dtype=np.float64).reshape(mx, my)
+    out = Topography(h, (mx * p, my * p), unit=topo.unit, periodic=periodic)
+    u = f" {topo.unit}" if topo.unit else ""
+    say(
+        f"resampled: {nx}×{ny} pixels of {px:.6g}{u} × {py:.6g}{u} onto {mx}×{my} square pixels of {p:.6g}{u} "
+        f"({'bicubic, periodic' if periodic else 'linear'}); size {mx * p:.6g}{u} × {my * p:.6g}{u}"
+    )
+    return out
+
+
+def import_topography(
+    path: Union[str, "os.PathLike[str]"],
+    out: Union[str, "os.PathLike[str]"],
+    *,
+    fill: Optional[str] = None,
+    resample: bool = False,
+    detrend: Detrend = "plane",
+    channel: Optional[int] = None,
+    overwrite: bool = False,
+    say: Optional[Say] = None,
+) -> Dict[str, Any]:
+    """Reads the instrument file ``path`` with SurfaceTopography (its channel ``channel``, default
+    the reader's default channel) and writes the folder ``out`` with ``heights.npy`` (metres, i
+    along x) and ``import.json`` (module documentation); returns the content of ``import.json``.
+
+    Refuses (``ValueError``) a map with undefined pixels unless ``fill`` (``"harmonic"``), one with
+    non-square pixels unless ``resample``, a line scan, and a topography that states no unit. The
+    folder is written beside ``out`` and renamed into place: a failed import leaves nothing. An
+    existing ``out`` is replaced only when an earlier import wrote it, or with ``overwrite``; one
+    that is or holds ``path`` never. ``say`` gets one line per action (default: none)."""
+    st = _surface_topography()
+    say = say or (lambda _line: None)
+    source, out = Path(path), Path(out)
+    if detrend not in DETRENDS:
+        raise ValueError(f"invalid `detrend`: {detrend!r}; use one of {', '.join(DETRENDS)}")
+    if fill is not None and fill not in FILL_METHODS:
+        raise ValueError(f"invalid `fill`: {fill!r}; SurfaceTopography fills with {', '.join(FILL_METHODS)}")
+    if not source.is_file():
+        raise FileNotFoundError(f"{source}: no such file")
+    _check_out(source, out, overwrite)
+
+    reader = st.open_topography(os.fspath(source))
+    channels = reader.channels
+    index = reader.default_channel.index if channel is None else int(channel)
+    if not 0 <= index < len(channels):
+        names = ", ".join(f"{i}: {c.name}" for i, c in enumerate(channels))
+        raise ValueError(f"invalid `channel`: {index}; {source} has {len(channels)} channel(s) ({names})")
+    info = channels[index]
+    topo = reader.topography(channel_index=index)
+    fmt = reader.format() if callable(getattr(reader, "format", None)) else None
+    say(f"read {source}: {type(reader).__name__} ({fmt}), channel {index} ({info.name!r}) of {len(channels)}")
+    if topo.dim != 2:
+        raise ValueError(f"{source}, channel {index}, is a line scan; wearsim needs a 2-D height map")
+    unit = str(topo.unit) if topo.unit else ""
+    if not unit:
+        raise ValueError(
+            f"{source}, channel {index}, states no unit of length, so its heights cannot be put in metres; "
+            "read it with SurfaceTopography's `read_topography(path, unit=...)` and pass "
+            "`wearsim.heights_and_length(topography)` on"
+        )
+    grid = [int(n) for n in topo.nb_grid_pts]
+    sizes = [float(s) for s in topo.physical_sizes]
+    pixel = [sizes[0] / grid[0], sizes[1] / grid[1]]
+    say(
+        f"grid {grid[0]}×{grid[1]}, size {sizes[0]:.6g} × {sizes[1]:.6g} {unit}, "
+        f"pixels {pixel[0]:.6g} × {pixel[1]:.6g} {unit}"
+    )
+    record: Dict[str, Any] = {
+        "written_by": WRITER,
+        "wearsim": __version__,
+        "source": os.fspath(source.resolve()),
+        "format": fmt,
+        "reader": type(reader).__name__,
+        "surface_topography": getattr(st, "__version__", None),
+        "channel": index,
+        "channel_name": info.name,
+        "channels": len(channels),
+        "grid": grid,
+        "physical_sizes": sizes,
+        "unit": unit,
+        "pixel_size": pixel,
+        "is_periodic": bool(topo.is_periodic),
+    }
+
+    raw = topo.heights()
+    # Masked pixels (SurfaceTopography's undefined data) and any NaN or infinity left unmasked.
+    undefined = int(np.count_nonzero(np.ma.getmaskarray(raw) | ~np.isfinite(np.ma.getdata(raw))))
+    record["undefined_pixels"] = undefined
+    record["fill"] = None
+    if undefined:
+        if fill is None:
+            raise ValueError(
+                f"{source}: {undefined} of its {grid[0] * grid[1]} pixels are undefined (not measured); fill them "
+                f"with --fill {'|'.join(FILL_METHODS)} (fill={FILL_METHODS[0]!r}: SurfaceTopography's "
+                "interpolate_undefined_data), or crop them away"
+            )
+        topo = topo.interpolate_undefined_data(method=fill)
+        record["fill"] = fill
+        say(f"filled {undefined} undefined pixels ({fill})")
+
+    square = abs(pixel[0] - pixel[1]) <= SQUARE_PIXELS * max(abs(pixel[0]), abs(pixel[1]))
+    record["resampled"] = None
+    if not square:
+        if not resample:
+            raise ValueError(
+                f"{source}: its pixels are not square, {pixel[0]:.6g} {unit} along x and {pixel[1]:.6g} {unit} "
+                "along y; wearsim's grids have square pixels: --resample (resample=True) puts the map on square "
+                "pixels of the smaller size"
+            )
+        topo = _resample(topo, say)
+        record["resampled"] = {
+            "grid": [int(n) for n in topo.nb_grid_pts],
+            "physical_sizes": [float(s) for s in topo.physical_sizes],
+            "pixel_size": float(topo.physical_sizes[0] / topo.nb_grid_pts[0]),
+            "method": "bicubic" if topo.is_periodic else "linear",
+        }
+
+    # Heights and side in metres, by the library's own rules (unit, square pixels, defined values).
+    h, lx = heights_and_length(topo)
+    factor = float(lx / float(topo.physical_sizes[0]))
+    record["metres_per_unit"] = factor
+    if factor != 1.0:
+        say(f"converted {unit} to metres (× {factor:g})")
+    nx, ny = h.shape
+    pitch = lx / nx
+    cx, cy = nx - nx % 2, ny - ny % 2
+    record["cropped"] = None
+    if (cx, cy) != (nx, ny):
+        h = h[:cx, :cy]
+        record["cropped"] = {"from": [nx, ny], "to": [cx, cy]}
+        say(f"cropped the odd side(s): {nx}×{ny} to {cx}×{cy} pixels (the FFT solver needs even sides)")
+    if cx < 2 or cy < 2:
+        raise ValueError(f"{source}: {cx}×{cy} pixels are too few for a height map")
+    lx, ly = cx * pitch, cy * pitch
+    h = preprocess_surface(h, detrend=detrend)
+    record["detrend"] = detrend
+    if detrend != "none":
+        say(f"levelled: detrend {detrend}")
+    record["heights_grid"] = [cx, cy]
+    record["length"] = [lx, ly]
+    record["pixel_size_m"] = pitch
+    record["rms_height_m"] = float(np.sqrt(np.mean((h - h.mean()) ** 2)))
+    record["surface_toml"] = (
+        'units = "si"\n'
+        "[surface]\n"
+        f"top = {json.dumps(os.fspath(out / 'heights.npy'))}\n"
+        f"bottom = {json.dumps(os.fspath(out / 'heights.npy'))}  # or the other body's map\n"
+        f"length = {lx!r}  # m, along x (Ly = {ly:.6g} m)\n"
+    )
+
+    out.parent.mkdir(parents=True, exist_ok=True)
+    tmp, old = _sibling(out, 0), _sibling(out, 1)
+    try:
+        tmp.mkdir()
+        np.save(tmp / "heights.npy", np.ascontiguousarray(h, dtype=np.float64))
+        with open(tmp / "import.json", "w", encoding="utf-8") as f:
+            json.dump(record, f, indent=2, ensure_ascii=False)
+            f.write("\n")
+        if out.exists() or out.is_symlink():
+            os.replace(out, old)
+        os.replace(tmp, out)
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        if old.exists() and not out.exists():
+            os.replace(old, out)
+        raise
+    if old.is_dir() and not old.is_symlink():
+        shutil.rmtree(old, ignore_errors=True)
+    elif old.exists() or old.is_symlink():
+        old.unlink()
+    say(f"wrote {out / 'heights.npy'} ({cx}×{cy}, metres) and {out / 'import.json'}; Lx = {lx:.6g} m, Ly = {ly:.6g} m")
+    say("for a run file (paths relative to the run file's folder):")
+    for line in record["surface_toml"].splitlines():
+        say(f"  {line}")
+    return record
+
+
+def main(argv: Optional[List[str]] = None) -> int:
+    """``python -m wearsim.measured FILE OUT`` (what ``wearsim surface import`` runs)."""
+    parser = argparse.ArgumentParser(
+        prog="python -m wearsim.measured",
+        description="Turn an instrument height map (any format SurfaceTopography reads) into the map wearsim reads.",
+    )
+    parser.add_argument("file", type=Path, help="instrument file (.x3p, .di, .plu, .opd, .sur, .mi, ...)")
+    parser.add_argument("out", type=Path, help="folder to write: heights.npy and import.json")
+    parser.add_argument("--fill", choices=FILL_METHODS, help="fill undefined pixels (default: refuse them)")
+    parser.add_argument("--resample", action="store_true", help="resample non-square pixels onto square ones")
+    parser.add_argument("--detrend", choices=DETRENDS, default="plane", help="levelling (default plane)")
+    parser.add_argument("--channel", type=int, help="channel index (default: the reader's default channel)")
+    parser.add_argument("--overwrite", action="store_true", help="replace OUT even when another program wrote it")
+    args = parser.parse_args(argv)
+    _stop_on_signals()
+    try:
+        import_topography(
+            args.file,
+            args.out,
+            fill=args.fill,
+            resample=args.resample,
+            detrend=args.detrend,
+            channel=args.channel,
+            overwrite=args.overwrite,
+            say=lambda line: _say(line, sys.stdout),
+        )
+    except KeyboardInterrupt:
+        _say("error: stopped by a signal; nothing was written", sys.stderr)
+        return 130
+    except Exception as e:  # a reader's own error (a damaged file) included: one line, no traceback
+        _say(f"error: {e}", sys.stderr)
+        return 1
+    return 0
+
+
+def _say(text: str, stream) -> None:
+    """Prints a line; a pipe whose reader has gone ends the printing silently (as ``wearsim``)."""
+    try:
+        print(text, file=stream, flush=True)
+    except OSError:
+        try:
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, stream.fileno())
+        except (OSError, ValueError):
+            pass
+
+
+def _stop_on_signals() -> None:
+    """SIGTERM, SIGHUP, SIGUSR1 and SIGUSR2 (``wearsim`` passes a stop on as SIGTERM) stop the import
+    as Ctrl-C does, once: the temporary folder is removed on the way out."""
+
+    def stop(signum: int, frame: object) -> None:
+        for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGUSR1, signal.SIGUSR2):
+            signal.signal(s, signal.SIG_IGN)
+        raise KeyboardInterrupt
+
+    for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGUSR1, signal.SIGUSR2):
+        signal.signal(s, stop)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())
