@@ -1,7 +1,10 @@
 //! `wearsim surface`: the run's surface pair and its statistics; `wearsim surface fit`: the
-//! self-affine parameters of a measured height map, as a run file's `[surface]` block.
+//! self-affine parameters of a measured height map, as a run file's `[surface]` block;
+//! `wearsim surface import`: an instrument file (any format SurfaceTopography reads) as the map a
+//! run file reads, delegated to the Python package (`python -m wearsim.measured`).
 
 use std::path::PathBuf;
+use std::process::Command;
 
 use anyhow::{bail, Context, Result};
 use wearsim::io::{write_json, write_text, OutputDir};
@@ -36,6 +39,41 @@ enum Action {
     /// λ_u where the PSD leaves it); print (and with --out write) the `[surface]` block of a run file
     /// that generates periodic surfaces with them, and with --generate the synthetic pair itself.
     Fit(FitArgs),
+    /// Turn an instrument height map (AFM .di, confocal .plu, ISO 25178 .x3p, Wyko .opd, Digital
+    /// Surf .sur, .mi and every other format SurfaceTopography reads) into DIR/heights.npy (metres,
+    /// i along x) and DIR/import.json (what was done, and a ready `[surface]` block). Runs in
+    /// Python with SurfaceTopography (`pip install "wearsim[measured]"`).
+    Import(ImportArgs),
+}
+
+#[derive(clap::Args)]
+struct ImportArgs {
+    /// The instrument file.
+    file: PathBuf,
+    /// Output folder: heights.npy and import.json (written beside and renamed into place).
+    #[arg(long)]
+    out: PathBuf,
+    /// Fill undefined (unmeasured) pixels with this method of SurfaceTopography's
+    /// interpolate_undefined_data (harmonic); without it a map with undefined pixels is refused.
+    #[arg(long, value_parser = ["harmonic"])]
+    fill: Option<String>,
+    /// Resample a map with non-square pixels onto square pixels of the smaller pixel size (without
+    /// it such a map is refused).
+    #[arg(long)]
+    resample: bool,
+    /// Levelling: none, mean, plane or curvature.
+    #[arg(long, default_value = "plane", value_parser = ["none", "mean", "plane", "curvature"])]
+    detrend: String,
+    /// The channel to read (index; default: the file's default channel).
+    #[arg(long)]
+    channel: Option<usize>,
+    /// The Python interpreter with the wearsim package and its `measured` extra installed
+    /// (`pip install "wearsim[measured]"`); default: $WEARSIM_PYTHON, else python3.
+    #[arg(long)]
+    python: Option<PathBuf>,
+    /// Replace DIR even when it is not a folder that `surface import` wrote.
+    #[arg(long)]
+    overwrite: bool,
 }
 
 #[derive(clap::Args)]
@@ -75,8 +113,10 @@ struct FitArgs {
 }
 
 pub fn run(args: &Args) -> Result<()> {
-    if let Some(Action::Fit(fit)) = &args.action {
-        return run_fit(fit);
+    match &args.action {
+        Some(Action::Fit(fit)) => return run_fit(fit),
+        Some(Action::Import(import)) => return run_import(import),
+        None => {}
     }
     let (Some(run), Some(out)) = (&args.run, &args.out) else {
         bail!("give a run file and --out, or `wearsim surface fit FILE`");
@@ -112,6 +152,76 @@ fn print_statistics(name: &str, s: &SurfaceStatistics, unit: &str) {
         h = s.rms_height,
         g = s.rms_slope
     );
+}
+
+fn run_import(args: &ImportArgs) -> Result<()> {
+    super::polls_interrupt();
+    if !args.file.is_file() {
+        bail!("{}: no such file", args.file.display());
+    }
+    let python = args
+        .python
+        .clone()
+        .or_else(|| std::env::var_os("WEARSIM_PYTHON").map(PathBuf::from))
+        .unwrap_or_else(|| PathBuf::from("python3"));
+    // Is the package with the extra there? Asked first (before any folder is made), so that the
+    // error says what to install.
+    let probe = Command::new(&python)
+        .args(["-c", "import wearsim.measured, SurfaceTopography"])
+        .output()
+        .with_context(|| {
+            format!(
+                "cannot run {} (the import runs in Python); install Python 3 with `pip install \"wearsim[measured]\"`, \
+                 or name the interpreter with --python",
+                python.display()
+            )
+        })?;
+    if !probe.status.success() {
+        let why = String::from_utf8_lossy(&probe.stderr);
+        bail!(
+            "{} lacks the wearsim package or its `measured` extra (SurfaceTopography) ({}); install them with \
+             `pip install \"wearsim[measured]\"` into that interpreter, or name another with --python",
+            python.display(),
+            why.trim().lines().last().unwrap_or("import failed")
+        );
+    }
+    // Temporary folders of killed imports beside it.
+    wearsim::io::remove_abandoned_siblings(&args.out);
+    super::check_interrupt()?;
+    let mut command = Command::new(&python);
+    command.args(["-m", "wearsim.measured", "--detrend", &args.detrend]);
+    if let Some(fill) = &args.fill {
+        command.args(["--fill", fill]);
+    }
+    if args.resample {
+        command.arg("--resample");
+    }
+    if let Some(channel) = args.channel {
+        command.args(["--channel", &channel.to_string()]);
+    }
+    if args.overwrite {
+        command.arg("--overwrite");
+    }
+    // `--` so that a file or folder whose name starts with '-' is not read as an option.
+    let mut child = command
+        .arg("--")
+        .arg(&args.file)
+        .arg(&args.out)
+        .spawn()
+        .with_context(|| format!("cannot run {}", python.display()))?;
+    // A stop signal is passed on: the import removes its temporary folder and exits.
+    super::set_child(child.id());
+    if super::interrupt().is_requested() {
+        let _ = child.kill(); // the signal came before the child could be told
+    }
+    let status = child.wait();
+    super::set_child(0);
+    let status = status.with_context(|| format!("cannot run {}", python.display()))?;
+    super::check_interrupt()?;
+    if !status.success() {
+        bail!("the import failed ({status}); its error is above");
+    }
+    Ok(())
 }
 
 fn run_fit(args: &FitArgs) -> Result<()> {

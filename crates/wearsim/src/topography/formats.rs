@@ -255,7 +255,10 @@ fn read_text(path: &Path) -> Result<Measured> {
     let text = std::fs::read_to_string(path).map_err(|e| match e.kind() {
         std::io::ErrorKind::InvalidData => Error::file(
             path,
-            "is neither a .npy/.npz array nor text; save the height map as .npy, .npz, CSV or whitespace-separated text",
+            "is neither a .npy/.npz array nor text; save the height map as .npy, .npz, CSV or whitespace-separated \
+             text, or, for an instrument file (AFM, confocal, .x3p, .opd, .sur, …), convert it with \
+             `wearsim surface import FILE --out DIR` (in Python: SurfaceTopography's `read_topography` and \
+             `wearsim.heights_and_length`)",
         ),
         _ => Error::io(path, e),
     })?;
