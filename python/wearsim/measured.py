@@ -51,7 +51,7 @@ Say = Callable[[str], None]
 
 def _surface_topography():
     try:
-        import SurfaceTopography
+        import SurfaceTopography  # type: ignore[import-untyped]
     except ImportError as e:  # pragma: no cover - depends on the environment
         raise ImportError('wearsim.measured needs SurfaceTopography: pip install "wearsim[measured]"') from e
     return SurfaceTopography
@@ -92,7 +92,7 @@ def _resample(topo: Any, say: Say) -> Any:
     """The topography on square pixels of its smaller pixel size, evaluated with SurfaceTopography's
     interpolation: bicubic for a periodic topography (the period kept), linear for a measured one,
     on the points inside its measured span (a side shrinks by less than a pixel)."""
-    from SurfaceTopography import Topography
+    from SurfaceTopography import Topography  # type: ignore[import-untyped]
 
     (nx, ny), (lx, ly) = topo.nb_grid_pts, topo.physical_sizes
     px, py = lx / nx, ly / ny
