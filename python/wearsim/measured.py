@@ -157,6 +157,12 @@ def import_topography(
         names = ", ".join(f"{i}: {c.name}" for i, c in enumerate(channels))
         raise ValueError(f"invalid `channel`: {index}; {source} has {len(channels)} channel(s) ({names})")
     info = channels[index]
+    if getattr(info, "physical_sizes", True) is None:
+        raise ValueError(
+            f"{source}, channel {index}, states no physical size; read it with SurfaceTopography's "
+            "`read_topography(path, physical_sizes=(sx, sy), unit=...)` and pass "
+            "`wearsim.heights_and_length(topography)` on"
+        )
     topo = reader.topography(channel_index=index)
     fmt = reader.format() if callable(getattr(reader, "format", None)) else None
     say(f"read {source}: {type(reader).__name__} ({fmt}), channel {index} ({info.name!r}) of {len(channels)}")

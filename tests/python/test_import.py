@@ -163,3 +163,10 @@ def test_the_cli_imports_and_the_map_reads_in_surface_fit_and_a_run_file(tmp_pat
         text=True,
     )
     assert bad.returncode != 0 and "Traceback" not in bad.stderr and not (tmp_path / "bad").exists()
+
+
+def test_a_file_without_size_is_refused_with_the_way_to_give_it(tmp_path):
+    (tmp_path / "plain.txt").write_text("1 2 3 4\n5 6 7 8\n9 10 11 12\n13 14 15 16\n")
+    with pytest.raises(ValueError, match=r"no physical size.*read_topography\(path, physical_sizes"):
+        import_topography(tmp_path / "plain.txt", tmp_path / "out")
+    assert not (tmp_path / "out").exists()
