@@ -25,7 +25,6 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import signal
 import socket
 import sys
 from pathlib import Path
@@ -33,6 +32,8 @@ from typing import TYPE_CHECKING, Any, Dict, Hashable, List, Literal, Optional, 
 
 import numpy as np
 
+from ._entry import say as _say
+from ._entry import stop_on_signals as _stop_on_signals
 from ._wearsim import __version__
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -215,36 +216,6 @@ def main(argv: Optional[List[str]] = None) -> int:
         return 130
     _say(f"wrote {path}", sys.stdout)
     return 0
-
-
-def _say(text: str, stream) -> None:
-    """Prints a line to ``stream``. A write that fails (a pipe whose reader has gone, ``| head``)
-    ends the printing there, silently, and changes nothing else: the conversion is done and its exit
-    status stays what it is (as the ``wearsim`` command does)."""
-    try:
-        print(text, file=stream, flush=True)
-    except OSError:
-        # What is left in the stream's buffer goes nowhere at exit, rather than failing again there.
-        try:
-            devnull = os.open(os.devnull, os.O_WRONLY)
-            os.dup2(devnull, stream.fileno())
-        except (OSError, ValueError):
-            pass
-
-
-def _stop_on_signals() -> None:
-    """SIGTERM, SIGHUP, SIGUSR1 and SIGUSR2 (``wearsim`` passes a stop on as SIGTERM; Slurm sends
-    them at a time limit) stop the conversion as Ctrl-C does, once: the temporary file is removed on
-    the way out, and further signals are ignored while it is."""
-
-    def stop(signum: int, frame: object) -> None:
-        for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGUSR1, signal.SIGUSR2):
-            signal.signal(s, signal.SIG_IGN)
-        raise KeyboardInterrupt
-
-    for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGUSR1, signal.SIGUSR2):
-        if signal.getsignal(s) is not signal.SIG_IGN:
-            signal.signal(s, stop)
 
 
 if __name__ == "__main__":  # pragma: no cover

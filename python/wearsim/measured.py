@@ -30,7 +30,6 @@ import json
 import math
 import os
 import shutil
-import signal
 import socket
 import sys
 from pathlib import Path
@@ -38,6 +37,8 @@ from typing import Any, Callable, Dict, List, Optional, Union
 
 import numpy as np
 
+from ._entry import say as _say
+from ._entry import stop_on_signals as _stop_on_signals
 from ._wearsim import __version__
 from .surface import SQUARE_PIXELS, Detrend, heights_and_length, preprocess_surface
 
@@ -325,31 +326,6 @@ def main(argv: Optional[List[str]] = None) -> int:
         _say(f"error: {e}", sys.stderr)
         return 1
     return 0
-
-
-def _say(text: str, stream) -> None:
-    """Prints a line; a pipe whose reader has gone ends the printing silently (as ``wearsim``)."""
-    try:
-        print(text, file=stream, flush=True)
-    except OSError:
-        try:
-            devnull = os.open(os.devnull, os.O_WRONLY)
-            os.dup2(devnull, stream.fileno())
-        except (OSError, ValueError):
-            pass
-
-
-def _stop_on_signals() -> None:
-    """SIGTERM, SIGHUP, SIGUSR1 and SIGUSR2 (``wearsim`` passes a stop on as SIGTERM) stop the import
-    as Ctrl-C does, once: the temporary folder is removed on the way out."""
-
-    def stop(signum: int, frame: object) -> None:
-        for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGUSR1, signal.SIGUSR2):
-            signal.signal(s, signal.SIG_IGN)
-        raise KeyboardInterrupt
-
-    for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGUSR1, signal.SIGUSR2):
-        signal.signal(s, stop)
 
 
 if __name__ == "__main__":  # pragma: no cover

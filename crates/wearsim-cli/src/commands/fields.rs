@@ -36,31 +36,12 @@ pub fn to_netcdf(args: &ToNetcdfArgs) -> Result<()> {
     // Never into the store nor over a file of it, whatever the spelling; an existing file that the
     // conversion did not write is refused by the Python side, which reads NetCDF attributes.
     wearsim::io::refuse_foreign_file(&args.out, "fields to-netcdf", true, &[args.store.as_path()], |_| true)?;
-    let python = args
-        .python
-        .clone()
-        .or_else(|| std::env::var_os("WEARSIM_PYTHON").map(PathBuf::from))
-        .unwrap_or_else(|| PathBuf::from("python3"));
-    // Is the package with the extra there? Asked first, so that the error says what to install.
-    let probe = Command::new(&python)
-        .args(["-c", "import wearsim.fields, xarray, zarr, h5netcdf, h5py"])
-        .output()
-        .with_context(|| {
-            format!(
-                "cannot run {} (the conversion runs in Python); install Python 3 with `pip install \"wearsim[fields]\"`, \
-                 or name the interpreter with --python",
-                python.display()
-            )
-        })?;
-    if !probe.status.success() {
-        let why = String::from_utf8_lossy(&probe.stderr);
-        bail!(
-            "{} lacks the wearsim package or its `fields` extra ({}); install them with `pip install \"wearsim[fields]\"` \
-             into that interpreter, or name another with --python",
-            python.display(),
-            why.trim().lines().last().unwrap_or("import failed")
-        );
-    }
+    let python = super::python_with(
+        args.python.as_deref(),
+        "import wearsim.fields, xarray, zarr, h5netcdf, h5py",
+        "fields",
+        "the conversion",
+    )?;
     // Partial files of killed conversions beside it.
     wearsim::io::remove_abandoned_siblings(&args.out);
     super::check_interrupt()?;

@@ -150,3 +150,34 @@ pub fn report_surfaces(pair: &wearsim::config::SurfacePair, warnings: bool) {
         }
     }
 }
+
+/// The Python interpreter a command runs its work in (`--python`, else `$WEARSIM_PYTHON`, else
+/// python3), once asked whether it has what the work needs (`imports`, a Python import statement) —
+/// before any folder is made, so that the error says what to install: the package with its
+/// `extra` (`pip install "wearsim[EXTRA]"`). `work` says what runs there ("the conversion").
+pub fn python_with(python: Option<&Path>, imports: &str, extra: &str, work: &str) -> Result<std::path::PathBuf> {
+    let python = python
+        .map(Path::to_path_buf)
+        .or_else(|| std::env::var_os("WEARSIM_PYTHON").map(std::path::PathBuf::from))
+        .unwrap_or_else(|| std::path::PathBuf::from("python3"));
+    let probe = std::process::Command::new(&python)
+        .args(["-c", imports])
+        .output()
+        .with_context(|| {
+            format!(
+                "cannot run {} ({work} runs in Python); install Python 3 with `pip install \"wearsim[{extra}]\"`, or \
+                 name the interpreter with --python",
+                python.display()
+            )
+        })?;
+    if !probe.status.success() {
+        let why = String::from_utf8_lossy(&probe.stderr);
+        anyhow::bail!(
+            "{} lacks the wearsim package or its `{extra}` extra ({}); install them with `pip install \"wearsim[{extra}]\"` \
+             into that interpreter, or name another with --python",
+            python.display(),
+            why.trim().lines().last().unwrap_or("import failed")
+        );
+    }
+    Ok(python)
+}

@@ -159,32 +159,13 @@ fn run_import(args: &ImportArgs) -> Result<()> {
     if !args.file.is_file() {
         bail!("{}: no such file", args.file.display());
     }
-    let python = args
-        .python
-        .clone()
-        .or_else(|| std::env::var_os("WEARSIM_PYTHON").map(PathBuf::from))
-        .unwrap_or_else(|| PathBuf::from("python3"));
-    // Is the package with the extra there? Asked first (before any folder is made), so that the
-    // error says what to install.
-    let probe = Command::new(&python)
-        .args(["-c", "import wearsim.measured, SurfaceTopography"])
-        .output()
-        .with_context(|| {
-            format!(
-                "cannot run {} (the import runs in Python); install Python 3 with `pip install \"wearsim[measured]\"`, \
-                 or name the interpreter with --python",
-                python.display()
-            )
-        })?;
-    if !probe.status.success() {
-        let why = String::from_utf8_lossy(&probe.stderr);
-        bail!(
-            "{} lacks the wearsim package or its `measured` extra (SurfaceTopography) ({}); install them with \
-             `pip install \"wearsim[measured]\"` into that interpreter, or name another with --python",
-            python.display(),
-            why.trim().lines().last().unwrap_or("import failed")
-        );
-    }
+    // Asked before any folder is made, so that the error says what to install.
+    let python = super::python_with(
+        args.python.as_deref(),
+        "import wearsim.measured, SurfaceTopography",
+        "measured",
+        "the import",
+    )?;
     // Temporary folders of killed imports beside it.
     wearsim::io::remove_abandoned_siblings(&args.out);
     super::check_interrupt()?;
