@@ -12,6 +12,18 @@ const STUDY: &str = "units = \"reduced\"\n[surface]\ngrid = 128\nlength = 0.0312
     [material]\nyoungs_modulus = 1.0\npoisson_ratio = 0.3\nshear_strength = 0.010\n\
     fracture_energies = [0.25e-6]\n[sliding]\nloads = [1.5e-6, 2.4e-6]\n";
 
+/// Runs the study `text` in `dir` into `dir/study`, which it returns.
+fn run_study(dir: &std::path::Path, text: &str) -> std::path::PathBuf {
+    let study = file(dir, "study.toml", text);
+    let folder = dir.join("study");
+    let o = wearsim()
+        .args(["study", "run", s(&study), "--out", s(&folder), "--quiet"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    folder
+}
+
 #[test]
 fn estimate_writes_a_marked_summary_with_intervals() {
     let dir = tempfile::tempdir().unwrap();
@@ -70,13 +82,7 @@ fn estimate_writes_a_marked_summary_with_intervals() {
 #[test]
 fn estimate_check_compares_a_studys_sliding_runs_and_fits() {
     let dir = tempfile::tempdir().unwrap();
-    let study = file(dir.path(), "study.toml", STUDY);
-    let folder = dir.path().join("study");
-    let o = wearsim()
-        .args(["study", "run", s(&study), "--out", s(&folder), "--quiet"])
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", stderr(&o));
+    let folder = run_study(dir.path(), STUDY);
     let out = dir.path().join("check");
     let o = wearsim()
         .args([
@@ -124,13 +130,7 @@ fn a_fit_on_unresolved_critical_diameters_is_warned_about() {
             "loads = [3.75e-4, 6e-4]\ndistance = 1.0\nrunning_in = 0.25",
         );
     let dir = tempfile::tempdir().unwrap();
-    let study = file(dir.path(), "study.toml", &coarse);
-    let folder = dir.path().join("study");
-    let o = wearsim()
-        .args(["study", "run", s(&study), "--out", s(&folder), "--quiet"])
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", stderr(&o));
+    let folder = run_study(dir.path(), &coarse);
     let o = wearsim()
         .args([
             "estimate-check",

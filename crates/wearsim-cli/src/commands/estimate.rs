@@ -166,8 +166,7 @@ pub fn check(args: &CheckArgs) -> Result<()> {
     if let Some(k) = args.samples {
         Sampling::of(Some(k)).context("--samples")?;
     }
-    refuse_output_in_study(&args.out, &args.dir)?;
-    let inputs = wearsim::study::compare::study_inputs(&args.dir)?;
+    let inputs = refuse_output_in_study(&args.out, &args.dir)?;
     let inputs: Vec<&std::path::Path> = inputs.iter().map(PathBuf::as_path).collect();
     let out = OutputDir::begin(&args.out, "estimate-check", args.overwrite, &inputs)?;
     let progress = Progress::new("estimate-check", "jobs", 0);

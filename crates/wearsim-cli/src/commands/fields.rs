@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 use std::process::Command;
 
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 
 #[derive(clap::Args)]
 pub struct ToNetcdfArgs {
@@ -56,22 +56,7 @@ pub fn to_netcdf(args: &ToNetcdfArgs) -> Result<()> {
     if args.overwrite {
         command.arg("--overwrite");
     }
-    let mut child = command
-        .arg(&args.store)
-        .arg(&args.out)
-        .spawn()
-        .with_context(|| format!("cannot run {}", python.display()))?;
+    command.arg(&args.store).arg(&args.out);
     // A stop signal is passed on: the conversion removes its temporary file and exits.
-    super::set_child(child.id());
-    if super::interrupt().is_requested() {
-        let _ = child.kill(); // the signal came before the child could be told
-    }
-    let status = child.wait();
-    super::set_child(0);
-    let status = status.with_context(|| format!("cannot run {}", python.display()))?;
-    super::check_interrupt()?;
-    if !status.success() {
-        bail!("the conversion failed ({status}); its error is above");
-    }
-    Ok(())
+    super::run_child(command, "the conversion")
 }

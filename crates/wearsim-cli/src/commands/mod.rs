@@ -181,3 +181,23 @@ pub fn python_with(python: Option<&Path>, imports: &str, extra: &str, work: &str
     }
     Ok(python)
 }
+
+/// Runs `command` (the work of a front end that runs in Python, `what` in the messages, e.g. "the
+/// import") as a child process and waits for it: a stop signal is passed on to it (it removes its
+/// temporary files and exits), and its failure is an error whose cause it printed itself.
+pub fn run_child(mut command: std::process::Command, what: &str) -> Result<()> {
+    let program = command.get_program().to_string_lossy().to_string();
+    let mut child = command.spawn().with_context(|| format!("cannot run {program}"))?;
+    set_child(child.id());
+    if interrupt().is_requested() {
+        let _ = child.kill(); // the signal came before the child could be told
+    }
+    let status = child.wait();
+    set_child(0);
+    let status = status.with_context(|| format!("cannot run {program}"))?;
+    check_interrupt()?;
+    if !status.success() {
+        anyhow::bail!("{what} failed ({status}); its error is above");
+    }
+    Ok(())
+}

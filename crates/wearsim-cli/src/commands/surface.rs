@@ -184,25 +184,9 @@ fn run_import(args: &ImportArgs) -> Result<()> {
         command.arg("--overwrite");
     }
     // `--` so that a file or folder whose name starts with '-' is not read as an option.
-    let mut child = command
-        .arg("--")
-        .arg(&args.file)
-        .arg(&args.out)
-        .spawn()
-        .with_context(|| format!("cannot run {}", python.display()))?;
+    command.arg("--").arg(&args.file).arg(&args.out);
     // A stop signal is passed on: the import removes its temporary folder and exits.
-    super::set_child(child.id());
-    if super::interrupt().is_requested() {
-        let _ = child.kill(); // the signal came before the child could be told
-    }
-    let status = child.wait();
-    super::set_child(0);
-    let status = status.with_context(|| format!("cannot run {}", python.display()))?;
-    super::check_interrupt()?;
-    if !status.success() {
-        bail!("the import failed ({status}); its error is above");
-    }
-    Ok(())
+    super::run_child(command, "the import")
 }
 
 fn run_fit(args: &FitArgs) -> Result<()> {

@@ -107,8 +107,9 @@ pub fn study_inputs(dir: &Path) -> Result<Vec<PathBuf>> {
 
 /// Refuses `out` as the output folder of a command reading study folder `dir`: one that is or
 /// holds one of its inputs ([`study_inputs`]), or lies inside its job folder, whatever `--overwrite`
-/// says (replacing it would delete job results or surfaces the study reads).
-pub fn refuse_output_in_study(out: &Path, dir: &Path) -> Result<()> {
+/// says (replacing it would delete job results or surfaces the study reads). Gives the inputs, for
+/// the output folder's own checks ([`crate::io::OutputDir::begin`]).
+pub fn refuse_output_in_study(out: &Path, dir: &Path) -> Result<Vec<PathBuf>> {
     let inputs = study_inputs(dir)?;
     let refs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
     crate::io::refuse_inputs_inside(out, &refs)?;
@@ -123,7 +124,7 @@ pub fn refuse_output_in_study(out: &Path, dir: &Path) -> Result<()> {
             ),
         ));
     }
-    Ok(())
+    Ok(inputs)
 }
 
 /// The study of folder `dir` as its jobs were run, with its surface files read again: the stored
