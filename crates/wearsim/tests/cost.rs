@@ -52,6 +52,7 @@ fn the_estimate_is_within_a_factor_of_three_of_the_measured_time() {
                 stopping: Stopping::SettledMap,
                 model: wearsim::estimate::WearModel::Sliding,
                 estimate_samples: None,
+                estimate_constants: None,
             };
             let t = processor_seconds();
             let runs = SlidingRun::with_surfaces(&config, SurfacePair::of_arrays(top, bottom))
