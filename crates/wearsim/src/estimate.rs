@@ -1103,6 +1103,78 @@ mod tests {
         assert!(e.contains("at least 3"), "{e}");
     }
 
+    fn sample(contact_area: f64, critical: usize, diameter: f64) -> Sample {
+        Sample {
+            contact_area,
+            junctions: critical,
+            counts: vec![SampleCount {
+                critical_junctions: critical,
+                diameter_sum: critical as f64 * diameter,
+                ..Default::default()
+            }],
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn settings_outside_the_calibration_are_warned_about_and_paper_like_ones_not() {
+        let sliding = crate::sliding::SlidingConfig::new(vec![1e-3], 0.5, 0.25, 4, 1, Some(1024)).unwrap();
+        let paper = SurfaceKind::Generated {
+            hurst: 0.7,
+            lower_cutoff_pixels: 16.0,
+            upper_cutoff_box: 0.25,
+            upper_cutoff: 0.0625,
+        };
+        assert!(run_reach_warnings(&CALIBRATED_DOMAIN, &paper, &sliding, 0.25).is_empty());
+        let measured = SurfaceKind::Other("read from height-map files (a measured map)".into());
+        let w = run_reach_warnings(&CALIBRATED_DOMAIN, &measured, &sliding, 0.25);
+        assert!(w.len() == 1 && w[0].contains("measured map") && w[0].contains("--fit"), "{w:?}");
+        let rough = SurfaceKind::Generated {
+            hurst: 0.5,
+            lower_cutoff_pixels: 16.0,
+            upper_cutoff_box: 0.25,
+            upper_cutoff: 0.0625,
+        };
+        let w = run_reach_warnings(&CALIBRATED_DOMAIN, &rough, &sliding, 0.25);
+        assert!(w.len() == 1 && w[0].contains("Hurst exponent H is 0.50") && w[0].contains("0.70"), "{w:?}");
+        // A schedule not run in as the calibration's runs were.
+        let short = crate::sliding::SlidingConfig::new(vec![1e-3], 0.2, 0.05, 4, 1, Some(1024)).unwrap();
+        let w = run_reach_warnings(&CALIBRATED_DOMAIN, &paper, &short, 0.25);
+        assert!(w.len() == 1 && w[0].contains("running-in is 0.050 box lengths"), "{w:?}");
+        // Contact fraction and N* per map.
+        let material = Material::new(1.0, 0.3, 0.010, vec![0.25e-6], 3.0).unwrap();
+        let d = material.critical_diameters()[0];
+        let inside = vec![sample(0.03, 10, d); 4];
+        assert!(load_reach_warnings(&CALIBRATED_DOMAIN, &inside, &material, 1e-3).is_empty());
+        let crowded = vec![sample(0.2, 200, d); 4];
+        let w = load_reach_warnings(&CALIBRATED_DOMAIN, &crowded, &material, 1e-3);
+        assert!(w.len() == 2, "{w:?}");
+        assert!(w[0].contains("contact fraction is 20.00 %") && w[0].contains("0.9–5.0 %"), "{w:?}");
+        assert!(w[1].contains("200.0 critical junctions") && w[1].contains("above the calibrated 3–120"), "{w:?}");
+    }
+
+    #[test]
+    fn the_interval_starts_at_zero_where_a_run_likely_forms_no_particle() {
+        let material = Material::new(1.0, 0.3, 0.010, vec![0.25e-6], 3.0).unwrap();
+        let d = material.critical_diameters()[0];
+        let area = 0.03125f64.powi(2);
+        let samples = vec![sample(0.03, 1, 1.2 * d); 4];
+        // A short fit window: μ well under ln 40, so P(N = 0) > 2.5 %.
+        let (r, w) = results_of(&samples, &material, 1e-6, area, 1e-3, &CALIBRATION);
+        let mu = r[0].expected_particles.unwrap();
+        assert!(mu < 40f64.ln(), "{mu}");
+        assert_eq!(r[0].wear_rate_low, Some(0.0));
+        assert_eq!(r[0].particle_rate_low, Some(0.0));
+        assert_eq!(r[0].wear_coefficient_low, Some(0.0));
+        assert!(r[0].wear_rate_high.unwrap() > r[0].wear_rate.unwrap());
+        assert!(w.iter().any(|w| w.contains("none at all with probability")), "{w:?}");
+        // A long one: many particles, the lower end above 0.
+        let (r, _) = results_of(&samples, &material, 1e-6, area, 10.0, &CALIBRATION);
+        assert!(r[0].expected_particles.unwrap() > 40f64.ln());
+        assert!(r[0].wear_rate_low.unwrap() > 0.0);
+        assert!(zero_allowed(3.68) && !zero_allowed(3.70));
+    }
+
     #[test]
     fn the_model_is_named() {
         assert_eq!("estimate".parse::<WearModel>().unwrap(), WearModel::Estimate);

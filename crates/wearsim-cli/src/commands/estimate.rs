@@ -250,8 +250,8 @@ pub fn check(args: &CheckArgs) -> Result<()> {
         );
         say!(
             "to estimate with them, add to the [sliding] table of a run file or study of these surfaces:\n  \
-             estimate_constants = {{ residence_factor = {}, merging_factor = {}, volume_factor = {}, rate_spread = {}, \
-             wear_spread = {} }}",
+             estimate_constants = {{ residence_factor = {:?}, merging_factor = {:?}, volume_factor = {:?}, rate_spread = \
+             {:?}, wear_spread = {:?} }}",
             c.residence_factor,
             c.merging_factor,
             c.volume_factor,
