@@ -172,7 +172,10 @@ fn job_wear_rates(folder: &std::path::Path) -> Vec<(f64, u64)> {
         .map(|p| {
             let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap();
             let r = &v["results"][0];
-            (r["wear_rate"].as_f64().unwrap_or(0.0), r["particles_in_fit"].as_u64().unwrap_or(0))
+            (
+                r["wear_rate"].as_f64().unwrap_or(0.0),
+                r["particles_in_fit"].as_u64().unwrap_or(0),
+            )
         })
         .collect()
 }
@@ -182,7 +185,14 @@ fn constants_refitted_on_ones_own_surfaces_are_applied_and_bring_the_error_down(
     let dir = tempfile::tempdir().unwrap();
     let sliding = run_study(dir.path(), OWN_SURFACES);
     let o = wearsim()
-        .args(["estimate-check", s(&sliding), "--out", s(&dir.path().join("check")), "--fit", "--quiet"])
+        .args([
+            "estimate-check",
+            s(&sliding),
+            "--out",
+            s(&dir.path().join("check")),
+            "--fit",
+            "--quiet",
+        ])
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", stderr(&o));
@@ -215,7 +225,10 @@ fn constants_refitted_on_ones_own_surfaces_are_applied_and_bring_the_error_down(
     let default = median_error(&estimate("default", ""));
     let fitted = median_error(&estimate("fitted", line));
     eprintln!("median |error| of W: {default:.3} with the library's constants, {fitted:.3} with the fitted ones");
-    assert!(fitted < 0.5 * default, "median |error| {fitted} with the fitted constants, {default} without");
+    assert!(
+        fitted < 0.5 * default,
+        "median |error| {fitted} with the fitted constants, {default} without"
+    );
     // The run file's constants are checked.
     let bad = file(
         dir.path(),

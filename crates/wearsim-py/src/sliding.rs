@@ -205,9 +205,11 @@ impl PyRunFile {
         wearsim::run::sliding_schedule(config).map_err(to_py)?;
         let sampling = Sampling::of(samples.or(config.estimate_samples)).map_err(to_py)?;
         let outcome = interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, solves| {
-            SlidingRun::prepare(config)?
-                .interrupted_by(interrupt)
-                .estimate(sampling, &config.estimate_calibration(), |done, most| solves.set(done, most))
+            SlidingRun::prepare(config)?.interrupted_by(interrupt).estimate(
+                sampling,
+                &config.estimate_calibration(),
+                |done, most| solves.set(done, most),
+            )
         })?;
         let rows = estimate_rows(&outcome.loads);
         Ok((table_to_py(py, &Table::of(&rows))?, json_to_py(py, &outcome.summary())?))

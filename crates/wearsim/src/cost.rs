@@ -412,7 +412,10 @@ impl Calibration {
     /// Seconds of `steps` steps of `iterations` iterations in all.
     fn step_seconds_total(&self, grid: Grid, iterations: f64, steps: usize, stopping: Stopping) -> f64 {
         let pixels = grid.pixels() as f64;
-        (iterations + STEP_CONVOLUTIONS * steps as f64) * self.seconds_per_iteration.of(stopping) * pixels * pixels.log2()
+        (iterations + STEP_CONVOLUTIONS * steps as f64)
+            * self.seconds_per_iteration.of(stopping)
+            * pixels
+            * pixels.log2()
     }
 
     /// The old path, kept for its test: one step at a time.
@@ -620,7 +623,11 @@ mod tests {
         assert!((e.seconds / stepwise.seconds - 1.0).abs() < 1e-12 && e.iterations == stepwise.iterations);
         assert_eq!(e.assumed_iterations, e.iterations);
         // Measured iterations replace the assumed ones, which are kept beside them.
-        let measured = StepIterations { cold: 100.0, coarse: 30.0, fine: 20.0 };
+        let measured = StepIterations {
+            cold: 100.0,
+            coarse: 30.0,
+            fine: 20.0,
+        };
         let m = c.estimate_measured(grid, &sliding, Stopping::SettledMap, Some(measured));
         assert!((m.iterations - 2.0 * (100.0 + 64.0 * 30.0 + 255.0 * 20.0)).abs() < 1e-9);
         assert_eq!((m.assumed_iterations, m.measured), (e.iterations, Some(measured)));

@@ -318,7 +318,12 @@ pub fn load_reach_warnings(domain: &Domain, samples: &[Sample], material: &Mater
             100.0 * domain.contact_fraction.1
         ));
     }
-    for (e, (&g, d)) in material.fracture_energies.iter().zip(material.critical_diameters()).enumerate() {
+    for (e, (&g, d)) in material
+        .fracture_energies
+        .iter()
+        .zip(material.critical_diameters())
+        .enumerate()
+    {
         let (n, _) = critical_stats(samples, e);
         let (lo, hi) = domain.critical_junctions;
         let low = n >= RESOLVED_CRITICAL_JUNCTIONS && n < lo;
@@ -455,7 +460,11 @@ impl Calibration {
                     field,
                     format!(
                         "{name} = {value} is not {}: give the constants `wearsim estimate-check STUDY --fit` printed",
-                        if positive { "a positive number" } else { "a number ≥ 0" }
+                        if positive {
+                            "a positive number"
+                        } else {
+                            "a number ≥ 0"
+                        }
                     ),
                 ));
             }
@@ -1128,7 +1137,10 @@ mod tests {
         assert!(run_reach_warnings(&CALIBRATED_DOMAIN, &paper, &sliding, 0.25).is_empty());
         let measured = SurfaceKind::Other("read from height-map files (a measured map)".into());
         let w = run_reach_warnings(&CALIBRATED_DOMAIN, &measured, &sliding, 0.25);
-        assert!(w.len() == 1 && w[0].contains("measured map") && w[0].contains("--fit"), "{w:?}");
+        assert!(
+            w.len() == 1 && w[0].contains("measured map") && w[0].contains("--fit"),
+            "{w:?}"
+        );
         let rough = SurfaceKind::Generated {
             hurst: 0.5,
             lower_cutoff_pixels: 16.0,
@@ -1136,11 +1148,17 @@ mod tests {
             upper_cutoff: 0.0625,
         };
         let w = run_reach_warnings(&CALIBRATED_DOMAIN, &rough, &sliding, 0.25);
-        assert!(w.len() == 1 && w[0].contains("Hurst exponent H is 0.50") && w[0].contains("0.70"), "{w:?}");
+        assert!(
+            w.len() == 1 && w[0].contains("Hurst exponent H is 0.50") && w[0].contains("0.70"),
+            "{w:?}"
+        );
         // A schedule not run in as the calibration's runs were.
         let short = crate::sliding::SlidingConfig::new(vec![1e-3], 0.2, 0.05, 4, 1, Some(1024)).unwrap();
         let w = run_reach_warnings(&CALIBRATED_DOMAIN, &paper, &short, 0.25);
-        assert!(w.len() == 1 && w[0].contains("running-in is 0.050 box lengths"), "{w:?}");
+        assert!(
+            w.len() == 1 && w[0].contains("running-in is 0.050 box lengths"),
+            "{w:?}"
+        );
         // Contact fraction and N* per map.
         let material = Material::new(1.0, 0.3, 0.010, vec![0.25e-6], 3.0).unwrap();
         let d = material.critical_diameters()[0];
@@ -1149,8 +1167,14 @@ mod tests {
         let crowded = vec![sample(0.2, 200, d); 4];
         let w = load_reach_warnings(&CALIBRATED_DOMAIN, &crowded, &material, 1e-3);
         assert!(w.len() == 2, "{w:?}");
-        assert!(w[0].contains("contact fraction is 20.00 %") && w[0].contains("0.9–5.0 %"), "{w:?}");
-        assert!(w[1].contains("200.0 critical junctions") && w[1].contains("above the calibrated 3–120"), "{w:?}");
+        assert!(
+            w[0].contains("contact fraction is 20.00 %") && w[0].contains("0.9–5.0 %"),
+            "{w:?}"
+        );
+        assert!(
+            w[1].contains("200.0 critical junctions") && w[1].contains("above the calibrated 3–120"),
+            "{w:?}"
+        );
     }
 
     #[test]

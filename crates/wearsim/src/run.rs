@@ -20,9 +20,9 @@ use std::time::Instant;
 use serde_json::Value;
 
 use crate::config::{RunConfig, SurfacePair, SurfaceSource};
+use crate::cost::{IterationProbe, StepIterations};
 use crate::error::{Error, Interrupt, Result};
 use crate::estimate::{Calibration, Estimator, LoadEstimate, Sampling, MAX_SAMPLES, TARGET_SAMPLING_ERROR};
-use crate::cost::{IterationProbe, StepIterations};
 use crate::grid::Grid;
 use crate::output::{
     estimate_rows, estimate_summary, series_csv, series_rows, sliding_summary, SeriesRow, SlidingInputs, Table,
@@ -254,7 +254,7 @@ impl<'a> SlidingRun<'a> {
         let running_in = (PROBE_STEPS * coarse) as f64 / nx as f64;
         let distance = running_in + (PROBE_STEPS * fine) as f64 / nx as f64;
         let probe = SlidingConfig::new(vec![load], distance, running_in, coarse, fine, Some(nx))?
-            .with_particle_rule(self.sliding.particle_rule.clone());
+            .with_particle_rule(self.sliding.particle_rule);
         let setup = SlidingSetup {
             sliding: &probe,
             ..self.setup.clone()

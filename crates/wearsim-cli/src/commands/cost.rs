@@ -233,7 +233,11 @@ pub fn print_study(jobs: &[&Job], workers: usize) -> Result<()> {
     let mut probes: Vec<(String, f64, usize)> = Vec::new();
     for (k, job) in jobs.iter().enumerate() {
         let key = serde_json::to_string(&job.run.surfaces)?;
-        let load = job.run.sliding.as_ref().map_or(0.0, |s| s.loads.iter().copied().fold(0.0, f64::max));
+        let load = job
+            .run
+            .sliding
+            .as_ref()
+            .map_or(0.0, |s| s.loads.iter().copied().fold(0.0, f64::max));
         match probes.iter_mut().find(|(other, _, _)| *other == key) {
             Some(p) if p.1 < load => *p = (key, load, k),
             Some(_) => {}

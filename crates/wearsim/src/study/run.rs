@@ -98,10 +98,11 @@ pub(crate) fn job_result(job: &Job, load: f64, seconds: f64, warnings: Vec<Strin
 fn estimate_job(job: &Job, interrupt: &Interrupt, on_step: impl Fn()) -> Result<JobResult> {
     let run = &job.run;
     let sampling = Sampling::of(run.estimate_samples)?;
-    let mut outcome =
-        SlidingRun::prepare(run)?
-            .interrupted_by(interrupt)
-            .estimate(sampling, &run.estimate_calibration(), |_, _| on_step())?;
+    let mut outcome = SlidingRun::prepare(run)?.interrupted_by(interrupt).estimate(
+        sampling,
+        &run.estimate_calibration(),
+        |_, _| on_step(),
+    )?;
     let l = outcome
         .loads
         .pop()
