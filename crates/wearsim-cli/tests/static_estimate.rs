@@ -152,3 +152,144 @@ fn a_fit_on_unresolved_critical_diameters_is_warned_about() {
         "{e}"
     );
 }
+
+/// Surfaces that are not the calibration's (H = 0.5, λ_l = 4 px, λ_u = Lx/2) on a 128² box, d* ≈ 9 px.
+const OWN_SURFACES: &str = "units = \"reduced\"\n[surface]\ngrid = 128\nlength = 0.03125\nhurst = 0.5\n\
+    lambda_lower = 0.0009765625\nlambda_upper = 0.015625\nrms_height = 0.005\nseed = [1, 2, 3]\n\
+    [material]\nyoungs_modulus = 1.0\npoisson_ratio = 0.3\nshear_strength = 0.010\n\
+    fracture_energies = [0.1e-6]\n[sliding]\nloads = [3.6e-6, 7.2e-6]\ndistance = 1.0\n";
+
+/// The W of every job of a study folder, in job order, with the particles it was fitted on.
+fn job_wear_rates(folder: &std::path::Path) -> Vec<(f64, u64)> {
+    let mut files: Vec<_> = std::fs::read_dir(folder.join("jobs"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+        .collect();
+    files.sort();
+    files
+        .iter()
+        .map(|p| {
+            let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap();
+            let r = &v["results"][0];
+            (
+                r["wear_rate"].as_f64().unwrap_or(0.0),
+                r["particles_in_fit"].as_u64().unwrap_or(0),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn constants_refitted_on_ones_own_surfaces_are_applied_and_bring_the_error_down() {
+    let dir = tempfile::tempdir().unwrap();
+    let sliding = run_study(dir.path(), OWN_SURFACES);
+    let o = wearsim()
+        .args([
+            "estimate-check",
+            s(&sliding),
+            "--out",
+            s(&dir.path().join("check")),
+            "--fit",
+            "--quiet",
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    let line = out
+        .lines()
+        .map(str::trim)
+        .find(|l| l.starts_with("estimate_constants = {"))
+        .unwrap_or_else(|| panic!("the fit prints the line to paste: {out}"));
+    // The same settings estimated with the library's constants and with the fitted ones.
+    let estimate = |name: &str, extra: &str| {
+        let sub = dir.path().join(name);
+        std::fs::create_dir(&sub).unwrap();
+        let text = format!("{OWN_SURFACES}model = \"estimate\"\n{extra}\n");
+        job_wear_rates(&run_study(&sub, &text))
+    };
+    let slid = job_wear_rates(&sliding);
+    // Over the settings the fit could use (at least 10 particles in the sliding run).
+    let median_error = |w: &[(f64, u64)]| {
+        let mut e: Vec<f64> = w
+            .iter()
+            .zip(&slid)
+            .filter(|(_, b)| b.1 >= 10)
+            .map(|(a, b)| (a.0 / b.0 - 1.0).abs())
+            .collect();
+        assert!(e.len() >= 3, "{e:?}");
+        e.sort_by(f64::total_cmp);
+        e[e.len() / 2]
+    };
+    let default = median_error(&estimate("default", ""));
+    let fitted = median_error(&estimate("fitted", line));
+    eprintln!("median |error| of W: {default:.3} with the library's constants, {fitted:.3} with the fitted ones");
+    assert!(
+        fitted < 0.5 * default,
+        "median |error| {fitted} with the fitted constants, {default} without"
+    );
+    // The run file's constants are checked.
+    let bad = file(
+        dir.path(),
+        "bad.toml",
+        &OWN_SURFACES.replace("seed = [1, 2, 3]", "seed = 1").replace(
+            "distance = 1.0",
+            "estimate_constants = { residence_factor = -1.0, merging_factor = 2.0, volume_factor = 1.0, rate_spread = 0.1, wear_spread = 0.1 }",
+        ),
+    );
+    let o = wearsim()
+        .args(["estimate", s(&bad), "--out", s(&dir.path().join("bad")), "--quiet"])
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("estimate_constants") && stderr(&o).contains("residence_factor"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn a_measured_map_is_warned_outside_the_calibration_and_a_paper_like_box_is_not() {
+    let dir = tempfile::tempdir().unwrap();
+    // The paper's spectrum in the calibration's box proportions (λ_u = Lx/4, λ_l = 16 px).
+    let paper = "units = \"reduced\"\n[surface]\ngrid = 128\nlength = 0.03125\nhurst = 0.7\n\
+        lambda_lower = 0.00390625\nlambda_upper = 0.0078125\nrms_height = 0.005\nseed = 1\n\
+        [material]\nyoungs_modulus = 1.0\npoisson_ratio = 0.3\nshear_strength = 0.010\n\
+        fracture_energies = [0.25e-6]\n[sliding]\nloads = [1.5e-6]\n";
+    let run = file(dir.path(), "paper.toml", paper);
+    let o = wearsim()
+        .args(["estimate", s(&run), "--out", s(&dir.path().join("paper")), "--quiet"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary = std::fs::read_to_string(dir.path().join("paper/summary.json")).unwrap();
+    assert!(!summary.contains("not calibrated there"), "{summary}");
+    // The same surfaces read from files: outside, said with what to do.
+    let o = wearsim()
+        .args(["surface", s(&run), "--out", s(&dir.path().join("maps"))])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let files = file(
+        dir.path(),
+        "files.toml",
+        &paper.replace(
+            "grid = 128\nlength = 0.03125\nhurst = 0.7\nlambda_lower = 0.00390625\nlambda_upper = 0.0078125\nrms_height = 0.005\nseed = 1\n",
+            "top = \"maps/top.npy\"\nbottom = \"maps/bottom.npy\"\nlength = 0.03125\n",
+        ),
+    );
+    let o = wearsim()
+        .args(["estimate", s(&files), "--out", s(&dir.path().join("files")), "--quiet"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("files/summary.json")).unwrap()).unwrap();
+    let warnings = summary["warnings"].to_string();
+    assert!(
+        warnings.contains("read from height-map files") && warnings.contains("estimate-check STUDY --out CHECK --fit"),
+        "{warnings}"
+    );
+}

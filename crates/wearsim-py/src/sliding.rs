@@ -6,7 +6,7 @@ use numpy::PyReadonlyArray2;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use wearsim::config::{RunConfig, SurfacePair, SurfaceSource, Units};
-use wearsim::estimate::{Sampling, CALIBRATION};
+use wearsim::estimate::Sampling;
 use wearsim::junctions::DEFAULT_CONNECTIVITY;
 use wearsim::output::{estimate_rows, Table};
 use wearsim::run::{SlidingOutcome, SlidingRun};
@@ -78,6 +78,7 @@ fn slide<'py>(
         stopping: stopping.parse().map_err(to_py)?,
         model: wearsim::estimate::WearModel::Sliding,
         estimate_samples: None,
+        estimate_constants: None,
     };
     let pair = SurfacePair::of_arrays(t, b);
     let outcome = interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, steps| {
@@ -204,9 +205,11 @@ impl PyRunFile {
         wearsim::run::sliding_schedule(config).map_err(to_py)?;
         let sampling = Sampling::of(samples.or(config.estimate_samples)).map_err(to_py)?;
         let outcome = interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, solves| {
-            SlidingRun::prepare(config)?
-                .interrupted_by(interrupt)
-                .estimate(sampling, &CALIBRATION, |done, most| solves.set(done, most))
+            SlidingRun::prepare(config)?.interrupted_by(interrupt).estimate(
+                sampling,
+                &config.estimate_calibration(),
+                |done, most| solves.set(done, most),
+            )
         })?;
         let rows = estimate_rows(&outcome.loads);
         Ok((table_to_py(py, &Table::of(&rows))?, json_to_py(py, &outcome.summary())?))

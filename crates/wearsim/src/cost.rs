@@ -131,6 +131,27 @@ pub struct Estimate {
     /// Peak memory in bytes.
     pub peak_memory: f64,
     pub threads: usize,
+    /// The iterations expected over every step under the calibration's own (the paper's
+    /// roughness), whatever [`Estimate::measured`] says.
+    pub assumed_iterations: f64,
+    /// Iterations per step of each kind measured on the run's own surfaces
+    /// ([`IterationProbe`]), used instead of the calibration's where given.
+    pub measured: Option<StepIterations>,
+}
+
+/// What a few steps of a run on its own surfaces took (`crate::run::SlidingRun::probe_iterations`):
+/// the cold first solve and a few warm steps of each kind at the run's heaviest load, solved as the
+/// run solves them.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct IterationProbe {
+    /// Iterations per step of each kind (a kind the schedule has no step of is scaled from the
+    /// other warm kind by the calibration's ratio).
+    pub iterations: StepIterations,
+    /// The load probed (the heaviest).
+    pub load: f64,
+    /// Steps solved, and the seconds they took (the cost of measuring).
+    pub steps: usize,
+    pub seconds: f64,
 }
 
 impl Estimate {
@@ -340,8 +361,66 @@ impl Calibration {
         (iterations + STEP_CONVOLUTIONS) * self.seconds_per_iteration.of(stopping) * pixels * pixels.log2()
     }
 
-    /// The estimate of a sliding run on `grid` with schedule `sliding` whose solves stop by `stopping`.
+    /// The estimate of a sliding run on `grid` with schedule `sliding` whose solves stop by
+    /// `stopping`, with iterations as on the paper's roughness (the calibration's).
     pub fn estimate(&self, grid: Grid, sliding: &SlidingConfig, stopping: Stopping) -> Estimate {
+        self.estimate_measured(grid, sliding, stopping, None)
+    }
+
+    /// [`Calibration::estimate`] with the iterations per step of each kind `measured` on the run's
+    /// own surfaces (an [`IterationProbe`]'s) instead of the calibration's, for every load: rougher
+    /// surfaces and heavier loads take more than the paper's roughness. The assumed count is kept
+    /// beside it ([`Estimate::assumed_iterations`]).
+    pub fn estimate_measured(
+        &self,
+        grid: Grid,
+        sliding: &SlidingConfig,
+        stopping: Stopping,
+        measured: Option<StepIterations>,
+    ) -> Estimate {
+        let assumed = self.iterations(grid, stopping);
+        let (assumed_iterations, _) = self.iterations_of(&assumed, grid, sliding);
+        let per_step = measured.unwrap_or(assumed);
+        let (iterations, _) = self.iterations_of(&per_step, grid, sliding);
+        let loads = sliding.loads.len() as f64;
+        let offsets = sliding.offsets(grid.nx()).len();
+        Estimate {
+            steps: offsets * sliding.loads.len(),
+            iterations: iterations * loads,
+            seconds: self.step_seconds_total(grid, iterations, offsets, stopping) * loads,
+            peak_memory: peak_memory(grid),
+            threads: self.threads,
+            assumed_iterations: assumed_iterations * loads,
+            measured,
+        }
+    }
+
+    /// Iterations of one load's steps under `per_step`, and the count of its steps.
+    fn iterations_of(&self, per_step: &StepIterations, grid: Grid, sliding: &SlidingConfig) -> (f64, usize) {
+        let offsets = sliding.offsets(grid.nx());
+        let mut iterations = 0.0;
+        for (k, offset) in offsets.iter().enumerate() {
+            iterations += match k {
+                0 => per_step.cold,
+                _ if offset - offsets[k - 1] > 1 => per_step.coarse,
+                _ => per_step.fine,
+            };
+        }
+        (iterations, offsets.len())
+    }
+
+    /// Seconds of `steps` steps of `iterations` iterations in all.
+    fn step_seconds_total(&self, grid: Grid, iterations: f64, steps: usize, stopping: Stopping) -> f64 {
+        let pixels = grid.pixels() as f64;
+        (iterations + STEP_CONVOLUTIONS * steps as f64)
+            * self.seconds_per_iteration.of(stopping)
+            * pixels
+            * pixels.log2()
+    }
+
+    /// The old path, kept for its test: one step at a time.
+    #[cfg(test)]
+    fn estimate_stepwise(&self, grid: Grid, sliding: &SlidingConfig, stopping: Stopping) -> Estimate {
         let per_step = self.iterations(grid, stopping);
         let offsets = sliding.offsets(grid.nx());
         let mut iterations = 0.0;
@@ -362,6 +441,8 @@ impl Calibration {
             seconds: seconds * loads,
             peak_memory: peak_memory(grid),
             threads: self.threads,
+            assumed_iterations: iterations * loads,
+            measured: None,
         }
     }
 }
@@ -538,6 +619,19 @@ mod tests {
         let sliding = SlidingConfig::new(vec![1e-3, 2e-3], 0.5, 0.25, 4, 1, Some(1024)).unwrap();
         let grid = Grid::square(1024, 1.0).unwrap();
         let e = c.estimate(grid, &sliding, Stopping::SettledMap);
+        let stepwise = c.estimate_stepwise(grid, &sliding, Stopping::SettledMap);
+        assert!((e.seconds / stepwise.seconds - 1.0).abs() < 1e-12 && e.iterations == stepwise.iterations);
+        assert_eq!(e.assumed_iterations, e.iterations);
+        // Measured iterations replace the assumed ones, which are kept beside them.
+        let measured = StepIterations {
+            cold: 100.0,
+            coarse: 30.0,
+            fine: 20.0,
+        };
+        let m = c.estimate_measured(grid, &sliding, Stopping::SettledMap, Some(measured));
+        assert!((m.iterations - 2.0 * (100.0 + 64.0 * 30.0 + 255.0 * 20.0)).abs() < 1e-9);
+        assert_eq!((m.assumed_iterations, m.measured), (e.iterations, Some(measured)));
+        assert!(m.seconds > e.seconds);
         // Per load: 64 running-in steps (the first cold), the 4-px step onto L/4, 255 one-pixel
         // steps; above 512² the warm steps' iterations fall as (512/1024)^0.28.
         let scale = 0.5f64.powf(ITERATION_EXPONENT);

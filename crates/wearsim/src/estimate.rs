@@ -52,7 +52,7 @@ pub enum WearModel {
 }
 
 /// The keys of a run file's `[sliding]` table.
-pub const SLIDING_KEYS: [&str; 9] = [
+pub const SLIDING_KEYS: [&str; 10] = [
     "loads",
     "distance",
     "running_in",
@@ -62,6 +62,7 @@ pub const SLIDING_KEYS: [&str; 9] = [
     "stopping",
     "model",
     "estimate_samples",
+    "estimate_constants",
 ];
 
 impl WearModel {
@@ -80,7 +81,7 @@ impl WearModel {
     /// lists several values of one varies only the jobs of the models that use it.
     pub fn ignores(self) -> &'static [&'static str] {
         match self {
-            WearModel::Sliding => &["estimate_samples"],
+            WearModel::Sliding => &["estimate_samples", "estimate_constants"],
             // Static maps at the sample offsets, solved to the settled map; the particles come
             // from the calibration, not from a rule; only the fit window (distance, running-in)
             // enters, through the sliding distance of its interval.
@@ -158,6 +159,184 @@ pub const CALIBRATION: Calibration = Calibration {
     settings: 25,
     particles: 754,
 };
+
+/// What the calibration's runs covered ([`CALIBRATED_DOMAIN`]): a setting outside it is an
+/// extrapolation of the rule, and its estimate says so ([`reach_warnings`]).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Domain {
+    /// Hurst exponent H of wearsim's generated surfaces (lowest, highest).
+    pub hurst: (f64, f64),
+    /// λ_l/Δx, the lower cut-off in pixels.
+    pub lower_cutoff_pixels: (f64, f64),
+    /// λ_u/Lx, the upper cut-off in box lengths.
+    pub upper_cutoff_box: (f64, f64),
+    /// The fraction of the box in contact in the static maps.
+    pub contact_fraction: (f64, f64),
+    /// N*, the mean number of junctions with d_i ≥ d* per static map, of the settings fitted on.
+    pub critical_junctions: (f64, f64),
+    /// The running-in the calibration's runs were fitted after, in box lengths and in λ_u.
+    pub running_in_box: f64,
+    pub running_in_upper_cutoffs: f64,
+}
+
+/// The reach of [`CALIBRATION`]: the settings of `studies/estimate-calibration.toml` (surfaces of
+/// wearsim's generator with H = 0.7, λ_l = 16 Δx, λ_u = Lx/4; p_N = 0.5 … 2.5×10⁻³ E; running-in
+/// Lx/4 = λ_u) and of the held-out checks that held (docs/estimate.md: the box of side L/2, where
+/// λ_u = Lx/8 and N* per map reached about 120 at d* = 23.6 px). Contact fractions and N* are
+/// those of the calibration's static maps (`wearsim estimate` on its three pairs, four maps per
+/// load: contact 0.96–4.82 %; N* 6.2–29 at d* = 23.6 px and from about 3 at 47.3 px among the
+/// settings with at least 10 particles that the fit used).
+pub const CALIBRATED_DOMAIN: Domain = Domain {
+    hurst: (0.7, 0.7),
+    lower_cutoff_pixels: (16.0, 16.0),
+    upper_cutoff_box: (0.125, 0.25),
+    contact_fraction: (0.009, 0.05),
+    critical_junctions: (3.0, 120.0),
+    running_in_box: 0.25,
+    running_in_upper_cutoffs: 1.0,
+};
+
+/// The surfaces of an estimate, as far as the calibration's reach is concerned.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SurfaceKind {
+    /// Made by wearsim's self-affine generator.
+    Generated {
+        hurst: f64,
+        /// λ_l/Δx.
+        lower_cutoff_pixels: f64,
+        /// λ_u/Lx.
+        upper_cutoff_box: f64,
+        /// λ_u itself, in the run's length unit.
+        upper_cutoff: f64,
+    },
+    /// Anything else (a measured map read from files, arrays a caller gave, …), as the warning
+    /// names it.
+    Other(String),
+}
+
+/// What to do about a setting outside the calibration's reach, the end of every reach warning.
+const REFIT_ADVICE: &str = "run a few sliding runs of your own surface family (a small study), then `wearsim \
+    estimate-check STUDY --out CHECK --fit` and give the constants it prints as `[sliding] estimate_constants` \
+    (docs/estimate.md, \"Your own surfaces\")";
+
+fn outside(value: f64, (lo, hi): (f64, f64)) -> bool {
+    // A relative slack of 10⁻⁶: the calibrated values themselves, as a run file writes them, are inside.
+    value < lo * (1.0 - 1e-6) || value > hi * (1.0 + 1e-6)
+}
+
+fn range((lo, hi): (f64, f64), digits: usize) -> String {
+    if lo == hi {
+        format!("{lo:.digits$}")
+    } else {
+        format!("{lo:.digits$}–{hi:.digits$}")
+    }
+}
+
+/// The warnings of the settings that lie outside `domain`, for the run as a whole: the surfaces
+/// (any kind but [`SurfaceKind::Generated`] with H, λ_l/Δx and λ_u/Lx in range is outside) and
+/// the running-in of `sliding` on a box of side `length` along x.
+pub fn run_reach_warnings(
+    domain: &Domain,
+    surfaces: &SurfaceKind,
+    sliding: &crate::sliding::SlidingConfig,
+    length: f64,
+) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut not_calibrated = |what: String| {
+        out.push(format!(
+            "{what}: the static estimate's constants were not calibrated there, so its W, k, dN*₊/ds and their \
+             interval are an extrapolation (on measured maps it has missed the sliding W by factors of 3 to 13); \
+             {REFIT_ADVICE}"
+        ))
+    };
+    match surfaces {
+        SurfaceKind::Generated {
+            hurst,
+            lower_cutoff_pixels,
+            upper_cutoff_box,
+            ..
+        } => {
+            for (name, value, calibrated, digits) in [
+                ("Hurst exponent H", *hurst, domain.hurst, 2),
+                ("λ_l/Δx", *lower_cutoff_pixels, domain.lower_cutoff_pixels, 1),
+                ("λ_u/Lx", *upper_cutoff_box, domain.upper_cutoff_box, 3),
+            ] {
+                if outside(value, calibrated) {
+                    not_calibrated(format!(
+                        "the surfaces' {name} is {value:.digits$}, outside the calibrated {}",
+                        range(calibrated, digits)
+                    ));
+                }
+            }
+        }
+        SurfaceKind::Other(what) => not_calibrated(format!(
+            "the surfaces are {what}, not the self-affine spectrum of wearsim's generator that the calibration used \
+             (H = {}, λ_l/Δx = {}, λ_u/Lx = {})",
+            range(domain.hurst, 2),
+            range(domain.lower_cutoff_pixels, 0),
+            range(domain.upper_cutoff_box, 3)
+        )),
+    }
+    let short_box = sliding.running_in < domain.running_in_box * (1.0 - 1e-6);
+    let short_cutoffs = match surfaces {
+        SurfaceKind::Generated { upper_cutoff, .. } if *upper_cutoff > 0.0 => {
+            let n = sliding.running_in * length / upper_cutoff;
+            (n < domain.running_in_upper_cutoffs * (1.0 - 1e-6)).then_some(n)
+        }
+        _ => None,
+    };
+    if short_box || short_cutoffs.is_some() {
+        out.push(format!(
+            "the run's running-in is {:.3} box lengths{}, shorter than the calibration's runs were fitted after \
+             ({} box lengths, {} λ_u): a sliding run of this schedule is fitted while the memory of the initial contact \
+             still fades, where its rates are lower than the estimate's; lengthen `[sliding] running_in` (and \
+             `distance`), or calibrate on runs of this schedule: {REFIT_ADVICE}",
+            sliding.running_in,
+            short_cutoffs.map_or(String::new(), |n| format!(" ({n:.2} λ_u)")),
+            domain.running_in_box,
+            domain.running_in_upper_cutoffs
+        ));
+    }
+    out
+}
+
+/// The warnings of one load whose static maps lie outside `domain`: their contact fraction, and N*
+/// per map of each fracture energy (below the range only from [`RESOLVED_CRITICAL_JUNCTIONS`] on,
+/// where the warning about a few junctions does not already say it).
+pub fn load_reach_warnings(domain: &Domain, samples: &[Sample], material: &Material, load: f64) -> Vec<String> {
+    let mut out = Vec::new();
+    if samples.is_empty() {
+        return out;
+    }
+    let contact = samples.iter().map(|s| s.contact_area).sum::<f64>() / samples.len() as f64;
+    if outside(contact, domain.contact_fraction) {
+        out.push(format!(
+            "F_N = {load:.4e}: the static maps' contact fraction is {:.2} %, outside the calibrated {:.1}–{:.1} %: the \
+             junctions merge and live differently there than the constants say; {REFIT_ADVICE}",
+            100.0 * contact,
+            100.0 * domain.contact_fraction.0,
+            100.0 * domain.contact_fraction.1
+        ));
+    }
+    for (e, (&g, d)) in material
+        .fracture_energies
+        .iter()
+        .zip(material.critical_diameters())
+        .enumerate()
+    {
+        let (n, _) = critical_stats(samples, e);
+        let (lo, hi) = domain.critical_junctions;
+        let low = n >= RESOLVED_CRITICAL_JUNCTIONS && n < lo;
+        if low || n > hi {
+            out.push(format!(
+                "F_N = {load:.4e}, 𝒢 = {g:.4e} (d* = {d:.4e}): {n:.1} critical junctions (d_i ≥ d*) per static map, {} \
+                 the calibrated {lo:.0}–{hi:.0}; {REFIT_ADVICE}",
+                if low { "below" } else { "above" }
+            ));
+        }
+    }
+    out
+}
 
 /// One point of a calibration: the static features of a setting and what its sliding run measured.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -254,6 +433,43 @@ impl Calibration {
             wear_spread: (wear_var - poisson).max(0.0).sqrt(),
             ..cal
         })
+    }
+
+    /// Whether `other` has the same constants and spreads (what an estimate uses of it).
+    pub fn same_constants(&self, other: &Calibration) -> bool {
+        self.residence_factor == other.residence_factor
+            && self.merging_factor == other.merging_factor
+            && self.volume_factor == other.volume_factor
+            && self.rate_spread == other.rate_spread
+            && self.wear_spread == other.wear_spread
+    }
+
+    /// Checks constants given by a user (`[sliding] estimate_constants`): c₁, c₂... positive and
+    /// finite, the spreads finite and not negative; `field` names where they were given.
+    pub fn checked(self, field: &str) -> Result<Calibration> {
+        for (name, value, positive) in [
+            ("residence_factor", self.residence_factor, true),
+            ("merging_factor", self.merging_factor, false),
+            ("volume_factor", self.volume_factor, true),
+            ("rate_spread", self.rate_spread, false),
+            ("wear_spread", self.wear_spread, false),
+        ] {
+            let ok = value.is_finite() && if positive { value > 0.0 } else { value >= 0.0 };
+            if !ok {
+                return Err(Error::param(
+                    field,
+                    format!(
+                        "{name} = {value} is not {}: give the constants `wearsim estimate-check STUDY --fit` printed",
+                        if positive {
+                            "a positive number"
+                        } else {
+                            "a number ≥ 0"
+                        }
+                    ),
+                ));
+            }
+        }
+        Ok(self)
     }
 
     /// The residence R = c₁ d̄ (1 + c₂ θ).
@@ -578,9 +794,25 @@ impl<'a> Estimator<'a> {
         }
     }
 
-    /// The estimate of every load from the maps taken, with `calibration`'s constants.
-    pub fn finish(self, calibration: &Calibration) -> Vec<LoadEstimate> {
-        let fit_distance = fit_distance(self.setup.sliding, self.nx as f64 * self.dx);
+    /// The estimate of every load from the maps taken, with `calibration`'s constants, on surfaces
+    /// of kind `surfaces`. With the library's constants ([`CALIBRATION`]) each load's warnings say
+    /// where its setting lies outside their reach ([`CALIBRATED_DOMAIN`]: [`run_reach_warnings`],
+    /// [`load_reach_warnings`]); with constants of one's own, a note says that their reach is the
+    /// runs they were fitted on.
+    pub fn finish(self, calibration: &Calibration, surfaces: &SurfaceKind) -> Vec<LoadEstimate> {
+        let length = self.nx as f64 * self.dx;
+        let fit_distance = fit_distance(self.setup.sliding, length);
+        let own = !calibration.same_constants(&CALIBRATION);
+        let run_warnings = if own {
+            vec![format!(
+                "the estimate uses the run file's `estimate_constants` (c₁ = {:.4}, c₂ = {:.4}, c_v = {:.4}), not the \
+                 library's calibration: their reach is the sliding runs they were fitted on, which this estimate cannot \
+                 check",
+                calibration.residence_factor, calibration.merging_factor, calibration.volume_factor
+            )]
+        } else {
+            run_reach_warnings(&CALIBRATED_DOMAIN, surfaces, self.setup.sliding, length)
+        };
         self.setup
             .sliding
             .loads
@@ -595,6 +827,16 @@ impl<'a> Estimator<'a> {
                     fit_distance,
                     calibration,
                 );
+                let mut warnings = warnings;
+                warnings.extend(run_warnings.iter().cloned());
+                if !own {
+                    warnings.extend(load_reach_warnings(
+                        &CALIBRATED_DOMAIN,
+                        &samples,
+                        self.setup.material,
+                        load,
+                    ));
+                }
                 LoadEstimate {
                     load,
                     results,
@@ -727,8 +969,15 @@ fn estimate_of(
         let s = (spread * spread + sampling * sampling + poisson).sqrt();
         (value * (-Z95 * s).exp(), value * (Z95 * s).exp())
     };
-    let (w_lo, w_hi) = interval(wear, c.wear_spread);
-    let (r_lo, r_hi) = interval(rate, c.rate_spread);
+    let (mut w_lo, w_hi) = interval(wear, c.wear_spread);
+    let (mut r_lo, r_hi) = interval(rate, c.rate_spread);
+    // The lower 2.5 % quantile of the run's Poisson count N with mean μ = `expected` is 0 exactly
+    // when P(N = 0) = e^{−μ} ≥ 2.5 %: then a sliding run forms no particle, W = 0, often enough
+    // that the interval starts at 0.
+    if zero_allowed(expected) {
+        w_lo = 0.0;
+        r_lo = 0.0;
+    }
     let to_k = |w: f64| w * pm / load;
     r.mean_critical_diameter = Some(d_bar);
     r.critical_coverage = coverage;
@@ -744,6 +993,18 @@ fn estimate_of(
     r.wear_coefficient_low = Some(to_k(w_lo));
     r.wear_coefficient_high = Some(to_k(w_hi));
     r
+}
+
+/// P(N = 0) = e^{−μ} of a sliding run's count of particles, μ the count the estimate expects, above
+/// which the interval of W, k and dN*₊/ds starts at 0 (the lower 2.5 % tail of a two-sided 95 %
+/// interval).
+pub const ZERO_PROBABILITY: f64 = 0.025;
+
+/// Whether a sliding run expected to count `expected` particles forms none with probability at
+/// least [`ZERO_PROBABILITY`] (μ ≤ ln 40 ≈ 3.69): the exact lower 2.5 % quantile of its Poisson
+/// count is then 0.
+pub fn zero_allowed(expected: f64) -> bool {
+    (-expected).exp() >= ZERO_PROBABILITY
 }
 
 /// What a result cannot promise, said loudly.
@@ -768,7 +1029,13 @@ fn result_warnings(r: &EstimateResult, load: f64, samples: usize) -> Vec<String>
             100.0 * TARGET_SAMPLING_ERROR
         ));
     }
-    if let Some(n) = r.expected_particles.filter(|&n| n < 20.0) {
+    if let Some(n) = r.expected_particles.filter(|&n| zero_allowed(n)) {
+        out.push(format!(
+            "{what}: a sliding run of this box would count about {n:.2} particles after running-in, and none at all \
+             with probability e^(−{n:.2}) = {:.0} %: the interval of W, k and dN*₊/ds starts at 0",
+            100.0 * (-n).exp()
+        ));
+    } else if let Some(n) = r.expected_particles.filter(|&n| n < 20.0) {
         out.push(format!(
             "{what}: a sliding run of this box would count about {n:.1} particles after running-in, so its own W would \
              scatter by more than ±{:.0} % (Poisson); the interval includes that",
@@ -843,6 +1110,93 @@ mod tests {
             .collect();
         let e = Calibration::fit(&points).unwrap_err().to_string();
         assert!(e.contains("at least 3"), "{e}");
+    }
+
+    fn sample(contact_area: f64, critical: usize, diameter: f64) -> Sample {
+        Sample {
+            contact_area,
+            junctions: critical,
+            counts: vec![SampleCount {
+                critical_junctions: critical,
+                diameter_sum: critical as f64 * diameter,
+                ..Default::default()
+            }],
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn settings_outside_the_calibration_are_warned_about_and_paper_like_ones_not() {
+        let sliding = crate::sliding::SlidingConfig::new(vec![1e-3], 0.5, 0.25, 4, 1, Some(1024)).unwrap();
+        let paper = SurfaceKind::Generated {
+            hurst: 0.7,
+            lower_cutoff_pixels: 16.0,
+            upper_cutoff_box: 0.25,
+            upper_cutoff: 0.0625,
+        };
+        assert!(run_reach_warnings(&CALIBRATED_DOMAIN, &paper, &sliding, 0.25).is_empty());
+        let measured = SurfaceKind::Other("read from height-map files (a measured map)".into());
+        let w = run_reach_warnings(&CALIBRATED_DOMAIN, &measured, &sliding, 0.25);
+        assert!(
+            w.len() == 1 && w[0].contains("measured map") && w[0].contains("--fit"),
+            "{w:?}"
+        );
+        let rough = SurfaceKind::Generated {
+            hurst: 0.5,
+            lower_cutoff_pixels: 16.0,
+            upper_cutoff_box: 0.25,
+            upper_cutoff: 0.0625,
+        };
+        let w = run_reach_warnings(&CALIBRATED_DOMAIN, &rough, &sliding, 0.25);
+        assert!(
+            w.len() == 1 && w[0].contains("Hurst exponent H is 0.50") && w[0].contains("0.70"),
+            "{w:?}"
+        );
+        // A schedule not run in as the calibration's runs were.
+        let short = crate::sliding::SlidingConfig::new(vec![1e-3], 0.2, 0.05, 4, 1, Some(1024)).unwrap();
+        let w = run_reach_warnings(&CALIBRATED_DOMAIN, &paper, &short, 0.25);
+        assert!(
+            w.len() == 1 && w[0].contains("running-in is 0.050 box lengths"),
+            "{w:?}"
+        );
+        // Contact fraction and N* per map.
+        let material = Material::new(1.0, 0.3, 0.010, vec![0.25e-6], 3.0).unwrap();
+        let d = material.critical_diameters()[0];
+        let inside = vec![sample(0.03, 10, d); 4];
+        assert!(load_reach_warnings(&CALIBRATED_DOMAIN, &inside, &material, 1e-3).is_empty());
+        let crowded = vec![sample(0.2, 200, d); 4];
+        let w = load_reach_warnings(&CALIBRATED_DOMAIN, &crowded, &material, 1e-3);
+        assert!(w.len() == 2, "{w:?}");
+        assert!(
+            w[0].contains("contact fraction is 20.00 %") && w[0].contains("0.9–5.0 %"),
+            "{w:?}"
+        );
+        assert!(
+            w[1].contains("200.0 critical junctions") && w[1].contains("above the calibrated 3–120"),
+            "{w:?}"
+        );
+    }
+
+    #[test]
+    fn the_interval_starts_at_zero_where_a_run_likely_forms_no_particle() {
+        let material = Material::new(1.0, 0.3, 0.010, vec![0.25e-6], 3.0).unwrap();
+        let d = material.critical_diameters()[0];
+        let area = 0.03125f64.powi(2);
+        let samples = vec![sample(0.03, 1, 1.2 * d); 4];
+        // A short fit window: μ well under ln 40, so P(N = 0) > 2.5 %.
+        let (r, w) = results_of(&samples, &material, 1e-6, area, 1e-3, &CALIBRATION);
+        let mu = r[0].expected_particles.unwrap();
+        assert!(mu < 40f64.ln(), "{mu}");
+        assert_eq!(r[0].wear_rate_low, Some(0.0));
+        assert_eq!(r[0].particle_rate_low, Some(0.0));
+        assert_eq!(r[0].wear_coefficient_low, Some(0.0));
+        assert!(r[0].wear_rate_high.unwrap() > r[0].wear_rate.unwrap());
+        assert!(w.iter().any(|w| w.contains("none at all with probability")), "{w:?}");
+        // A long one: many particles, the lower end above 0.
+        let (r, _) = results_of(&samples, &material, 1e-6, area, 10.0, &CALIBRATION);
+        assert!(r[0].expected_particles.unwrap() > 40f64.ln());
+        assert!(r[0].wear_rate_low.unwrap() > 0.0);
+        assert!(zero_allowed(3.68) && !zero_allowed(3.70));
     }
 
     #[test]

@@ -20,6 +20,7 @@ use std::time::Instant;
 use serde_json::Value;
 
 use crate::config::{RunConfig, SurfacePair, SurfaceSource};
+use crate::cost::{IterationProbe, StepIterations};
 use crate::error::{Error, Interrupt, Result};
 use crate::estimate::{Calibration, Estimator, LoadEstimate, Sampling, MAX_SAMPLES, TARGET_SAMPLING_ERROR};
 use crate::grid::Grid;
@@ -236,7 +237,55 @@ impl<'a> SlidingRun<'a> {
     }
 }
 
+/// Steps of each warm kind an [`IterationProbe`] solves.
+const PROBE_STEPS: usize = 3;
+
 impl<'a> SlidingRun<'a> {
+    /// The iterations of this run's steps measured on its own surfaces, for its cost estimate
+    /// ([`crate::cost::Calibration::estimate_measured`]): at the heaviest load, the cold first step
+    /// and [`PROBE_STEPS`] steps of each of the schedule's kinds (`step_running_in`, then `step`),
+    /// solved as the run solves them (its stopping rule, warm-started from the step before). About
+    /// 2 + 2·[`PROBE_STEPS`] sliding steps' worth of solver work: a few steps of the run's hundreds.
+    pub fn probe_iterations(self) -> Result<IterationProbe> {
+        let start = Instant::now();
+        let nx = self.grid().nx();
+        let load = self.sliding.loads.iter().copied().fold(f64::MIN, f64::max);
+        let (coarse, fine) = (self.sliding.step_running_in, self.sliding.step);
+        let running_in = (PROBE_STEPS * coarse) as f64 / nx as f64;
+        let distance = running_in + (PROBE_STEPS * fine) as f64 / nx as f64;
+        let probe = SlidingConfig::new(vec![load], distance, running_in, coarse, fine, Some(nx))?
+            .with_particle_rule(self.sliding.particle_rule);
+        let setup = SlidingSetup {
+            sliding: &probe,
+            ..self.setup.clone()
+        };
+        let SurfacePair { top, bottom, .. } = self.pair;
+        let runs = SlidingState::new(top, bottom, setup)?.finish()?;
+        let steps = &runs[0].steps;
+        let (mut kinds, mut counts) = ([0.0f64; 3], [0usize; 3]);
+        for (k, step) in steps.iter().enumerate() {
+            let kind = match k {
+                0 => 0,
+                _ if step.offset - steps[k - 1].offset > 1 => 1,
+                _ => 2,
+            };
+            kinds[kind] += step.iterations as f64;
+            counts[kind] += 1;
+        }
+        let mean = |i: usize| (counts[i] > 0).then(|| kinds[i] / counts[i] as f64);
+        let warm = mean(1).or(mean(2)).unwrap_or(0.0);
+        Ok(IterationProbe {
+            iterations: StepIterations {
+                cold: mean(0).unwrap_or(0.0),
+                coarse: mean(1).unwrap_or(warm),
+                fine: mean(2).unwrap_or(warm),
+            },
+            load,
+            steps: steps.len(),
+            seconds: start.elapsed().as_secs_f64(),
+        })
+    }
+
     /// The static estimate of the run instead of sliding it (`crate::estimate`): static maps at
     /// offsets spread over the box, taken as `sampling` says, every load solved at each offset;
     /// `on_solve` is told the solves done and the most there can be. The outcome is marked as an
@@ -248,6 +297,7 @@ impl<'a> SlidingRun<'a> {
         mut on_solve: impl FnMut(usize, usize),
     ) -> Result<EstimateOutcome<'a>> {
         let start = Instant::now();
+        let kind = self.config.surfaces.estimate_kind(self.pair.top.grid());
         let SurfacePair { top, bottom, .. } = self.pair;
         let mut estimator = Estimator::new(top, bottom, &self.setup)?;
         let loads = self.sliding.loads.len();
@@ -263,7 +313,7 @@ impl<'a> SlidingRun<'a> {
         })?;
         let samples = estimator.samples_done();
         let sampling_error = estimator.sampling_error();
-        let estimates = estimator.finish(calibration);
+        let estimates = estimator.finish(calibration, &kind);
         let mut warnings = self.warnings;
         if sampling == Sampling::Auto && sampling_error > TARGET_SAMPLING_ERROR {
             warnings.push(format!(

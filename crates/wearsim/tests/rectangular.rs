@@ -110,6 +110,7 @@ fn slide(top: &Surface, bottom: &Surface, loads: Vec<f64>) -> Vec<LoadRun> {
         stopping: wearsim::contact::SLIDING_STOPPING,
         model: wearsim::estimate::WearModel::Sliding,
         estimate_samples: None,
+        estimate_constants: None,
     };
     slide_config(&config, SurfacePair::of_arrays(top.clone(), bottom.clone()))
 }

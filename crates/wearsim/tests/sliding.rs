@@ -28,6 +28,7 @@ fn arrays_run(top: &Surface, material: &Material, sliding: &SlidingConfig) -> Ru
         stopping: wearsim::contact::SLIDING_STOPPING,
         model: wearsim::estimate::WearModel::Sliding,
         estimate_samples: None,
+        estimate_constants: None,
     }
 }
 

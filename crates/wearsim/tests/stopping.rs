@@ -145,6 +145,7 @@ fn a_sliding_run_gives_the_same_wear_results_with_either_rule() {
             stopping,
             model: wearsim::estimate::WearModel::Sliding,
             estimate_samples: None,
+            estimate_constants: None,
         };
         SlidingRun::with_surfaces(&config, SurfacePair::of_arrays(top.clone(), bottom.clone()))
             .unwrap()

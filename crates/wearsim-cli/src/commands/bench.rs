@@ -231,6 +231,7 @@ pub fn run_slide(args: &SlideArgs) -> Result<()> {
         stopping: wearsim::contact::SLIDING_STOPPING,
         model: wearsim::estimate::WearModel::Sliding,
         estimate_samples: None,
+        estimate_constants: None,
     };
     let material = &config.material;
     let prepared = SlidingRun::prepare(&config)?;

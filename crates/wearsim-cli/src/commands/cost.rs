@@ -4,7 +4,8 @@
 
 use anyhow::{Context, Result};
 use wearsim::config::RunConfig;
-use wearsim::cost::{cache_dir, Calibration, Estimate};
+use wearsim::cost::{cache_dir, Calibration, Estimate, IterationProbe, StepIterations};
+use wearsim::run::SlidingRun;
 use wearsim::study::Job;
 
 use crate::out::{say, tell};
@@ -84,8 +85,9 @@ fn slurm(seconds: f64, bytes: f64) -> String {
     )
 }
 
-/// What an estimate assumes, one line.
-fn assumptions(c: &Calibration) -> String {
+/// What an estimate assumes, one line; `measured`: its iterations were measured on the run's own
+/// surfaces.
+fn assumptions(c: &Calibration, measured: bool) -> String {
     let loaded = match c.load_average {
         Some(l) if l > 0.5 * c.cores as f64 => format!(
             "; measured while the machine was busy (load average {l:.1} on {} cores), so estimates run high: \
@@ -95,11 +97,45 @@ fn assumptions(c: &Calibration) -> String {
         _ => String::new(),
     };
     format!(
-        "assumes {} and the machine as free as at its calibration ({}, {} days ago), iterations as on the \
-         paper's roughness{loaded}",
+        "assumes {} and the machine as free as at its calibration ({}, {} days ago), {}{loaded}",
         counted(c.threads, "thread"),
         c.machine,
-        c.age_days()
+        c.age_days(),
+        if measured {
+            "iterations per step as measured on the run's own surfaces at its heaviest load (lighter loads take \
+             fewer)"
+        } else {
+            "iterations as on the paper's roughness"
+        }
+    )
+}
+
+/// The iterations of a run's steps measured on its own surfaces ([`SlidingRun::probe_iterations`]).
+fn probe(config: &RunConfig) -> Result<IterationProbe> {
+    SlidingRun::prepare(config)
+        .and_then(|run| run.interrupted_by(super::interrupt()).probe_iterations())
+        .context("measuring the iterations of a few steps on the run's own surfaces")
+}
+
+/// One line: iterations per step measured against those the calibration assumes.
+fn measured_line(p: &IterationProbe, assumed: &StepIterations, e: &Estimate) -> String {
+    let i = p.iterations;
+    format!(
+        "iterations per step measured on the run's own surfaces at F_N = {:.4e} ({} steps in {:.1} s): cold {:.0}, \
+         running-in {:.1}, after it {:.1}; assumed from the paper's roughness: {:.0}, {:.1}, {:.1}; {:.0} iterations \
+         over the run where {:.0} were assumed ({:.2}×)",
+        p.load,
+        p.steps,
+        p.seconds,
+        i.cold,
+        i.coarse,
+        i.fine,
+        assumed.cold,
+        assumed.coarse,
+        assumed.fine,
+        e.iterations,
+        e.assumed_iterations,
+        e.iterations / e.assumed_iterations.max(1e-300)
     )
 }
 
@@ -149,7 +185,9 @@ pub fn print_run(config: &RunConfig) -> Result<Estimate> {
     let sliding = config.sliding.as_ref().context("a [sliding] table is needed")?;
     let grid = config.grid()?;
     let c = calibration()?;
-    let e = c.estimate(grid, sliding, config.stopping);
+    let probe = probe(config)?;
+    let e = c.estimate_measured(grid, sliding, config.stopping, Some(probe.iterations));
+    tell!("  {}", measured_line(&probe, &c.iterations(grid, config.stopping), &e));
     tell!(
         "estimate: {} steps at {}×{} ({} per load × {}, about {:.1} iterations per step): {} wall on {} \
          ({:.2} CPU hours), peak memory {}; Slurm: {}",
@@ -165,7 +203,7 @@ pub fn print_run(config: &RunConfig) -> Result<Estimate> {
         memory(e.peak_memory),
         slurm(e.seconds, e.peak_memory)
     );
-    tell!("  ({})", assumptions(&c));
+    tell!("  ({})", assumptions(&c, true));
     Ok(e)
 }
 
@@ -190,11 +228,47 @@ pub fn print_study(jobs: &[&Job], workers: usize) -> Result<()> {
         return Ok(());
     }
     let c = calibration()?;
+    // One probe per surface pair (and grid), at the heaviest load of its jobs: its iterations per
+    // step stand for every job on those surfaces.
+    let mut probes: Vec<(String, f64, usize)> = Vec::new();
+    for (k, job) in jobs.iter().enumerate() {
+        let key = serde_json::to_string(&job.run.surfaces)?;
+        let load = job
+            .run
+            .sliding
+            .as_ref()
+            .map_or(0.0, |s| s.loads.iter().copied().fold(0.0, f64::max));
+        match probes.iter_mut().find(|(other, _, _)| *other == key) {
+            Some(p) if p.1 < load => *p = (key, load, k),
+            Some(_) => {}
+            None => probes.push((key, load, k)),
+        }
+    }
+    let mut measured = Vec::with_capacity(probes.len());
+    let mut probe_seconds = 0.0;
+    let mut iterations = (0.0, 0.0);
+    for (key, _, k) in &probes {
+        let p = probe(&jobs[*k].run).with_context(|| format!("job {}", jobs[*k].index))?;
+        probe_seconds += p.seconds;
+        measured.push((key.clone(), p.iterations));
+    }
     let mut estimates = Vec::with_capacity(jobs.len());
     for job in &jobs {
         let sliding = job.run.sliding.as_ref().context("a study job has a [sliding] table")?;
-        estimates.push(c.estimate(job.run.grid()?, sliding, job.run.stopping));
+        let key = serde_json::to_string(&job.run.surfaces)?;
+        let m = measured.iter().find(|(k, _)| *k == key).map(|(_, i)| *i);
+        let e = c.estimate_measured(job.run.grid()?, sliding, job.run.stopping, m);
+        iterations = (iterations.0 + e.iterations, iterations.1 + e.assumed_iterations);
+        estimates.push(e);
     }
+    tell!(
+        "  iterations measured on the jobs' own surfaces ({} surface pair(s), a cold solve and a few steps each at \
+         the heaviest load, {probe_seconds:.1} s): {:.0} over the jobs where the paper's roughness gives {:.0} ({:.2}×)",
+        probes.len(),
+        iterations.0,
+        iterations.1,
+        iterations.0 / iterations.1.max(1e-300)
+    );
     // Jobs side by side share the threads: about the wall time of running them one after another on
     // all threads (side by side is, if anything, a little faster).
     let seconds: f64 = estimates.iter().map(|e| e.seconds).sum();
@@ -216,7 +290,7 @@ pub fn print_study(jobs: &[&Job], workers: usize) -> Result<()> {
     );
     tell!(
         "  (jobs already done are skipped when the study runs; {})",
-        assumptions(&c)
+        assumptions(&c, true)
     );
     Ok(())
 }

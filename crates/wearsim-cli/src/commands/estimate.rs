@@ -88,7 +88,7 @@ pub fn run(args: &Args) -> Result<()> {
     report_critical_diameters(&config, prepared.grid().pixel_size());
     let loads = prepared.sliding().loads.len();
     let progress = Progress::new("estimate", "solves", (loads * MAX_SAMPLES) as u64);
-    let outcome = prepared.estimate(sampling, &CALIBRATION, |done, most| {
+    let outcome = prepared.estimate(sampling, &config.estimate_calibration(), |done, most| {
         progress.set(done as u64, most as u64, "static maps")
     });
     progress.finish();
@@ -242,6 +242,16 @@ pub fn check(args: &CheckArgs) -> Result<()> {
              volume_factor (c_v) = {:.3}, rate_spread = {:.3}, wear_spread = {:.3}",
             c.settings,
             c.particles,
+            c.residence_factor,
+            c.merging_factor,
+            c.volume_factor,
+            c.rate_spread,
+            c.wear_spread
+        );
+        say!(
+            "to estimate with them, add to the [sliding] table of a run file or study of these surfaces:\n  \
+             estimate_constants = {{ residence_factor = {:?}, merging_factor = {:?}, volume_factor = {:?}, rate_spread = \
+             {:?}, wear_spread = {:?} }}",
             c.residence_factor,
             c.merging_factor,
             c.volume_factor,

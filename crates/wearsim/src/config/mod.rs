@@ -54,6 +54,10 @@ pub struct RunConfig {
     /// The static maps of an estimate (`[sliding] estimate_samples`; absent: chosen by the
     /// sampling error).
     pub estimate_samples: Option<usize>,
+    /// The static estimate's constants given in the run file (`[sliding] estimate_constants`, from
+    /// `wearsim estimate-check --fit` on sliding runs of the user's own surfaces); absent: the
+    /// library's [`crate::estimate::CALIBRATION`].
+    pub estimate_constants: Option<crate::estimate::Calibration>,
 }
 
 impl RunConfig {
@@ -121,6 +125,22 @@ impl RunConfig {
         let model = raw.sliding.as_ref().and_then(|sl| sl.model).unwrap_or_default();
         let estimate_samples = raw.sliding.as_ref().and_then(|sl| sl.estimate_samples);
         Sampling::of(estimate_samples).map_err(|e| Error::run_file(format!("[sliding] {e}")))?;
+        let estimate_constants = match raw.sliding.as_ref().and_then(|sl| sl.estimate_constants.as_ref()) {
+            None => None,
+            Some(c) => Some(
+                crate::estimate::Calibration {
+                    residence_factor: c.residence_factor,
+                    merging_factor: c.merging_factor,
+                    volume_factor: c.volume_factor,
+                    rate_spread: c.rate_spread,
+                    wear_spread: c.wear_spread,
+                    settings: 0,
+                    particles: 0,
+                }
+                .checked("estimate_constants")
+                .map_err(|e| Error::run_file(format!("[sliding] {e}")))?,
+            ),
+        };
         let sliding = match raw.sliding {
             None => None,
             Some(sl) => {
@@ -174,6 +194,7 @@ impl RunConfig {
             stopping,
             model,
             estimate_samples,
+            estimate_constants,
         })
     }
 
@@ -314,6 +335,11 @@ impl RunConfig {
 
     /// Every input of the run as one flat record (the fracture energies and loads aside, which a
     /// results table has one row per).
+    /// The static estimate's constants of this run: the run file's own, else the library's.
+    pub fn estimate_calibration(&self) -> crate::estimate::Calibration {
+        self.estimate_constants.unwrap_or(crate::estimate::CALIBRATION)
+    }
+
     pub fn inputs(&self) -> InputRecord {
         let m = &self.material;
         let mut record = InputRecord {
@@ -356,6 +382,12 @@ impl RunConfig {
             stopping: (self.sliding.is_some() && self.stopping != SLIDING_STOPPING).then_some(self.stopping),
             model: (self.model != WearModel::default()).then_some(self.model),
             estimate_samples: self.estimate_samples,
+            estimate_constants: self.estimate_constants.map(|c| {
+                format!(
+                    "{}, {}, {}, {}, {}",
+                    c.residence_factor, c.merging_factor, c.volume_factor, c.rate_spread, c.wear_spread
+                )
+            }),
         };
         match &self.surfaces {
             SurfaceSource::Generated { grid, spectrum, seed } => {

@@ -104,6 +104,19 @@ pub(super) struct RawSliding {
     pub(super) stopping: Option<Stopping>,
     pub(super) model: Option<WearModel>,
     pub(super) estimate_samples: Option<usize>,
+    pub(super) estimate_constants: Option<RawConstants>,
+}
+
+/// `[sliding] estimate_constants`: the static estimate's constants, as `wearsim estimate-check
+/// --fit` prints them.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawConstants {
+    pub(super) residence_factor: f64,
+    pub(super) merging_factor: f64,
+    pub(super) volume_factor: f64,
+    pub(super) rate_spread: f64,
+    pub(super) wear_spread: f64,
 }
 
 /// A TOML error message on one line (they come with a source excerpt over several lines).

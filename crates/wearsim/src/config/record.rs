@@ -94,6 +94,10 @@ pub struct InputRecord {
     /// The static maps of an estimate, when fixed in the run file.
     #[serde(rename = "sliding.estimate_samples", default)]
     pub estimate_samples: Option<usize>,
+    /// The static estimate's constants, when the run file gives its own (c₁, c₂, c_v, rate and wear
+    /// spread).
+    #[serde(rename = "sliding.estimate_constants", default)]
+    pub estimate_constants: Option<String>,
 }
 
 impl InputRecord {

@@ -38,6 +38,27 @@ pub enum SurfaceSource {
     Arrays { grid: Grid, length: f64 },
 }
 
+impl SurfaceSource {
+    /// The kind of these surfaces as the static estimate's reach sees it
+    /// ([`crate::estimate::run_reach_warnings`]), on `grid`: any source but the generator is
+    /// outside the calibration's spectrum, whatever its variant.
+    pub fn estimate_kind(&self, grid: Grid) -> crate::estimate::SurfaceKind {
+        use crate::estimate::SurfaceKind;
+        #[allow(unreachable_patterns)]
+        match self {
+            SurfaceSource::Generated { spectrum, .. } => SurfaceKind::Generated {
+                hurst: spectrum.hurst,
+                lower_cutoff_pixels: spectrum.lambda_lower / grid.pixel_size(),
+                upper_cutoff_box: spectrum.lambda_upper / grid.length_x(),
+                upper_cutoff: spectrum.lambda_upper,
+            },
+            SurfaceSource::Files { .. } => SurfaceKind::Other("read from height-map files (a measured map)".into()),
+            SurfaceSource::Arrays { .. } => SurfaceKind::Other("height arrays given by the caller".into()),
+            _ => SurfaceKind::Other("not made by wearsim's self-affine generator".into()),
+        }
+    }
+}
+
 /// One value for a square grid, `[x, y]` for a rectangular one (as a run file writes it).
 fn per_side<T: serde::Serialize + PartialEq>(x: T, y: T) -> serde_json::Value {
     if x == y {

@@ -6,7 +6,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
 use crate::error::{Error, Interrupt, Result};
-use crate::estimate::{Sampling, WearModel, CALIBRATION, MAX_SAMPLES};
+use crate::estimate::{Sampling, WearModel, MAX_SAMPLES};
 use crate::io::refresh_claim;
 use crate::output::{JobResult, Provenance, StepRow};
 use crate::run::SlidingRun;
@@ -98,10 +98,11 @@ pub(crate) fn job_result(job: &Job, load: f64, seconds: f64, warnings: Vec<Strin
 fn estimate_job(job: &Job, interrupt: &Interrupt, on_step: impl Fn()) -> Result<JobResult> {
     let run = &job.run;
     let sampling = Sampling::of(run.estimate_samples)?;
-    let mut outcome =
-        SlidingRun::prepare(run)?
-            .interrupted_by(interrupt)
-            .estimate(sampling, &CALIBRATION, |_, _| on_step())?;
+    let mut outcome = SlidingRun::prepare(run)?.interrupted_by(interrupt).estimate(
+        sampling,
+        &run.estimate_calibration(),
+        |_, _| on_step(),
+    )?;
     let l = outcome
         .loads
         .pop()
