@@ -6,7 +6,7 @@ use std::path::Path;
 
 use toml::{Table, Value};
 
-use crate::config::{InputRecord, RunConfig, SurfaceFiles, SurfaceSource};
+use crate::config::{InputRecord, RunConfig, SurfaceFiles};
 use crate::error::{Error, Result};
 use crate::estimate::WearModel;
 use crate::output::JobResult;
@@ -230,11 +230,9 @@ pub fn expand(text: &str, base: &Path) -> Result<Study> {
 pub(crate) fn hash_with_surfaces(study: &Study) -> Result<String> {
     let mut files: Vec<&Path> = Vec::new();
     for job in &study.jobs {
-        if let SurfaceSource::Files { top, bottom, .. } = &job.run.surfaces {
-            for p in [top, bottom] {
-                if !files.contains(&p.as_path()) {
-                    files.push(p);
-                }
+        for p in job.run.surfaces.input_files() {
+            if !files.contains(&p) {
+                files.push(p);
             }
         }
     }

@@ -68,7 +68,7 @@ pub const PEAK: f64 = 5.0;
 /// H beyond 1 by more than this is outside (0, 1] (the fit recovers the H of generated surfaces
 /// within 0.05).
 const HURST_SLACK: f64 = 0.05;
-/// The band of a self-affine spectrum spans at least this ratio of wavelengths λ_u/λ_l.
+/// The fitted band of a self-affine spectrum spans at least this ratio of wavenumbers.
 const DECADE: f64 = 10.0;
 /// R² of the log–log line below this: the PSD is no power law.
 const R2_MIN: f64 = 0.9;
@@ -335,20 +335,22 @@ impl Verdict {
 
 impl SpectrumFit {
     /// Whether the spectrum is self-affine: isotropic within a factor [`ANISOTROPIC`], no peak
-    /// above [`PEAK`], H in (0, 1], a band of at least a decade of wavelengths and R² ≥ 0.9.
+    /// above [`PEAK`], H in (0, 1], a fitted band of at least a decade of wavenumbers and R² ≥ 0.9.
     pub fn verdict(&self) -> Verdict {
         let mut reasons = Vec::new();
         let a = self.anisotropy;
         if a > ANISOTROPIC || a < 1.0 / ANISOTROPIC {
             let (more, less) = if a > 1.0 { ("x", "y") } else { ("y", "x") };
             reasons.push(format!(
-                "anisotropic (a lay): wavevectors along {more} carry {:.1} times the power of those along {less} over                  the fitted band (over {ANISOTROPIC} is no isotropic spectrum)",
+                "anisotropic (a lay): wavevectors along {more} carry {:.1} times the power of those along {less} over \
+                 the fitted band (over {ANISOTROPIC} is no isotropic spectrum)",
                 a.max(1.0 / a)
             ));
         }
         if self.peak > PEAK {
             reasons.push(format!(
-                "a peak: a shell stands {:.1} times above the fitted power law beyond its scatter (over {PEAK} is a                  feature, not roughness)",
+                "a peak: a shell stands {:.1} times above the fitted power law beyond its scatter (over {PEAK} is a \
+                 feature, not roughness)",
                 self.peak
             ));
         }
@@ -358,10 +360,11 @@ impl SpectrumFit {
                 self.hurst
             ));
         }
-        let decades = self.lambda_upper / self.lambda_lower;
-        if decades < DECADE {
+        let span = self.fitted_q[1] / self.fitted_q[0];
+        if span < DECADE {
             reasons.push(format!(
-                "the power law spans λ_u/λ_l = {decades:.1}, under a decade of wavelengths: too short to say it is one"
+                "the power law is fitted over a factor {span:.1} of wavenumbers, under a decade: too short to say it is \
+                 one"
             ));
         }
         if let Some(r2) = self.r2.filter(|&r| r < R2_MIN) {
@@ -473,6 +476,7 @@ mod tests {
     use rand_distr::StandardNormal;
 
     use super::super::prepare::{preprocess, Detrend, Preprocess};
+    use super::super::spectrum::Window;
     use super::*;
     use crate::surface::pair_seeds;
 
@@ -594,5 +598,39 @@ mod tests {
                 "{e}"
             );
         }
+    }
+
+    /// A map cut out of a larger periodic surface (not periodic, as a measurement): the fit takes
+    /// its Hann-windowed PSD and recovers H, where the leakage of the border jump flattens the
+    /// plain PSD; a periodic self-affine surface is judged self-affine with no window.
+    #[test]
+    fn a_measured_map_is_fitted_windowed_and_self_affine_surfaces_pass_the_verdict() {
+        let big = generated(Grid::square(1024, 4.0).unwrap(), 0.8, 4.0 / 256.0, 0.25, Generation::RandomPhase, 2);
+        let h: Vec<f64> = (0..256 * 256)
+            .map(|k| big.heights()[(k / 256) * 1024 + k % 256])
+            .collect();
+        let map = levelled(&Surface::new("map", Grid::square(256, 1.0).unwrap(), h).unwrap());
+        let f = fit(&map).unwrap();
+        assert_eq!(f.window, Window::Hann);
+        assert!((f.hurst - 0.8).abs() <= 0.1, "{f:?}");
+        for seed in 1..=3 {
+            let s = generated(Grid::square(512, 1.0).unwrap(), 0.7, 1.0 / 128.0, 0.25, Generation::RandomPhase, seed);
+            let f = fit(&s).unwrap();
+            assert_eq!(f.window, Window::None);
+            let v = f.verdict();
+            assert!(v.self_affine && v.reasons.is_empty(), "{f:?} {v:?}");
+        }
+    }
+
+    /// A lay (a surface squeezed along y: every other column of one twice as wide) is named.
+    #[test]
+    fn a_lay_is_not_self_affine() {
+        let big = generated(Grid::new(256, 512, 1.0).unwrap(), 0.7, 8.0 / 256.0, 0.25, Generation::RandomPhase, 1);
+        let h: Vec<f64> = (0..256 * 256)
+            .map(|k| big.heights()[(k / 256) * 512 + 2 * (k % 256)])
+            .collect();
+        let f = fit(&Surface::new("lay", Grid::square(256, 1.0).unwrap(), h).unwrap()).unwrap();
+        let v = f.verdict();
+        assert!(!v.self_affine && v.reasons.iter().any(|r| r.contains("anisotropic (a lay)")), "{f:?} {v:?}");
     }
 }
