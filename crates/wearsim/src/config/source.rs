@@ -474,8 +474,12 @@ fn spectrum_source(s: &RawSurface, units: Units, base: &Path, files: SurfaceFile
     };
     positive("map_length", map_length)?;
     let grid = generated_grid(
-        s.grid
-            .ok_or_else(|| missing("grid", "give the number of pixels per side of the generated surfaces, e.g. 256"))?,
+        s.grid.ok_or_else(|| {
+            missing(
+                "grid",
+                "give the number of pixels per side of the generated surfaces, e.g. 256",
+            )
+        })?,
         s.length.ok_or_else(|| {
             missing(
                 "length",

@@ -605,7 +605,14 @@ mod tests {
     /// plain PSD; a periodic self-affine surface is judged self-affine with no window.
     #[test]
     fn a_measured_map_is_fitted_windowed_and_self_affine_surfaces_pass_the_verdict() {
-        let big = generated(Grid::square(1024, 4.0).unwrap(), 0.8, 4.0 / 256.0, 0.25, Generation::RandomPhase, 2);
+        let big = generated(
+            Grid::square(1024, 4.0).unwrap(),
+            0.8,
+            4.0 / 256.0,
+            0.25,
+            Generation::RandomPhase,
+            2,
+        );
         let h: Vec<f64> = (0..256 * 256)
             .map(|k| big.heights()[(k / 256) * 1024 + k % 256])
             .collect();
@@ -614,7 +621,14 @@ mod tests {
         assert_eq!(f.window, Window::Hann);
         assert!((f.hurst - 0.8).abs() <= 0.1, "{f:?}");
         for seed in 1..=3 {
-            let s = generated(Grid::square(512, 1.0).unwrap(), 0.7, 1.0 / 128.0, 0.25, Generation::RandomPhase, seed);
+            let s = generated(
+                Grid::square(512, 1.0).unwrap(),
+                0.7,
+                1.0 / 128.0,
+                0.25,
+                Generation::RandomPhase,
+                seed,
+            );
             let f = fit(&s).unwrap();
             assert_eq!(f.window, Window::None);
             let v = f.verdict();
@@ -625,12 +639,22 @@ mod tests {
     /// A lay (a surface squeezed along y: every other column of one twice as wide) is named.
     #[test]
     fn a_lay_is_not_self_affine() {
-        let big = generated(Grid::new(256, 512, 1.0).unwrap(), 0.7, 8.0 / 256.0, 0.25, Generation::RandomPhase, 1);
+        let big = generated(
+            Grid::new(256, 512, 1.0).unwrap(),
+            0.7,
+            8.0 / 256.0,
+            0.25,
+            Generation::RandomPhase,
+            1,
+        );
         let h: Vec<f64> = (0..256 * 256)
             .map(|k| big.heights()[(k / 256) * 512 + 2 * (k % 256)])
             .collect();
         let f = fit(&Surface::new("lay", Grid::square(256, 1.0).unwrap(), h).unwrap()).unwrap();
         let v = f.verdict();
-        assert!(!v.self_affine && v.reasons.iter().any(|r| r.contains("anisotropic (a lay)")), "{f:?} {v:?}");
+        assert!(
+            !v.self_affine && v.reasons.iter().any(|r| r.contains("anisotropic (a lay)")),
+            "{f:?} {v:?}"
+        );
     }
 }

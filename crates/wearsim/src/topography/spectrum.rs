@@ -437,7 +437,13 @@ mod tests {
             for (a, b) in s.radial_psd_shells().iter().zip(&measured_shells) {
                 assert_eq!(a.q, b.q);
                 if b.modes >= 24.0 && b.q <= 64.0 {
-                    assert!((a.psd / b.psd - 1.0).abs() < 0.1, "shell {}: {} vs {}", a.q, a.psd, b.psd);
+                    assert!(
+                        (a.psd / b.psd - 1.0).abs() < 0.1,
+                        "shell {}: {} vs {}",
+                        a.q,
+                        a.psd,
+                        b.psd
+                    );
                 }
             }
             assert!((s.rms_height() / psd.carried_rms(&map.grid()) - 1.0).abs() < 1e-9);
@@ -461,7 +467,11 @@ mod tests {
         let band = (8.0, 16.0);
         let measured_ratio = psd.anisotropy(band.0, band.1);
         assert!(measured_ratio < 0.5, "{measured_ratio}");
-        for target in [map.grid(), Grid::new(128, 64, 1.0).unwrap(), Grid::square(256, 2.0).unwrap()] {
+        for target in [
+            map.grid(),
+            Grid::new(128, 64, 1.0).unwrap(),
+            Grid::square(256, 2.0).unwrap(),
+        ] {
             let s = psd.generate(target, 7).unwrap();
             // The same wavenumbers, in units of 2π over the target's side.
             let scale = target.length_x() / map.length();
@@ -474,7 +484,9 @@ mod tests {
             );
         }
         // An isotropic map is not anisotropic.
-        let iso = MeasuredPsd::of(&measured(128, 1, 4), Window::Hann).unwrap().anisotropy(4.0, 32.0);
+        let iso = MeasuredPsd::of(&measured(128, 1, 4), Window::Hann)
+            .unwrap()
+            .anisotropy(4.0, 32.0);
         assert!((iso.ln()).abs() < 0.2, "{iso}");
     }
 
@@ -485,9 +497,15 @@ mod tests {
         let twice = Grid::square(128, 2.0).unwrap();
         let notes = psd.notes(&twice, "map.npy");
         assert_eq!(notes.len(), 1, "{notes:?}");
-        assert!(notes[0].contains("larger than the map map.npy") && notes[0].contains("longer"), "{notes:?}");
+        assert!(
+            notes[0].contains("larger than the map map.npy") && notes[0].contains("longer"),
+            "{notes:?}"
+        );
         let fine = psd.notes(&Grid::square(128, 1.0).unwrap(), "map.npy");
-        assert!(fine.len() == 1 && fine[0].contains("shorter than two of its pixels"), "{fine:?}");
+        assert!(
+            fine.len() == 1 && fine[0].contains("shorter than two of its pixels"),
+            "{fine:?}"
+        );
         // A smaller box carries less RMS (its longest wavelengths are shorter).
         let small = Grid::square(32, 0.5).unwrap();
         assert!(psd.notes(&small, "m").is_empty());
@@ -506,7 +524,10 @@ mod tests {
         let shells = s.radial_psd_shells();
         assert!(shells[0].psd < 1e-25 * shells[1].psd, "{:?}", &shells[..2]);
         // A box holding no wavevector of the band is refused by name.
-        let e = psd.generate(Grid::square(16, 0.01).unwrap(), 1).unwrap_err().to_string();
+        let e = psd
+            .generate(Grid::square(16, 0.01).unwrap(), 1)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("grid") && e.contains("flat"), "{e}");
     }
 }
