@@ -339,7 +339,7 @@ impl SpectrumFit {
     pub fn verdict(&self) -> Verdict {
         let mut reasons = Vec::new();
         let a = self.anisotropy;
-        if a > ANISOTROPIC || a < 1.0 / ANISOTROPIC {
+        if !(1.0 / ANISOTROPIC..=ANISOTROPIC).contains(&a) {
             let (more, less) = if a > 1.0 { ("x", "y") } else { ("y", "x") };
             reasons.push(format!(
                 "anisotropic (a lay): wavevectors along {more} carry {:.1} times the power of those along {less} over \

@@ -267,7 +267,7 @@ impl MeasuredPsd {
         let (nx, ny) = (target.nx(), target.ny());
         let (c, variance) = self.carried(&target);
         let map_variance = self.c.iter().sum::<f64>() * self.dq();
-        if !(variance > EMPTY.max(1e-30 * map_variance)) {
+        if variance.is_nan() || variance <= EMPTY.max(1e-30 * map_variance) {
             return Err(Error::param(
                 "grid",
                 format!(
