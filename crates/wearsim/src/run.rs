@@ -69,8 +69,9 @@ impl<'a> SlidingRun<'a> {
     pub fn with_surfaces(config: &'a RunConfig, pair: SurfacePair) -> Result<Self> {
         let sliding = sliding_schedule(config)?;
         let grid = pair.top.grid();
-        if let SurfaceSource::Generated { grid: expected, .. } | SurfaceSource::Arrays { grid: expected, .. } =
-            &config.surfaces
+        if let SurfaceSource::Generated { grid: expected, .. }
+        | SurfaceSource::Arrays { grid: expected, .. }
+        | SurfaceSource::Spectrum { grid: expected, .. } = &config.surfaces
         {
             if grid != *expected {
                 return Err(Error::param(

@@ -39,7 +39,7 @@ const SUBLAYERS: [(&str, &[&str]); 8] = [
     ("io", &["atomic", "npy", "zarr"]),
     ("stats", &["fit", "interval", "judge"]),
     ("contact", &["backend", "options", "cpu", "conformance"]),
-    ("topography", &["formats", "prepare", "load", "fit"]),
+    ("topography", &["formats", "prepare", "load", "spectrum", "fit"]),
     ("sliding", &["schedule", "records", "fit", "checkpoint", "state"]),
     ("config", &["raw", "source", "record"]),
     (

@@ -132,9 +132,7 @@ pub fn load_run(run: &Path) -> Result<RunConfig> {
 /// The files a run reads, its run file and surface files: an output folder may hold none of them.
 pub fn run_inputs<'a>(run: &'a Path, config: &'a RunConfig) -> Vec<&'a Path> {
     let mut inputs = vec![run];
-    if let wearsim::config::SurfaceSource::Files { top, bottom, .. } = &config.surfaces {
-        inputs.extend([top.as_path(), bottom.as_path()]);
-    }
+    inputs.extend(config.surfaces.input_files());
     inputs
 }
 

@@ -235,11 +235,6 @@ fn run_fit(args: &FitArgs) -> Result<()> {
     }
     let surface = &loaded.surface;
     let grid = surface.grid();
-    let fit = topography::fit(surface)?;
-    let (spectrum, notes) = fit.spectrum(&grid);
-    for note in &notes {
-        tell!("warning: {note}");
-    }
     let unit = if args.height_unit.is_some() {
         "m"
     } else {
@@ -249,23 +244,91 @@ fn run_fit(args: &FitArgs) -> Result<()> {
         .file
         .file_name()
         .map_or_else(|| args.file.display().to_string(), |n| n.to_string_lossy().into());
-    let block = topography::surface_block(&grid, &spectrum, args.seed, &source, unit.trim_matches(['(', ')']));
-    say!(
-        "fitted C(q) ∝ q^−2(1+H) over q = {:.4e} … {:.4e} (2π/λ, {} shells), R² = {} (log–log PSD); left out: {} shells \
-         at longer wavelengths than λ_u and {} at shorter than λ_l, down to the floor (round-off or noise) at {:.1e} of \
-         the power law at λ_l; periodicity of the prepared map: border jumps {:.1} (x) and {:.1} (y) typical steps",
-        fit.fitted_q[0],
-        fit.fitted_q[1],
-        fit.shells,
-        fit.r2.map_or("undefined".into(), |r| format!("{r:.4}")),
-        fit.shells_longer,
-        fit.shells_shorter,
-        fit.floor,
-        loaded.periodicity.border_step_x,
-        loaded.periodicity.border_step_y
+    let fitted = topography::fit(surface);
+    let verdict = match &fitted {
+        Ok(fit) => fit.verdict(),
+        Err(e) => topography::Verdict::no_band(&e.to_string()),
+    };
+    // The block that carries the map's spectrum as measured, for a spectrum that is not
+    // self-affine: the map as this command read it (its path made absolute, so that a run file
+    // anywhere finds it), with the units and size it was given.
+    let window = fitted
+        .as_ref()
+        .map_or_else(|_| topography::Window::for_map(surface), |f| f.window);
+    let mut extra = Vec::new();
+    if let Some(l) = args.length.first() {
+        extra.push(format!("map_length = {l}"));
+    }
+    if let Some(u) = &args.height_unit {
+        extra.push(format!("height_unit = \"{u}\""));
+    }
+    if let Some(u) = &args.lateral_unit {
+        extra.push(format!("lateral_unit = \"{u}\""));
+    }
+    let map_path = std::fs::canonicalize(&args.file).unwrap_or_else(|_| args.file.clone());
+    let spectrum_block = topography::spectrum_block(
+        &map_path.display().to_string(),
+        &grid,
+        window,
+        args.seed,
+        &extra,
+        unit.trim_matches(['(', ')']),
     );
-    if fit.r2.is_some_and(|r| r < 0.9) {
-        tell!("warning: the PSD follows a power law poorly (R² < 0.9): H is a rough estimate");
+    let mut spectrum = None;
+    let mut notes = Vec::new();
+    let block = match &fitted {
+        Ok(fit) => {
+            let (params, fit_notes) = fit.spectrum(&grid);
+            for note in &fit_notes {
+                tell!("warning: {note}");
+            }
+            notes = fit_notes;
+            let block = topography::surface_block(&grid, &params, args.seed, &source, unit.trim_matches(['(', ')']));
+            say!(
+                "fitted C(q) ∝ q^−2(1+H) over q = {:.4e} … {:.4e} (2π/λ, {} shells, {} window), R² = {} (log–log PSD); \
+                 left out: {} shells at longer wavelengths than λ_u and {} at shorter than λ_l, down to the floor \
+                 (round-off or noise) at {:.1e} of the power law at λ_l; x/y power ratio {:.2}; periodicity of the \
+                 prepared map: border jumps {:.1} (x) and {:.1} (y) typical steps",
+                fit.fitted_q[0],
+                fit.fitted_q[1],
+                fit.shells,
+                fit.window.name(),
+                fit.r2.map_or("undefined".into(), |r| format!("{r:.4}")),
+                fit.shells_longer,
+                fit.shells_shorter,
+                fit.floor,
+                fit.anisotropy,
+                loaded.periodicity.border_step_x,
+                loaded.periodicity.border_step_y
+            );
+            if fit.r2.is_some_and(|r| r < 0.9) {
+                tell!("warning: the PSD follows a power law poorly (R² < 0.9): H is a rough estimate");
+            }
+            spectrum = Some(params);
+            if verdict.self_affine {
+                block
+            } else {
+                // One [surface] table per run file: the spectrum's, with the self-affine fit kept
+                // below as comments for its numbers.
+                let commented: String = block.lines().map(|l| format!("# {l}\n")).collect();
+                format!(
+                    "{spectrum_block}\n# The self-affine fit, which leaves out what the spectrum is not:\n{commented}"
+                )
+            }
+        }
+        Err(_) => spectrum_block.clone(),
+    };
+    if !verdict.self_affine {
+        tell!(
+            "note: the spectrum of {source} is not self-affine ({}); the block below generates periodic surfaces that \
+             carry its measured 2D PSD (source = \"spectrum\"){}",
+            verdict.reasons.join("; "),
+            if fitted.is_ok() {
+                ", with the self-affine fit kept as comments"
+            } else {
+                ""
+            }
+        );
     }
     if args.height_unit.is_some() {
         say!("# in a run file with units = \"si\"");
@@ -275,12 +338,26 @@ fn run_fit(args: &FitArgs) -> Result<()> {
     write_text(&dir.join("surface.toml"), &block)?;
     write_json(
         &dir.join("fit.json"),
-        &surface_fit_summary(&args.file, &how.preprocess, unit, &grid, &fit, &spectrum, &notes),
+        &surface_fit_summary(
+            &args.file,
+            &how.preprocess,
+            unit,
+            &grid,
+            fitted.as_ref().ok().zip(spectrum.as_ref()),
+            &verdict,
+            &notes,
+        ),
     )?;
     if args.generate {
         let (a, b) = pair_seeds(args.seed);
+        // The self-affine parameters where the spectrum is self-affine, else the spectrum itself.
+        let params = spectrum.as_ref().filter(|_| verdict.self_affine);
+        let psd = topography::MeasuredPsd::of(surface, window)?;
         for (name, seed) in [("top", a), ("bottom", b)] {
-            let s = Surface::generate(grid, &spectrum, seed)?;
+            let s = match params {
+                Some(params) => Surface::generate(grid, params, seed)?,
+                None => psd.generate(grid, seed)?,
+            };
             s.write_npy(&dir.join(&format!("{name}.npy")))?;
             print_statistics(name, &SurfaceStatistics::of(&s), unit);
         }

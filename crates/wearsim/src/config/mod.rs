@@ -24,7 +24,7 @@ use crate::sliding::{
     SlidingConfig, SlidingSetup, DEFAULT_DISTANCE, DEFAULT_RUNNING_IN, DEFAULT_STEP, DEFAULT_STEP_RUNNING_IN,
 };
 use crate::surface::{pair_seeds, Generation, Surface};
-use crate::topography::{metres_per, FileSurface, Preprocess};
+use crate::topography::{metres_per, FileSurface, MeasuredPsd, Preprocess, Window};
 use crate::wear::ParticleRuleKind;
 
 use raw::{one_line, RawRun};
@@ -145,7 +145,9 @@ impl RunConfig {
             None => None,
             Some(sl) => {
                 let grid = match &surfaces {
-                    SurfaceSource::Generated { grid, .. } | SurfaceSource::Arrays { grid, .. } => Some(grid.nx()),
+                    SurfaceSource::Generated { grid, .. }
+                    | SurfaceSource::Arrays { grid, .. }
+                    | SurfaceSource::Spectrum { grid, .. } => Some(grid.nx()),
                     SurfaceSource::Files { .. } => None,
                 };
                 let rule = match &sl.particle_rule {
@@ -168,7 +170,9 @@ impl RunConfig {
         // The apparent area, where the run file fixes it (a file's y side may come from its shape,
         // checked when the run starts).
         let area = match &surfaces {
-            SurfaceSource::Generated { grid, .. } | SurfaceSource::Arrays { grid, .. } => Some(grid.area()),
+            SurfaceSource::Generated { grid, .. }
+            | SurfaceSource::Arrays { grid, .. }
+            | SurfaceSource::Spectrum { grid, .. } => Some(grid.area()),
             SurfaceSource::Files {
                 length,
                 length_y: Some(ly),
@@ -227,6 +231,60 @@ impl RunConfig {
                     top: top?,
                     bottom: bottom?,
                     notes: Vec::new(),
+                    warnings: Vec::new(),
+                })
+            }
+            SurfaceSource::Spectrum {
+                grid,
+                map,
+                map_length,
+                height_unit,
+                lateral_unit,
+                window,
+                seed,
+            } => {
+                crate::check::memory(
+                    "generating the surface pair",
+                    grid.nx(),
+                    grid.ny(),
+                    crate::check::SURFACE_ARRAYS,
+                )?;
+                let how = FileSurface {
+                    height_scale: match (self.units, height_unit) {
+                        (Units::Si, Some(u)) => metres_per("height_unit", u)?,
+                        _ => 1.0,
+                    },
+                    lateral_scale: lateral_scale(self.units, lateral_unit, height_unit)?,
+                    length_x: Some(*map_length),
+                    length_y: None,
+                    preprocess: Preprocess::default(),
+                };
+                // The map's periodicity warning is left out: the surfaces made of it are periodic.
+                let loaded = crate::topography::load(map, &how)?;
+                let name = map.display().to_string();
+                let window = window.unwrap_or_else(|| Window::for_map(&loaded.surface));
+                let psd = MeasuredPsd::of(&loaded.surface, window)?;
+                let (top_seed, bottom_seed) = pair_seeds(*seed);
+                let (top, bottom) = rayon::join(|| psd.generate(*grid, top_seed), || psd.generate(*grid, bottom_seed));
+                let mut notes = loaded.notes;
+                notes.push(format!(
+                    "{name}: the surfaces carry its measured PSD ({} window, {} × {} modes) on a {} × {} grid of box \
+                     {:e} × {:e}: h_rms = {:.4e} (the map's: {:.4e})",
+                    window.name(),
+                    psd.grid().nx(),
+                    psd.grid().ny(),
+                    grid.nx(),
+                    grid.ny(),
+                    grid.length_x(),
+                    grid.length_y(),
+                    psd.carried_rms(grid),
+                    psd.rms_height()
+                ));
+                notes.extend(psd.notes(grid, &name));
+                Ok(SurfacePair {
+                    top: top?,
+                    bottom: bottom?,
+                    notes,
                     warnings: Vec::new(),
                 })
             }
@@ -292,7 +350,9 @@ impl RunConfig {
     /// header, or by reading a text file), after cropping to even sides.
     pub fn grid(&self) -> Result<Grid> {
         match &self.surfaces {
-            SurfaceSource::Generated { grid, .. } | SurfaceSource::Arrays { grid, .. } => Ok(*grid),
+            SurfaceSource::Generated { grid, .. }
+            | SurfaceSource::Arrays { grid, .. }
+            | SurfaceSource::Spectrum { grid, .. } => Ok(*grid),
             SurfaceSource::Files { top, .. } => crate::topography::probe_grid(top, &self.file_surface()?),
         }
     }
@@ -323,7 +383,7 @@ impl RunConfig {
     /// [`RunConfig::grid`]).
     pub fn length(&self) -> f64 {
         match &self.surfaces {
-            SurfaceSource::Generated { grid, .. } => grid.length_x(),
+            SurfaceSource::Generated { grid, .. } | SurfaceSource::Spectrum { grid, .. } => grid.length_x(),
             SurfaceSource::Files { length, .. } | SurfaceSource::Arrays { length, .. } => *length,
         }
     }
@@ -360,6 +420,10 @@ impl RunConfig {
             taper: None,
             generation: None,
             lateral_unit: None,
+            source: None,
+            map: None,
+            map_length: None,
+            window: None,
             youngs_modulus: m.youngs_modulus,
             poisson_ratio: m.poisson_ratio,
             shear_strength: m.shear_strength,
@@ -402,6 +466,28 @@ impl RunConfig {
                 record.rms_height = Some(spectrum.rms_height);
                 record.seed = Some(*seed);
                 record.generation = (spectrum.generation != Generation::default()).then_some(spectrum.generation);
+            }
+            SurfaceSource::Spectrum {
+                grid,
+                map,
+                map_length,
+                height_unit,
+                lateral_unit,
+                window,
+                seed,
+            } => {
+                record.source = Some("spectrum".into());
+                record.grid = Some(grid.nx());
+                if !grid.is_square() {
+                    record.grid_y = Some(grid.ny());
+                    record.length_y = Some(grid.length_y());
+                }
+                record.map = Some(map.display().to_string());
+                record.map_length = Some(*map_length);
+                record.height_unit = height_unit.clone();
+                record.lateral_unit = lateral_unit.clone();
+                record.window = *window;
+                record.seed = Some(*seed);
             }
             SurfaceSource::Arrays { grid, .. } => {
                 record.grid = Some(grid.nx());

@@ -10,7 +10,7 @@ use crate::estimate::WearModel;
 use crate::influence::Boundary;
 use crate::material::ModulusConvention;
 use crate::surface::Generation;
-use crate::topography::Detrend;
+use crate::topography::{Detrend, Window};
 
 /// Unit system of a run file: reduced (E = 1, L = 1 by convention) or SI (Pa, m, J/m², N).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
@@ -68,6 +68,12 @@ pub(super) struct RawSurface {
     pub(super) lateral_unit: Option<String>,
     pub(super) detrend: Option<Detrend>,
     pub(super) taper: Option<f64>,
+    /// Where the surfaces come from when the keys do not say it alone: "spectrum" (generated from
+    /// the measured PSD of `map`); "generated" and "files" are what the other keys say.
+    pub(super) source: Option<String>,
+    pub(super) map: Option<PathBuf>,
+    pub(super) map_length: Option<f64>,
+    pub(super) window: Option<Window>,
 }
 
 #[derive(Debug, Deserialize)]

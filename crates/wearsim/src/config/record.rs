@@ -52,6 +52,16 @@ pub struct InputRecord {
     /// Unit of a column file's x y coordinates, when given.
     #[serde(rename = "surface.lateral_unit", default)]
     pub lateral_unit: Option<String>,
+    /// "spectrum" for surfaces generated from a measured map's PSD; empty otherwise.
+    #[serde(rename = "surface.source", default)]
+    pub source: Option<String>,
+    /// The measured map of a `source = "spectrum"` run.
+    #[serde(rename = "surface.map", default)]
+    pub map: Option<String>,
+    #[serde(rename = "surface.map_length", default)]
+    pub map_length: Option<f64>,
+    #[serde(rename = "surface.window", default)]
+    pub window: Option<crate::topography::Window>,
     #[serde(rename = "material.youngs_modulus")]
     pub youngs_modulus: f64,
     #[serde(rename = "material.poisson_ratio")]

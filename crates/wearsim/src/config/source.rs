@@ -7,7 +7,7 @@ use crate::check::positive;
 use crate::error::{Error, Result};
 use crate::grid::Grid;
 use crate::surface::{SpectrumParams, Surface};
-use crate::topography::{metres_per, Preprocess};
+use crate::topography::{metres_per, Preprocess, Window};
 
 use super::raw::{PerSide, RawSurface, Units};
 
@@ -36,6 +36,34 @@ pub enum SurfaceSource {
     /// Two height arrays the caller holds (the Python `slide` on arrays), on `grid`, whose side
     /// along x is `length` as the caller gave it; nothing to generate or read.
     Arrays { grid: Grid, length: f64 },
+    /// Generated on `grid` from the measured 2D PSD of the height map `map` (`source =
+    /// "spectrum"`, [`crate::topography::MeasuredPsd`]), with random phases from one seed (top and
+    /// bottom seeds derived from it).
+    Spectrum {
+        grid: Grid,
+        /// The map, resolved against the run file's folder; any format [`crate::topography::read`]
+        /// knows.
+        map: PathBuf,
+        /// The map's side along x in the run's length unit (given, or from its coordinates).
+        map_length: f64,
+        height_unit: Option<String>,
+        lateral_unit: Option<String>,
+        /// The window of the map's PSD; absent: Hann when the map is not periodic, none when it is.
+        window: Option<Window>,
+        seed: u64,
+    },
+}
+
+impl SurfaceSource {
+    /// The files the surfaces are read from or made of (none for generated surfaces and arrays):
+    /// inputs that an output folder may not hold, and whose contents enter a study's hash.
+    pub fn input_files(&self) -> Vec<&Path> {
+        match self {
+            SurfaceSource::Files { top, bottom, .. } => vec![top.as_path(), bottom.as_path()],
+            SurfaceSource::Spectrum { map, .. } => vec![map.as_path()],
+            SurfaceSource::Generated { .. } | SurfaceSource::Arrays { .. } => Vec::new(),
+        }
+    }
 }
 
 impl SurfaceSource {
@@ -107,6 +135,32 @@ impl serde::Serialize for SurfaceSource {
                     map.serialize_entry("detrend", preprocess.detrend.name())?;
                     map.serialize_entry("taper", &preprocess.taper)?;
                 }
+            }
+            SurfaceSource::Spectrum {
+                grid,
+                map: file,
+                map_length,
+                height_unit,
+                lateral_unit,
+                window,
+                seed,
+            } => {
+                // As a run file writes it, so that it reads back.
+                map.serialize_entry("source", "spectrum")?;
+                map.serialize_entry("map", file)?;
+                map.serialize_entry("map_length", map_length)?;
+                map.serialize_entry("grid", &per_side(grid.nx(), grid.ny()))?;
+                map.serialize_entry("length", &per_side(grid.length_x(), grid.length_y()))?;
+                if let Some(u) = height_unit {
+                    map.serialize_entry("height_unit", u)?;
+                }
+                if let Some(u) = lateral_unit {
+                    map.serialize_entry("lateral_unit", u)?;
+                }
+                if let Some(w) = window {
+                    map.serialize_entry("window", w.name())?;
+                }
+                map.serialize_entry("seed", seed)?;
             }
             SurfaceSource::Arrays { grid, length } => {
                 map.serialize_entry("source", "arrays")?;
@@ -288,6 +342,44 @@ pub(super) fn files_source(
 /// resolved against `base`) or generated (neither), with the keys that do not belong to that choice
 /// refused by name.
 pub(super) fn surface_source(s: &RawSurface, units: Units, base: &Path, files: SurfaceFiles) -> Result<SurfaceSource> {
+    let by_keys = if s.top.is_some() || s.bottom.is_some() {
+        "files"
+    } else {
+        "generated"
+    };
+    match s.source.as_deref() {
+        Some("spectrum") => return spectrum_source(s, units, base, files),
+        None => {}
+        Some(named) if named == by_keys => {}
+        Some(named @ ("files" | "generated")) => {
+            return Err(Error::run_file(format!(
+                "[surface] `source` = \"{named}\" but the keys describe {by_keys} surfaces: {}",
+                if named == "files" {
+                    "give `top` and `bottom`"
+                } else {
+                    "remove `top` and `bottom`"
+                }
+            )))
+        }
+        Some(other) => {
+            return Err(Error::run_file(format!(
+                "[surface] `source` = \"{other}\"; use \"generated\", \"files\" or \"spectrum\" (periodic surfaces \
+                 carrying the measured PSD of `map`)"
+            )))
+        }
+    }
+    for (field, value) in [
+        ("map", s.map.is_some()),
+        ("map_length", s.map_length.is_some()),
+        ("window", s.window.is_some()),
+    ] {
+        if value {
+            return Err(Error::run_file(format!(
+                "[surface] `{field}` applies to source = \"spectrum\" (surfaces generated from a measured map's PSD); \
+                 add source = \"spectrum\" or remove it"
+            )));
+        }
+    }
     match (&s.top, &s.bottom) {
         (Some(top), Some(bottom)) => files_source(s, units, base.join(top), base.join(bottom), files),
         (None, None) => {
@@ -330,4 +422,99 @@ pub(super) fn surface_source(s: &RawSurface, units: Units, base: &Path, files: S
             "[surface] give both `top` and `bottom` files, or neither (to generate the surfaces)",
         )),
     }
+}
+
+/// The source of surfaces generated from the measured PSD of a map (`source = "spectrum"`): the
+/// map's path resolved against `base`, its units checked as a file's, its size given or read from
+/// its coordinates; the keys of the other sources refused by name.
+fn spectrum_source(s: &RawSurface, units: Units, base: &Path, files: SurfaceFiles) -> Result<SurfaceSource> {
+    for (field, value) in [
+        ("hurst", s.hurst.is_some()),
+        ("lambda_lower", s.lambda_lower.is_some()),
+        ("lambda_upper", s.lambda_upper.is_some()),
+        ("rms_height", s.rms_height.is_some()),
+        ("generation", s.generation.is_some()),
+        ("top", s.top.is_some()),
+        ("bottom", s.bottom.is_some()),
+        ("detrend", s.detrend.is_some()),
+        ("taper", s.taper.is_some()),
+    ] {
+        if value {
+            return Err(Error::run_file(format!(
+                "[surface] `{field}` has no meaning with source = \"spectrum\" (the surfaces carry the measured PSD of \
+                 `map`, levelled by a plane under a Hann window or by its mean without one); remove it"
+            )));
+        }
+    }
+    for (field, unit) in [("height_unit", &s.height_unit), ("lateral_unit", &s.lateral_unit)] {
+        if let Some(u) = unit {
+            metres_per(field, u)?;
+            if units != Units::Si {
+                return Err(Error::run_file(format!(
+                    "[surface] `{field}` = \"{u}\" converts the map to metres, which needs units = \"si\"; in reduced \
+                     units give its heights in the unit of `length` and remove `{field}`"
+                )));
+            }
+        }
+    }
+    let map = s.map.as_ref().ok_or_else(|| {
+        missing(
+            "map",
+            "give the measured height map whose PSD the surfaces carry, e.g. map = \"heights.npy\" (as `wearsim \
+             surface import` writes it; relative to the run file)",
+        )
+    })?;
+    let map = crate::io::canonical_path(&base.join(map));
+    if files == SurfaceFiles::MustExist && !map.is_file() {
+        if map.exists() {
+            crate::topography::regular_file(&map)?;
+        }
+        return Err(Error::file(
+            &map,
+            "[surface] `map`: height map not found (paths are relative to the run file)",
+        ));
+    }
+    let map_length = match s.map_length {
+        Some(l) => l,
+        None if map.is_file() => match crate::topography::file_span(&map)? {
+            Some((x, _)) => x * lateral_scale(units, &s.lateral_unit, &s.height_unit)?,
+            None => {
+                return Err(missing(
+                    "map_length",
+                    "give the map's side along its first axis in the run's length unit (only x y z column files \
+                     state it themselves)",
+                ))
+            }
+        },
+        None => {
+            return Err(missing(
+                "map_length",
+                "give the map's side along its first axis in the run's length unit",
+            ))
+        }
+    };
+    positive("map_length", map_length)?;
+    let grid = generated_grid(
+        s.grid.ok_or_else(|| {
+            missing(
+                "grid",
+                "give the number of pixels per side of the generated surfaces, e.g. 256",
+            )
+        })?,
+        s.length.ok_or_else(|| {
+            missing(
+                "length",
+                "give the side of the generated surfaces' box, e.g. the map's side (`map_length`)",
+            )
+        })?,
+    )?;
+    Ok(SurfaceSource::Spectrum {
+        grid,
+        map,
+        map_length,
+        height_unit: s.height_unit.clone(),
+        lateral_unit: s.lateral_unit.clone(),
+        window: s.window,
+        seed: s.seed.unwrap_or(0),
+    })
 }

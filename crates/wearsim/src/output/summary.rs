@@ -380,10 +380,11 @@ pub fn surface_fit_summary(
     preprocess: &crate::topography::Preprocess,
     length_unit: &str,
     grid: &crate::grid::Grid,
-    fit: &crate::topography::SpectrumFit,
-    spectrum: &crate::surface::SpectrumParams,
+    fit: Option<(&crate::topography::SpectrumFit, &crate::surface::SpectrumParams)>,
+    verdict: &crate::topography::Verdict,
     notes: &[String],
 ) -> Value {
+    let (fit, spectrum) = fit.unzip();
     json!({
         "provenance": Provenance::current(),
         "file": file,
@@ -394,6 +395,8 @@ pub fn surface_fit_summary(
         "length": [grid.length_x(), grid.length_y()],
         "fit": fit,
         "spectrum": spectrum,
+        "self_affine": verdict.self_affine,
+        "reasons": verdict.reasons,
         "notes": notes,
         "method": crate::topography::FIT_METHOD,
     })

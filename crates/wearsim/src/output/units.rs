@@ -32,6 +32,7 @@ pub const QUANTITIES: &[(&str, &str, &str)] = &[
     // Lengths.
     ("length", "L", "m"),
     ("length_y", "L", "m"),
+    ("map_length", "L", "m"),
     ("lambda_lower", "L", "m"),
     ("lambda_upper", "L", "m"),
     ("rms_height", "L", "m"),
@@ -61,6 +62,9 @@ pub const QUANTITIES: &[(&str, &str, &str)] = &[
     ("bottom", "", ""),
     ("height_unit", "", ""),
     ("lateral_unit", "", ""),
+    ("source", "", ""),
+    ("map", "", ""),
+    ("window", "", ""),
     ("detrend", "", ""),
     ("generation", "", ""),
     ("modulus", "", ""),

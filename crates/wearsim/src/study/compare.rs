@@ -5,7 +5,6 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::config::SurfaceSource;
 use crate::error::{Error, Interrupt, Result};
 use crate::estimate::{
     fit_distance, results_of, Calibration, CalibrationPoint, EstimateResult, Sample, Sampling, WearModel,
@@ -94,11 +93,9 @@ pub fn study_inputs(dir: &Path) -> Result<Vec<PathBuf>> {
     let study = expand_stored(&text, &base)?;
     let mut inputs = vec![dir.join("study.toml"), dir.join("study.hash"), dir.join("jobs"), base];
     for job in &study.jobs {
-        if let SurfaceSource::Files { top, bottom, .. } = &job.run.surfaces {
-            for file in [top, bottom] {
-                if !inputs.contains(file) {
-                    inputs.push(file.clone());
-                }
+        for file in job.run.surfaces.input_files() {
+            if !inputs.iter().any(|i| i == file) {
+                inputs.push(file.to_path_buf());
             }
         }
     }

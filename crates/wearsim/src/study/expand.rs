@@ -6,7 +6,7 @@ use std::path::Path;
 
 use toml::{Table, Value};
 
-use crate::config::{InputRecord, RunConfig, SurfaceFiles, SurfaceSource};
+use crate::config::{InputRecord, RunConfig, SurfaceFiles};
 use crate::error::{Error, Result};
 use crate::estimate::WearModel;
 use crate::output::JobResult;
@@ -230,11 +230,9 @@ pub fn expand(text: &str, base: &Path) -> Result<Study> {
 pub(crate) fn hash_with_surfaces(study: &Study) -> Result<String> {
     let mut files: Vec<&Path> = Vec::new();
     for job in &study.jobs {
-        if let SurfaceSource::Files { top, bottom, .. } = &job.run.surfaces {
-            for p in [top, bottom] {
-                if !files.contains(&p.as_path()) {
-                    files.push(p);
-                }
+        for p in job.run.surfaces.input_files() {
+            if !files.contains(&p) {
+                files.push(p);
             }
         }
     }
@@ -506,6 +504,56 @@ fracture_energies = [0.5e-6]
 [sliding]
 loads = [5e-4, 1e-3]
 "#;
+
+    /// A study over the seeds of `source = "spectrum"` surfaces expands to one pair per seed, as
+    /// for generated surfaces; the map enters the study's hash, and each job's source and record
+    /// read back as written.
+    #[test]
+    fn a_study_over_seeds_of_a_measured_spectrum_gives_one_pair_per_seed() {
+        let dir = tempfile::tempdir().unwrap();
+        let grid = crate::grid::Grid::square(64, 1.0).unwrap();
+        let map = crate::surface::Surface::generate(grid, &crate::surface::SpectrumParams::paper_roughness(64, 1.0), 1)
+            .unwrap();
+        map.write_npy(&dir.path().join("map.npy")).unwrap();
+        let study = STUDY
+            .replace(
+                "grid = 64\nlambda_lower = 0.125\nlambda_upper = 0.25\nrms_height = 0.005\nseed = [1, 2, 3]",
+                "source = \"spectrum\"\nmap = \"map.npy\"\nmap_length = 1.0\ngrid = 32\nlength = 0.5\nseed = [1, 2]",
+            )
+            .split("[[materials]]\nname = \"hard\"")
+            .next()
+            .unwrap()
+            .replace("shear_strength = [0.008, 0.01]", "shear_strength = 0.01")
+            .replace("fracture_energies = [0.5e-6, 1e-6]", "fracture_energies = [0.5e-6]")
+            + "[sliding]\nloads = [1e-3]\n";
+        let s = expand(&study, dir.path()).unwrap();
+        assert_eq!(s.jobs.len(), 2, "{study}");
+        let pairs: Vec<_> = s.jobs.iter().map(|j| j.run.surfaces().unwrap()).collect();
+        assert_ne!(pairs[0], pairs[1]);
+        assert_eq!(pairs[0], s.jobs[0].run.surfaces().unwrap());
+        assert_eq!(pairs[0].0.grid(), crate::grid::Grid::square(32, 0.5).unwrap());
+        // The map's contents are part of the hash.
+        let mut other = map.heights().to_vec();
+        other[0] += 1e-3;
+        crate::surface::Surface::new("m", grid, other)
+            .unwrap()
+            .write_npy(&dir.path().join("map.npy"))
+            .unwrap();
+        assert_ne!(expand(&study, dir.path()).unwrap().hash, s.hash);
+        // The source as serialized is a run file's [surface] table, and reads back.
+        let job = &s.jobs[1].run;
+        let table: toml::Table = serde_json::from_value(serde_json::to_value(&job.surfaces).unwrap()).unwrap();
+        let text = format!(
+            "[surface]\n{}[material]\nyoungs_modulus = 1.0\npoisson_ratio = 0.3\nshear_strength = 0.01\n",
+            toml::to_string(&table).unwrap()
+        );
+        let back = RunConfig::from_toml(&text, dir.path()).unwrap();
+        assert_eq!(back.surfaces, job.surfaces);
+        let record = job.inputs();
+        assert_eq!(record.source.as_deref(), Some("spectrum"));
+        let json = serde_json::to_string(&record).unwrap();
+        assert_eq!(serde_json::from_str::<InputRecord>(&json).unwrap(), record);
+    }
 
     #[test]
     fn expansion_is_the_cartesian_product() {

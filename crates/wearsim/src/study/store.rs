@@ -412,9 +412,7 @@ impl Drop for Claim {
 pub fn prepare_folder(dir: &Path, study: &Study, base: &Path) -> Result<()> {
     let mut inputs: Vec<&Path> = Vec::new();
     for job in &study.jobs {
-        if let crate::config::SurfaceSource::Files { top, bottom, .. } = &job.run.surfaces {
-            inputs.extend([top.as_path(), bottom.as_path()]);
-        }
+        inputs.extend(job.run.surfaces.input_files());
     }
     crate::io::refuse_inputs_inside(dir, &inputs)?;
     refuse_foreign_study_folder(dir)?;

@@ -8,6 +8,8 @@ use crate::grid::Grid;
 use crate::stats::line_fit;
 use crate::surface::{Generation, PsdShell, SpectrumParams, Surface};
 
+use super::spectrum::{MeasuredPsd, Window};
+
 /// Self-affine parameters estimated from a surface's radially averaged PSD, with the band of
 /// wavenumbers they come from and what was left out around it.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -35,7 +37,41 @@ pub struct SpectrumFit {
     /// Level of the floor (the median PSD over the outermost half octave of wavenumbers) relative to
     /// the power law at λ_l: about 1e-30 for round-off, ≤ 0.1 for a noise floor left out.
     pub floor: f64,
+    /// The window of the PSD: Hann for a map that is not periodic (the jump at its borders would
+    /// leak power ∝ q⁻² into every shell and bias H low), none for a periodic one.
+    pub window: Window,
+    /// Power of wavevectors nearer the x axis over that of those nearer the y axis over the fitted
+    /// shells ([`MeasuredPsd::anisotropy`]): 1 for an isotropic spectrum.
+    pub anisotropy: f64,
+    /// How far the shell standing highest above the fitted power law (from the longest wavelengths
+    /// to the end of the band) stands above it, beyond three standard deviations of its average:
+    /// about 1 or less for a self-affine spectrum, a peak above [`PEAK`].
+    pub peak: f64,
 }
+
+/// Whether a spectrum is self-affine, and if not what was seen.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Verdict {
+    pub self_affine: bool,
+    /// One sentence per reason the spectrum is not self-affine (none when it is).
+    pub reasons: Vec<String>,
+}
+
+/// Power along one axis more than this factor above the other's (over the fitted shells, each
+/// counted alike) is a lay: an isotropic 128² map's ratio scatters by a few % about 1, and a factor
+/// 2 is a difference of √2 in RMS slope between the directions, which a self-affine (isotropic)
+/// description would lose.
+pub const ANISOTROPIC: f64 = 2.0;
+/// A shell standing this factor above the fitted power law beyond three standard deviations of its
+/// average is a peak: the shells of a self-affine band follow the line within a factor 2.
+pub const PEAK: f64 = 5.0;
+/// H beyond 1 by more than this is outside (0, 1] (the fit recovers the H of generated surfaces
+/// within 0.05).
+const HURST_SLACK: f64 = 0.05;
+/// The fitted band of a self-affine spectrum spans at least this ratio of wavenumbers.
+const DECADE: f64 = 10.0;
+/// R² of the log–log line below this: the PSD is no power law.
+const R2_MIN: f64 = 0.9;
 
 /// How [`fit`] works, in one sentence for the documents that report a fit.
 pub const FIT_METHOD: &str = "least-squares line through ln PSD against ln q over the band of shells where the PSD \
@@ -75,9 +111,18 @@ const UNDER: f64 = 10.0;
 ///    cut-offs); λ_u and λ_l are where the PSD leaves the power law: in the end shell of the band and
 ///    the next one out, placed by the fraction of the power law's power the two still hold.
 ///
+/// The PSD is that of the map as it is when it is periodic, and Hann-windowed when it is not
+/// ([`Window::for_map`]): the jump at the borders of a measured map leaks power ∝ q⁻² into every
+/// shell, which flattens the spectrum and biases H low.
+///
 /// A surface with no such band is an error, not a number.
 pub fn fit(surface: &Surface) -> Result<SpectrumFit> {
-    let all = surface.radial_psd_shells();
+    let window = Window::for_map(surface);
+    let psd = MeasuredPsd::of(surface, window)?;
+    let all = match window {
+        Window::None => surface.radial_psd_shells(),
+        Window::Hann => psd.radial_shells(),
+    };
     let invalid = |message: String| Error::InvalidSurface {
         name: "surface".into(),
         message,
@@ -134,6 +179,12 @@ pub fn fit(surface: &Surface) -> Result<SpectrumFit> {
     };
     let length = surface.length();
     let k = 2.0 * PI / length;
+    // From the longest wavelengths to the end of the band: beyond it lie the cut-off and the floor,
+    // which may stand above the line extended.
+    let peak = signal[..=hi]
+        .iter()
+        .map(|&i| all[i].psd / power_law(all[i].q) * (-3.0 * (2.0 / all[i].modes).sqrt()).exp())
+        .fold(0.0f64, f64::max);
     Ok(SpectrumFit {
         hurst: -line.slope / 2.0 - 1.0,
         lambda_lower: length / q_short,
@@ -145,6 +196,9 @@ pub fn fit(surface: &Surface) -> Result<SpectrumFit> {
         shells_longer: first,
         shells_shorter: all.len() - 1 - last,
         floor: floor / power_law(q_short),
+        window,
+        anisotropy: psd.anisotropy(runs.q(a), runs.q(b)),
+        peak,
     })
 }
 
@@ -269,7 +323,59 @@ impl Runs {
     }
 }
 
+impl Verdict {
+    /// The verdict on a spectrum in which [`fit`] found no power-law band (`why`: its error).
+    pub fn no_band(why: &str) -> Self {
+        Self {
+            self_affine: false,
+            reasons: vec![format!("no power-law band: {why}")],
+        }
+    }
+}
+
 impl SpectrumFit {
+    /// Whether the spectrum is self-affine: isotropic within a factor [`ANISOTROPIC`], no peak
+    /// above [`PEAK`], H in (0, 1], a fitted band of at least a decade of wavenumbers and R² ≥ 0.9.
+    pub fn verdict(&self) -> Verdict {
+        let mut reasons = Vec::new();
+        let a = self.anisotropy;
+        if !(1.0 / ANISOTROPIC..=ANISOTROPIC).contains(&a) {
+            let (more, less) = if a > 1.0 { ("x", "y") } else { ("y", "x") };
+            reasons.push(format!(
+                "anisotropic (a lay): wavevectors along {more} carry {:.1} times the power of those along {less} over \
+                 the fitted band (over {ANISOTROPIC} is no isotropic spectrum)",
+                a.max(1.0 / a)
+            ));
+        }
+        if self.peak > PEAK {
+            reasons.push(format!(
+                "a peak: a shell stands {:.1} times above the fitted power law beyond its scatter (over {PEAK} is a \
+                 feature, not roughness)",
+                self.peak
+            ));
+        }
+        if !(self.hurst > 0.0 && self.hurst <= 1.0 + HURST_SLACK) {
+            reasons.push(format!(
+                "H = {:.3} is outside (0, 1]: the slope of the PSD is no self-affine surface's",
+                self.hurst
+            ));
+        }
+        let span = self.fitted_q[1] / self.fitted_q[0];
+        if span < DECADE {
+            reasons.push(format!(
+                "the power law is fitted over a factor {span:.1} of wavenumbers, under a decade: too short to say it is \
+                 one"
+            ));
+        }
+        if let Some(r2) = self.r2.filter(|&r| r < R2_MIN) {
+            reasons.push(format!("R² = {r2:.3} < {R2_MIN}: the PSD follows a power law poorly"));
+        }
+        Verdict {
+            self_affine: reasons.is_empty(),
+            reasons,
+        }
+    }
+
     /// Parameters to generate periodic surfaces with the fitted statistics on `grid`: λ_l raised to
     /// two pixels and λ_u lowered to the box where the fit ran past them (a note says so).
     pub fn spectrum(&self, grid: &Grid) -> (SpectrumParams, Vec<String>) {
@@ -337,6 +443,32 @@ pub fn surface_block(grid: &Grid, spectrum: &SpectrumParams, seed: u64, source: 
     )
 }
 
+/// The `[surface]` block of a run file that generates periodic surfaces carrying the measured 2D
+/// PSD of the map `map` (as the run file should name it) on the map's own `grid` and box;
+/// `extra` holds further lines (`map_length`, units), each `key = value`.
+pub fn spectrum_block(map: &str, grid: &Grid, window: Window, seed: u64, extra: &[String], unit: &str) -> String {
+    let sides = |x: String, y: String| if x == y { x } else { format!("[{x}, {y}]") };
+    let map = toml::Value::String(map.to_string());
+    let mut block = format!(
+        "# Periodic surfaces carrying the measured 2D PSD of the map (a lay, a roll-off, a peak as measured), on its \
+         own grid and box; lengths in {unit}. Any grid and box may be given: wavelengths beyond the map's are empty.\n\
+         [surface]\n\
+         source = \"spectrum\"\n\
+         map = {map}\n"
+    );
+    for line in extra {
+        block.push_str(line);
+        block.push('\n');
+    }
+    block.push_str(&format!(
+        "grid = {}\nlength = {}\nwindow = \"{}\"\nseed = {seed}\n",
+        sides(grid.nx().to_string(), grid.ny().to_string()),
+        sides(grid.length_x().to_string(), grid.length_y().to_string()),
+        window.name()
+    ));
+    block
+}
+
 #[cfg(test)]
 mod tests {
     use rand::{RngExt, SeedableRng};
@@ -344,6 +476,7 @@ mod tests {
     use rand_distr::StandardNormal;
 
     use super::super::prepare::{preprocess, Detrend, Preprocess};
+    use super::super::spectrum::Window;
     use super::*;
     use crate::surface::pair_seeds;
 
@@ -465,5 +598,63 @@ mod tests {
                 "{e}"
             );
         }
+    }
+
+    /// A map cut out of a larger periodic surface (not periodic, as a measurement): the fit takes
+    /// its Hann-windowed PSD and recovers H, where the leakage of the border jump flattens the
+    /// plain PSD; a periodic self-affine surface is judged self-affine with no window.
+    #[test]
+    fn a_measured_map_is_fitted_windowed_and_self_affine_surfaces_pass_the_verdict() {
+        let big = generated(
+            Grid::square(1024, 4.0).unwrap(),
+            0.8,
+            4.0 / 256.0,
+            0.25,
+            Generation::RandomPhase,
+            2,
+        );
+        let h: Vec<f64> = (0..256 * 256)
+            .map(|k| big.heights()[(k / 256) * 1024 + k % 256])
+            .collect();
+        let map = levelled(&Surface::new("map", Grid::square(256, 1.0).unwrap(), h).unwrap());
+        let f = fit(&map).unwrap();
+        assert_eq!(f.window, Window::Hann);
+        assert!((f.hurst - 0.8).abs() <= 0.1, "{f:?}");
+        for seed in 1..=3 {
+            let s = generated(
+                Grid::square(512, 1.0).unwrap(),
+                0.7,
+                1.0 / 128.0,
+                0.25,
+                Generation::RandomPhase,
+                seed,
+            );
+            let f = fit(&s).unwrap();
+            assert_eq!(f.window, Window::None);
+            let v = f.verdict();
+            assert!(v.self_affine && v.reasons.is_empty(), "{f:?} {v:?}");
+        }
+    }
+
+    /// A lay (a surface squeezed along y: every other column of one twice as wide) is named.
+    #[test]
+    fn a_lay_is_not_self_affine() {
+        let big = generated(
+            Grid::new(256, 512, 1.0).unwrap(),
+            0.7,
+            8.0 / 256.0,
+            0.25,
+            Generation::RandomPhase,
+            1,
+        );
+        let h: Vec<f64> = (0..256 * 256)
+            .map(|k| big.heights()[(k / 256) * 512 + 2 * (k % 256)])
+            .collect();
+        let f = fit(&Surface::new("lay", Grid::square(256, 1.0).unwrap(), h).unwrap()).unwrap();
+        let v = f.verdict();
+        assert!(
+            !v.self_affine && v.reasons.iter().any(|r| r.contains("anisotropic (a lay)")),
+            "{f:?} {v:?}"
+        );
     }
 }

@@ -9,14 +9,18 @@
 //! jump, `taper` brings the heights smoothly to their mean over a fraction of each border (at the
 //! cost of flattening that strip), and [`periodicity`] measures what is left. The cleanest route for the
 //! paper's model, which assumes periodic self-affine surfaces, is [`fit`]: estimate H, λ_l, λ_u and
-//! h_rms from the measurement and generate periodic surfaces with them.
+//! h_rms from the measurement and generate periodic surfaces with them; where the spectrum is not
+//! self-affine (a lay, a peak), [`MeasuredPsd`] keeps it as measured and generates periodic
+//! surfaces that carry it (`source = "spectrum"` in a run file).
 
 mod fit;
 mod formats;
 mod load;
 mod prepare;
+mod spectrum;
 
-pub use fit::{fit, surface_block, SpectrumFit, FIT_METHOD};
+pub use fit::{fit, spectrum_block, surface_block, SpectrumFit, Verdict, FIT_METHOD};
 pub use formats::{array_shape, metres_per, read, regular_file, Measured};
 pub use load::{file_grid, file_span, load, probe_grid, FileSurface, Loaded};
 pub use prepare::{periodicity, preprocess, Detrend, Periodicity, Preprocess, NOT_PERIODIC};
+pub use spectrum::{MeasuredPsd, Window};
