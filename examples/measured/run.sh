@@ -5,12 +5,15 @@
 #   2. fit its spectrum (does it follow the paper's self-affine power law?),
 #   3. a sliding study on periodic surface pairs that carry the map's measured spectrum
 #      (study.toml: [surface] source = "spectrum"), three pairs for the intervals,
-#   4. its results and figures, and the static estimate beside each sliding run.
+#   4. its results and figures, and the static estimate beside each sliding run,
+#   5. what the other route, the map itself slid over its own copy with a taper, does at its borders
+#      (taper_border_contact.py).
 #
-#   examples/measured/run.sh OUT        (about two minutes on 2 cores)
+#   examples/measured/run.sh OUT        (about a minute on 2 cores)
 #
 # WEARSIM names the wearsim program (default: wearsim on the PATH); `surface import` runs the
-# Python of $WEARSIM_PYTHON (default python3) with `pip install "wearsim[measured]"`.
+# Python of $WEARSIM_PYTHON (default python3) with `pip install "wearsim[measured]"`, which also
+# draws step 5 (with matplotlib).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 out=${1:?usage: examples/measured/run.sh OUT}
@@ -25,4 +28,5 @@ cp "$here/study.toml" "$out/study.toml"
 "$wearsim" study collect "$out/study"
 "$wearsim" study plot "$out/study"
 "$wearsim" estimate-check "$out/study" --out "$out/estimate-check" --overwrite
-echo "worked example done: $out/study/figures, $out/study/results.csv, $out/estimate-check/comparison.csv"
+"${WEARSIM_PYTHON:-python3}" "$here/taper_border_contact.py" --map "$out/di-3/heights.npy" 1e-5 1e9 --out "$out/taper"
+echo "worked example done: $out/study/figures, $out/study/results.csv, $out/estimate-check/comparison.csv, $out/taper"

@@ -69,10 +69,9 @@ impl SurfaceSource {
 impl SurfaceSource {
     /// The kind of these surfaces as the static estimate's reach sees it
     /// ([`crate::estimate::run_reach_warnings`]), on `grid`: any source but the generator is
-    /// outside the calibration's spectrum, whatever its variant.
+    /// outside the calibration's spectrum.
     pub fn estimate_kind(&self, grid: Grid) -> crate::estimate::SurfaceKind {
         use crate::estimate::SurfaceKind;
-        #[allow(unreachable_patterns)]
         match self {
             SurfaceSource::Generated { spectrum, .. } => SurfaceKind::Generated {
                 hurst: spectrum.hurst,
@@ -82,7 +81,9 @@ impl SurfaceSource {
             },
             SurfaceSource::Files { .. } => SurfaceKind::Other("read from height-map files (a measured map)".into()),
             SurfaceSource::Arrays { .. } => SurfaceKind::Other("height arrays given by the caller".into()),
-            _ => SurfaceKind::Other("not made by wearsim's self-affine generator".into()),
+            SurfaceSource::Spectrum { .. } => {
+                SurfaceKind::Other("generated from a measured map's spectrum (source = \"spectrum\")".into())
+            }
         }
     }
 }
