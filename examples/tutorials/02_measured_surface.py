@@ -85,3 +85,13 @@ top, bottom = wearsim.generate_pair(
 )
 print(f"generated pair: h_rms = {top.std() * 1e9:.1f} nm (the fitted value, by construction)")
 assert np.isclose(top.std(), fit["rms_height"], rtol=1e-9)
+print(f"self-affine: {fit['self_affine']} {'; '.join(fit['reasons'])}")
+
+# %% [markdown]
+# 3. Where the spectrum is not self-affine (a lay, a peak: `fit["self_affine"]` is false and
+#    `fit["reasons"]` says why, with a warning), generate periodic pairs that carry the map's
+#    measured 2D spectrum as it is: the surfaces of a run file's `source = "spectrum"`.
+
+# %%
+top, bottom = wearsim.spectrum_pair(heights, length, grid=heights.shape, seed=1)
+print(f"spectrum pair: h_rms = {top.std() * 1e9:.1f} nm")

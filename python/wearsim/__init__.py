@@ -4,7 +4,8 @@ J. Mech. Phys. Solids 147 (2021) 104238, for NumPy users.
 The data flow follows the paper, one module per step:
 
 - :mod:`wearsim.surface`: periodic self-affine surfaces (NumPy arrays), measured height maps read
-  and prepared, and their statistics and fitted self-affine parameters;
+  and prepared, their statistics and fitted self-affine parameters, and periodic pairs that carry
+  a measured map's 2D spectrum;
 - :class:`Material`: elastic and adhesive-wear properties, flow pressure p_m = 3√3 τ̃ and
   critical diameter d*;
 - :mod:`wearsim.contact`: the saturated-pressure FFT contact solver;
@@ -46,6 +47,7 @@ from .surface import (
     preprocess_surface,
     radial_psd,
     read_surface,
+    spectrum_pair,
     surface_statistics,
 )
 from .wear import ResolutionWarning, RunFile, estimate, load_run, slide, static_wear
@@ -85,6 +87,7 @@ __all__ = [
     "read_surface",
     "slide",
     "solve_contact",
+    "spectrum_pair",
     "static_wear",
     "study",
     "surface",

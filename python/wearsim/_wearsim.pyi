@@ -57,6 +57,7 @@ __all__ = [
     "series_job",
     "severity_fits",
     "slide",
+    "spectrum_pair",
     "static_wear_model",
     "surface_statistics",
     "unit_of",
@@ -112,6 +113,14 @@ def read_surface(
 def preprocess_surface(heights: _F64Array, detrend: str = "plane", taper: float = 0.0) -> _F64Array: ...
 def periodicity(heights: _F64Array) -> Tuple[float, float]: ...
 def fit_surface(heights: _F64Array, length: float) -> Dict[str, Any]: ...
+def spectrum_pair(
+    map: _F64Array,
+    length: float,
+    grid: Union[int, Tuple[int, int]],
+    box_length: float,
+    seed: int,
+    window: Optional[str] = None,
+) -> Tuple[_F64Array, _F64Array, List[str]]: ...
 def label_junctions(
     contact: npt.NDArray[np.bool_], connectivity: int = ...
 ) -> Tuple[npt.NDArray[np.int64], npt.NDArray[np.uint64], npt.NDArray[np.bool_]]: ...

@@ -1,5 +1,6 @@
 """Rough surfaces as NumPy arrays: periodic self-affine surfaces (paper §4.1), measured height
-maps read and prepared, and the self-affine parameters fitted to either.
+maps read and prepared, the self-affine parameters fitted to either (with a verdict on whether the
+spectrum is self-affine), and periodic surfaces that carry a measured map's 2D spectrum.
 
 Arrays are ``(Nx, Ny)`` float64 with square pixels, ``h[i, j]`` with i along the sliding direction
 x; ``length`` is the side Lx along x, in the unit of lengths (L in reduced units, m in SI), so an
@@ -35,6 +36,7 @@ Generation = Literal["random-phase", "filtered-noise"]
 
 GridSize = Union[int, Tuple[int, int]]
 Detrend = Literal["none", "mean", "plane", "curvature"]
+Window = Literal["hann", "none"]
 
 
 #: Relative difference between a topography's pixel sizes along x and y beyond which its pixels are
@@ -196,6 +198,42 @@ def generate_pair(
     return make(seed=top_seed), make(seed=bottom_seed)
 
 
+def spectrum_pair(
+    map: Any,
+    length: Optional[float] = None,
+    *,
+    grid: GridSize,
+    box_length: Optional[float] = None,
+    seed: int = 0,
+    window: Optional[Window] = None,
+) -> Tuple[np.ndarray, np.ndarray]:
+    """The (top, bottom) surface pair of a run file with ``[surface] source = "spectrum"`` whose
+    ``map`` is this height map: two periodic surfaces of ``grid`` pixels (N for N × N, or
+    (Nx, Ny)) and side ``box_length`` along x (default: the map's side; square pixels) that carry
+    the measured 2D PSD of ``map`` as it is (a lay, a roll-off, a peak: not only a power law), with
+    random phases. The same ``seed`` gives the same surfaces, bit for bit, as ``wearsim surface`` on
+    such a run file (top and bottom seeds derived from it as :func:`generate_pair` derives them).
+    Use it where :func:`fit_surface` finds the spectrum not self-affine.
+
+    ``map`` is an array with its side ``length`` along x (default 1), or a SurfaceTopography
+    topography (its size, in metres when it states its unit, as :func:`heights_and_length` gives
+    it); ``box_length`` is in that same unit. Every height must be defined and the pixels square
+    (see the module documentation). ``window``: ``"hann"`` (plane levelled, Hann window: a map
+    that is not periodic, whose border jump would leak power into every wavevector) or ``"none"``
+    (mean levelled: a periodic map); by default chosen from the map's periodicity, as the run file
+    does. The map's PSD is that of its own wavevectors: a box larger than the map, or a pixel
+    smaller than its, carries no power beyond them; each is said in a ``UserWarning``. A grid with
+    no wavevector in the measured band raises ``ValueError``.
+    """
+    h, lx = as_heights("map", map, length)
+    grid = _args.grid_size(grid)
+    box = lx if box_length is None else float(box_length)
+    top, bottom, notes = _wearsim.spectrum_pair(h, lx, grid, box, _args.seed("seed", seed), window)
+    for note in notes:
+        warnings.warn(note, stacklevel=2)
+    return top, bottom
+
+
 def surface_statistics(heights: Any, length: Optional[float] = None) -> Dict[str, float]:
     """RMS height (unit of the heights) and RMS slope (dimensionless, spectral) of a periodic
     surface of side ``length`` along x (default 1, or a topography's size), with its grid (pixels
@@ -269,12 +307,17 @@ def fit_surface(
 ) -> Dict[str, Any]:
     """Self-affine parameters of a surface from its radially averaged PSD C(q) (paper §4.1:
     C(q) ∝ q^(−2(1+H)) between q = 2π/λ_u and 2π/λ_l), fitted as ``wearsim surface fit`` fits a
-    file.
+    file, with its verdict on whether the spectrum is self-affine at all.
 
     The map is levelled first, as the CLI does: ``detrend`` (default ``"plane"``, the CLI's
     ``--detrend``: a tilt would put its power into the longest wavelengths and be read as the
     roughness and λ_u) and ``taper`` (default 0, its ``--taper``), as :func:`preprocess_surface`;
     ``detrend="none"`` fits the heights as given. ``rms_height`` is that of the levelled map.
+
+    The PSD of a map that is not periodic (border jumps above 3 typical steps, see
+    :func:`periodicity`) is taken under a Hann window, after levelling by a plane: the jump at its
+    borders would otherwise leak power ∝ q⁻² into every shell and bias H low. A periodic map (a
+    generated surface) is taken as it is. ``window`` says which.
 
     The floor of the PSD is left out first: shells below 1e-12 of the peak (round-off) and shells
     within a factor 10 of the median PSD over the outermost half octave of wavenumbers (round-off
@@ -284,21 +327,41 @@ def fit_surface(
     does), so that a floor is never read as the self-affine band. A spectrum without such a band
     raises ``ValueError``; a fit with R² < 0.9 warns (``UserWarning``) that H is a rough estimate.
 
-    Returns ``hurst`` H (from the slope −2(1+H)), ``lambda_lower`` and ``lambda_upper`` (where the
-    PSD leaves the power law at short and long wavelengths), ``rms_height``, ``r2`` of the log–log
-    fit, the number of ``shells`` it used and their wavenumbers ``fitted_q`` (first and last,
-    q = 2π/λ in radians per unit length), the shells left out at longer wavelengths than λ_u
-    (``shells_longer``) and at shorter wavelengths than λ_l (``shells_shorter``), and ``floor``, the
-    floor's level relative to the power law at λ_l. Lengths are in the unit of the heights (metres
-    for a topography that states its unit). Pass the parameters to :func:`generate_pair` to get
-    periodic surfaces with the measured statistics (the paper's model assumes periodic self-affine
-    surfaces)."""
+    The verdict: ``self_affine`` is true when the spectrum is isotropic (within a factor 2 between
+    the power of wavevectors along x and along y), has no peak (no shell 5 times above the power
+    law beyond its scatter), H lies in (0, 1], the band spans at least a decade of wavenumbers and
+    R² ≥ 0.9; ``reasons`` says, one sentence each, which of these failed. A spectrum that is not
+    self-affine warns (``UserWarning``, with the reasons): the self-affine parameters leave out
+    what it is, and :func:`spectrum_pair` generates periodic pairs that carry its measured 2D PSD
+    instead (a run file's ``source = "spectrum"``).
+
+    Returns what ``wearsim surface fit`` writes in its fit.json for the same map: the fit's fields
+    (its ``"fit"``) ``hurst`` H (from the slope −2(1+H)), ``lambda_lower`` and ``lambda_upper``
+    (where the PSD leaves the power law at short and long wavelengths), ``rms_height``, ``r2`` of
+    the log–log fit, the number of ``shells`` it used and their wavenumbers ``fitted_q`` (first and
+    last, q = 2π/λ in radians per unit length), the shells left out at longer wavelengths than λ_u
+    (``shells_longer``) and at shorter wavelengths than λ_l (``shells_shorter``), ``floor``, the
+    floor's level relative to the power law at λ_l, ``window`` (``"hann"`` or ``"none"``),
+    ``anisotropy`` (the x/y power ratio over the fitted shells) and ``peak`` (how far the highest
+    shell stands above the power law beyond its scatter); and beside them ``spectrum``, the
+    parameters a run generates from the fit on this grid (λ_l raised to two pixels and λ_u lowered
+    to the box where the fit ran past them, as ``notes`` says), ``self_affine`` and ``reasons``.
+    Lengths are in the unit of the heights (metres for a topography that states its unit). Pass
+    the parameters to :func:`generate_pair` to get periodic surfaces with the measured statistics
+    (the paper's model assumes periodic self-affine surfaces)."""
     h, lx = as_heights("heights", heights, length)
     h = _wearsim.preprocess_surface(h, detrend, taper)
     fit = _wearsim.fit_surface(h, lx)
     r2 = fit.get("r2")
     if r2 is not None and r2 < 0.9:
         warnings.warn("the PSD follows a power law poorly (R² < 0.9): H is a rough estimate", stacklevel=2)
+    if not fit.get("self_affine", True):
+        warnings.warn(
+            f"the spectrum is not self-affine ({'; '.join(fit.get('reasons', []))}): the self-affine parameters "
+            "leave that out; wearsim.spectrum_pair(map, ...) generates periodic pairs that carry the measured 2D "
+            'PSD instead (a run file\'s [surface] source = "spectrum")',
+            stacklevel=2,
+        )
     return fit
 
 

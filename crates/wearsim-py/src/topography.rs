@@ -5,11 +5,12 @@ use std::path::PathBuf;
 use numpy::{PyArray2, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use wearsim::topography::{self, Detrend, FileSurface, Preprocess};
+use wearsim::check;
+use wearsim::topography::{self, Detrend, FileSurface, MeasuredPsd, Preprocess, Window};
 
-use crate::error::to_py;
+use crate::error::{interruptible, to_py};
 use crate::surface::surface_from;
-use crate::{field, to_array};
+use crate::{field, to_array, GridSize};
 
 /// What `read_surface` returns: heights, length along x, notes, warnings.
 type ReadSurface<'py> = (Bound<'py, PyArray2<f64>>, f64, Vec<String>, Vec<String>);
@@ -71,14 +72,63 @@ fn periodicity(heights: PyReadonlyArray2<'_, f64>) -> PyResult<(f64, f64)> {
     Ok((p.border_step_x, p.border_step_y))
 }
 
-/// H, λ_l, λ_u and h_rms estimated from the radially averaged PSD.
+/// H, λ_l, λ_u and h_rms estimated from the radially averaged PSD, with what `wearsim surface fit`
+/// writes beside them in fit.json: the fit's fields, `spectrum` (the parameters a run generates
+/// from it on this grid), `notes` (what those adjust), `self_affine` and `reasons` (the verdict).
 #[pyfunction]
 fn fit_surface<'py>(py: Python<'py>, heights: PyReadonlyArray2<'py, f64>, length: f64) -> PyResult<Bound<'py, PyAny>> {
     let s = surface_from("heights", &heights, length)?;
     let fit = py.detach(|| topography::fit(&s)).map_err(to_py)?;
+    let (spectrum, notes) = fit.spectrum(&s.grid());
+    let verdict = fit.verdict();
     let d = crate::json_to_py(py, &fit)?;
-    d.cast::<PyDict>()?;
+    let dict = d.cast::<PyDict>()?;
+    dict.set_item("spectrum", crate::json_to_py(py, &spectrum)?)?;
+    dict.set_item("self_affine", verdict.self_affine)?;
+    dict.set_item("reasons", verdict.reasons)?;
+    dict.set_item("notes", notes)?;
     Ok(d)
+}
+
+/// What `spectrum_pair` returns: top, bottom, notes on what the target grid leaves out.
+type SpectrumPairOut<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>, Vec<String>);
+
+/// The (top, bottom) pair of a `source = "spectrum"` run with `seed`: periodic surfaces on `grid`
+/// (side `box_length` along x) carrying the measured 2D PSD of `map` (side `length` along x),
+/// made by the library function the run file's pair is made by; with the notes on what the grid
+/// leaves out of the measured band.
+#[pyfunction]
+#[pyo3(signature = (map, length, grid, box_length, seed, window = None))]
+fn spectrum_pair<'py>(
+    py: Python<'py>,
+    map: PyReadonlyArray2<'py, f64>,
+    length: f64,
+    grid: GridSize,
+    box_length: f64,
+    seed: u64,
+    window: Option<&str>,
+) -> PyResult<SpectrumPairOut<'py>> {
+    let window: Option<Window> = window.map(str::parse).transpose().map_err(to_py)?;
+    let map = surface_from("map", &map, length)?;
+    let target = grid.grid(box_length)?;
+    check::memory(
+        "generating the surface pair",
+        target.nx(),
+        target.ny(),
+        check::SURFACE_ARRAYS,
+    )
+    .map_err(to_py)?;
+    let (top, bottom, notes) = interruptible(py, None, |_| {
+        let psd = MeasuredPsd::of_map(&map, window)?;
+        let (top, bottom) = psd.generate_pair(target, seed)?;
+        Ok((top, bottom, psd.notes(&target, "`map`")))
+    })?;
+    let shape = (target.nx(), target.ny());
+    Ok((
+        to_array(py, shape, top.into_heights()),
+        to_array(py, shape, bottom.into_heights()),
+        notes,
+    ))
 }
 
 /// Metres per unit of a length unit name (m, mm, um, nm, pm, A).
@@ -93,5 +143,6 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(preprocess_surface, m)?)?;
     m.add_function(wrap_pyfunction!(periodicity, m)?)?;
     m.add_function(wrap_pyfunction!(fit_surface, m)?)?;
+    m.add_function(wrap_pyfunction!(spectrum_pair, m)?)?;
     Ok(())
 }

@@ -24,7 +24,7 @@ use crate::sliding::{
     SlidingConfig, SlidingSetup, DEFAULT_DISTANCE, DEFAULT_RUNNING_IN, DEFAULT_STEP, DEFAULT_STEP_RUNNING_IN,
 };
 use crate::surface::{pair_seeds, Generation, Surface};
-use crate::topography::{metres_per, FileSurface, MeasuredPsd, Preprocess, Window};
+use crate::topography::{metres_per, FileSurface, MeasuredPsd, Preprocess};
 use crate::wear::ParticleRuleKind;
 
 use raw::{one_line, RawRun};
@@ -262,10 +262,9 @@ impl RunConfig {
                 // The map's periodicity warning is left out: the surfaces made of it are periodic.
                 let loaded = crate::topography::load(map, &how)?;
                 let name = map.display().to_string();
-                let window = window.unwrap_or_else(|| Window::for_map(&loaded.surface));
-                let psd = MeasuredPsd::of(&loaded.surface, window)?;
-                let (top_seed, bottom_seed) = pair_seeds(*seed);
-                let (top, bottom) = rayon::join(|| psd.generate(*grid, top_seed), || psd.generate(*grid, bottom_seed));
+                let psd = MeasuredPsd::of_map(&loaded.surface, *window)?;
+                let window = psd.window();
+                let (top, bottom) = psd.generate_pair(*grid, *seed)?;
                 let mut notes = loaded.notes;
                 notes.push(format!(
                     "{name}: the surfaces carry its measured PSD ({} window, {} × {} modes) on a {} × {} grid of box \
@@ -282,8 +281,8 @@ impl RunConfig {
                 ));
                 notes.extend(psd.notes(grid, &name));
                 Ok(SurfacePair {
-                    top: top?,
-                    bottom: bottom?,
+                    top,
+                    bottom,
                     notes,
                     warnings: Vec::new(),
                 })

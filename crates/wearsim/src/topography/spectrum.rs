@@ -149,6 +149,26 @@ impl MeasuredPsd {
         })
     }
 
+    /// The PSD of `map` under `window`, or, without one, under the window the map needs
+    /// ([`Window::for_map`]: Hann when it is not periodic): as a `source = "spectrum"` run takes
+    /// its map's.
+    pub fn of_map(map: &Surface, window: Option<Window>) -> Result<Self> {
+        Self::of(map, window.unwrap_or_else(|| Window::for_map(map)))
+    }
+
+    /// The (top, bottom) pair of a `source = "spectrum"` run with `seed` on `target`: two surfaces
+    /// of [`MeasuredPsd::generate`] whose seeds are derived from `seed` by
+    /// [`crate::surface::pair_seeds`], as a generated run's are. The run file and the Python
+    /// binding both make their pairs here, so that one seed gives the same surfaces, bit for bit.
+    pub fn generate_pair(&self, target: Grid, seed: u64) -> Result<(Surface, Surface)> {
+        let (top_seed, bottom_seed) = crate::surface::pair_seeds(seed);
+        let (top, bottom) = rayon::join(
+            || self.generate(target, top_seed),
+            || self.generate(target, bottom_seed),
+        );
+        Ok((top?, bottom?))
+    }
+
     /// The map's grid.
     pub fn grid(&self) -> Grid {
         self.grid
