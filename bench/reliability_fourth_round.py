@@ -41,7 +41,7 @@ import tempfile
 import time
 from pathlib import Path
 
-import reliability_trials as rt
+import reliability_common as rt
 
 OUTCOMES = [
     "accepted",

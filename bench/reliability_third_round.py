@@ -16,7 +16,7 @@ import sys
 import time
 from pathlib import Path
 
-import reliability_trials as rt
+import reliability_common as rt
 
 SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGUSR1, signal.SIGUSR2)
 

@@ -40,7 +40,12 @@ use crate::sliding::{SlidingSetup, WearResult};
 use crate::surface::Surface;
 use crate::wear::{box_wrapping_warning, is_critical, static_wear};
 
-/// Which model turns a run into wear results (`[sliding] model`).
+/// Which model turns a run into wear results (`[sliding] model`): a closed registry, chosen once
+/// from the run file. What differs between the models is asked of the model (its name, whether it
+/// slides, whether its rows feed the paper's findings, the keys it ignores, what its curves and
+/// summaries say) rather than compared with a variant; the places that run a model's own
+/// computation match on it exhaustively, so that a new model is a compile error at each of them
+/// (docs/architecture.md, "Another wear model beside sliding", lists them).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum WearModel {
@@ -66,14 +71,70 @@ pub const SLIDING_KEYS: [&str; 10] = [
 ];
 
 impl WearModel {
-    /// Every model.
+    /// Every model; the first is the default.
     pub const ALL: [WearModel; 2] = [WearModel::Sliding, WearModel::Estimate];
 
-    /// The name used in run files, tables and Python.
+    /// The name used in run files, tables (`sliding.model`) and Python.
     pub fn name(self) -> &'static str {
         match self {
             WearModel::Sliding => "sliding",
             WearModel::Estimate => "estimate",
+        }
+    }
+
+    /// What the model is, in a few words, for messages (`"{name}" ({description})`).
+    pub fn description(self) -> &'static str {
+        match self {
+            WearModel::Sliding => "the paper's sliding simulation",
+            WearModel::Estimate => "the static estimate from a few contact solutions",
+        }
+    }
+
+    /// Whether the model takes sliding steps: its runs have a series, checkpoints, particle counts
+    /// and a cost in steps (`wearsim slide` runs it; the cost estimate sizes it).
+    pub fn slides(self) -> bool {
+        match self {
+            WearModel::Sliding => true,
+            WearModel::Estimate => false,
+        }
+    }
+
+    /// Whether the model's results are the paper's sliding model: the rows the paper's findings,
+    /// the fits of appendix F and the estimate's calibration read ([`WearModel::in_findings`]).
+    /// Every other model's rows are left out of them, a model not known here included.
+    pub fn feeds_findings(self) -> bool {
+        match self {
+            WearModel::Sliding => true,
+            WearModel::Estimate => false,
+        }
+    }
+
+    /// The `wearsim` command that runs this model on one run file, if one does (study jobs run
+    /// every model).
+    pub fn command(self) -> Option<&'static str> {
+        match self {
+            WearModel::Sliding => Some("slide"),
+            WearModel::Estimate => Some("estimate"),
+        }
+    }
+
+    /// What a figure's legend says first of a curve of this model (none for the paper's model).
+    pub fn curve_label(self) -> Option<&'static str> {
+        match self {
+            WearModel::Sliding => None,
+            WearModel::Estimate => Some("static estimate"),
+        }
+    }
+
+    /// What a study's cost estimate, which sizes sliding steps, says of a job of a model that takes
+    /// none (none for a model that slides).
+    pub fn cost_note(self) -> Option<&'static str> {
+        match self {
+            WearModel::Sliding => None,
+            WearModel::Estimate => Some(
+                "each takes up to 16 static contact solves per load (its static maps; 4 to 16 unless \
+                 `estimate_samples` fixes them), seconds at 1024², a minute or two at 4096²",
+            ),
         }
     }
 
@@ -93,22 +154,37 @@ impl WearModel {
     pub fn uses(self, key: &str) -> bool {
         !self.ignores().contains(&key)
     }
+
+    /// The model of a table's `sliding.model` cell: an empty cell is the default model (a job
+    /// records its model only when it is not the default), a name not of [`WearModel::ALL`] none.
+    pub fn of_cell(text: &str) -> Option<WearModel> {
+        if text.is_empty() {
+            return Some(WearModel::default());
+        }
+        WearModel::ALL.into_iter().find(|m| m.name() == text)
+    }
+
+    /// Whether a table row whose `sliding.model` cell reads `text` belongs in the paper's findings
+    /// and the fits of appendix F: a model that [feeds them](WearModel::feeds_findings), chosen by
+    /// what it is; a model name not known here is left out.
+    pub fn in_findings(text: &str) -> bool {
+        WearModel::of_cell(text).is_some_and(WearModel::feeds_findings)
+    }
 }
 
 impl std::str::FromStr for WearModel {
     type Err = Error;
     fn from_str(s: &str) -> Result<Self> {
-        match s {
-            "sliding" => Ok(WearModel::Sliding),
-            "estimate" => Ok(WearModel::Estimate),
-            other => Err(Error::param(
+        WearModel::ALL.into_iter().find(|m| m.name() == s).ok_or_else(|| {
+            let choices: Vec<String> = WearModel::ALL
+                .iter()
+                .map(|m| format!("\"{}\" ({})", m.name(), m.description()))
+                .collect();
+            Error::param(
                 "model",
-                format!(
-                    "{other:?} is not a wear model; use \"sliding\" (the paper's sliding simulation) or \"estimate\" \
-                     (the static estimate from a few contact solutions)"
-                ),
-            )),
-        }
+                format!("{s:?} is not a wear model; use {}", choices.join(" or ")),
+            )
+        })
     }
 }
 
@@ -1208,5 +1284,20 @@ mod tests {
         assert!(e.contains("model") && e.contains("\"estimate\""), "{e}");
         assert!(Sampling::of(Some(0)).is_err());
         assert_eq!(Sampling::of(None).unwrap(), Sampling::Auto);
+    }
+
+    #[test]
+    fn a_table_row_is_in_the_findings_by_what_its_model_is() {
+        // Every model is named back from its table cell; the default (an empty cell) is the paper's.
+        for m in WearModel::ALL {
+            assert_eq!(WearModel::of_cell(m.name()), Some(m));
+            assert_eq!(m.name().parse::<WearModel>().unwrap(), m);
+        }
+        assert_eq!(WearModel::of_cell(""), Some(WearModel::default()));
+        assert!(WearModel::in_findings("") && WearModel::in_findings("sliding"));
+        assert!(!WearModel::in_findings("estimate"));
+        // A model name not known here is not the paper's sliding model.
+        assert_eq!(WearModel::of_cell("other"), None);
+        assert!(!WearModel::in_findings("other"));
     }
 }

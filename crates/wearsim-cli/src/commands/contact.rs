@@ -36,9 +36,8 @@ pub struct Args {
     /// contact, ≥ 0 outside, ≤ 0 where plastic) and summary.json with their units.
     #[arg(long)]
     out: PathBuf,
-    /// Replace the output folder even when it holds another command's results or other files.
-    #[arg(long)]
-    overwrite: bool,
+    #[command(flatten)]
+    overwrite: super::Overwrite,
 }
 
 pub fn run(args: &Args) -> Result<()> {
@@ -99,7 +98,7 @@ pub fn run(args: &Args) -> Result<()> {
     let out = OutputDir::begin(
         &args.out,
         "contact",
-        args.overwrite,
+        args.overwrite.replace,
         &super::run_inputs(&args.run, &config),
     )?;
     let pair = config.surface_pair()?;

@@ -226,20 +226,18 @@ pub fn print_run(config: &RunConfig) -> Result<Estimate> {
 /// Prints the estimate of a study's (shard's) jobs run `workers` at a time on this machine's
 /// threads.
 pub fn print_study(jobs: &[&Job], workers: usize) -> Result<()> {
-    let all = jobs.len();
-    let jobs: Vec<&Job> = jobs
-        .iter()
-        .copied()
-        .filter(|j| j.run.model == wearsim::estimate::WearModel::Sliding)
-        .collect();
-    if jobs.len() < all {
-        tell!(
-            "note: {} of the static estimate are not in the cost estimate: each takes up to 16 static contact solves \
-             per load (its static maps; 4 to 16 unless `estimate_samples` fixes them), seconds at 1024², a minute or two \
-             at 4096²",
-            counted(all - jobs.len(), "job")
-        );
+    // The cost model sizes sliding steps: the jobs of a model that takes none are counted apart.
+    for model in wearsim::estimate::WearModel::ALL {
+        let n = jobs.iter().filter(|j| j.run.model == model).count();
+        if let (Some(note), true) = (model.cost_note(), n > 0) {
+            tell!(
+                "note: {} of {} are not in the cost estimate: {note}",
+                counted(n, "job"),
+                model.description()
+            );
+        }
     }
+    let jobs: Vec<&Job> = jobs.iter().copied().filter(|j| j.run.model.slides()).collect();
     if jobs.is_empty() {
         return Ok(());
     }

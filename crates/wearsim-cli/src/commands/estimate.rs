@@ -22,12 +22,8 @@ pub struct Args {
     /// Run file (TOML, see README) with a `[sliding]` table: its loads, and the sliding distance of
     /// the run whose 95 % interval is given.
     run: PathBuf,
-    /// Output folder (created if missing; an earlier `estimate` there is replaced whole).
-    #[arg(long)]
-    out: PathBuf,
-    /// Replace the output folder even when it holds another command's results or other files.
-    #[arg(long)]
-    overwrite: bool,
+    #[command(flatten)]
+    output: super::OutputFolder,
     /// Static maps per load (1 to 16; default: the run file's `estimate_samples`, else from 4 until
     /// N*'s sampling error is at most 10 %).
     #[arg(long, value_name = "K")]
@@ -41,9 +37,8 @@ pub struct CheckArgs {
     /// Output folder for comparison.csv and summary.json.
     #[arg(long)]
     out: PathBuf,
-    /// Replace the output folder even when it holds another command's results or other files.
-    #[arg(long)]
-    overwrite: bool,
+    #[command(flatten)]
+    overwrite: super::Overwrite,
     /// Fit the constants on these runs and print them; comparison.csv and the summary's `summary`
     /// then use the fitted constants (`summary_with_calibration_in_use` the library's).
     #[arg(long)]
@@ -81,7 +76,12 @@ pub fn run(args: &Args) -> Result<()> {
     let sampling = Sampling::of(args.samples.or(config.estimate_samples)).context("--samples")?;
     let grid = config.grid()?;
     wearsim::check::memory("an estimate", grid.nx(), grid.ny(), wearsim::check::CONTACT_ARRAYS)?;
-    let out = OutputDir::begin(&args.out, "estimate", args.overwrite, &super::run_inputs(run, &config))?;
+    let out = OutputDir::begin(
+        &args.output.out,
+        "estimate",
+        args.output.overwrite.replace,
+        &super::run_inputs(run, &config),
+    )?;
     let prepared = SlidingRun::prepare(&config)?.interrupted_by(super::interrupt());
     super::report_surfaces(prepared.surfaces(), false);
     let units = config.units;
@@ -131,7 +131,7 @@ pub fn run(args: &Args) -> Result<()> {
         outcome.samples,
         loads,
         outcome.seconds,
-        args.out.display()
+        args.output.out.display()
     );
     Ok(())
 }
@@ -168,7 +168,7 @@ pub fn check(args: &CheckArgs) -> Result<()> {
     }
     let inputs = refuse_output_in_study(&args.out, &args.dir)?;
     let inputs: Vec<&std::path::Path> = inputs.iter().map(PathBuf::as_path).collect();
-    let out = OutputDir::begin(&args.out, "estimate-check", args.overwrite, &inputs)?;
+    let out = OutputDir::begin(&args.out, "estimate-check", args.overwrite.replace, &inputs)?;
     let progress = Progress::new("estimate-check", "jobs", 0);
     let mapped = map_jobs(&args.dir, args.samples, super::interrupt(), |done, total| {
         progress.set(done as u64, total as u64, "jobs estimated")

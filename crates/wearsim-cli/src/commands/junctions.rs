@@ -17,12 +17,8 @@ pub struct Args {
     /// 4 or 8.
     #[arg(long, default_value_t = wearsim::junctions::DEFAULT_CONNECTIVITY)]
     connectivity: u8,
-    /// Output folder (created if missing; an earlier `junctions` there is replaced whole).
-    #[arg(long)]
-    out: PathBuf,
-    /// Replace the output folder even when it holds another command's results or other files.
-    #[arg(long)]
-    overwrite: bool,
+    #[command(flatten)]
+    output: super::OutputFolder,
 }
 
 /// Labels the junctions of a contact map and writes `labels.npy` (int64, −1 outside contact) and
@@ -53,7 +49,12 @@ pub fn run(args: &Args) -> Result<()> {
             k % cols
         );
     }
-    let out = OutputDir::begin(&args.out, "junctions", args.overwrite, &[map.as_path()])?;
+    let out = OutputDir::begin(
+        &args.output.out,
+        "junctions",
+        args.output.overwrite.replace,
+        &[map.as_path()],
+    )?;
     if rows.saturating_mul(cols) >= u32::MAX as usize {
         bail!(
             "{}: a {rows}×{cols} map has more pixels than 32-bit junction labels can index",
@@ -73,6 +74,6 @@ pub fn run(args: &Args) -> Result<()> {
         &junctions_summary(connectivity, labeller.sizes()),
     )?;
     out.commit()?;
-    say!("{count} junctions; wrote {}", args.out.display());
+    say!("{count} junctions; wrote {}", args.output.out.display());
     Ok(())
 }

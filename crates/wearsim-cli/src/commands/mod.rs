@@ -12,13 +12,34 @@ pub mod slide;
 pub mod study;
 pub mod surface;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicI32, Ordering};
 
 use anyhow::{Context, Result};
 use wearsim::config::RunConfig;
 
 use crate::out::tell;
+
+/// `--overwrite`, the same flag and help in every command that writes an output folder
+/// (flattened: `#[command(flatten)]`).
+#[derive(clap::Args, Debug, Clone, Copy)]
+pub struct Overwrite {
+    /// Replace the output folder even when it holds another command's results or other files.
+    #[arg(long = "overwrite")]
+    pub replace: bool,
+}
+
+/// `--out` and `--overwrite` of a command that writes one output folder of its own, whose `--out`
+/// needs no more words (`slide`, `estimate`, `junctions`; flattened).
+#[derive(clap::Args, Debug, Clone)]
+pub struct OutputFolder {
+    /// Output folder (created if missing; an earlier run of the same command there is replaced
+    /// whole).
+    #[arg(long)]
+    pub out: PathBuf,
+    #[command(flatten)]
+    pub overwrite: Overwrite,
+}
 
 /// The signals that stop a command: Ctrl-C, a closed terminal, `kill`, and a Slurm job's time
 /// limit (SIGTERM, then SIGKILL after a grace period) and `--signal` (SIGUSR1, SIGUSR2).

@@ -17,12 +17,8 @@ use crate::progress::Progress;
 pub struct Args {
     /// Run file (TOML, see README) with a `[sliding]` table.
     run: PathBuf,
-    /// Output folder (created if missing; an earlier `slide` there is replaced whole).
-    #[arg(long)]
-    out: PathBuf,
-    /// Replace the output folder even when it holds another command's results or other files.
-    #[arg(long)]
-    overwrite: bool,
+    #[command(flatten)]
+    output: super::OutputFolder,
     /// Also write the per-step contact pressure, contact map and junction labels to
     /// OUT/fields.zarr (Zarr, chunked and compressed; `xarray.open_zarr` opens it with
     /// coordinates load, s, x, y and units).
@@ -113,7 +109,7 @@ fn fields_writer(args: &Args, out: &OutputDir, prepared: &SlidingRun) -> Result<
     tell!(
         "fields: {:.1} MB before compression (13 bytes per pixel and kept step), into {}",
         raw as f64 / 1e6,
-        args.out.join("fields.zarr").display()
+        args.output.out.join("fields.zarr").display()
     );
     Ok(FieldsWriter::create(
         &out.join("fields.zarr"),
@@ -153,10 +149,16 @@ pub fn run(args: &Args) -> Result<()> {
     super::polls_interrupt();
     let config = load_run(run)?;
     wearsim::run::sliding_schedule(&config).with_context(|| format!("run file {}", run.display()))?;
-    if config.model == wearsim::estimate::WearModel::Estimate {
+    if !config.model.slides() {
+        let model = config.model;
+        let makers = model
+            .command()
+            .map_or("study jobs".into(), |c| format!("`wearsim {c}` and study jobs"));
         tell!(
-            "note: the run file asks for the static estimate (`[sliding] model = \"estimate\"`), which `wearsim \
-             estimate` and study jobs make; `slide` runs the sliding model"
+            "note: the run file asks for {} (`[sliding] model = \"{}\"`), which {makers} make; `slide` runs the \
+             sliding model",
+            model.description(),
+            model.name()
         );
     }
     let interrupt = super::interrupt();
@@ -168,7 +170,12 @@ pub fn run(args: &Args) -> Result<()> {
     let grid = config.grid()?;
     wearsim::check::memory("a sliding run", grid.nx(), grid.ny(), wearsim::check::SLIDING_ARRAYS)?;
     // The output folder is made (and checked) before any work.
-    let out = OutputDir::begin(&args.out, "slide", args.overwrite, &super::run_inputs(run, &config))?;
+    let out = OutputDir::begin(
+        &args.output.out,
+        "slide",
+        args.output.overwrite.replace,
+        &super::run_inputs(run, &config),
+    )?;
     let prepared = SlidingRun::prepare(&config)?.interrupted_by(interrupt);
     super::report_surfaces(prepared.surfaces(), false);
     let sliding = prepared.sliding();
@@ -229,7 +236,7 @@ pub fn run(args: &Args) -> Result<()> {
         "{} steps in {:.1} s; wrote {}",
         steps_per_load * runs.len(),
         outcome.seconds,
-        args.out.display()
+        args.output.out.display()
     );
     Ok(())
 }

@@ -27,9 +27,8 @@ pub struct Args {
     /// Output folder (created if missing; an earlier `surface` there is replaced whole).
     #[arg(long, required = true)]
     out: Option<PathBuf>,
-    /// Replace the output folder even when it holds another command's results or other files.
-    #[arg(long)]
-    overwrite: bool,
+    #[command(flatten)]
+    overwrite: super::Overwrite,
 }
 
 #[derive(clap::Subcommand)]
@@ -107,9 +106,8 @@ struct FitArgs {
     /// statistics.
     #[arg(long, requires = "out")]
     generate: bool,
-    /// Replace the output folder even when it holds another command's results or other files.
-    #[arg(long)]
-    overwrite: bool,
+    #[command(flatten)]
+    overwrite: super::Overwrite,
 }
 
 pub fn run(args: &Args) -> Result<()> {
@@ -122,7 +120,7 @@ pub fn run(args: &Args) -> Result<()> {
         bail!("give a run file and --out, or `wearsim surface fit FILE`");
     };
     let config = load_run(run)?;
-    let dir = OutputDir::begin(out, "surface", args.overwrite, &super::run_inputs(run, &config))?;
+    let dir = OutputDir::begin(out, "surface", args.overwrite.replace, &super::run_inputs(run, &config))?;
     let pair = config.surface_pair()?;
     super::report_surfaces(&pair, true);
     let (top, bottom) = (pair.top, pair.bottom);
@@ -223,7 +221,7 @@ fn run_fit(args: &FitArgs) -> Result<()> {
         Some(out) => Some(OutputDir::begin(
             out,
             "surface-fit",
-            args.overwrite,
+            args.overwrite.replace,
             &[args.file.as_path()],
         )?),
         None => None,

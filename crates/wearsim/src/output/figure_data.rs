@@ -88,7 +88,8 @@ fn setting_label(column: &str, cell: &Cell, units: Units) -> String {
 }
 
 /// The label of every curve of a tidy or aggregated table, by curve index (`output::curves`):
-/// "static estimate" for the curves of the static estimate (`sliding.model`), the material when it
+/// what a curve of another model than the paper's says first (`WearModel::curve_label`: "static
+/// estimate" for the static estimate; a model name not known here as it is), the material when it
 /// is named, each setting that tells the curves apart, then 𝒢 with its d*
 /// ("τ̃ = 0.012 E, 𝒢 = 2.5×10⁻⁷ E L (d* = 0.00401 L)").
 pub fn curve_labels(table: &Table) -> Vec<String> {
@@ -109,10 +110,13 @@ pub fn curve_labels(table: &Table) -> Vec<String> {
             continue;
         }
         let mut parts: Vec<String> = Vec::new();
-        // A curve of the static estimate says so first, wherever it is drawn.
+        // A curve of another model than the paper's says so first, wherever it is drawn (one of a
+        // model not known here by its name).
         if let Some(m) = table.column("sliding.model") {
-            if row[m].text() == WearModel::Estimate.name() {
-                parts.push("static estimate".into());
+            let name = row[m].text();
+            match WearModel::of_cell(&name) {
+                Some(model) => parts.extend(model.curve_label().map(String::from)),
+                None => parts.push(name),
             }
         }
         if let Some(m) = table.column("material") {
@@ -202,8 +206,9 @@ pub fn kim_material(
     })
 }
 
-/// The Kim material of a tidy table's row (SI units only).
-fn kim_of_row(table: &Table, row: &[Cell]) -> Option<KimMaterial> {
+/// The Kim material of a row of a tidy table (SI units only): the one test whether a row is one of
+/// Kim's ceramics, shared by the figures and the findings (`study::findings`).
+pub fn kim_of_row(table: &Table, row: &[Cell]) -> Option<KimMaterial> {
     let num = |name: &str| table.column(name).map_or(f64::NAN, |i| row[i].number());
     let si = table.column("units").is_some_and(|c| row[c].text() == "si");
     si.then(|| {

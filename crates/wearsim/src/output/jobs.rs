@@ -141,17 +141,20 @@ fn result_columns() -> Vec<String> {
     c
 }
 
-/// The rows of a tidy table that are sliding runs: those of the static estimate
-/// (`sliding.model = "estimate"`) left out, and how many they were. The paper's findings and the
-/// fits of appendix F are about the sliding model, so they read these rows only.
+/// The rows of a tidy table that are runs of the paper's sliding model, and how many rows were left
+/// out. A row is kept by what its model is (`sliding.model` names a model that
+/// [feeds the findings](WearModel::feeds_findings); an empty cell, or no such column, is the
+/// default model): the static estimate's rows, and those of a model name not known here, are left
+/// out. The paper's findings and the fits of appendix F are about the sliding model, so they read
+/// these rows only.
 pub fn sliding_rows(tidy: &Table) -> (Table, usize) {
     let mut sliding = tidy.clone();
     let Some(m) = tidy.column("sliding.model") else {
         return (sliding, 0);
     };
-    sliding.rows.retain(|r| r[m].text() != WearModel::Estimate.name());
-    let estimates = tidy.rows.len() - sliding.rows.len();
-    (sliding, estimates)
+    sliding.rows.retain(|r| WearModel::in_findings(&r[m].text()));
+    let left_out = tidy.rows.len() - sliding.rows.len();
+    (sliding, left_out)
 }
 
 /// Columns that neither identify a setting nor are averaged: the job index, the seed, the warnings.

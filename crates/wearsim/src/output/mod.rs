@@ -21,8 +21,8 @@ mod units;
 
 pub use fields::{FieldSelection, FieldsWriter};
 pub use figure_data::{
-    curve_labels, has_kim_materials, kim_material, number, pretty, severity_fits, KimMaterial, MaterialSeverity,
-    KIM_1986, KIM_EXPERIMENTAL_K, KIM_SEVERITY_FIT, PAPER_SEVERITY_FIT,
+    curve_labels, has_kim_materials, kim_material, kim_of_row, number, pretty, severity_fits, KimMaterial,
+    MaterialSeverity, KIM_1986, KIM_EXPERIMENTAL_K, KIM_SEVERITY_FIT, PAPER_SEVERITY_FIT,
 };
 pub use jobs::{
     aggregate, curves, equal_critical_diameter, interval_method, read_job_file, series_job, settings, sliding_rows,

@@ -6,9 +6,7 @@
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Interrupt, Result};
-use crate::estimate::{
-    fit_distance, results_of, Calibration, CalibrationPoint, EstimateResult, Sample, Sampling, WearModel,
-};
+use crate::estimate::{fit_distance, results_of, Calibration, CalibrationPoint, EstimateResult, Sample, Sampling};
 use crate::run::SlidingRun;
 use crate::study::expand::{expand, expand_stored, Study};
 use crate::study::store::{job_path, read_result, stored_study};
@@ -153,7 +151,9 @@ pub struct MappedStudy {
 
 /// The finished sliding jobs of study folder `dir` with the static maps of each, taken as `samples`
 /// says (else as each job's `estimate_samples`, else chosen by the sampling error); unfinished
-/// jobs and jobs of the estimate are left out and counted. The surface files must be those the
+/// jobs and jobs of a model other than the paper's sliding model
+/// ([`feeds_findings`](crate::estimate::WearModel::feeds_findings): the estimate's) are left out
+/// and counted. The surface files must be those the
 /// study ran with. `on_job(done, total)` is told after each job.
 pub fn map_jobs(
     dir: &Path,
@@ -165,7 +165,7 @@ pub fn map_jobs(
     let finished: Vec<_> = study
         .jobs
         .iter()
-        .filter(|j| j.run.model == WearModel::Sliding && job_path(dir, j.index).is_file())
+        .filter(|j| j.run.model.feeds_findings() && job_path(dir, j.index).is_file())
         .collect();
     if finished.is_empty() {
         return Err(Error::StudyFolder {

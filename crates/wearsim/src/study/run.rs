@@ -27,16 +27,18 @@ pub fn checkpoint_path(dir: &Path, index: usize) -> PathBuf {
 /// Sliding steps of a job (its schedule on its grid), for progress in steps; for a job of the
 /// static estimate, the most static solves it may take.
 pub fn job_steps(job: &Job) -> usize {
-    match (job.run.sliding.as_ref(), job.run.grid()) {
-        (Some(s), Ok(_)) if job.run.model == WearModel::Estimate => {
+    let (Some(s), Ok(grid)) = (job.run.sliding.as_ref(), job.run.grid()) else {
+        return 0;
+    };
+    match job.run.model {
+        WearModel::Sliding => s.offsets(grid.nx()).len() * s.loads.len(),
+        WearModel::Estimate => {
             let maps = match Sampling::of(job.run.estimate_samples) {
                 Ok(Sampling::Fixed(k)) => k,
                 _ => MAX_SAMPLES,
             };
             maps * s.loads.len()
         }
-        (Some(s), Ok(grid)) => s.offsets(grid.nx()).len() * s.loads.len(),
-        _ => 0,
     }
 }
 
@@ -52,8 +54,9 @@ pub fn run_job_observed(
     on_checkpoint: impl FnMut(&Resumed),
 ) -> Result<JobResult> {
     let run = &job.run;
-    if run.model == WearModel::Estimate {
-        return estimate_job(job, interrupt, on_step);
+    match run.model {
+        WearModel::Sliding => {}
+        WearModel::Estimate => return estimate_job(job, interrupt, on_step),
     }
     let mut outcome =
         SlidingRun::prepare(run)?

@@ -88,8 +88,9 @@ pub(super) struct Curve {
     pub rows: Vec<Vec<Cell>>,
     /// The aggregated table's columns.
     pub columns: Arc<Vec<String>>,
-    /// A curve of the static estimate (`sliding.model = "estimate"`): it counts no particle (its
-    /// uncertainty is its interval, in the job files), so none of its points is drawn hollow.
+    /// A curve of a model that takes no sliding step (the static estimate, `sliding.model =
+    /// "estimate"`): it counts no particle (its uncertainty is its interval, in the job files), so
+    /// none of its points is drawn hollow.
     pub estimate: bool,
 }
 
@@ -187,7 +188,7 @@ impl Data {
                 area: inputs.length * inputs.length_y.unwrap_or(inputs.length),
                 rows: Vec::new(),
                 columns: Arc::clone(&columns),
-                estimate: inputs.model == Some(wearsim::estimate::WearModel::Estimate),
+                estimate: !inputs.model.unwrap_or_default().slides(),
             });
         }
         let curve = aggregated

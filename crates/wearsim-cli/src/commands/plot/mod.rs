@@ -375,22 +375,24 @@ pub fn run(args: &Args) -> Result<()> {
     let figures = wearsim::io::OutputDir::begin(&dir.join("figures"), "study plot", false, &[])?;
     let (out, shown) = (figures.join(""), dir.join("figures"));
     let series = draw(&data, args.job, args.figures.as_deref(), &out, &shown)?;
-    // The paper's findings on this study, judged on its sliding jobs: an estimate is no sliding run.
-    let (sliding, estimates) = wearsim::output::sliding_rows(&data.tidy);
+    // The paper's findings on this study, judged on the runs of its sliding model only: an estimate
+    // (or any other model) is no sliding run.
+    let (sliding, others) = wearsim::output::sliding_rows(&data.tidy);
     let found = if sliding.rows.is_empty() {
         Vec::new()
     } else {
         findings(&data.tidy)
     };
-    let note = match (estimates, sliding.rows.len()) {
+    let note = match (others, sliding.rows.len()) {
         (0, _) => String::new(),
-        (_, 0) => "This study holds static estimates only (`sliding.model = \"estimate\"`): the paper's findings are \
-                   judged on sliding runs, so none is judged here. Its figures draw the estimates, labelled \
-                   \"static estimate\".\n\n"
+        (_, 0) => "This study holds no run of the sliding model (its `sliding.model` is another, such as \
+                   \"estimate\": static estimates): the paper's findings are judged on sliding runs, so none is \
+                   judged here. Its figures draw the other models' results, labelled by model (\"static \
+                   estimate\").\n\n"
             .to_string(),
         (n, _) => format!(
-            "{n} rows of this study are static estimates (`sliding.model = \"estimate\"`); the findings below are \
-             judged on its sliding jobs only.\n\n"
+            "{n} rows of this study are not sliding runs (their `sliding.model` is another, such as \"estimate\": \
+             static estimates); the findings below are judged on its sliding jobs only.\n\n"
         ),
     };
     let text = format!(

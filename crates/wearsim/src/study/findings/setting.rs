@@ -4,7 +4,7 @@
 
 use std::collections::BTreeMap;
 
-use crate::output::{kim_material, settings as setting_groups, Cell, Table};
+use crate::output::{kim_of_row, settings as setting_groups, Cell, Table};
 use crate::sliding::RUN_IN_DECAY_LENGTHS;
 
 /// One surface pair of a setting: its seed and every numeric column of its row of the tidy table.
@@ -190,17 +190,7 @@ pub(super) fn settings(tidy: &Table) -> Vec<Setting> {
                 pressure: num("nominal_pressure"),
                 pixel_size: num("surface.length") / num("surface.grid"),
                 critical_diameter: num("critical_diameter"),
-                kim: (col("units").is_some_and(|u| first[u].text() == "si"))
-                    .then(|| {
-                        kim_material(
-                            num("material.youngs_modulus"),
-                            num("material.poisson_ratio"),
-                            num("material.shear_strength"),
-                            num("fracture_energy"),
-                        )
-                    })
-                    .flatten()
-                    .map(|k| k.name),
+                kim: kim_of_row(tidy, first).map(|k| k.name),
                 pairs,
             }
         })

@@ -95,6 +95,31 @@ fn set(tidy: &mut Table, tau: f64, load: f64, column: &str, values: &[Cell]) {
 }
 
 #[test]
+fn rows_of_a_model_not_known_here_are_not_judged() {
+    // The same study with a copy of every row made by a third model (`sliding.model = "other"`),
+    // three times the wear: the findings are those of the sliding rows alone, as for the estimate.
+    let sliding = study(None);
+    let mut mixed = sliding.clone();
+    let (model, w) = (
+        mixed.column("sliding.model").unwrap(),
+        mixed.column("wear_rate").unwrap(),
+    );
+    for (k, model_name) in ["other", "estimate"].into_iter().enumerate() {
+        for r in &sliding.rows {
+            let mut r = r.clone();
+            r[model] = Cell::Text(model_name.into());
+            r[w] = Cell::Float(3.0 * (k + 1) as f64 * r[w].number());
+            mixed.rows.push(r);
+        }
+    }
+    assert_eq!(
+        crate::output::sliding_rows(&mixed),
+        (sliding.clone(), 2 * sliding.rows.len())
+    );
+    assert_eq!(findings(&mixed), findings(&sliding));
+}
+
+#[test]
 fn findings_on_a_hand_made_study() {
     let f = findings(&study(None));
     for key in [
