@@ -155,7 +155,7 @@ def main() -> int:
         )
         print(rows[-1], flush=True)
     table = pd.DataFrame(rows)
-    print(table.to_markdown(index=False) if hasattr(table, "to_markdown") else table.to_string(index=False))
+    print(table.to_string(index=False))
     table.to_csv(args.out / "measured_maps.csv", index=False)
     return 0
 

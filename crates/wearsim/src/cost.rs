@@ -139,9 +139,9 @@ pub struct Estimate {
     pub measured: Option<StepIterations>,
 }
 
-/// What a few steps of a run on its own surfaces took (`crate::run::SlidingRun::probe_iterations`):
-/// the cold first solve and a few warm steps of each kind at the run's heaviest load, solved as the
-/// run solves them.
+/// What a few steps of a run on its own surfaces took (measured by `SlidingRun::probe_iterations` of
+/// the run module, which builds on this one): the cold first solve and a few warm steps of each kind
+/// at the run's heaviest load, solved as the run solves them.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct IterationProbe {
     /// Iterations per step of each kind (a kind the schedule has no step of is scaled from the
