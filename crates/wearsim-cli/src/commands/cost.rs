@@ -117,20 +117,13 @@ fn probe(config: &RunConfig) -> Result<IterationProbe> {
         .context("measuring the iterations of a few steps on the run's own surfaces")
 }
 
-/// What a job's solver iterations depend on, as a key: its surfaces less their seed (the pairs of one
-/// spectrum on one grid take about as many), the material less its fracture energies (which the
-/// solve does not see), the modulus convention, the stopping rule and the loads.
-fn solve_kind(job: &Job) -> Result<String> {
+/// A job's surfaces less their seed, as a key: the pairs of one spectrum on one grid share a probe.
+fn surface_kind(job: &Job) -> Result<String> {
     let mut surfaces = serde_json::to_value(&job.run.surfaces)?;
     if let Some(fields) = surfaces.as_object_mut() {
         fields.remove("seed");
     }
-    let mut material = serde_json::to_value(&job.run.material)?;
-    if let Some(fields) = material.as_object_mut() {
-        fields.remove("fracture_energies");
-    }
-    let loads = job.run.sliding.as_ref().map(|s| s.loads.clone());
-    Ok(serde_json::json!([surfaces, material, job.run.modulus, job.run.stopping, loads]).to_string())
+    Ok(surfaces.to_string())
 }
 
 /// One line: iterations per step measured against those the calibration assumes.
@@ -242,23 +235,28 @@ pub fn print_study(jobs: &[&Job], workers: usize) -> Result<()> {
         return Ok(());
     }
     let c = calibration()?;
-    // One probe per kind of solve: the surfaces less their seed (the spectrum, the grid, the files),
-    // the elastic and plastic constants, the stopping rule and the job's load. Surface pairs of one
-    // spectrum differ in their iterations by far less than the factor the cost model allows, and a
-    // study of forty pairs at 4096² would otherwise probe for many minutes before it starts; the
-    // load and the flow pressure change the iterations by up to a few times, so each job is
-    // estimated from a probe of its own setting, as the same job alone in a shard is.
-    let mut probes: Vec<(String, usize)> = Vec::new();
+    // One probe per kind of surface (the source less its seed: the spectrum, the grid, the files),
+    // at the heaviest load of its jobs: surface pairs of one spectrum differ in their iterations by
+    // far less than the factor the cost model allows, and a study of forty pairs at 4096² would
+    // otherwise probe for many minutes before it starts.
+    let mut probes: Vec<(String, f64, usize)> = Vec::new();
     for (k, job) in jobs.iter().enumerate() {
-        let key = solve_kind(job)?;
-        if !probes.iter().any(|(other, _)| *other == key) {
-            probes.push((key, k));
+        let key = surface_kind(job)?;
+        let load = job
+            .run
+            .sliding
+            .as_ref()
+            .map_or(0.0, |s| s.loads.iter().copied().fold(0.0, f64::max));
+        match probes.iter_mut().find(|(other, _, _)| *other == key) {
+            Some(p) if p.1 < load => *p = (key, load, k),
+            Some(_) => {}
+            None => probes.push((key, load, k)),
         }
     }
     let mut measured = Vec::with_capacity(probes.len());
     let mut probe_seconds = 0.0;
     let mut iterations = (0.0, 0.0);
-    for (key, k) in &probes {
+    for (key, _, k) in &probes {
         let p = probe(&jobs[*k].run).with_context(|| format!("job {}", jobs[*k].index))?;
         probe_seconds += p.seconds;
         measured.push((key.clone(), p.iterations));
@@ -266,15 +264,15 @@ pub fn print_study(jobs: &[&Job], workers: usize) -> Result<()> {
     let mut estimates = Vec::with_capacity(jobs.len());
     for job in &jobs {
         let sliding = job.run.sliding.as_ref().context("a study job has a [sliding] table")?;
-        let key = solve_kind(job)?;
+        let key = surface_kind(job)?;
         let m = measured.iter().find(|(k, _)| *k == key).map(|(_, i)| *i);
         let e = c.estimate_measured(job.run.grid()?, sliding, job.run.stopping, m);
         iterations = (iterations.0 + e.iterations, iterations.1 + e.assumed_iterations);
         estimates.push(e);
     }
     tell!(
-        "  iterations measured on the jobs' own surfaces (a cold solve and a few steps of one surface pair \
-         for each of {} setting(s) of surfaces, material and load, the other seeds taking about as many, {probe_seconds:.1} s): {:.0} over the jobs where the paper's roughness gives {:.0} ({:.2}×)",
+        "  iterations measured on the jobs' own surfaces (one pair of each of {} surface kind(s), the other \
+         seeds taking about as many; a cold solve and a few steps at the heaviest load, {probe_seconds:.1} s): {:.0} over the jobs where the paper's roughness gives {:.0} ({:.2}×)",
         probes.len(),
         iterations.0,
         iterations.1,
