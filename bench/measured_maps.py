@@ -9,7 +9,7 @@ For each instrument file given, run as a user would (no code of one's own betwee
    a box of 256 of the map's pixels, three seeds, a steel-like material whose two d* are 8 and 16
    pixels, three nominal pressures p_N = (1, 2, 4) % of E* h'_rms (h'_rms the RMS slope of the
    composite surface, √2 that of the map: the elastic contact fraction is about 2 p_N/(E* h'_rms),
-   so some 2–8 %), at most p_m/10,
+   so some 2–8 %; E* h'_rms taken at most 2.5 p_m, so p_N ≤ p_m/10),
 4. ``wearsim study run`` + ``study collect``, ``wearsim estimate-check`` (the static estimate of
    every sliding job beside it, with its reach warnings), and ``wearsim study run --dry-run`` on a
    copy run with the cost estimate, whose wall time is set against the study's own,
@@ -118,7 +118,7 @@ def main() -> int:
         )
         e_star = YOUNGS / (1 - POISSON**2)
         flow = 3 * math.sqrt(3) * SHEAR
-        loads = [min(f * e_star * slope, flow / 10) * box * box for f in (0.01, 0.02, 0.04)]
+        loads = [f * min(e_star * slope, 2.5 * flow) * box * box for f in (0.01, 0.02, 0.04)]
         (work / "study.toml").write_text(
             STUDY.format(map_length=lx, length=box, g1=g[0], g2=g[1], f1=loads[0], f2=loads[1], f3=loads[2])
         )
