@@ -12,7 +12,7 @@ use wearsim::output::{estimate_rows, Table};
 use wearsim::run::{SlidingOutcome, SlidingRun};
 use wearsim::sliding::{SlidingConfig, DEFAULT_DISTANCE, DEFAULT_RUNNING_IN, DEFAULT_STEP, DEFAULT_STEP_RUNNING_IN};
 use wearsim::wear::{ParticleRuleKind, DEFAULT_PARTICLE_RULE};
-use wearsim::{Boundary, Device, SolverOptions};
+use wearsim::{Device, SolverOptions};
 
 use crate::contact::PyMaterial;
 use crate::error::{interruptible, interruptible_with_progress, to_py};
@@ -61,25 +61,21 @@ fn slide<'py>(
     let solver = SolverOptions::new(tolerance, max_iterations).map_err(to_py)?;
     wearsim::check::connectivity(connectivity).map_err(to_py)?;
     // The run these arrays and settings describe, built in memory as a run file would be.
-    let config = RunConfig {
-        units: Units::Reduced,
-        surfaces: SurfaceSource::Arrays { grid, length },
-        material: material.inner.clone(),
-        modulus: modulus.parse().map_err(to_py)?,
-        solver,
-        connectivity,
-        boundary: Boundary::Periodic,
-        device,
-        sliding: Some(
+    let config = RunConfig::builder(SurfaceSource::Arrays { grid, length }, material.inner.clone())
+        .units(Units::Reduced)
+        .modulus(modulus.parse().map_err(to_py)?)
+        .solver(solver)
+        .connectivity(connectivity)
+        .device(device)
+        .sliding(
             SlidingConfig::new(loads, distance, running_in, step_running_in, step, Some(grid.nx()))
                 .map_err(to_py)?
                 .with_particle_rule(rule),
-        ),
-        stopping: stopping.parse().map_err(to_py)?,
-        model: wearsim::estimate::WearModel::Sliding,
-        estimate_samples: None,
-        estimate_constants: None,
-    };
+        )
+        .stopping(stopping.parse().map_err(to_py)?)
+        .model(wearsim::estimate::WearModel::Sliding)
+        .build()
+        .map_err(to_py)?;
     let pair = SurfacePair::of_arrays(t, b);
     let outcome = interruptible_with_progress(py, threads, progress.as_ref(), |interrupt, steps| {
         SlidingRun::with_surfaces(&config, pair)?

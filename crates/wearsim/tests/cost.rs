@@ -39,21 +39,16 @@ fn the_estimate_is_within_a_factor_of_three_of_the_measured_time() {
                 Surface::generate(grid, &spectrum, b).unwrap(),
             );
             let sliding = SlidingConfig::new(loads, 0.3, 0.2, 4, 1, Some(n)).unwrap();
-            let config = RunConfig {
-                units: Units::Reduced,
-                surfaces: SurfaceSource::Arrays { grid, length: 1.0 },
-                material: material.clone(),
-                modulus: ModulusConvention::HalfSpace,
-                solver: SolverOptions::default(),
-                connectivity: 4,
-                boundary: Default::default(),
-                device: Default::default(),
-                sliding: Some(sliding.clone()),
-                stopping: Stopping::SettledMap,
-                model: wearsim::estimate::WearModel::Sliding,
-                estimate_samples: None,
-                estimate_constants: None,
-            };
+            let config = RunConfig::builder(SurfaceSource::Arrays { grid, length: 1.0 }, material.clone())
+                .units(Units::Reduced)
+                .modulus(ModulusConvention::HalfSpace)
+                .solver(SolverOptions::default())
+                .connectivity(4)
+                .sliding(sliding.clone())
+                .stopping(Stopping::SettledMap)
+                .model(wearsim::estimate::WearModel::Sliding)
+                .build()
+                .unwrap();
             let t = processor_seconds();
             let runs = SlidingRun::with_surfaces(&config, SurfacePair::of_arrays(top, bottom))
                 .unwrap()

@@ -94,24 +94,22 @@ fn a_problem_repeated_along_y_or_x_has_the_tiled_contact_solution() {
 fn slide(top: &Surface, bottom: &Surface, loads: Vec<f64>) -> Vec<LoadRun> {
     let material = Material::new(1.0, 0.3, 0.01, vec![0.05e-6, 0.1e-6], 3.0).unwrap();
     let sliding = SlidingConfig::new(loads, 0.5, 0.25, 4, 1, None).unwrap();
-    let config = RunConfig {
-        units: Units::Reduced,
-        surfaces: SurfaceSource::Arrays {
+    let config = RunConfig::builder(
+        SurfaceSource::Arrays {
             grid: top.grid(),
             length: top.length(),
         },
         material,
-        modulus: ModulusConvention::HalfSpace,
-        solver: wearsim::SolverOptions::new(1e-12, 20_000).unwrap(),
-        connectivity: 4,
-        boundary: Default::default(),
-        device: Default::default(),
-        sliding: Some(sliding),
-        stopping: wearsim::contact::SLIDING_STOPPING,
-        model: wearsim::estimate::WearModel::Sliding,
-        estimate_samples: None,
-        estimate_constants: None,
-    };
+    )
+    .units(Units::Reduced)
+    .modulus(ModulusConvention::HalfSpace)
+    .solver(wearsim::SolverOptions::new(1e-12, 20_000).unwrap())
+    .connectivity(4)
+    .sliding(sliding)
+    .stopping(wearsim::contact::SLIDING_STOPPING)
+    .model(wearsim::estimate::WearModel::Sliding)
+    .build()
+    .unwrap();
     slide_config(&config, SurfacePair::of_arrays(top.clone(), bottom.clone()))
 }
 

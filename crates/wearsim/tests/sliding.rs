@@ -12,24 +12,21 @@ use wearsim::{composite_heights, ContactSolver, Generation, Material, ModulusCon
 /// The run of `material` and `sliding` on the arrays `top` and `bottom` (connectivity 4, the
 /// default solver), as a front end would build it.
 fn arrays_run(top: &Surface, material: &Material, sliding: &SlidingConfig) -> RunConfig {
-    RunConfig {
-        units: Units::Reduced,
-        surfaces: SurfaceSource::Arrays {
+    RunConfig::builder(
+        SurfaceSource::Arrays {
             grid: top.grid(),
             length: top.length(),
         },
-        material: material.clone(),
-        modulus: ModulusConvention::HalfSpace,
-        solver: Default::default(),
-        connectivity: 4,
-        boundary: Default::default(),
-        device: Default::default(),
-        sliding: Some(sliding.clone()),
-        stopping: wearsim::contact::SLIDING_STOPPING,
-        model: wearsim::estimate::WearModel::Sliding,
-        estimate_samples: None,
-        estimate_constants: None,
-    }
+        material.clone(),
+    )
+    .units(Units::Reduced)
+    .modulus(ModulusConvention::HalfSpace)
+    .connectivity(4)
+    .sliding(sliding.clone())
+    .stopping(wearsim::contact::SLIDING_STOPPING)
+    .model(wearsim::estimate::WearModel::Sliding)
+    .build()
+    .unwrap()
 }
 
 /// Slides `config` on `top` and `bottom` through the one way in.

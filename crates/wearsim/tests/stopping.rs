@@ -129,24 +129,22 @@ fn a_sliding_run_gives_the_same_wear_results_with_either_rule() {
     let material = Material::new(1.0, 0.3, 0.010, vec![0.25e-6, 0.5e-6], 3.0).unwrap();
     let sliding = SlidingConfig::new(vec![1e-3, 3e-3], 0.5, 0.25, 4, 1, Some(n)).unwrap();
     let run = |stopping| {
-        let config = RunConfig {
-            units: Units::Reduced,
-            surfaces: SurfaceSource::Arrays {
+        let config = RunConfig::builder(
+            SurfaceSource::Arrays {
                 grid: top.grid(),
                 length: top.length(),
             },
-            material: material.clone(),
-            modulus: ModulusConvention::HalfSpace,
-            solver: SolverOptions::default(),
-            connectivity: 4,
-            boundary: Default::default(),
-            device: Default::default(),
-            sliding: Some(sliding.clone()),
-            stopping,
-            model: wearsim::estimate::WearModel::Sliding,
-            estimate_samples: None,
-            estimate_constants: None,
-        };
+            material.clone(),
+        )
+        .units(Units::Reduced)
+        .modulus(ModulusConvention::HalfSpace)
+        .solver(SolverOptions::default())
+        .connectivity(4)
+        .sliding(sliding.clone())
+        .stopping(stopping)
+        .model(wearsim::estimate::WearModel::Sliding)
+        .build()
+        .unwrap();
         SlidingRun::with_surfaces(&config, SurfacePair::of_arrays(top.clone(), bottom.clone()))
             .unwrap()
             .run(|_| {})

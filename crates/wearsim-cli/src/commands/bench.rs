@@ -214,25 +214,22 @@ pub fn run_slide(args: &SlideArgs) -> Result<()> {
         Some(args.n),
     )?;
     // The benchmark's surface pair (`paper_pair`) as a run: generated, seed 1.
-    let config = RunConfig {
-        units: Units::Reduced,
-        surfaces: SurfaceSource::Generated {
+    let config = RunConfig::builder(
+        SurfaceSource::Generated {
             grid: wearsim::Grid::square(args.n, 1.0)?,
             spectrum: SpectrumParams::paper_roughness(args.n, 1.0),
             seed: 1,
         },
         material,
-        modulus: ModulusConvention::HalfSpace,
-        solver: Default::default(),
-        connectivity: DEFAULT_CONNECTIVITY,
-        boundary: Default::default(),
-        device: args.device,
-        sliding: Some(sliding),
-        stopping: wearsim::contact::SLIDING_STOPPING,
-        model: wearsim::estimate::WearModel::Sliding,
-        estimate_samples: None,
-        estimate_constants: None,
-    };
+    )
+    .units(Units::Reduced)
+    .modulus(ModulusConvention::HalfSpace)
+    .connectivity(DEFAULT_CONNECTIVITY)
+    .device(args.device)
+    .sliding(sliding)
+    .stopping(wearsim::contact::SLIDING_STOPPING)
+    .model(wearsim::estimate::WearModel::Sliding)
+    .build()?;
     let material = &config.material;
     let prepared = SlidingRun::prepare(&config)?;
     let sliding = prepared.sliding();
@@ -286,15 +283,15 @@ fn warm_steps(args: &SlideArgs, full: &RunConfig) -> Result<()> {
         DEFAULT_STEP,
         Some(n),
     )?;
-    let config = RunConfig {
-        surfaces: SurfaceSource::Generated {
+    let config = full
+        .to_builder()
+        .surfaces(SurfaceSource::Generated {
             grid: wearsim::Grid::square(n, 1.0)?,
             spectrum: SpectrumParams::paper_roughness(n, 1.0),
             seed: 1,
-        },
-        sliding: Some(sliding),
-        ..full.clone()
-    };
+        })
+        .sliding(sliding)
+        .build()?;
     let mut slide = SlidingRun::prepare(&config)?.start()?;
     slide.step()?; // s = 0: the cold solve, not timed
     let (mut step_s, mut split, mut iters) = (0.0, Timing::default(), 0);

@@ -30,8 +30,11 @@ use crate::wear::ParticleRuleKind;
 use raw::{one_line, RawRun};
 use source::{lateral_scale, surface_source};
 
-/// A validated run file.
+/// A validated run: read from a run file ([`RunConfig::from_path`]) or built in memory
+/// ([`RunConfig::builder`]), never assembled field by field outside the library, so that every run
+/// passes the same checks.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[non_exhaustive]
 pub struct RunConfig {
     pub units: Units,
     pub surfaces: SurfaceSource,
@@ -58,6 +61,146 @@ pub struct RunConfig {
     /// `wearsim estimate-check --fit` on sliding runs of the user's own surfaces); absent: the
     /// library's [`crate::estimate::CALIBRATION`].
     pub estimate_constants: Option<crate::estimate::Calibration>,
+}
+
+/// A run being built in memory ([`RunConfig::builder`]): the one way, besides a run file, to make a
+/// [`RunConfig`], so that every front end's run passes the checks a run file's does.
+#[derive(Debug, Clone)]
+#[must_use = "a run is made by `build`"]
+pub struct RunBuilder {
+    units: Units,
+    surfaces: SurfaceSource,
+    material: Material,
+    modulus: ModulusConvention,
+    solver: SolverOptions,
+    connectivity: u8,
+    boundary: Boundary,
+    device: Device,
+    sliding: Option<SlidingConfig>,
+    stopping: Stopping,
+    model: WearModel,
+    estimate_samples: Option<usize>,
+    estimate_constants: Option<crate::estimate::Calibration>,
+}
+
+macro_rules! setters {
+    ($($(#[$doc:meta])* $name:ident: $ty:ty,)*) => {
+        $(
+            $(#[$doc])*
+            pub fn $name(mut self, $name: $ty) -> Self {
+                self.$name = $name;
+                self
+            }
+        )*
+    };
+}
+
+impl RunBuilder {
+    setters! {
+        /// The unit system (`units`).
+        units: Units,
+        /// The surfaces (`[surface]`).
+        surfaces: SurfaceSource,
+        /// The material (`[material]`).
+        material: Material,
+        /// The modulus convention (`[contact] modulus`).
+        modulus: ModulusConvention,
+        /// The contact solver's tolerance and iterations (`[contact]`).
+        solver: SolverOptions,
+        /// Junction connectivity, 4 or 8 (`[contact] connectivity`).
+        connectivity: u8,
+        /// The boundary of single contact solves (`[contact] boundary`).
+        boundary: Boundary,
+        /// Where the contact solver computes (`[contact] device`).
+        device: Device,
+        /// When a sliding run's solves stop (`[sliding] stopping`).
+        stopping: Stopping,
+        /// Which model turns the run into wear results (`[sliding] model`).
+        model: WearModel,
+        /// The static maps of an estimate (`[sliding] estimate_samples`).
+        estimate_samples: Option<usize>,
+        /// The static estimate's constants (`[sliding] estimate_constants`).
+        estimate_constants: Option<crate::estimate::Calibration>,
+    }
+
+    /// The sliding schedule (`[sliding]`).
+    pub fn sliding(mut self, sliding: SlidingConfig) -> Self {
+        self.sliding = Some(sliding);
+        self
+    }
+
+    /// The grid the surfaces fix (generated, arrays, a spectrum); `None` for files, whose grid is
+    /// known once they are read.
+    fn fixed_grid(&self) -> Option<Grid> {
+        match &self.surfaces {
+            SurfaceSource::Generated { grid, .. }
+            | SurfaceSource::Arrays { grid, .. }
+            | SurfaceSource::Spectrum { grid, .. } => Some(*grid),
+            SurfaceSource::Files { .. } => None,
+        }
+    }
+
+    /// The run, checked as a run file is: the connectivity, a free boundary only without
+    /// `[sliding]`, the device available in this build, the estimate's samples and constants, the
+    /// schedule against a fixed grid and each load against the flow pressure times the apparent
+    /// area where the run fixes it. The errors are those of the same run file.
+    pub fn build(self) -> Result<RunConfig> {
+        check_connectivity(self.connectivity)?;
+        if self.boundary == Boundary::Free && self.sliding.is_some() {
+            return Err(Error::run_file(
+                "[contact] `boundary = \"free\"` applies to single contact solves; sliding is periodic (paper §2), so a \
+                 run file with [sliding] keeps the default \"periodic\" (for one free-boundary solve of its pair, use \
+                 `wearsim contact --boundary free`)",
+            ));
+        }
+        self.device
+            .available()
+            .map_err(|e| Error::run_file(format!("[contact] `device`: {e}")))?;
+        Sampling::of(self.estimate_samples).map_err(|e| Error::run_file(format!("[sliding] {e}")))?;
+        let estimate_constants = match self.estimate_constants {
+            None => None,
+            Some(c) => Some(
+                c.checked("estimate_constants")
+                    .map_err(|e| Error::run_file(format!("[sliding] {e}")))?,
+            ),
+        };
+        if let (Some(sl), Some(grid)) = (&self.sliding, self.fixed_grid()) {
+            sl.check_grid(grid.nx())?;
+        }
+        // The apparent area, where the run fixes it (a file's y side may come from its shape,
+        // checked when the run starts).
+        let area = match &self.surfaces {
+            SurfaceSource::Generated { grid, .. }
+            | SurfaceSource::Arrays { grid, .. }
+            | SurfaceSource::Spectrum { grid, .. } => Some(grid.area()),
+            SurfaceSource::Files {
+                length,
+                length_y: Some(ly),
+                ..
+            } => Some(length * ly),
+            SurfaceSource::Files { .. } => None,
+        };
+        if let (Some(sl), Some(area)) = (&self.sliding, area) {
+            for &load in &sl.loads {
+                crate::check::load(load, area, self.material.flow_pressure())?;
+            }
+        }
+        Ok(RunConfig {
+            units: self.units,
+            surfaces: self.surfaces,
+            material: self.material,
+            modulus: self.modulus,
+            solver: self.solver,
+            connectivity: self.connectivity,
+            boundary: self.boundary,
+            device: self.device,
+            sliding: self.sliding,
+            stopping: self.stopping,
+            model: self.model,
+            estimate_samples: self.estimate_samples,
+            estimate_constants,
+        })
+    }
 }
 
 impl RunConfig {
@@ -103,32 +246,11 @@ impl RunConfig {
             c.tolerance.unwrap_or(defaults.tolerance()),
             c.max_iterations.unwrap_or(defaults.max_iterations()),
         )?;
-        let connectivity = c.connectivity.unwrap_or(DEFAULT_CONNECTIVITY);
-        check_connectivity(connectivity)?;
-        let boundary = c.boundary.unwrap_or_default();
-        if boundary == Boundary::Free && raw.sliding.is_some() {
-            return Err(Error::run_file(
-                "[contact] `boundary = \"free\"` applies to single contact solves; sliding is periodic (paper §2), so a \
-                 run file with [sliding] keeps the default \"periodic\" (for one free-boundary solve of its pair, use \
-                 `wearsim contact --boundary free`)",
-            ));
-        }
-        let device = c.device.unwrap_or_default();
-        device
-            .available()
-            .map_err(|e| Error::run_file(format!("[contact] `device`: {e}")))?;
-        let stopping = raw
-            .sliding
-            .as_ref()
-            .and_then(|sl| sl.stopping)
-            .unwrap_or(SLIDING_STOPPING);
-        let model = raw.sliding.as_ref().and_then(|sl| sl.model).unwrap_or_default();
-        let estimate_samples = raw.sliding.as_ref().and_then(|sl| sl.estimate_samples);
-        Sampling::of(estimate_samples).map_err(|e| Error::run_file(format!("[sliding] {e}")))?;
-        let estimate_constants = match raw.sliding.as_ref().and_then(|sl| sl.estimate_constants.as_ref()) {
-            None => None,
-            Some(c) => Some(
-                crate::estimate::Calibration {
+        let sliding_table = raw.sliding.as_ref();
+        let estimate_constants =
+            sliding_table
+                .and_then(|sl| sl.estimate_constants.as_ref())
+                .map(|c| crate::estimate::Calibration {
                     residence_factor: c.residence_factor,
                     merging_factor: c.merging_factor,
                     volume_factor: c.volume_factor,
@@ -136,60 +258,69 @@ impl RunConfig {
                     wear_spread: c.wear_spread,
                     settings: 0,
                     particles: 0,
-                }
-                .checked("estimate_constants")
-                .map_err(|e| Error::run_file(format!("[sliding] {e}")))?,
-            ),
-        };
-        let sliding = match raw.sliding {
-            None => None,
-            Some(sl) => {
-                let grid = match &surfaces {
-                    SurfaceSource::Generated { grid, .. }
-                    | SurfaceSource::Arrays { grid, .. }
-                    | SurfaceSource::Spectrum { grid, .. } => Some(grid.nx()),
-                    SurfaceSource::Files { .. } => None,
-                };
-                let rule = match &sl.particle_rule {
-                    Some(name) => ParticleRuleKind::named(name)?,
-                    None => ParticleRuleKind::default(),
-                };
-                Some(
-                    SlidingConfig::new(
-                        sl.loads,
-                        sl.distance.unwrap_or(DEFAULT_DISTANCE),
-                        sl.running_in.unwrap_or(DEFAULT_RUNNING_IN),
-                        sl.step_running_in.unwrap_or(DEFAULT_STEP_RUNNING_IN),
-                        sl.step.unwrap_or(DEFAULT_STEP),
-                        grid,
-                    )?
-                    .with_particle_rule(rule),
-                )
-            }
-        };
-        // The apparent area, where the run file fixes it (a file's y side may come from its shape,
-        // checked when the run starts).
-        let area = match &surfaces {
-            SurfaceSource::Generated { grid, .. }
-            | SurfaceSource::Arrays { grid, .. }
-            | SurfaceSource::Spectrum { grid, .. } => Some(grid.area()),
-            SurfaceSource::Files {
-                length,
-                length_y: Some(ly),
-                ..
-            } => Some(length * ly),
-            SurfaceSource::Files { .. } => None,
-        };
-        if let (Some(sl), Some(area)) = (&sliding, area) {
-            for &load in &sl.loads {
-                crate::check::load(load, area, material.flow_pressure())?;
-            }
+                });
+        let mut run = RunConfig::builder(surfaces, material)
+            .units(raw.units)
+            .modulus(c.modulus.unwrap_or_default())
+            .solver(solver)
+            .connectivity(c.connectivity.unwrap_or(DEFAULT_CONNECTIVITY))
+            .boundary(c.boundary.unwrap_or_default())
+            .device(c.device.unwrap_or_default())
+            .stopping(sliding_table.and_then(|sl| sl.stopping).unwrap_or(SLIDING_STOPPING))
+            .model(sliding_table.and_then(|sl| sl.model).unwrap_or_default())
+            .estimate_samples(sliding_table.and_then(|sl| sl.estimate_samples))
+            .estimate_constants(estimate_constants);
+        if let Some(sl) = raw.sliding {
+            let rule = match &sl.particle_rule {
+                Some(name) => ParticleRuleKind::named(name)?,
+                None => ParticleRuleKind::default(),
+            };
+            let grid = run.fixed_grid().map(|g| g.nx());
+            run = run.sliding(
+                SlidingConfig::new(
+                    sl.loads,
+                    sl.distance.unwrap_or(DEFAULT_DISTANCE),
+                    sl.running_in.unwrap_or(DEFAULT_RUNNING_IN),
+                    sl.step_running_in.unwrap_or(DEFAULT_STEP_RUNNING_IN),
+                    sl.step.unwrap_or(DEFAULT_STEP),
+                    grid,
+                )?
+                .with_particle_rule(rule),
+            );
         }
-        Ok(Self {
-            units: raw.units,
+        run.build()
+    }
+
+    /// A run built in memory (a front end's arguments, a benchmark), validated by
+    /// [`RunBuilder::build`] exactly as a run file is: the other settings start at a run file's
+    /// defaults (reduced units, the half-space modulus, the default solver, connectivity 8, a
+    /// periodic boundary on the CPU, no `[sliding]`, the sliding model).
+    pub fn builder(surfaces: SurfaceSource, material: Material) -> RunBuilder {
+        RunBuilder {
+            units: Units::default(),
             surfaces,
             material,
-            modulus: c.modulus.unwrap_or_default(),
+            modulus: ModulusConvention::default(),
+            solver: SolverOptions::default(),
+            connectivity: DEFAULT_CONNECTIVITY,
+            boundary: Boundary::default(),
+            device: Device::default(),
+            sliding: None,
+            stopping: SLIDING_STOPPING,
+            model: WearModel::default(),
+            estimate_samples: None,
+            estimate_constants: None,
+        }
+    }
+
+    /// This run as a builder, to make another that differs in a few settings (validated again by
+    /// [`RunBuilder::build`]).
+    pub fn to_builder(&self) -> RunBuilder {
+        let RunConfig {
+            units,
+            surfaces,
+            material,
+            modulus,
             solver,
             connectivity,
             boundary,
@@ -199,7 +330,22 @@ impl RunConfig {
             model,
             estimate_samples,
             estimate_constants,
-        })
+        } = self.clone();
+        RunBuilder {
+            units,
+            surfaces,
+            material,
+            modulus,
+            solver,
+            connectivity,
+            boundary,
+            device,
+            sliding,
+            stopping,
+            model,
+            estimate_samples,
+            estimate_constants,
+        }
     }
 
     /// The top and bottom surfaces: generated (seeds derived from the run's seed) or read.
@@ -743,5 +889,70 @@ loads = [1e-3]
             .unwrap_err()
             .to_string();
         assert!(e.contains("poisson_ratio"), "{e}");
+    }
+}
+
+#[cfg(test)]
+mod builder_tests {
+    use super::*;
+
+    const RUN: &str = "[surface]\ngrid = 64\nlambda_lower = 0.125\nlambda_upper = 0.25\nrms_height = 0.005\n\
+                       [material]\nyoungs_modulus = 1.0\npoisson_ratio = 0.3\nshear_strength = 0.01\n\
+                       fracture_energies = [0.5e-6]\n[sliding]\nloads = [1e-3]\n";
+
+    fn file(text: &str) -> Result<RunConfig> {
+        RunConfig::from_toml(text, Path::new("."))
+    }
+
+    #[test]
+    fn a_built_run_is_the_run_file_it_describes() {
+        let read = file(RUN).unwrap();
+        let built = RunConfig::builder(read.surfaces.clone(), read.material.clone())
+            .sliding(read.sliding.clone().unwrap())
+            .build()
+            .unwrap();
+        assert_eq!(built, read);
+        assert_eq!(read.to_builder().build().unwrap(), read);
+    }
+
+    #[test]
+    fn a_built_run_with_a_bad_setting_fails_as_the_run_file_does() {
+        let read = file(RUN).unwrap();
+        let builder = || read.to_builder();
+        let contact = |line: &str| RUN.replace("[sliding]", &format!("[contact]\n{line}\n[sliding]"));
+        let sliding = |line: &str| format!("{RUN}{line}\n");
+        let overloaded = RUN.replace("loads = [1e-3]", "loads = [1.0]");
+        let cases: Vec<(Result<RunConfig>, Result<RunConfig>)> = vec![
+            (builder().connectivity(6).build(), file(&contact("connectivity = 6"))),
+            (
+                builder().boundary(Boundary::Free).build(),
+                file(&contact("boundary = \"free\"")),
+            ),
+            (
+                builder().estimate_samples(Some(0)).build(),
+                file(&sliding("estimate_samples = 0")),
+            ),
+            (
+                builder()
+                    .sliding(SlidingConfig::new(vec![1.0], DEFAULT_DISTANCE, DEFAULT_RUNNING_IN, 4, 1, None).unwrap())
+                    .build(),
+                file(&overloaded),
+            ),
+            (
+                builder()
+                    .sliding(SlidingConfig::new(vec![1e-3], DEFAULT_DISTANCE, DEFAULT_RUNNING_IN, 64, 1, None).unwrap())
+                    .build(),
+                file(&sliding("step_running_in = 64")),
+            ),
+        ];
+        for (built, read) in cases {
+            let (built, read) = (built.unwrap_err(), read.unwrap_err());
+            assert_eq!(
+                std::mem::discriminant(&built),
+                std::mem::discriminant(&read),
+                "{built} / {read}"
+            );
+            assert_eq!(built.to_string(), read.to_string());
+        }
     }
 }
