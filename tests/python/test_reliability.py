@@ -121,3 +121,58 @@ def test_grid_sizes_and_pixel_sizes_out_of_range_are_refused_in_words():
     for size in (float("inf"), float("nan"), 0.0, -1.0):
         with pytest.raises(ValueError, match="`pixel_size`"):
             wearsim.label_junctions(contact, pixel_size=size)
+
+
+MEMORY_SCRIPT = """
+import sys
+import numpy as np
+import wearsim
+
+rng = np.random.default_rng(1)
+top, bottom = (1e-3 * rng.standard_normal((2048, 2048)) for _ in range(2))
+material = wearsim.Material(1.0, 0.3, 0.01, [1e-6])
+for name, run in [
+    ("slide", lambda: wearsim.slide(top, bottom, material, [1e-3], length=1.0, distance=0.002, running_in=0.001,
+                                    step_running_in=1, step=1)),
+    ("RunFile.slide", lambda: wearsim.RunFile(sys.argv[1]).slide()),
+]:
+    try:
+        run()
+        print(name, "ran")
+    except Exception as e:
+        print(name, type(e).__name__, str(e).replace("\\n", " "))
+"""
+
+
+def test_slide_refuses_a_run_too_large_for_the_memory_with_the_clis_message(tmp_path, wearsim_bin):
+    # Slurm's --mem=100M: a 2048² sliding run needs about 430 MiB, its surface pair alone about 140
+    # MiB. The library's sliding run checks the memory for every front end before the surfaces are
+    # made, so Python refuses it (arrays or a run file) in the CLI's words, not as the pair's.
+    import os
+    import subprocess
+    import sys
+
+    run = tmp_path / "run.toml"
+    run.write_text(
+        "[surface]\ngrid = 2048\nlambda_lower = 0.0078125\nlambda_upper = 0.25\nrms_height = 0.005\n"
+        "[material]\nyoungs_modulus = 1.0\npoisson_ratio = 0.3\nshear_strength = 0.01\nfracture_energies = [1e-6]\n"
+        "[sliding]\nloads = [1e-3]\ndistance = 0.1\nrunning_in = 0.05\n"
+    )
+    env = {**os.environ, "SLURM_MEM_PER_NODE": "100"}
+    cli = subprocess.run(
+        [wearsim_bin, "slide", str(run), "--out", str(tmp_path / "o")], env=env, capture_output=True, text=True
+    )
+    assert cli.returncode == 1, cli.stderr
+    (line,) = [l for l in cli.stderr.splitlines() if l.startswith("error:") and "needs about" in l]
+    message = line[line.index("a sliding run on 2048×2048 pixels") :]
+    assert "SLURM_MEM_PER_NODE" in message
+    py = subprocess.run(
+        [sys.executable, "-c", MEMORY_SCRIPT, str(run)], env=env, capture_output=True, text=True, timeout=120
+    )
+    assert py.returncode == 0, py.stderr
+    lines = py.stdout.splitlines()
+    assert [l.split(" ")[0] for l in lines] == ["slide", "RunFile.slide"], py.stdout
+    for l in lines:
+        assert "ran" != l.split(" ")[1], py.stdout
+        assert l.endswith(message), f"{l}\n{message}"
+    assert not (tmp_path / "o").exists()

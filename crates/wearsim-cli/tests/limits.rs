@@ -315,3 +315,38 @@ fn the_memory_checked_is_within_ten_percent_of_the_measured_peak() {
         );
     }
 }
+
+#[test]
+fn every_command_that_slides_refuses_a_run_too_large_for_the_memory_with_one_message() {
+    // The library's sliding run checks the memory, so `slide`, `animate` and `bench-slide` on the
+    // same 2048² grid are refused with the same words (Slurm's --mem=200M; the run needs ~400 MiB).
+    let dir = tempfile::tempdir().unwrap();
+    let run_path = run_file(dir.path(), &big(2048));
+    let refusal = |args: &[&str]| {
+        let o = common::wearsim()
+            .current_dir(dir.path())
+            .env("SLURM_MEM_PER_NODE", "200")
+            .args(args)
+            .output()
+            .unwrap();
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {e}");
+        e.lines()
+            .find(|l| l.contains("needs about"))
+            .unwrap_or_else(|| panic!("{args:?}: no memory refusal in {e}"))
+            .to_string()
+    };
+    let slide = refusal(&["slide", s(&run_path), "--out", "o1"]);
+    assert!(
+        slide.contains("a sliding run on 2048×2048 pixels") && slide.contains("SLURM_MEM_PER_NODE"),
+        "{slide}"
+    );
+    assert_eq!(refusal(&["animate", s(&run_path), "--out", "a.gif"]), slide);
+    assert_eq!(refusal(&["bench-slide", "--n", "2048", "--warm-n", "0"]), slide);
+    let left: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name())
+        .collect();
+    assert_eq!(left.len(), 1, "{left:?}"); // run.toml
+}

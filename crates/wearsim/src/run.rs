@@ -54,20 +54,30 @@ fn distinct(warnings: impl IntoIterator<Item = String>) -> Vec<String> {
 }
 
 impl<'a> SlidingRun<'a> {
-    /// The run `config` describes, with its surfaces generated or read from its files.
+    /// The run `config` describes, with its surfaces generated or read from its files; refused
+    /// before they are made when the run needs more memory than this process may use
+    /// ([`check_memory`]).
     pub fn prepare(config: &'a RunConfig) -> Result<Self> {
-        sliding_schedule(config)?;
+        let sliding = sliding_schedule(config)?;
+        check_memory(config.grid()?)?;
         let start = Instant::now();
         let pair = config.surface_pair()?;
-        let mut run = Self::with_surfaces(config, pair)?;
+        let mut run = Self::on_surfaces(config, sliding, pair)?;
         run.surfaces_seconds = start.elapsed().as_secs_f64();
         Ok(run)
     }
 
     /// The run `config` describes on surfaces the caller made (arrays handed over, see
-    /// [`SurfacePair::of_arrays`]); where `config` fixes the grid, the surfaces must lie on it.
+    /// [`SurfacePair::of_arrays`]); where `config` fixes the grid, the surfaces must lie on it. The
+    /// memory is checked as [`SlidingRun::prepare`] checks it, with the same message.
     pub fn with_surfaces(config: &'a RunConfig, pair: SurfacePair) -> Result<Self> {
         let sliding = sliding_schedule(config)?;
+        check_memory(pair.top.grid())?;
+        Self::on_surfaces(config, sliding, pair)
+    }
+
+    /// The run of `config` and its schedule `sliding` on `pair`, its memory checked.
+    fn on_surfaces(config: &'a RunConfig, sliding: &'a SlidingConfig, pair: SurfacePair) -> Result<Self> {
         let grid = pair.top.grid();
         if let SurfaceSource::Generated { grid: expected, .. }
         | SurfaceSource::Arrays { grid: expected, .. }
@@ -377,6 +387,15 @@ impl EstimateOutcome<'_> {
     }
 }
 
+/// Refuses a sliding run on `grid` that needs more memory ([`crate::check::SLIDING_ARRAYS`] arrays of
+/// Nx·Ny doubles and the program) than this process may use ([`crate::check::memory_room`]: the
+/// machine, cgroup and Slurm limits, `ulimit`), before anything is allocated: the one check of
+/// every front end that slides ([`SlidingRun::prepare`], [`SlidingRun::with_surfaces`]), with one
+/// message.
+pub fn check_memory(grid: Grid) -> Result<()> {
+    crate::check::memory("a sliding run", grid.nx(), grid.ny(), crate::check::SLIDING_ARRAYS)
+}
+
 /// The schedule of a run, or an error saying that sliding needs one: the one check of every front
 /// end that slides, made before any output.
 pub fn sliding_schedule(config: &RunConfig) -> Result<&SlidingConfig> {
@@ -570,6 +589,23 @@ mod tests {
         let config = RunConfig::from_toml(RUN.split("[sliding]").next().unwrap(), Path::new(".")).unwrap();
         let e = SlidingRun::prepare(&config).unwrap_err().to_string();
         assert!(e.contains("[sliding]"), "{e}");
+    }
+
+    #[test]
+    fn a_run_too_large_for_the_memory_is_refused_as_a_sliding_run_before_its_surfaces_are_made() {
+        // 65534² (the largest grid): some 450 GB for the run, 140 GB for its surface pair alone.
+        let config = RunConfig::from_toml(&RUN.replace("grid = 32", "grid = 65534"), Path::new(".")).unwrap();
+        let grid = config.grid().unwrap();
+        let need = crate::check::memory_need(grid.nx(), grid.ny(), crate::check::SLIDING_ARRAYS);
+        if crate::check::memory_room().is_none_or(|room| room.bytes as f64 >= need) {
+            return; // a machine this large, or one whose limits cannot be read
+        }
+        let e = SlidingRun::prepare(&config).unwrap_err().to_string();
+        assert!(e.contains("a sliding run on 65534×65534 pixels"), "{e}");
+        assert_eq!(e, check_memory(grid).unwrap_err().to_string());
+        let (top, bottom) = RunConfig::from_toml(RUN, Path::new(".")).unwrap().surfaces().unwrap();
+        let small = RunConfig::from_toml(RUN, Path::new(".")).unwrap();
+        assert!(SlidingRun::with_surfaces(&small, SurfacePair::of_arrays(top, bottom)).is_ok());
     }
 
     #[test]

@@ -98,8 +98,6 @@ fn one_load(args: &Args) -> Result<wearsim::config::RunConfig> {
         &super::run_inputs(run, &config),
         is_wearsim_gif,
     )?;
-    let grid = config.grid()?;
-    wearsim::check::memory("a sliding run", grid.nx(), grid.ny(), wearsim::check::SLIDING_ARRAYS)?;
     // Partial GIFs of killed runs beside it.
     wearsim::io::remove_abandoned_siblings(out);
     let mut sliding = wearsim::run::sliding_schedule(&config)

@@ -167,8 +167,6 @@ pub fn run(args: &Args) -> Result<()> {
     if args.dry_run {
         return Ok(());
     }
-    let grid = config.grid()?;
-    wearsim::check::memory("a sliding run", grid.nx(), grid.ny(), wearsim::check::SLIDING_ARRAYS)?;
     // The output folder is made (and checked) before any work.
     let out = OutputDir::begin(
         &args.output.out,
