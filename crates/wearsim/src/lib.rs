@@ -165,7 +165,7 @@ pub use contact::{ContactFields, ContactMap, ContactSolver, Device, SolveInfo, S
 pub use error::{Error, Interrupt, Result};
 pub use grid::Grid;
 pub use influence::Boundary;
-pub use material::{Material, ModulusConvention};
+pub use material::{CriticalDiameter, Material, ModulusConvention};
 pub use surface::{composite_heights, Generation, SpectrumParams, Surface};
 
 /// Version of the library, recorded in every output file.

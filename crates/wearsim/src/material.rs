@@ -55,6 +55,17 @@ pub struct Material {
     pub geometry_factor: f64,
 }
 
+/// The critical diameter d* of one fracture energy (eq. 1), also in pixels of a grid.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CriticalDiameter {
+    /// 𝒢.
+    pub fracture_energy: f64,
+    /// d*, in the material's length unit.
+    pub diameter: f64,
+    /// d* over the pixel size.
+    pub pixels: f64,
+}
+
 impl Material {
     /// Validated material; every field is checked with a message naming it.
     pub fn new(
@@ -122,6 +133,23 @@ impl Material {
             .collect()
     }
 
+    /// The critical diameter of every fracture energy, in the order given, in length units and in
+    /// pixels of side `pixel_size` (what a run reports before it starts and warns about under
+    /// [`crate::check::RESOLVED_PIXELS`]).
+    pub fn critical_diameters_on(&self, pixel_size: f64) -> Vec<CriticalDiameter> {
+        self.fracture_energies
+            .iter()
+            .map(|&g| {
+                let diameter = self.critical_diameter(g);
+                CriticalDiameter {
+                    fracture_energy: g,
+                    diameter,
+                    pixels: diameter / pixel_size,
+                }
+            })
+            .collect()
+    }
+
     /// Effective modulus E* of the equivalent contact of a rigid surface on a half-space.
     pub fn effective_modulus(&self, convention: ModulusConvention) -> f64 {
         let plane_strain = self.youngs_modulus / (1.0 - self.poisson_ratio * self.poisson_ratio);
@@ -134,6 +162,17 @@ impl Material {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn critical_diameters_in_pixels_follow_the_fracture_energies_in_order() {
+        let m = super::Material::new(1.0, 0.3, 0.01, vec![0.5e-6, 1e-6], 3.0).unwrap();
+        let on = m.critical_diameters_on(0.25);
+        assert_eq!(on.len(), 2);
+        for (c, (g, d)) in on.iter().zip(m.fracture_energies.iter().zip(m.critical_diameters())) {
+            assert_eq!((c.fracture_energy, c.diameter, c.pixels), (*g, d, d / 0.25));
+        }
+        assert!(on[1].pixels > on[0].pixels);
+    }
+
     use super::*;
 
     #[test]

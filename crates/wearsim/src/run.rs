@@ -147,6 +147,11 @@ impl<'a> SlidingRun<'a> {
         self.pair.top.grid()
     }
 
+    /// The critical diameter d* of every fracture energy, also in pixels of the run's grid.
+    pub fn critical_diameters(&self) -> Vec<crate::material::CriticalDiameter> {
+        self.config.material.critical_diameters_on(self.grid().pixel_size())
+    }
+
     /// The sliding offsets of each load in pixels (paper §3).
     pub fn offsets(&self) -> Vec<usize> {
         self.sliding.offsets(self.grid().nx())

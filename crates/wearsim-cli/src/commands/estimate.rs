@@ -85,7 +85,7 @@ pub fn run(args: &Args) -> Result<()> {
     let prepared = SlidingRun::prepare(&config)?.interrupted_by(super::interrupt());
     super::report_surfaces(prepared.surfaces(), false);
     let units = config.units;
-    report_critical_diameters(&config, prepared.grid().pixel_size());
+    report_critical_diameters(&prepared);
     let loads = prepared.sliding().loads.len();
     let progress = Progress::new("estimate", "solves", (loads * MAX_SAMPLES) as u64);
     let outcome = prepared.estimate(sampling, &config.estimate_calibration(), |done, most| {

@@ -75,20 +75,15 @@ pub fn with_unit(units: Units, quantity: &str, value: f64) -> String {
 }
 
 /// Says on stderr the critical diameter d* of every fracture energy of the run, with its unit and
-/// in pixels of `pixel_size`.
-pub fn report_critical_diameters(config: &wearsim::config::RunConfig, pixel_size: f64) {
-    let units = config.units;
-    for (g, d) in config
-        .material
-        .fracture_energies
-        .iter()
-        .zip(config.material.critical_diameters())
-    {
+/// in pixels of its grid (the library's `SlidingRun::critical_diameters`).
+pub fn report_critical_diameters(prepared: &SlidingRun) {
+    let units = prepared.config().units;
+    for c in prepared.critical_diameters() {
         tell!(
             "𝒢 = {}: critical diameter d* = {} ({:.1} px)",
-            with_unit(units, "fracture_energy", *g),
-            with_unit(units, "critical_diameter", d),
-            d / pixel_size
+            with_unit(units, "fracture_energy", c.fracture_energy),
+            with_unit(units, "critical_diameter", c.diameter),
+            c.pixels
         );
     }
 }
@@ -177,13 +172,12 @@ pub fn run(args: &Args) -> Result<()> {
     let prepared = SlidingRun::prepare(&config)?.interrupted_by(interrupt);
     super::report_surfaces(prepared.surfaces(), false);
     let sliding = prepared.sliding();
-    let grid = prepared.grid();
     let units = config.units;
     tell!(
         "flow pressure p_m = {}",
         with_unit(units, "flow_pressure", config.material.flow_pressure())
     );
-    report_critical_diameters(&config, grid.pixel_size());
+    report_critical_diameters(&prepared);
     let steps_per_load = prepared.offsets().len();
     let mut fields = if args.save_fields {
         Some(fields_writer(args, &out, &prepared)?)

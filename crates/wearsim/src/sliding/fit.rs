@@ -13,15 +13,16 @@ pub const FEW_PARTICLES: usize = 10;
 /// Warnings about d* in pixels: a critical diameter of a few pixels is not resolved.
 pub fn resolution_warnings(material: &Material, pixel_size: f64) -> Vec<String> {
     material
-        .fracture_energies
-        .iter()
-        .zip(material.critical_diameters())
-        .filter(|(_, d)| d / pixel_size < crate::check::RESOLVED_PIXELS)
-        .map(|(g, d)| {
+        .critical_diameters_on(pixel_size)
+        .into_iter()
+        .filter(|c| c.pixels < crate::check::RESOLVED_PIXELS)
+        .map(|c| {
             format!(
-                "d* = {d:.4e} for 𝒢 = {g:.4e} is {:.2} pixels, under {}: junctions of the critical size \
+                "d* = {:.4e} for 𝒢 = {:.4e} is {:.2} pixels, under {}: junctions of the critical size \
                  are not resolved and the wear results follow the grid; refine `grid`",
-                d / pixel_size,
+                c.diameter,
+                c.fracture_energy,
+                c.pixels,
                 crate::check::RESOLVED_PIXELS
             )
         })
