@@ -329,7 +329,7 @@ def fit_surface(
 
     The verdict: ``self_affine`` is true when the spectrum is isotropic (within a factor 2 between
     the power of wavevectors along x and along y), has no peak (no shell 5 times above the power
-    law beyond its scatter), H lies in (0, 1], the band spans at least a decade of wavenumbers and
+    law beyond its scatter), H lies in (0, 1], the band spans at least two octaves (a factor 4) of wavenumbers and
     R² ≥ 0.9; ``reasons`` says, one sentence each, which of these failed. A spectrum that is not
     self-affine warns (``UserWarning``, with the reasons): the self-affine parameters leave out
     what it is, and :func:`spectrum_pair` generates periodic pairs that carry its measured 2D PSD

@@ -1,8 +1,9 @@
 //! Studies through the CLI: a study killed part-way (a real SIGKILL to a real process) resumes to
 //! the same results without recomputing finished jobs; shards and worker counts change nothing.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::Stdio;
+use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
 mod common;
@@ -57,15 +58,57 @@ fn job_files(out: &Path) -> Vec<String> {
     }
 }
 
+/// The study of [`STUDY`] run whole, one job at a time (`--jobs 1`), and collected: the results
+/// that every other way of running it (killed and resumed, sharded, other worker counts, Slurm
+/// array tasks) must give. Run once for the tests of this file, in a folder of Cargo's temporary
+/// directory that no test changes (a test that damages a study folder works on its own copy).
+struct Reference {
+    folder: PathBuf,
+    tidy: String,
+    aggregated: String,
+}
+
+fn reference() -> &'static Reference {
+    static REFERENCE: OnceLock<Reference> = OnceLock::new();
+    REFERENCE.get_or_init(|| {
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("study-reference");
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let study = dir.join("study.toml");
+        std::fs::write(&study, STUDY).unwrap();
+        let folder = dir.join("whole");
+        run_study(&study, &folder, &["--jobs", "1"]);
+        let (tidy, aggregated) = collect(&folder);
+        Reference {
+            folder,
+            tidy,
+            aggregated,
+        }
+    })
+}
+
+/// A copy of the folder `from` (files and subfolders) at `to`.
+fn copy_folder(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for entry in std::fs::read_dir(from).unwrap() {
+        let entry = entry.unwrap();
+        let target = to.join(entry.file_name());
+        if entry.file_type().unwrap().is_dir() {
+            copy_folder(&entry.path(), &target);
+        } else {
+            std::fs::copy(entry.path(), &target).unwrap();
+        }
+    }
+}
+
 #[test]
 fn killed_study_resumes_to_the_same_results() {
     let dir = tempfile::tempdir().unwrap();
     let study = dir.path().join("study.toml");
     std::fs::write(&study, STUDY).unwrap();
-    let reference = dir.path().join("reference");
-    run_study(&study, &reference, &[]);
-    let (tidy_ref, agg_ref) = collect(&reference);
-    let total = job_files(&reference).len();
+    let reference = reference();
+    let (tidy_ref, agg_ref) = (reference.tidy.clone(), reference.aggregated.clone());
+    let total = job_files(&reference.folder).len();
     assert_eq!(total, 24);
 
     let out = dir.path().join("killed");
@@ -138,9 +181,11 @@ fn shards_and_worker_counts_give_the_unsharded_results() {
     let dir = tempfile::tempdir().unwrap();
     let study = dir.path().join("study.toml");
     std::fs::write(&study, STUDY).unwrap();
+    // The whole study, one job at a time (shared; copied here, as this test damages it below).
     let whole = dir.path().join("whole");
-    run_study(&study, &whole, &["--jobs", "1"]);
-    let expected = collect(&whole);
+    copy_folder(&reference().folder, &whole);
+    let expected = (reference().tidy.clone(), reference().aggregated.clone());
+    assert_eq!(collect(&whole), expected, "the copy of the reference collects the same");
     let sharded = dir.path().join("sharded");
     for k in 1..=3 {
         run_study(&study, &sharded, &["--shard", &format!("{k}/3"), "--jobs", "2"]);

@@ -237,7 +237,7 @@ pub const CALIBRATION: Calibration = Calibration {
 };
 
 /// What the calibration's runs covered ([`CALIBRATED_DOMAIN`]): a setting outside it is an
-/// extrapolation of the rule, and its estimate says so ([`reach_warnings`]).
+/// extrapolation of the rule, and its estimate says so ([`run_reach_warnings`], [`load_reach_warnings`]).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Domain {
     /// Hurst exponent H of wearsim's generated surfaces (lowest, highest).

@@ -254,7 +254,7 @@ impl<'a> SlidingRun<'a> {
 }
 
 /// Steps of each warm kind an [`IterationProbe`] solves.
-const PROBE_STEPS: usize = 3;
+pub const PROBE_STEPS: usize = 3;
 
 impl<'a> SlidingRun<'a> {
     /// The iterations of this run's steps measured on its own surfaces, for its cost estimate

@@ -75,6 +75,8 @@ pub const QUANTITIES: &[(&str, &str, &str)] = &[
     ("stopping", "", ""),
     ("model", "", ""),
     ("estimate_samples", "", ""),
+    // The static estimate's constants of one's own, written as the run file gives them (text).
+    ("estimate_constants", "", ""),
     // The static estimate's maps and its comparison with sliding runs (`estimate-check`).
     ("offset", "px", "px"),
     ("static_maps", "", ""),
