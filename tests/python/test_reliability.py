@@ -163,7 +163,7 @@ def test_slide_refuses_a_run_too_large_for_the_memory_with_the_clis_message(tmp_
         [wearsim_bin, "slide", str(run), "--out", str(tmp_path / "o")], env=env, capture_output=True, text=True
     )
     assert cli.returncode == 1, cli.stderr
-    (line,) = [l for l in cli.stderr.splitlines() if l.startswith("error:") and "needs about" in l]
+    (line,) = [text for text in cli.stderr.splitlines() if text.startswith("error:") and "needs about" in text]
     message = line[line.index("a sliding run on 2048×2048 pixels") :]
     assert "SLURM_MEM_PER_NODE" in message
     py = subprocess.run(
@@ -171,8 +171,8 @@ def test_slide_refuses_a_run_too_large_for_the_memory_with_the_clis_message(tmp_
     )
     assert py.returncode == 0, py.stderr
     lines = py.stdout.splitlines()
-    assert [l.split(" ")[0] for l in lines] == ["slide", "RunFile.slide"], py.stdout
-    for l in lines:
-        assert "ran" != l.split(" ")[1], py.stdout
-        assert l.endswith(message), f"{l}\n{message}"
+    assert [text.split(" ")[0] for text in lines] == ["slide", "RunFile.slide"], py.stdout
+    for text in lines:
+        assert "ran" != text.split(" ")[1], py.stdout
+        assert text.endswith(message), f"{text}\n{message}"
     assert not (tmp_path / "o").exists()

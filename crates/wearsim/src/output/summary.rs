@@ -212,7 +212,8 @@ pub fn estimate_summary(
         "calibration": calibration,
         "interval_convention": "95 % interval of the value a sliding run of this box and sliding distance would give: \
             exp(±1.96 σ) about the estimate, σ² = the rule's spread² (calibration) + the relative sampling error of N*² + \
-            1/expected_particles (the run's Poisson noise)",
+            1/expected_particles (the run's Poisson noise); the lower end is 0 where such a run forms no particle \
+            with probability exp(−expected_particles) ≥ 2.5 % (the lower 2.5 % quantile of its Poisson count is 0)",
         "static_maps": loads.first().map_or(0, |l| l.samples.len()),
         "results": results,
         "maps": samples,
