@@ -9,6 +9,7 @@ import warnings
 import numpy as np
 import pytest
 import wearsim
+from fake_topography import FakeTopography
 
 N = 64
 MATERIAL = wearsim.Material(1.0, 0.3, 0.01, [1e-6])
@@ -23,20 +24,6 @@ def with_holes(h, count=5):
     mask = np.zeros(h.shape, bool)
     mask.flat[np.linspace(0, h.size - 1, count).astype(int)] = True
     return np.ma.masked_array(np.where(mask, 1e3, h), mask=mask)
-
-
-class FakeTopography:
-    """What wearsim uses of a SurfaceTopography topography."""
-
-    def __init__(self, heights, physical_sizes, unit=None):
-        self._heights = heights
-        self.physical_sizes = physical_sizes
-        self.nb_grid_pts = heights.shape
-        self.unit = unit
-        self.has_undefined_data = bool(np.ma.is_masked(heights))
-
-    def heights(self):
-        return self._heights
 
 
 # Every Python entry that takes heights, called on `h` (an array or a topography).

@@ -9,6 +9,7 @@ import warnings
 import numpy as np
 import pytest
 import wearsim
+from fake_topography import FakeTopography
 
 N = 128
 
@@ -147,19 +148,6 @@ def test_spectrum_pairs_check_the_map_as_every_heights_entry_does():
         wearsim.spectrum_pair(h, 1.0, grid=64, seed=1, window="tukey")
     with pytest.raises(ValueError, match="seed"):
         wearsim.spectrum_pair(h, 1.0, grid=64, seed=-1)
-
-
-class FakeTopography:
-    """What wearsim uses of a SurfaceTopography topography."""
-
-    def __init__(self, heights, physical_sizes, unit=None):
-        self._heights = heights
-        self.physical_sizes = physical_sizes
-        self.nb_grid_pts = heights.shape
-        self.unit = unit
-
-    def heights(self):
-        return self._heights
 
 
 def test_spectrum_pairs_of_a_topography_are_in_metres_box_and_heights_alike():
