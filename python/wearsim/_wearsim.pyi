@@ -17,6 +17,7 @@ __all__ = [
     "DEFAULT_STEP",
     "DEFAULT_STEP_RUNNING_IN",
     "DEFAULT_TOLERANCE",
+    "FIGURES",
     "INTERVAL_LEVEL",
     "KIM_EXPERIMENTAL_K",
     "KIM_SEVERITY_FIT",
@@ -59,7 +60,9 @@ __all__ = [
     "slide",
     "spectrum_pair",
     "static_wear_model",
+    "study_figures",
     "surface_statistics",
+    "table_figures",
     "unit_of",
 ]
 
@@ -77,6 +80,7 @@ PARTICLE_RULES: List[str]
 SERIES_COLUMNS: List[str]
 INTERVAL_LEVEL: float
 KIM_EXPERIMENTAL_K: Tuple[float, float]
+FIGURES: List[Tuple[str, str]]
 KIM_SEVERITY_FIT: Tuple[float, float]
 PAPER_SEVERITY_FIT: Tuple[float, float]
 RESOLVED_PARTICLES: float
@@ -163,6 +167,8 @@ def severity_fits(
     columns: Dict[str, List[Any]],
 ) -> Tuple[List[Dict[str, Any]], Optional[Tuple[float, float, Optional[float]]]]: ...
 def findings(columns: Dict[str, List[Any]]) -> Tuple[List[Dict[str, Any]], str]: ...
+def table_figures(columns: Dict[str, List[Any]], names: Optional[List[str]] = None) -> List[Dict[str, Any]]: ...
+def study_figures(out: Path, job: Optional[int] = None, names: Optional[List[str]] = None) -> List[Dict[str, Any]]: ...
 
 @final
 class Material:

@@ -70,11 +70,10 @@ def test_curves_come_from_the_library():
     assert np.isclose(stats["wear_rate_ci_high"].iloc[0], 1.5e-4 + half, rtol=1e-7)
     assert np.isclose(stats["wear_rate_ci_low"].iloc[0], 1.5e-4 - half, rtol=1e-7)
     assert "Student t" in stats["interval_method"].iloc[0]
-    # Units from the table's attrs where it has them, else the library's rule for its unit system.
-    assert wearsim.plot._unit(tidy, "wear_rate") == "L²"
-    tidy.attrs["units"] = {"wear_rate": "m²"}
-    assert wearsim.plot._unit(tidy, "wear_rate") == "m²"
+    # Units: the library's rule for the table's unit system, on the figures' axes.
     assert _wearsim.unit_of("si", "nominal_pressure") == "Pa"
+    fig = wearsim.plot.figure_data(tidy, ["fig4"])[0]
+    assert fig["panels"][0]["x"]["label"].endswith("(E)") and fig["name"] == "fig4_sliding_wear"
 
 
 def test_intervals_of_the_library_on_data_of_a_known_spread():

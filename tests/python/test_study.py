@@ -98,9 +98,22 @@ def test_dask_local_cluster_equals_the_local_run(tmp_path, study_file):
     assert len(tasks) == 6 and len({t["worker"] for t in tasks}) == 2
 
 
-def test_figures_from_python_and_job_series(tmp_path, study_file):
+def _drawn_numbers(fig):
+    """The (x, y) each series of a matplotlib figure drawn by `wearsim.plot.draw` plots, by its gid
+    "series-<panel>-<index>"."""
+    drawn = {}
+    for p, ax in enumerate(fig.axes[: len(fig.axes)]):
+        for line in ax.lines:
+            gid = line.get_gid()
+            if gid and gid.startswith(f"series-{p}-"):
+                drawn[gid] = (np.asarray(line.get_xdata(), dtype=float), np.asarray(line.get_ydata(), dtype=float))
+    return drawn
+
+
+def test_figures_from_python_and_job_series(tmp_path, study_file, wearsim_bin):
     pytest.importorskip("matplotlib", reason="matplotlib not installed")
     import matplotlib
+    import matplotlib.pyplot as plt
 
     matplotlib.use("Agg")
     out = tmp_path / "out"
@@ -110,18 +123,39 @@ def test_figures_from_python_and_job_series(tmp_path, study_file):
     assert (series["n_shrunk"] == series["n_formed"] - series["n_critical"]).all()
     assert series["initial_junctions"].iloc[0] == series["junctions"].iloc[0]
     written = wearsim.plot.study_figures(out)
-    names = {p.stem for p in written}
-    for name in [
-        "fig2_static_model",
-        "fig3_wear_volume",
-        "fig4_sliding_wear",
-        "fig6_kim_comparison",
-        "memory_of_initial_contact",
-    ]:
-        assert name in names and (out / "figures-python" / f"{name}.png").stat().st_size > 1000
+    python = out / "figures-python"
+    # The CLI and Python draw the same figures, from one registry, under the same names, each with
+    # the same numbers as CSV beside it.
+    subprocess.run([wearsim_bin, "study", "plot", str(out)], check=True, capture_output=True)
+    cli = out / "figures"
+    stems = {p.stem for p in cli.glob("*.png")}
+    assert stems == {p.stem for p in written if p.suffix == ".png"}
+    assert {"fig2_static_model", "fig3_wear_volume", "appC_junctions", "memory_of_initial_contact"} <= stems
+    registry = {name for name, _ in wearsim.plot.FIGURES}
+    assert registry == {f["entry"] for f in wearsim.plot.study_figure_data(out)}
+    for stem in stems:
+        assert (cli / f"{stem}.csv").read_text() == (python / f"{stem}.csv").read_text(), stem
+        assert (python / f"{stem}.png").stat().st_size > 1000
+    # What matplotlib plots is the CSV's numbers: every series, point by point.
+    for data in wearsim.plot.study_figure_data(out):
+        table = pd.read_csv(cli / f"{data['name']}.csv")
+        points = table[table["kind"] == "point"]
+        fig = wearsim.plot.draw(data)
+        drawn = _drawn_numbers(fig)
+        plt.close(fig)
+        for p, panel in enumerate(data["panels"]):
+            for i, s in enumerate(panel["series"]):
+                mine = points[(points["panel"] == p) & (points["series"] == s["label"])]
+                x, y = mine["x"].to_numpy(dtype=float), mine["y"].to_numpy(dtype=float)
+                if s["style"] == "means" and panel["y"]["log"]:
+                    keep = np.isfinite(y) & (y > 0)
+                    x, y = x[keep], y[keep]
+                got = drawn[f"series-{p}-{i}"]
+                np.testing.assert_array_equal(got[0], x, err_msg=f"{data['name']}: {s['label']}")
+                np.testing.assert_array_equal(got[1], y, err_msg=f"{data['name']}: {s['label']}")
     labels = [label for label, _ in wearsim.plot.curves(tidy)]
     assert len(labels) == 4 and all("τ̃ = " in label and "𝒢 = " in label for label in labels)
-    assert (out / "figures-python" / "findings.md").read_text().count("| ") > 10
+    assert (python / "findings.md").read_text().count("| ") > 10
     rows, markdown = wearsim.study.findings(tidy)
     assert "archard-like" in set(rows["key"]) and "95 % confidence interval" in markdown
 

@@ -316,7 +316,7 @@ impl Axis {
 
 /// Numbers as legends and tick labels print them: the library's, so that both front ends print
 /// the same digits.
-pub use wearsim::output::{number, pretty};
+pub use wearsim::output::number;
 
 type Coords = Cartesian2d<Ticked, Ticked>;
 
@@ -584,8 +584,8 @@ mod tests {
         assert_eq!(number(0.0090144), "0.00901");
         assert_eq!(number(1500.0), "1500");
         assert_eq!(number(12.0), "12");
-        assert_eq!(pretty(2.5e-7), "2.5×10⁻⁷");
-        assert_eq!(pretty(1e-6), "10⁻⁶");
+        assert_eq!(wearsim::output::pretty(2.5e-7), "2.5×10⁻⁷");
+        assert_eq!(wearsim::output::pretty(1e-6), "10⁻⁶");
         let axis = Axis::spanning("F_N", true, [1.5e-4, 2.5e-3], (1.0, 2.0));
         let ticks: Vec<String> = axis.ticks().iter().map(|t| axis.tick_label(*t)).collect();
         // Every decade in the range has ticks, the lower loads included.

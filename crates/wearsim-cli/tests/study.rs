@@ -210,7 +210,7 @@ fn shards_and_worker_counts_give_the_unsharded_results() {
         "fig6_kim_comparison",
         "memory_of_initial_contact",
     ] {
-        for ext in ["png", "svg"] {
+        for ext in ["png", "svg", "csv"] {
             let f = sharded.join("figures").join(format!("{name}.{ext}"));
             assert!(
                 std::fs::metadata(&f).map(|m| m.len() > 1000).unwrap_or(false),
@@ -243,7 +243,8 @@ fn shards_and_worker_counts_give_the_unsharded_results() {
         .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
         .filter(|n| !n.starts_with('.'))
         .collect();
-    assert_eq!(names.len(), 5, "{names:?}");
+    // Two figures, each as PNG, SVG and its numbers as CSV, and findings.md.
+    assert_eq!(names.len(), 7, "{names:?}");
     assert!(String::from_utf8_lossy(&o.stdout).contains("series of job 5"));
     for bad in [&["--job", "999"][..], &["--figures", "fig9"][..]] {
         let o = wearsim()

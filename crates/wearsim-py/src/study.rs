@@ -188,8 +188,24 @@ fn job_series<'py>(py: Python<'py>, out: PathBuf, job: usize) -> PyResult<Bound<
     table_to_py(py, &Table::of(&result.series_rows()))
 }
 
+/// The figures of a finished study folder (the library's registry, `wearsim study plot`'s): one
+/// dict per figure (entry, name, title, panels, legend, legend_title, note) with its numbers as
+/// CSV under "csv"; `names` picks registry entries, `job` the job whose series are drawn.
+#[pyfunction]
+#[pyo3(signature = (out, job=None, names=None))]
+fn study_figures<'py>(
+    py: Python<'py>,
+    out: PathBuf,
+    job: Option<usize>,
+    names: Option<Vec<String>>,
+) -> PyResult<Vec<Bound<'py, PyAny>>> {
+    let found = study::figures::study_folder_figures(&out, job, names.as_deref()).map_err(to_py)?;
+    crate::tables::figures_to_py(py, &found.figures)
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyStudy>()?;
+    m.add_function(wrap_pyfunction!(study_figures, m)?)?;
     m.add_function(wrap_pyfunction!(collect_study, m)?)?;
     m.add_function(wrap_pyfunction!(job_series, m)?)?;
     Ok(())

@@ -222,7 +222,43 @@ fn findings<'py>(py: Python<'py>, columns: &Bound<'py, PyDict>) -> PyResult<(Vec
     Ok((out, markdown))
 }
 
+/// Figures as Python dicts: the library's figure (serde) with its CSV under "csv".
+pub(crate) fn figures_to_py<'py>(
+    py: Python<'py>,
+    figures: &[wearsim::study::figures::Figure],
+) -> PyResult<Vec<Bound<'py, PyAny>>> {
+    figures
+        .iter()
+        .map(|f| {
+            let d = crate::json_to_py(py, f)?;
+            d.set_item("csv", f.to_csv())?;
+            Ok(d)
+        })
+        .collect()
+}
+
+/// The figures of a tidy table that need no job file (those against load, Eq. 5, appendix F; the
+/// series figures are notes): one dict per figure, as `study_figures`.
+#[pyfunction]
+#[pyo3(signature = (columns, names=None))]
+fn table_figures<'py>(
+    py: Python<'py>,
+    columns: &Bound<'py, PyDict>,
+    names: Option<Vec<String>>,
+) -> PyResult<Vec<Bound<'py, PyAny>>> {
+    let table = table_of(columns)?;
+    let figures =
+        wearsim::study::figures::study_figures(&table, &[], None, names.as_deref()).map_err(crate::error::to_py)?;
+    figures_to_py(py, &figures)
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(table_figures, m)?)?;
+    let registry: Vec<(&str, &str)> = wearsim::study::figures::FIGURES
+        .iter()
+        .map(|f| (f.name, f.about))
+        .collect();
+    m.add("FIGURES", registry)?;
     m.add("INTERVAL_LEVEL", wearsim::stats::LEVEL)?;
     m.add("KIM_EXPERIMENTAL_K", wearsim::output::KIM_EXPERIMENTAL_K)?;
     m.add("KIM_SEVERITY_FIT", wearsim::output::KIM_SEVERITY_FIT)?;

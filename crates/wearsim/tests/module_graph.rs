@@ -55,7 +55,10 @@ const SUBLAYERS: [(&str, &[&str]); 8] = [
             "fields",
         ],
     ),
-    ("study", &["expand", "store", "run", "collect", "compare", "findings"]),
+    (
+        "study",
+        &["expand", "store", "run", "collect", "compare", "findings", "figures"],
+    ),
 ];
 
 /// Module paths (up to two components) named by `prefix…` paths in `text`, including grouped

@@ -114,6 +114,12 @@ impl InputRecord {
     /// The nominal pressure p_N = F_N/(Lx·Ly) under a normal load F_N: the load axis of the paper's
     /// figures.
     pub fn nominal_pressure(&self, load: f64) -> f64 {
-        load / (self.length * self.length_y.unwrap_or(self.length))
+        load / self.nominal_area()
+    }
+
+    /// The nominal area Lx·Ly of the box: what rates are divided by to compare boxes (per unit
+    /// nominal area; in reduced units, a box L × L is the paper's).
+    pub fn nominal_area(&self) -> f64 {
+        self.length * self.length_y.unwrap_or(self.length)
     }
 }

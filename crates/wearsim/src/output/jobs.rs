@@ -83,6 +83,8 @@ pub struct TidyRow {
     pub load: f64,
     /// The nominal pressure p_N = F_N/(Lx·Ly), the load axis of the paper's figures (in E).
     pub nominal_pressure: f64,
+    /// The nominal area Lx·Ly of the box, which the figures divide rates by (per unit nominal area).
+    pub nominal_area: f64,
     #[serde(flatten)]
     pub result: WearResult,
     pub flow_pressure: f64,
@@ -120,6 +122,7 @@ impl TidyRow {
                     inputs: result.inputs.clone(),
                     load: result.load,
                     nominal_pressure,
+                    nominal_area: p.nominal_area(),
                     result: w.clone(),
                     flow_pressure: result.flow_pressure,
                     contact_severity: p.rms_height.map(|h| nominal_pressure * h.sqrt() / toughness),
@@ -489,6 +492,7 @@ mod tests {
             },
             load: 1e-3,
             nominal_pressure: 1e-3,
+            nominal_area: 1.0,
             contact_severity: None,
             result: WearResult {
                 wear_rate,

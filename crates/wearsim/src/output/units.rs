@@ -38,6 +38,7 @@ pub const QUANTITIES: &[(&str, &str, &str)] = &[
     ("rms_height", "L", "m"),
     ("approach", "L", "m"),
     ("pixel_size", "L", "m"),
+    ("nominal_area", "L²", "m²"),
     ("gap", "L", "m"),
     ("displacement", "L", "m"),
     // Ratios and dimensionless inputs.

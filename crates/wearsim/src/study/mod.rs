@@ -11,11 +11,13 @@
 //! - [`collect`](mod@collect): job files → the tidy table and its aggregate over surface pairs;
 //! - [`compare`]: the static estimate against the study's sliding runs (errors, coverage, the
 //!   calibration's points);
-//! - [`findings`]: the paper's qualitative findings checked on a tidy table.
+//! - [`findings`]: the paper's qualitative findings checked on a tidy table;
+//! - [`figures`]: the paper's figures of a study as data (one registry; the front ends draw them).
 
 pub mod collect;
 pub mod compare;
 pub mod expand;
+pub mod figures;
 pub mod findings;
 pub mod run;
 pub mod store;

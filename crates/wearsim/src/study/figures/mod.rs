@@ -1,0 +1,1399 @@
+//! The figures of a study as data (Brink, Frérot & Molinari 2021, Figs. 2–6 and appendices B, C, F,
+//! and the memory of the initial contact of §3): one registry, [`FIGURES`], and per figure the
+//! numbers it plots, computed once here from the study's tables and job files. Front ends only draw
+//! them — the CLI's `study plot` (PNG and SVG, and each figure's numbers as CSV beside it,
+//! [`Figure::to_csv`]), Python's `wearsim.plot` (matplotlib) — so both draw the same figures under
+//! the same names from the same numbers.
+//!
+//! A figure is panels of series. A series is points (x, y) with, per point, the 95 % interval of
+//! the mean over surface pairs where it has one, whether it rests on too few particles to be judged
+//! (drawn hollow) and whether no surface pair wore at all (no place on a log axis: marked on the
+//! axis). Colours are indices into the front end's palette, markers indices into its shapes.
+
+use serde::Serialize;
+
+use crate::config::Units;
+use crate::error::{Error, Result};
+use crate::output::{
+    aggregate, curve_labels, curves, equal_critical_diameter, has_kim_materials, number, pretty, series_job,
+    severity_fits, unit_of, Cell, CurveMaterial, JobResult, SeriesRow, Table, KIM_EXPERIMENTAL_K, KIM_SEVERITY_FIT,
+    PAPER_SEVERITY_FIT,
+};
+use crate::stats::{mean_interval, PowerLawFit};
+
+use crate::study::findings::RESOLVED_PARTICLES;
+
+/// One entry of the registry: the name `--figures` (and Python's `names`) takes, and what it shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct FigureSpec {
+    pub name: &'static str,
+    pub about: &'static str,
+}
+
+/// Every figure of a study, in the order drawn. A new figure is one entry here and its function in
+/// [`figure`].
+pub const FIGURES: [FigureSpec; 11] = [
+    FigureSpec {
+        name: "fig2",
+        about: "static model over every offset: W_static/ω per unit area and k_static against p_N (paper Fig. 2)",
+    },
+    FigureSpec {
+        name: "fig3",
+        about: "V(s) of one job with the fitted lines and the running-in region (Fig. 3)",
+    },
+    FigureSpec {
+        name: "fig4",
+        about: "sliding W per unit area and k against p_N, 95 % intervals over surface pairs (Fig. 4)",
+    },
+    FigureSpec {
+        name: "fig4c",
+        about: "W, k and dN*₊/ds for settings of (nearly) equal d* (Figs. 4c, 5c)",
+    },
+    FigureSpec {
+        name: "fig5",
+        about: "dN*₊/ds per unit area against p_N (Fig. 5)",
+    },
+    FigureSpec {
+        name: "fig6",
+        about: "k against p_N per material, beside Kim et al.'s experimental range for Kim's ceramics (Fig. 6)",
+    },
+    FigureSpec {
+        name: "appB",
+        about: "N*₊, N*, N*₋ against s of one job (appendix B, Fig. B.9a)",
+    },
+    FigureSpec {
+        name: "appB-eq5",
+        about: "Eq. 5, ω d*³ dN*₊/ds, against the summed W (Fig. B.9b)",
+    },
+    FigureSpec {
+        name: "appC",
+        about: "junctions N and critical junctions N* against p_N (appendix C)",
+    },
+    FigureSpec {
+        name: "appF",
+        about: "the contact-severity fits W = α S_cⁿ per material and over all (appendix F)",
+    },
+    FigureSpec {
+        name: "memory",
+        about: "the memory of the initial contact N₀(s) of every surface pair of one setting, with fits (§3)",
+    },
+];
+
+/// A colour: an index into the front end's palette (colour-blind safe), or a neutral.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Color {
+    Palette(usize),
+    /// Reference lines and legend notes.
+    Grey,
+    Black,
+    /// The shading of the running-in.
+    Light,
+    /// The shading of an experimental range.
+    Band,
+}
+
+/// How a series is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Style {
+    /// A line through the points (`width` in pixels of the CLI's figures: 2 for data, 1 for fits).
+    Line { dashed: bool, width: u32 },
+    /// Markers only.
+    Markers,
+    /// A line with a marker at each point, and each point's interval as a bar: the means over
+    /// surface pairs of the figures against load.
+    Means,
+}
+
+/// What a legend entry shows beside its label.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Swatch {
+    Line {
+        dashed: bool,
+    },
+    Marker,
+    LineMarker,
+    /// A hollow marker: a point resting on few particles.
+    Hollow,
+    /// The marker of a setting without wear, on the axis.
+    AtAxis,
+    /// A shaded range.
+    Band,
+}
+
+/// One point of a series.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Point {
+    pub x: f64,
+    pub y: f64,
+    /// The 95 % interval of the mean over surface pairs (NaN where there is none: one pair, or a
+    /// line that is no mean).
+    pub low: f64,
+    pub high: f64,
+    /// A fitted rate resting on fewer than [`RESOLVED_PARTICLES`] particles (summed over the
+    /// pairs): drawn hollow.
+    pub hollow: bool,
+    /// No surface pair wore (the maximum over pairs is 0): on a log axis, marked on the axis.
+    pub no_wear: bool,
+}
+
+impl Point {
+    fn at(x: f64, y: f64) -> Self {
+        Self {
+            x,
+            y,
+            low: f64::NAN,
+            high: f64::NAN,
+            hollow: false,
+            no_wear: false,
+        }
+    }
+}
+
+/// A series of one panel.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Series {
+    /// What it is (the curve's setting, "fit", …): its legend label where it has an entry.
+    pub label: String,
+    pub color: Color,
+    /// Index into the front end's marker shapes.
+    pub marker: usize,
+    pub style: Style,
+    pub points: Vec<Point>,
+}
+
+/// An axis: its label with its unit, whether it is logarithmic, and the range shown when it has no
+/// data.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Axis {
+    pub label: String,
+    pub log: bool,
+    pub fallback: (f64, f64),
+}
+
+/// A shaded range of one axis.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Band {
+    pub low: f64,
+    pub high: f64,
+    pub color: Color,
+}
+
+/// One panel.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Panel {
+    pub x: Axis,
+    pub y: Axis,
+    /// A shaded range of x (the running-in of Fig. 3).
+    pub x_band: Option<Band>,
+    /// A shaded range of y (Kim et al.'s experimental k, Fig. 6).
+    pub y_band: Option<Band>,
+    /// A y = x line over the shown range (Eq. 5 against W).
+    pub diagonal: bool,
+    pub series: Vec<Series>,
+}
+
+/// One entry of a figure's legend.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LegendEntry {
+    pub label: String,
+    pub color: Color,
+    pub marker: usize,
+    pub swatch: Swatch,
+}
+
+/// One figure as data: the file name it is written under, its title (above the first panel), its
+/// panels, its legend and the legend's title; or, with no data to draw, a note that says why.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Figure {
+    /// The registry entry it belongs to ([`FIGURES`]).
+    pub entry: &'static str,
+    /// The file name, without extension (`fig4_sliding_wear`).
+    pub name: String,
+    pub title: String,
+    pub panels: Vec<Panel>,
+    pub legend_title: String,
+    pub legend: Vec<LegendEntry>,
+    pub note: Option<String>,
+}
+
+impl Figure {
+    fn note(entry: &'static str, name: &str, note: impl Into<String>) -> Self {
+        Self {
+            entry,
+            name: name.into(),
+            title: String::new(),
+            panels: Vec::new(),
+            legend_title: String::new(),
+            legend: Vec::new(),
+            note: Some(note.into()),
+        }
+    }
+
+    /// The figure's numbers as CSV, one row per point and per shaded range, for a reader who
+    /// re-plots it: `panel, x_label, y_label, series, kind, x, y, low, high, hollow, no_wear`. `kind`
+    /// is `point` (low/high the 95 % interval of y, empty where there is none), `x_band` or
+    /// `y_band` (low/high the shaded range). Numbers in Rust's shortest round-trip form.
+    pub fn to_csv(&self) -> String {
+        let mut out = String::from("panel,x_label,y_label,series,kind,x,y,low,high,hollow,no_wear\n");
+        let f = |v: f64| if v.is_finite() { format!("{v:e}") } else { String::new() };
+        for (p, panel) in self.panels.iter().enumerate() {
+            let head = format!("{p},{},{}", quote(&panel.x.label), quote(&panel.y.label));
+            for (band, kind) in [(&panel.x_band, "x_band"), (&panel.y_band, "y_band")] {
+                if let Some(b) = band {
+                    out += &format!("{head},,{kind},,,{},{},,\n", f(b.low), f(b.high));
+                }
+            }
+            for s in &panel.series {
+                for q in &s.points {
+                    out += &format!(
+                        "{head},{},point,{},{},{},{},{},{}\n",
+                        quote(&s.label),
+                        f(q.x),
+                        f(q.y),
+                        f(q.low),
+                        f(q.high),
+                        q.hollow,
+                        q.no_wear
+                    );
+                }
+            }
+        }
+        out
+    }
+}
+
+/// A CSV field, quoted when it holds a comma, a quote or a line break.
+fn quote(text: &str) -> String {
+    if text.contains([',', '"', '\n']) {
+        format!("\"{}\"", text.replace('"', "\"\""))
+    } else {
+        text.to_string()
+    }
+}
+
+/// The legend title of the figures against load: what points and bars are.
+pub const MEANS: &str = "mean over surface pairs; bars: 95 % confidence interval of the mean (Student t)";
+
+/// What the figures of one job's sliding series say instead when that job is a static estimate.
+const NO_SERIES: &str = "this job is a static estimate: it takes no sliding step, so it has no wear-volume curve, \
+particle counts or memory of the initial contact (those are the sliding model's; `--job` picks a sliding job)";
+
+/// What the series figures say when only the tidy table was given.
+const NO_JOB_FILES: &str = "this figure draws one job's sliding series, which are in the study's job files: \
+draw it from the study folder";
+
+/// The units of a study's axes and legends.
+#[derive(Debug, Clone, Copy)]
+struct Shown {
+    system: Units,
+}
+
+impl Shown {
+    fn si(self) -> bool {
+        self.system == Units::Si
+    }
+    fn unit(self, quantity: &str) -> &'static str {
+        unit_of(self.system, quantity)
+    }
+    /// A length for legends (µm in SI).
+    fn length(self, v: f64) -> String {
+        if self.si() {
+            format!("{} µm", number(v * 1e6))
+        } else {
+            format!("{} L", number(v))
+        }
+    }
+    fn stress(self, v: f64) -> String {
+        if self.si() {
+            format!("{} GPa", number(v / 1e9))
+        } else {
+            format!("{} E", number(v))
+        }
+    }
+    /// The label of a rate divided by the nominal area Lx·Ly: in reduced units the W of a box
+    /// L × L, the paper's.
+    fn per_area(self, label: &str) -> String {
+        let unit = if self.si() {
+            "per unit nominal area, m²/m²"
+        } else {
+            "per unit nominal area, = a box L × L (the paper's)"
+        };
+        format!("{label} / (Lx·Ly) ({unit})")
+    }
+    /// The paper's load axis.
+    fn load_axis(self) -> Axis {
+        Axis {
+            label: format!("nominal pressure p_N = F_N/(Lx·Ly) ({})", self.unit("nominal_pressure")),
+            log: true,
+            fallback: (1e-4, 1e-2),
+        }
+    }
+    fn distance_axis(self) -> Axis {
+        Axis {
+            label: format!("sliding distance s ({})", self.unit("length")),
+            log: false,
+            fallback: (0.0, 1.0),
+        }
+    }
+}
+
+/// One curve against load: a setting (material and every varying input but the surface pair) and
+/// one fracture energy, as the library groups them ([`curves`]), with its row of the aggregated
+/// table per nominal pressure.
+struct Curve {
+    label: String,
+    /// Index of its material among the study's, in order of appearance.
+    material: usize,
+    /// Index of its fracture energy among its setting's.
+    energy: usize,
+    critical_diameter: f64,
+    shear_strength: f64,
+    fracture_energy: f64,
+    /// A curve of a model that takes no sliding step (the static estimate): it counts no particle,
+    /// so none of its points is hollow.
+    slides: bool,
+    /// Its aggregated rows, by increasing nominal pressure.
+    rows: Vec<Vec<Cell>>,
+}
+
+/// The study's curves against load, read from its tidy table.
+struct Curves {
+    columns: Vec<String>,
+    curves: Vec<Curve>,
+    materials: usize,
+}
+
+impl Curves {
+    fn of(tidy: &Table) -> Result<Self> {
+        let found = curves(tidy);
+        let labels = curve_labels(tidy);
+        let aggregated = aggregate(tidy);
+        let column = |name: &str| tidy.column(name);
+        let value = |row: &[Cell], name: &str| column(name).map_or(f64::NAN, |c| row[c].number());
+        let mut materials: Vec<String> = Vec::new();
+        let mut energies: Vec<(usize, Vec<u64>)> = Vec::new();
+        let mut out: Vec<Curve> = Vec::new();
+        for (row, &c) in tidy.rows.iter().zip(&found.index) {
+            if c < out.len() {
+                continue;
+            }
+            let name = column("material").map_or("material".into(), |m| row[m].text());
+            let material = materials.iter().position(|m| *m == name).unwrap_or_else(|| {
+                materials.push(name);
+                materials.len() - 1
+            });
+            // The fracture energy's index among the curves of the same job (one job holds every
+            // fracture energy of its setting).
+            let job = column("job").map_or(c, |j| row[j].number() as usize);
+            let energy_bits = value(row, "fracture_energy").to_bits();
+            let energy = match energies.iter_mut().find(|(j, _)| *j == job) {
+                Some((_, seen)) => {
+                    seen.push(energy_bits);
+                    seen.len() - 1
+                }
+                None => {
+                    energies.push((job, vec![energy_bits]));
+                    0
+                }
+            };
+            let model = column("sliding.model").map(|m| row[m].text());
+            out.push(Curve {
+                label: labels.get(c).cloned().unwrap_or_default(),
+                material,
+                energy,
+                critical_diameter: value(row, "critical_diameter"),
+                shear_strength: value(row, "material.shear_strength"),
+                fracture_energy: value(row, "fracture_energy"),
+                slides: model.is_none_or(|m| crate::estimate::WearModel::of_cell(&m).is_none_or(|m| m.slides())),
+                rows: Vec::new(),
+            });
+        }
+        let (Some(curve), Some(pressure)) = (aggregated.column("curve"), aggregated.column("nominal_pressure")) else {
+            return Err(Error::param(
+                "tidy table",
+                "it has no nominal_pressure column: not a study's results table",
+            ));
+        };
+        for row in aggregated.rows {
+            let c = row[curve].number();
+            let Some(target) = (c >= 0.0).then(|| out.get_mut(c as usize)).flatten() else {
+                return Err(Error::param(
+                    "tidy table",
+                    format!("an aggregated row of an unknown curve {c}"),
+                ));
+            };
+            target.rows.push(row);
+        }
+        for c in &mut out {
+            c.rows
+                .sort_by(|a, b| a[pressure].number().total_cmp(&b[pressure].number()));
+        }
+        Ok(Self {
+            columns: aggregated.columns,
+            curves: out,
+            materials: materials.len(),
+        })
+    }
+
+    fn get(&self, row: &[Cell], column: &str) -> f64 {
+        self.columns
+            .iter()
+            .position(|c| c == column)
+            .map_or(f64::NAN, |i| row[i].number())
+    }
+
+    /// The nominal area Lx·Ly of a row's box: the `nominal_area` column, else (a table of an
+    /// older version, or made by hand) `surface.length` × `surface.length_y`, else 1.
+    fn area(&self, row: &[Cell]) -> f64 {
+        let (lx, ly) = (self.get(row, "surface.length"), self.get(row, "surface.length_y"));
+        let from_box = lx * if ly.is_finite() { ly } else { lx };
+        [self.get(row, "nominal_area"), from_box]
+            .into_iter()
+            .find(|a| a.is_finite() && *a > 0.0)
+            .unwrap_or(1.0)
+    }
+
+    /// One curve's points of a quantity, per load where it is defined: its mean over the surface
+    /// pairs with its 95 % interval, divided by the nominal area when `per_area`; hollow where
+    /// `fitted` and the fit window holds fewer than [`RESOLVED_PARTICLES`] particles (summed over
+    /// the pairs); marked "no wear" where no pair has a positive value.
+    fn points(&self, c: &Curve, quantity: &str, per_area: bool, fitted: bool) -> Vec<Point> {
+        c.rows
+            .iter()
+            .filter_map(|r| {
+                let scale = if per_area { 1.0 / self.area(r) } else { 1.0 };
+                let mean = self.get(r, &format!("{quantity}_mean"));
+                let particles = self.get(r, "particles_in_fit_total");
+                mean.is_finite().then(|| Point {
+                    x: self.get(r, "nominal_pressure"),
+                    y: mean * scale,
+                    low: self.get(r, &format!("{quantity}_ci_low")) * scale,
+                    high: self.get(r, &format!("{quantity}_ci_high")) * scale,
+                    hollow: fitted && c.slides && particles < RESOLVED_PARTICLES,
+                    no_wear: self.get(r, &format!("{quantity}_max")) <= 0.0,
+                })
+            })
+            .collect()
+    }
+}
+
+/// One panel of a figure against load: the quantity, its axis label, a log axis, and whether it is
+/// divided by the nominal area.
+struct LoadPanel {
+    quantity: &'static str,
+    label: String,
+    log: bool,
+    per_area: bool,
+}
+
+impl LoadPanel {
+    fn new(quantity: &'static str, label: &str, log: bool) -> Self {
+        Self {
+            quantity,
+            label: label.into(),
+            log,
+            per_area: false,
+        }
+    }
+    fn per_area(quantity: &'static str, label: &str, shown: Shown) -> Self {
+        Self {
+            quantity,
+            label: shown.per_area(label),
+            log: true,
+            per_area: true,
+        }
+    }
+}
+
+/// A figure of quantities against load: one panel per quantity, one series per curve.
+struct LoadFigure<'a> {
+    curves: Vec<&'a Curve>,
+    panels: Vec<LoadPanel>,
+    /// Whether the panels show fitted sliding rates (points on few particles hollow).
+    fitted: bool,
+    /// Colour by material, markers telling its curves apart (Kim's ceramics), instead of by curve.
+    by_material: bool,
+    /// Kim et al.'s experimental range, shaded on the last panel.
+    band: Option<(f64, f64, &'static str)>,
+}
+
+impl LoadFigure<'_> {
+    fn style(&self, i: usize) -> (Color, usize) {
+        let c = self.curves[i];
+        if self.by_material {
+            let within = self.curves[..i].iter().filter(|d| d.material == c.material).count();
+            (Color::Palette(c.material), within)
+        } else {
+            (Color::Palette(i), c.material)
+        }
+    }
+
+    fn build(&self, data: &Curves, shown: Shown, entry: &'static str, name: &str, title: String) -> Figure {
+        let mut panels = Vec::new();
+        for (p, spec) in self.panels.iter().enumerate() {
+            let series = self
+                .curves
+                .iter()
+                .enumerate()
+                .map(|(i, c)| {
+                    let (color, marker) = self.style(i);
+                    Series {
+                        label: c.label.clone(),
+                        color,
+                        marker,
+                        style: Style::Means,
+                        points: data.points(c, spec.quantity, spec.per_area, self.fitted),
+                    }
+                })
+                .collect();
+            let band = self.band.filter(|_| p + 1 == self.panels.len());
+            panels.push(Panel {
+                x: shown.load_axis(),
+                y: Axis {
+                    label: spec.label.clone(),
+                    log: spec.log,
+                    fallback: (1e-6, 1.0),
+                },
+                x_band: None,
+                y_band: band.map(|(low, high, _)| Band {
+                    low,
+                    high,
+                    color: Color::Band,
+                }),
+                diagonal: false,
+                series,
+            });
+        }
+        let legend = self.legend(data, &panels);
+        Figure {
+            entry,
+            name: name.into(),
+            title,
+            panels,
+            legend_title: MEANS.into(),
+            legend,
+            note: None,
+        }
+    }
+
+    /// Each curve with the particle counts of its hollow points, then what hollow points, markers
+    /// on the axis and the band are.
+    fn legend(&self, data: &Curves, panels: &[Panel]) -> Vec<LegendEntry> {
+        let mut entries = Vec::new();
+        let mut any_hollow = false;
+        for (i, c) in self.curves.iter().enumerate() {
+            let (color, marker) = self.style(i);
+            // A point without any particle has no wear: it is the marker on the axis, not a hollow one.
+            let counts: Vec<String> = c
+                .rows
+                .iter()
+                .map(|r| data.get(r, "particles_in_fit_total"))
+                .filter(|&n| self.fitted && c.slides && n < RESOLVED_PARTICLES)
+                .inspect(|_| any_hollow = true)
+                .filter(|&n| n > 0.0)
+                .map(|n| number((n * 10.0).round() / 10.0))
+                .collect();
+            let note = if counts.is_empty() {
+                String::new()
+            } else {
+                format!(" — hollow: {} particles", counts.join(", "))
+            };
+            entries.push(LegendEntry {
+                label: format!("{}{note}", c.label),
+                color,
+                marker,
+                swatch: Swatch::LineMarker,
+            });
+        }
+        if any_hollow {
+            entries.push(LegendEntry {
+                label: format!(
+                    "hollow: < {RESOLVED_PARTICLES} particles in the fit window (summed over surface pairs)"
+                ),
+                color: Color::Grey,
+                marker: 0,
+                swatch: Swatch::Hollow,
+            });
+        }
+        let no_wear = panels
+            .iter()
+            .any(|p| p.y.log && p.series.iter().flat_map(|s| &s.points).any(|q| q.no_wear));
+        if no_wear {
+            entries.push(LegendEntry {
+                label: "on the axis (stacked per load): zero (no wear) in every surface pair".into(),
+                color: Color::Grey,
+                marker: 0,
+                swatch: Swatch::AtAxis,
+            });
+        }
+        if let Some((_, _, label)) = self.band {
+            entries.push(LegendEntry {
+                label: label.into(),
+                color: Color::Band,
+                marker: 0,
+                swatch: Swatch::Band,
+            });
+        }
+        entries
+    }
+}
+
+/// What every figure is built from.
+struct Study<'a> {
+    tidy: &'a Table,
+    data: Curves,
+    shown: Shown,
+    /// The job whose series fig3 and appB draw, and every surface pair of its setting (memory);
+    /// None without job files.
+    series: Option<(&'a JobResult, Vec<&'a JobResult>)>,
+}
+
+/// Every figure asked for by registry name (all without a list), in the registry's order, from a
+/// study's tidy table (`results.csv`, [`crate::output::TidyRow`]) and its job files. The series
+/// figures (fig3, appB, memory) draw job `job` (default: the one that formed the most particles
+/// after running-in, the lowest index among equals) and need `jobs`; without them they are notes
+/// that say so.
+pub fn study_figures(
+    tidy: &Table,
+    jobs: &[JobResult],
+    job: Option<usize>,
+    names: Option<&[String]>,
+) -> Result<Vec<Figure>> {
+    if let Some(unknown) = names
+        .into_iter()
+        .flatten()
+        .find(|n| !FIGURES.iter().any(|f| f.name == n.as_str()))
+    {
+        let known: Vec<&str> = FIGURES.iter().map(|f| f.name).collect();
+        return Err(Error::param(
+            "figures",
+            format!("no figure is named {unknown:?}: the figures are {}", known.join(", ")),
+        ));
+    }
+    let system = match tidy
+        .column("units")
+        .and_then(|c| tidy.rows.first().map(|r| r[c].text()))
+    {
+        Some(u) if u == "si" => Units::Si,
+        _ => Units::Reduced,
+    };
+    let series = if jobs.is_empty() {
+        None
+    } else {
+        let index = match job {
+            Some(i) => i,
+            None => series_job(
+                jobs.iter()
+                    .flat_map(|r| r.results.iter().map(move |w| (r.index, w.particles_in_fit))),
+            )
+            .unwrap_or(jobs[0].index),
+        };
+        let shown = jobs.iter().find(|r| r.index == index).ok_or_else(|| {
+            Error::param(
+                "job",
+                format!(
+                    "the study has no job {index}: its jobs are 0 … {}",
+                    jobs.iter().map(|r| r.index).max().unwrap_or(0)
+                ),
+            )
+        })?;
+        Some((shown, pairs_of(jobs, shown)))
+    };
+    let study = Study {
+        tidy,
+        data: Curves::of(tidy)?,
+        shown: Shown { system },
+        series,
+    };
+    let mut out = Vec::new();
+    for spec in FIGURES
+        .iter()
+        .filter(|f| names.is_none_or(|w| w.iter().any(|n| n == f.name)))
+    {
+        out.extend(figure(&study, spec.name));
+    }
+    Ok(out)
+}
+
+/// The jobs of the same setting and load as `job` (every input but the surface pair): its surface
+/// pairs, in job order.
+fn pairs_of<'a>(jobs: &'a [JobResult], job: &JobResult) -> Vec<&'a JobResult> {
+    let key = |r: &JobResult| {
+        let mut inputs = r.inputs.clone();
+        inputs.seed = None;
+        (r.material.clone(), inputs, r.load.to_bits())
+    };
+    let mine = key(job);
+    jobs.iter().filter(|r| key(r) == mine).collect()
+}
+
+/// The figures of one registry entry.
+fn figure(study: &Study, entry: &'static str) -> Vec<Figure> {
+    let (data, shown) = (&study.data, study.shown);
+    let all = || data.curves.iter().collect::<Vec<_>>();
+    let against_load = |panels, fitted| LoadFigure {
+        curves: all(),
+        panels,
+        fitted,
+        by_material: false,
+        band: None,
+    };
+    match entry {
+        "fig2" => vec![against_load(
+            vec![
+                LoadPanel::per_area("static_wear_rate_mean", "W_static/ω", shown),
+                LoadPanel::new(
+                    "static_wear_coefficient_mean",
+                    "static wear coefficient k_static",
+                    false,
+                ),
+            ],
+            false,
+        )
+        .build(
+            data,
+            shown,
+            entry,
+            "fig2_static_model",
+            "static model, mean over every offset (the paper's Fig. 2 rows: 𝒢 varied, τ̃ varied)".into(),
+        )],
+        "fig4" => vec![against_load(
+            vec![
+                LoadPanel::per_area("wear_rate", "sliding wear rate W = dV/ds", shown),
+                LoadPanel::new("wear_coefficient", "wear coefficient k = W p_m / F_N", true),
+            ],
+            true,
+        )
+        .build(data, shown, entry, "fig4_sliding_wear", fig4_title(data))],
+        "fig5" => vec![against_load(
+            vec![LoadPanel::per_area("particle_rate", "particle rate dN*₊/ds", shown)],
+            true,
+        )
+        .build(
+            data,
+            shown,
+            entry,
+            "fig5_particle_rate",
+            "wear particles emitted per sliding distance".into(),
+        )],
+        "fig4c" => constant_critical_diameter(data, shown),
+        "fig6" => vec![kim_comparison(study)],
+        "appC" => vec![
+            LoadFigure {
+                curves: data.curves.iter().filter(|c| c.energy == 0).collect(),
+                ..against_load(
+                    vec![LoadPanel::new(
+                        "junctions_mean",
+                        "junctions N (mean after running-in)",
+                        true,
+                    )],
+                    false,
+                )
+            }
+            .build(data, shown, entry, "appC_junctions", "number of junctions".into()),
+            against_load(
+                vec![LoadPanel::new(
+                    "critical_junctions_mean",
+                    "junctions ≥ d*, N* (mean after running-in)",
+                    true,
+                )],
+                false,
+            )
+            .build(
+                data,
+                shown,
+                entry,
+                "appC_critical_junctions",
+                "number of critical junctions".into(),
+            ),
+        ],
+        "appB-eq5" => vec![equation_5(data, shown)],
+        "appF" => contact_severity(study.tidy, shown).into_iter().collect(),
+        "fig3" => vec![series_figure(study, entry, "fig3_wear_volume", wear_volume)],
+        "appB" => vec![series_figure(study, entry, "appB_particle_counts", particle_counts)],
+        "memory" => vec![series_figure(
+            study,
+            entry,
+            "memory_of_initial_contact",
+            |job, pairs, shown| memory(pairs.unwrap_or(std::slice::from_ref(&job)), shown),
+        )],
+        _ => Vec::new(),
+    }
+}
+
+/// Fig. 4's title: what it draws, and, where the study holds them, that the estimate's curves are
+/// labelled as such.
+fn fig4_title(data: &Curves) -> String {
+    let mut title = "sliding model (the paper's Fig. 4 rows: W, k)".to_string();
+    if data.curves.iter().any(|c| !c.slides) {
+        title += "; curves labelled \"static estimate\" are the static estimate";
+    }
+    title
+}
+
+/// Figs. 4c/5c: W, k and dN*₊/ds for groups of settings of (nearly) equal d* (within 15 %) that
+/// differ in τ̃ or 𝒢; one figure per group (`_1`, `_2`, …), or a note when the study has none.
+fn constant_critical_diameter(data: &Curves, shown: Shown) -> Vec<Figure> {
+    let materials: Vec<CurveMaterial> = data
+        .curves
+        .iter()
+        .map(|c| CurveMaterial {
+            critical_diameter: c.critical_diameter,
+            shear_strength: c.shear_strength,
+            fracture_energy: c.fracture_energy,
+        })
+        .collect();
+    let groups = equal_critical_diameter(&materials, 0.15);
+    if groups.is_empty() {
+        return vec![Figure::note(
+            "fig4c",
+            "fig4c_constant_d_star",
+            "Fig. 4c compares settings of equal d* (within 15 %) with different τ̃ or 𝒢; this study has none",
+        )];
+    }
+    groups
+        .iter()
+        .enumerate()
+        .map(|(g, group)| {
+            LoadFigure {
+                curves: group.iter().map(|&i| &data.curves[i]).collect(),
+                panels: vec![
+                    LoadPanel::per_area("wear_rate", "W", shown),
+                    LoadPanel::new("wear_coefficient", "k = W p_m / F_N", true),
+                    LoadPanel::per_area("particle_rate", "dN*₊/ds", shown),
+                ],
+                fitted: true,
+                by_material: false,
+                band: None,
+            }
+            .build(
+                data,
+                shown,
+                "fig4c",
+                &format!("fig4c_constant_d_star_{}", g + 1),
+                format!(
+                    "settings of nearly equal d* ≈ {}",
+                    shown.length(data.curves[group[0]].critical_diameter)
+                ),
+            )
+        })
+        .collect()
+}
+
+/// Fig. 6: k per material; Kim et al.'s rolling wear coefficients 6e-7 … 1.5e-3 (paper §4.2,
+/// Fig. 6c) shaded only for a study of Kim's ceramics (the properties of the paper's Table 1).
+fn kim_comparison(study: &Study) -> Figure {
+    let kim = has_kim_materials(study.tidy);
+    let title = if kim {
+        "simulated sliding k per material against the experimental range"
+    } else {
+        "sliding k per material (no material of Kim et al.'s Table 1 here: no experimental band)"
+    };
+    LoadFigure {
+        curves: study.data.curves.iter().collect(),
+        panels: vec![LoadPanel::new("wear_coefficient", "wear coefficient k", true)],
+        fitted: true,
+        by_material: study.data.materials > 1,
+        band: kim.then_some((
+            KIM_EXPERIMENTAL_K.0,
+            KIM_EXPERIMENTAL_K.1,
+            "Kim et al. 1986, rolling experiments: k = 6×10⁻⁷ … 1.5×10⁻³",
+        )),
+    }
+    .build(&study.data, study.shown, "fig6", "fig6_kim_comparison", title.into())
+}
+
+/// Fig. B.9b: Eq. 5 (ω d*³ dN*₊/ds) against the summed wear rate, one point per setting and load
+/// (means over surface pairs, aligned by row), with the line Eq. 5 = W.
+fn equation_5(data: &Curves, shown: Shown) -> Figure {
+    let unit = shown.unit("wear_rate");
+    let mut legend = vec![LegendEntry {
+        label: "Eq. 5 = W".into(),
+        color: Color::Grey,
+        marker: 0,
+        swatch: Swatch::Line { dashed: true },
+    }];
+    let mut series = Vec::new();
+    for (i, c) in data.curves.iter().enumerate() {
+        let points = c
+            .rows
+            .iter()
+            .map(|r| Point::at(data.get(r, "wear_rate_mean"), data.get(r, "wear_rate_estimate_mean")))
+            .filter(|p| p.x > 0.0 && p.y > 0.0)
+            .collect();
+        series.push(Series {
+            label: c.label.clone(),
+            color: Color::Palette(i),
+            marker: c.material,
+            style: Style::Markers,
+            points,
+        });
+        legend.push(LegendEntry {
+            label: c.label.clone(),
+            color: Color::Palette(i),
+            marker: c.material,
+            swatch: Swatch::Marker,
+        });
+    }
+    Figure {
+        entry: "appB-eq5",
+        name: "appB_eq5_against_w".into(),
+        title: "Eq. 5 against the summed wear rate (mean over surface pairs)".into(),
+        panels: vec![Panel {
+            x: Axis {
+                label: format!("wear rate W, summed particle volumes ({unit})"),
+                log: true,
+                fallback: (1e-6, 1e-3),
+            },
+            y: Axis {
+                label: format!("Eq. 5: ω d*³ dN*₊/ds ({unit})"),
+                log: true,
+                fallback: (1e-6, 1e-3),
+            },
+            x_band: None,
+            y_band: None,
+            diagonal: true,
+            series,
+        }],
+        legend_title: String::new(),
+        legend,
+        note: None,
+    }
+}
+
+fn r2_text(fit: &PowerLawFit) -> String {
+    fit.r2.map_or("undefined".into(), |r| format!("{r:.3}"))
+}
+
+/// Appendix F: W against the contact severity S_c = p_N √h_rms / K_Ic per material with its fit
+/// W = α S_cⁿ, the fit over all materials, and beside Kim's ceramics the paper's and Kim et al.'s
+/// fits. None with fewer than two jobs with W > 0 on generated surfaces.
+fn contact_severity(tidy: &Table, shown: Shown) -> Option<Figure> {
+    let (materials, all) = severity_fits(tidy);
+    let all = all?;
+    let s_c = materials.iter().flat_map(|m| m.points.iter().map(|p| p.0));
+    let (lo, hi) = s_c.fold((f64::INFINITY, 0.0_f64), |(a, b), x| (a.min(x), b.max(x)));
+    // Fitted lines over the points' span of S_c.
+    let line = |alpha: f64, n: f64| vec![Point::at(lo, alpha * lo.powf(n)), Point::at(hi, alpha * hi.powf(n))];
+    let area = shown.unit("wear_rate");
+    let (mut series, mut legend) = (Vec::new(), Vec::new());
+    for (m, mat) in materials.iter().enumerate() {
+        let kim = mat.kim.map_or(String::new(), |k| format!(" (Kim et al.'s {})", k.name));
+        series.push(Series {
+            label: format!("{}{kim}", mat.material),
+            color: Color::Palette(m),
+            marker: m,
+            style: Style::Markers,
+            points: mat.points.iter().map(|&(x, y)| Point::at(x, y)).collect(),
+        });
+        let label = match mat.fit {
+            Some(fit) => {
+                series.push(Series {
+                    label: format!("{}: fit", mat.material),
+                    color: Color::Palette(m),
+                    marker: m,
+                    style: Style::Line {
+                        dashed: false,
+                        width: 1,
+                    },
+                    points: line(fit.prefactor, fit.exponent),
+                });
+                format!(
+                    "{}{kim}: α = {}, n = {:.2}, R² = {}",
+                    mat.material,
+                    number(fit.prefactor),
+                    fit.exponent,
+                    r2_text(&fit)
+                )
+            }
+            None => format!("{}{kim}: one S_c, no fit", mat.material),
+        };
+        legend.push(LegendEntry {
+            label,
+            color: Color::Palette(m),
+            marker: m,
+            swatch: if mat.fit.is_some() {
+                Swatch::LineMarker
+            } else {
+                Swatch::Marker
+            },
+        });
+    }
+    let mut references = vec![(
+        (all.prefactor, all.exponent),
+        "all materials, least-squares fit (log–log)".to_string(),
+        Color::Black,
+    )];
+    // The paper's numbers belong to Kim's ceramics (SI units) only.
+    if materials.iter().any(|m| m.kim.is_some()) {
+        for ((alpha, n), who) in [
+            (
+                PAPER_SEVERITY_FIT,
+                "the paper's fit to its simulations of Kim's ceramics",
+            ),
+            (KIM_SEVERITY_FIT, "Kim et al.'s fit to their experiments"),
+        ] {
+            references.push((
+                (alpha, n),
+                format!("{who}: α = {} m², n = {n}", number(alpha)),
+                Color::Grey,
+            ));
+        }
+    }
+    for ((alpha, n), label, color) in references {
+        series.push(Series {
+            label: label.clone(),
+            color,
+            marker: 0,
+            style: Style::Line { dashed: true, width: 1 },
+            points: line(alpha, n),
+        });
+        legend.push(LegendEntry {
+            label,
+            color,
+            marker: 0,
+            swatch: Swatch::Line { dashed: true },
+        });
+    }
+    Some(Figure {
+        entry: "appF",
+        name: "appF_contact_severity".into(),
+        title: format!(
+            "W = α S_cⁿ, all materials: α = {} {area}, n = {:.3}, R² = {}",
+            number(all.prefactor),
+            all.exponent,
+            r2_text(&all)
+        ),
+        panels: vec![Panel {
+            x: Axis {
+                label: "contact severity S_c = p_N √h_rms / K_Ic".into(),
+                log: true,
+                fallback: (1e-3, 1.0),
+            },
+            y: Axis {
+                label: format!("wear rate W ({area})"),
+                log: true,
+                fallback: (1e-6, 1.0),
+            },
+            x_band: None,
+            y_band: None,
+            diagonal: false,
+            series,
+        }],
+        legend_title: String::new(),
+        legend,
+        note: None,
+    })
+}
+
+/// A figure of one job's sliding series: a note without job files or for a job of the static
+/// estimate.
+fn series_figure(
+    study: &Study,
+    entry: &'static str,
+    name: &str,
+    draw: impl Fn(&JobResult, Option<&[&JobResult]>, Shown) -> Figure,
+) -> Figure {
+    match &study.series {
+        None => Figure::note(entry, name, NO_JOB_FILES),
+        Some((job, _)) if job.steps.is_empty() => Figure::note(entry, name, NO_SERIES),
+        Some((job, pairs)) => Figure {
+            entry,
+            name: name.into(),
+            ..draw(job, Some(pairs.as_slice()), study.shown)
+        },
+    }
+}
+
+/// "job 3 (Si3N4), surface pair 2, τ̃ = 0.012 E, p_N = 0.001 E".
+fn who(r: &JobResult, shown: Shown, with_pair: bool) -> String {
+    let seed = match r.inputs.seed {
+        Some(s) if with_pair => format!(", surface pair {s}"),
+        _ => String::new(),
+    };
+    let material = if r.material == "material" {
+        String::new()
+    } else {
+        format!(" ({})", r.material)
+    };
+    format!(
+        "job {}{material}{seed}, τ̃ = {}, p_N = {} {}",
+        r.index,
+        shown.stress(r.inputs.shear_strength),
+        number(r.inputs.nominal_pressure(r.load)),
+        shown.unit("nominal_pressure")
+    )
+}
+
+fn line(label: String, color: Color, dashed: bool, width: u32, points: Vec<Point>) -> Series {
+    Series {
+        label,
+        color,
+        marker: 0,
+        style: Style::Line { dashed, width },
+        points,
+    }
+}
+
+fn one_panel(x: Axis, y: Axis, series: Vec<Series>) -> Vec<Panel> {
+    vec![Panel {
+        x,
+        y,
+        x_band: None,
+        y_band: None,
+        diagonal: false,
+        series,
+    }]
+}
+
+/// Fig. 3: V(s) of one job per fracture energy, with the results' line W·s + b fitted over the fit
+/// window, and the running-in shaded.
+fn wear_volume(r: &JobResult, _pairs: Option<&[&JobResult]>, shown: Shown) -> Figure {
+    let fit_start = r.results.first().map_or(0.0, |w| w.fit_window_start);
+    let s_max = r.steps.last().map_or(1.0, |st| st.s);
+    let mut legend = vec![LegendEntry {
+        label: "running-in (not fitted)".into(),
+        color: Color::Light,
+        marker: 0,
+        swatch: Swatch::Band,
+    }];
+    let mut series = Vec::new();
+    for (e, w) in r.results.iter().enumerate() {
+        let color = Color::Palette(e);
+        let label = format!(
+            "V, 𝒢 = {} {} (d* = {})",
+            pretty(w.fracture_energy),
+            shown.unit("fracture_energy"),
+            shown.length(w.critical_diameter)
+        );
+        let v = r
+            .steps
+            .iter()
+            .filter_map(|st| Some(Point::at(st.s, *st.volume.get(e)?)))
+            .collect();
+        series.push(line(label.clone(), color, false, 2, v));
+        legend.push(LegendEntry {
+            label,
+            color,
+            marker: 0,
+            swatch: Swatch::Line { dashed: false },
+        });
+        if let (Some(slope), Some(intercept)) = (w.wear_rate, w.wear_volume_intercept) {
+            let r2 = w
+                .wear_rate_r2
+                .map_or("undefined (no particle)".into(), |x| format!("{x:.3}"));
+            let label = format!("fit: W = {} {}, R² = {r2}", number(slope), shown.unit("wear_rate"));
+            let fit = vec![Point::at(0.0, intercept), Point::at(s_max, intercept + slope * s_max)];
+            series.push(line(label.clone(), color, true, 1, fit));
+            legend.push(LegendEntry {
+                label,
+                color,
+                marker: 0,
+                swatch: Swatch::Line { dashed: true },
+            });
+        }
+    }
+    let mut panels = one_panel(
+        shown.distance_axis(),
+        Axis {
+            label: format!("wear volume V ({})", shown.unit("volume")),
+            log: false,
+            fallback: (0.0, 1.0),
+        },
+        series,
+    );
+    panels[0].x_band = Some(Band {
+        low: 0.0,
+        high: fit_start,
+        color: Color::Light,
+    });
+    Figure {
+        entry: "",
+        name: String::new(),
+        title: format!("wear volume V(s) — {}", who(r, shown, true)),
+        panels,
+        legend_title: String::new(),
+        legend,
+        note: None,
+    }
+}
+
+/// One count of appendix B: its value in a series row, dashed, the line's width, what it is.
+type Count = (fn(&SeriesRow) -> f64, bool, u32, &'static str);
+
+/// Appendix B (Fig. B.9a): N*₊ (solid), N* (dashed) and N*₋ = N*₊ − N* (thin) of one job against s,
+/// per fracture energy, from the library's series rows.
+fn particle_counts(r: &JobResult, _pairs: Option<&[&JobResult]>, shown: Shown) -> Figure {
+    let rows: Vec<SeriesRow> = r.series_rows();
+    let (mut series, mut legend) = (Vec::new(), Vec::new());
+    for (e, w) in r.results.iter().enumerate() {
+        let color = Color::Palette(e);
+        let mine: Vec<&SeriesRow> = rows
+            .iter()
+            .filter(|row| row.fracture_energy == w.fracture_energy)
+            .collect();
+        let d = format!("d* = {}", shown.length(w.critical_diameter));
+        let counts: [Count; 3] = [
+            (|r| r.n_formed as f64, false, 2, "N*₊ (particles formed)"),
+            (|r| r.n_critical as f64, true, 2, "N* (junctions ≥ d* now)"),
+            (|r| r.n_shrunk as f64, false, 1, "N*₋ (thin)"),
+        ];
+        for (value, dashed, width, what) in counts {
+            let label = format!("{what}, {d}");
+            let points = mine.iter().map(|row| Point::at(row.s, value(row))).collect();
+            series.push(line(label.clone(), color, dashed, width, points));
+            legend.push(LegendEntry {
+                label,
+                color,
+                marker: 0,
+                swatch: Swatch::Line { dashed },
+            });
+        }
+    }
+    Figure {
+        entry: "",
+        name: String::new(),
+        title: format!(
+            "particles formed N*₊, critical junctions N*, N*₋ = N*₊ − N* — {}",
+            who(r, shown, true)
+        ),
+        panels: one_panel(
+            shown.distance_axis(),
+            Axis {
+                label: "number of junctions".into(),
+                log: false,
+                fallback: (0.0, 1.0),
+            },
+            series,
+        ),
+        legend_title: String::new(),
+        legend,
+        note: None,
+    }
+}
+
+/// The memory of the initial contact (§3): N₀(s) of every surface pair of one setting, each with its
+/// fitted N₀(0) e^(−s/ℓ) (dashed, while it expects a junction or more), and the mean ℓ with its 95 %
+/// interval over the pairs as the legend's title.
+fn memory(pairs: &[&JobResult], shown: Shown) -> Figure {
+    let (mut series, mut legend, mut lengths) = (Vec::new(), Vec::new(), Vec::new());
+    for (i, r) in pairs.iter().enumerate() {
+        let color = Color::Palette(i);
+        let points = r
+            .steps
+            .iter()
+            .map(|st| Point::at(st.s, st.initial_junctions as f64))
+            .collect();
+        let pair = r
+            .inputs
+            .seed
+            .map_or(format!("job {}", r.index), |s| format!("pair {s}"));
+        let mut label = format!("{pair}: N₀(s)");
+        series.push(line(label.clone(), color, false, 2, points));
+        let first = r.results.first();
+        if let Some((decay_length, initial)) =
+            first.and_then(|w| Some((w.memory_decay_length?, w.memory_fit_initial_junctions?)))
+        {
+            lengths.push(decay_length);
+            let curve = r
+                .steps
+                .iter()
+                .map(|st| Point::at(st.s, initial * (-st.s / decay_length).exp()))
+                .take_while(|p| p.y >= 1.0)
+                .collect();
+            series.push(line(format!("{pair}: fit"), color, true, 1, curve));
+            let r2 = first
+                .and_then(|w| w.memory_decay_r2)
+                .map_or("undefined".into(), |x| format!("{x:.2}"));
+            let run_in = first
+                .and_then(|w| w.running_in_decay_lengths)
+                .map_or(String::new(), |x| format!(", s_r = {} ℓ", number(x)));
+            label = format!(
+                "{label}, fit ℓ = {} {} (R² = {r2}{run_in})",
+                number(decay_length),
+                shown.unit("length")
+            );
+        }
+        legend.push(LegendEntry {
+            label,
+            color,
+            marker: 0,
+            swatch: Swatch::Line { dashed: false },
+        });
+    }
+    let legend_title = match mean_interval(&lengths) {
+        Some(i) => format!(
+            "mean ℓ = {} [{}, {}] {} (95 % interval, Student t over {} pairs); dashed: each pair's fit",
+            number(i.estimate),
+            number(i.low),
+            number(i.high),
+            shown.unit("length"),
+            i.n
+        ),
+        None => "dashed: each pair's fit N₀(0) e^(−s/ℓ)".into(),
+    };
+    let title = match pairs.first() {
+        Some(r) => format!(
+            "memory of the initial contact, every surface pair — {}",
+            who(r, shown, false)
+        ),
+        None => "memory of the initial contact".into(),
+    };
+    Figure {
+        entry: "",
+        name: String::new(),
+        title,
+        panels: one_panel(
+            shown.distance_axis(),
+            Axis {
+                label: "junctions descending from s = 0, N₀".into(),
+                log: true,
+                fallback: (0.5, 10.0),
+            },
+            series,
+        ),
+        legend_title,
+        legend,
+        note: None,
+    }
+}
+
+/// A study folder's figures, with the tidy table they were drawn from (the findings are judged on
+/// the same) and the job whose series they show.
+pub struct StudyFigures {
+    pub tidy: Table,
+    pub figures: Vec<Figure>,
+    /// The job whose series fig3, appB and memory draw.
+    pub series_job: Option<usize>,
+}
+
+/// [`study_figures`] of a finished study folder: its job files read (and checked) once.
+pub fn study_folder_figures(
+    dir: &std::path::Path,
+    job: Option<usize>,
+    names: Option<&[String]>,
+) -> Result<StudyFigures> {
+    let (_, results) = crate::study::collect::load_results(dir)?;
+    let rows: Vec<crate::output::TidyRow> = results.iter().flat_map(crate::output::TidyRow::of_job).collect();
+    let tidy = Table::of(&rows);
+    let figures = study_figures(&tidy, &results, job, names)?;
+    let series_job = match job {
+        Some(j) => Some(j),
+        None => series_job(
+            results
+                .iter()
+                .flat_map(|r| r.results.iter().map(move |w| (r.index, w.particles_in_fit))),
+        ),
+    };
+    Ok(StudyFigures {
+        tidy,
+        figures,
+        series_job,
+    })
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,258 @@
+//! The figures of a small hand-made study (jobs expanded from a study file, results made up): every
+//! entry of the registry gives its figures, rates are per unit area with the interval of the mean,
+//! points align by row, Kim's band only for Kim's ceramics, the memory figure every pair.
+
+use std::path::Path;
+
+use super::*;
+use crate::output::{Provenance, StepRow, TidyRow, JOB_FORMAT};
+use crate::sliding::WearResult;
+use crate::study::expand::Job;
+
+const REDUCED: &str = r#"
+units = "reduced"
+[surface]
+grid = 64
+length = 0.5
+hurst = 0.7
+lambda_lower = 0.0625
+lambda_upper = 0.125
+rms_height = 0.005
+seed = [1, 2, 3]
+[material]
+youngs_modulus = 1.0
+poisson_ratio = 0.3
+shear_strength = [0.008, 0.012]
+fracture_energies = [0.5e-6, 1e-6]
+[sliding]
+loads = [2.5e-4, 5e-4]
+distance = 0.5
+running_in = 0.25
+"#;
+
+const KIM: &str = r#"
+units = "si"
+[surface]
+grid = 64
+length = 50e-6
+hurst = 0.7
+lambda_lower = 6.25e-6
+lambda_upper = 25e-6
+seed = [1, 2]
+[[materials]]
+name = "SiC"
+youngs_modulus = 392e9
+poisson_ratio = 0.16
+shear_strength = 4.80e9
+fracture_energies = [45.00]
+surface = { rms_height = 5.0e-6 }
+[[materials]]
+name = "Al2O3"
+youngs_modulus = 343e9
+poisson_ratio = 0.25
+shear_strength = 3.37e9
+fracture_energies = [46.65]
+surface = { rms_height = 20.0e-6 }
+[sliding]
+loads = [0.3125, 0.625]
+distance = 0.5
+running_in = 0.25
+"#;
+
+/// Made-up results of one job: W growing with the load and the seed, a few steps of series.
+fn result_of(job: &Job) -> JobResult {
+    let inputs = job.inputs();
+    let (load, seed) = (job.load(), inputs.seed.unwrap_or(1) as f64);
+    let energies = &job.run.material.fracture_energies;
+    let scale = inputs.length * inputs.length;
+    let results: Vec<WearResult> = energies
+        .iter()
+        .enumerate()
+        .map(|(e, &g)| {
+            let w = scale * 1e-4 * (load / 2.5e-4 * scale.recip()).powf(1.2) * (1.0 + 0.1 * seed) / (1 + e) as f64;
+            WearResult {
+                fracture_energy: g,
+                critical_diameter: inputs.length * 0.02 * (1 + e) as f64,
+                wear_rate: Some(w),
+                wear_rate_r2: Some(0.95),
+                wear_volume_intercept: Some(w * 0.1),
+                fit_window_start: 0.25 * inputs.length,
+                wear_coefficient: Some(0.05 * (1.0 + 0.1 * seed)),
+                particle_rate: Some(100.0 / (1 + e) as f64),
+                wear_rate_estimate: Some(0.9 * w),
+                particles_in_fit: 10 + 5 * e,
+                initial_volume: 20.0 * w,
+                static_wear_coefficient_mean: 0.5,
+                static_wear_rate_mean: 5.0 * w,
+                junctions_mean: 30.0,
+                critical_junctions_mean: 3.0,
+                memory_decay_length: Some(0.05 * inputs.length * seed),
+                memory_decay_r2: Some(0.9),
+                memory_fit_initial_junctions: Some(20.0),
+                running_in_decay_lengths: Some(5.0 / seed),
+                ..WearResult::default()
+            }
+        })
+        .collect();
+    let steps = (0..6)
+        .map(|k| StepRow {
+            s: k as f64 * 0.1 * inputs.length,
+            junctions: 30,
+            wrapping_junctions: 0,
+            contact_area: 0.1,
+            initial_junctions: 20usize >> k,
+            n_critical: vec![3; energies.len()],
+            n_formed: vec![2 + k; energies.len()],
+            volume: results
+                .iter()
+                .map(|w| w.initial_volume + w.wear_rate.unwrap_or(0.0) * k as f64)
+                .collect(),
+            static_wear_coefficient: vec![0.5; energies.len()],
+        })
+        .collect();
+    JobResult {
+        format: JOB_FORMAT,
+        provenance: Provenance::current(),
+        index: job.index,
+        material: job.material.clone(),
+        inputs,
+        load,
+        flow_pressure: 3.0 * 3f64.sqrt() * job.run.material.shear_strength,
+        effective_modulus: 1.0,
+        results,
+        steps,
+        total_iterations: 0,
+        seconds: 1.0,
+        warnings: Vec::new(),
+        estimates: Vec::new(),
+    }
+}
+
+/// A study's job results and its tidy table.
+fn study(text: &str) -> (Vec<JobResult>, Table) {
+    let study = crate::study::expand::expand(text, Path::new(".")).expect("the test study expands");
+    let results: Vec<JobResult> = study.jobs.iter().map(result_of).collect();
+    let rows: Vec<TidyRow> = results.iter().flat_map(TidyRow::of_job).collect();
+    (results, Table::of(&rows))
+}
+
+fn figures(text: &str, names: &[&str]) -> Vec<Figure> {
+    let (results, tidy) = study(text);
+    let names: Vec<String> = names.iter().map(|n| n.to_string()).collect();
+    study_figures(&tidy, &results, None, Some(&names)).unwrap()
+}
+
+fn named<'a>(figures: &'a [Figure], name: &str) -> &'a Figure {
+    figures
+        .iter()
+        .find(|f| f.name == name)
+        .unwrap_or_else(|| panic!("no figure {name}"))
+}
+
+#[test]
+fn every_entry_of_the_registry_gives_its_figures_under_their_names() {
+    let (results, tidy) = study(REDUCED);
+    let all = study_figures(&tidy, &results, None, None).unwrap();
+    let names: Vec<&str> = all.iter().map(|f| f.name.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "fig2_static_model",
+            "fig3_wear_volume",
+            "fig4_sliding_wear",
+            "fig4c_constant_d_star_1",
+            "fig4c_constant_d_star_2",
+            "fig5_particle_rate",
+            "fig6_kim_comparison",
+            "appB_particle_counts",
+            "appB_eq5_against_w",
+            "appC_junctions",
+            "appC_critical_junctions",
+            "appF_contact_severity",
+            "memory_of_initial_contact",
+        ]
+    );
+    for f in &all {
+        assert!(f.note.is_none(), "{}: {:?}", f.name, f.note);
+        assert!(
+            f.panels.iter().all(|p| p.series.iter().any(|s| !s.points.is_empty())),
+            "{}",
+            f.name
+        );
+        assert!(FIGURES.iter().any(|e| e.name == f.entry), "{}", f.name);
+        // The CSV holds every point once, with its panel's axis labels.
+        let points: usize = f.panels.iter().flat_map(|p| &p.series).map(|s| s.points.len()).sum();
+        let csv = f.to_csv();
+        assert_eq!(
+            csv.lines().filter(|l| l.contains(",point,")).count(),
+            points,
+            "{}",
+            f.name
+        );
+    }
+    // Without job files the series figures say where their data is; an unknown name is refused.
+    let table_only = study_figures(&tidy, &[], None, Some(&["fig3".into()])).unwrap();
+    assert!(table_only[0].note.as_deref().unwrap().contains("job files"));
+    let err = study_figures(&tidy, &results, None, Some(&["fig9".into()])).unwrap_err();
+    assert!(err.to_string().contains("fig2, fig3"), "{err}");
+}
+
+#[test]
+fn rates_are_per_unit_area_with_intervals_and_kims_band_only_for_kims_ceramics() {
+    let fig = figures(REDUCED, &["fig4", "fig6"]);
+    let fig4 = named(&fig, "fig4_sliding_wear");
+    // A box of 0.5 × 0.5 L: W divided by its area 0.25; the bars are the 95 % interval of the mean
+    // of the three pairs (1.1, 1.2, 1.3 times a base: mean 1.2, sd 0.1, t(2) = 4.303).
+    let p = fig4.panels[0].series[0].points[0];
+    let plain = p.y * 0.25;
+    let base = plain / 1.2;
+    assert!((p.y - base * 1.2 / 0.25).abs() < 1e-12 * p.y, "{p:?}");
+    let half = 4.302_652_7 * 0.1 / 3f64.sqrt() * base / 0.25;
+    assert!((p.high - p.y - half).abs() < 1e-6 * p.y, "{p:?}");
+    assert!(fig4.panels[0].y.label.contains("per unit nominal area"));
+    assert_eq!(fig4.legend_title, MEANS);
+    // 10 particles per pair at 𝒢₁ (30 summed over three pairs): resolved; Fig. 2 is not fitted.
+    assert!(fig4.panels[0].series.iter().flat_map(|s| &s.points).all(|q| !q.hollow));
+    assert!(named(&fig, "fig6_kim_comparison").panels[0].y_band.is_none());
+    // Kim's ceramics: the band, and appendix F with the paper's fits beside them.
+    let kim = figures(KIM, &["fig6", "appF"]);
+    let band = named(&kim, "fig6_kim_comparison").panels[0].y_band.clone().unwrap();
+    assert_eq!((band.low, band.high), KIM_EXPERIMENTAL_K);
+    let app_f = named(&kim, "appF_contact_severity");
+    assert!(app_f
+        .legend
+        .iter()
+        .any(|e| e.label.contains("fit to their experiments")));
+}
+
+#[test]
+fn equation_5_pairs_w_and_its_estimate_of_the_same_row() {
+    let fig = figures(REDUCED, &["appB-eq5"]);
+    // The made-up estimate is 0.9 W in every row: a point off that line pairs two rows.
+    for s in &fig[0].panels[0].series {
+        assert!(!s.points.is_empty());
+        for q in &s.points {
+            assert!((q.y / q.x - 0.9).abs() < 1e-12, "{q:?}");
+        }
+    }
+}
+
+#[test]
+fn the_memory_figure_shows_every_pair_of_the_setting() {
+    let (results, tidy) = study(REDUCED);
+    let fig = study_figures(&tidy, &results, Some(0), Some(&["memory".into()])).unwrap();
+    let labels: Vec<&str> = fig[0].panels[0]
+        .series
+        .iter()
+        .filter(|s| {
+            s.style
+                == (Style::Line {
+                    dashed: false,
+                    width: 2,
+                })
+        })
+        .map(|s| s.label.as_str())
+        .collect();
+    assert_eq!(labels, ["pair 1: N₀(s)", "pair 2: N₀(s)", "pair 3: N₀(s)"]);
+    assert!(fig[0].legend_title.starts_with("mean ℓ = "), "{}", fig[0].legend_title);
+}
