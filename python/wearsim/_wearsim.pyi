@@ -34,6 +34,7 @@ __all__ = [
     "aggregate",
     "collect_study",
     "composite_heights",
+    "contact_map",
     "curve_labels",
     "curves",
     "equal_critical_diameter",
@@ -121,6 +122,7 @@ def spectrum_pair(
     seed: int,
     window: Optional[str] = None,
 ) -> Tuple[_F64Array, _F64Array, List[str]]: ...
+def contact_map(pressure: _F64Array) -> npt.NDArray[np.bool_]: ...
 def label_junctions(
     contact: npt.NDArray[np.bool_], connectivity: int = ...
 ) -> Tuple[npt.NDArray[np.int64], npt.NDArray[np.uint64], npt.NDArray[np.bool_]]: ...

@@ -87,6 +87,8 @@ fn fit_surface<'py>(py: Python<'py>, heights: PyReadonlyArray2<'py, f64>, length
     dict.set_item("self_affine", verdict.self_affine)?;
     dict.set_item("reasons", verdict.reasons)?;
     dict.set_item("notes", notes)?;
+    // Taken out by the Python wrapper, which warns with it.
+    dict.set_item("_poor_fit_warning", fit.poor_fit_warning())?;
     Ok(d)
 }
 

@@ -63,28 +63,28 @@ pub fn run(args: &Args) -> Result<()> {
         }
         (offset, None) => {
             let offset = offset.unwrap_or(0.0);
-            if !offset.is_finite() || offset < 0.0 || offset >= length {
+            let Some(o) = grid.offset_pixels(offset) else {
                 bail!(
                     "invalid `--offset`: {offset} {unit} is not within one period [0, Lx = {length} {unit}); the \
                      surfaces are periodic, so give the offset modulo Lx"
                 );
-            }
-            let pixels = offset / dx;
-            let shift = (pixels.round() as usize) % n;
-            if (pixels - pixels.round()).abs() > 1e-6 {
+            };
+            if !o.is_whole() {
                 tell!(
-                    "note: --offset {offset} {unit} is {pixels:.3} pixels (Δx = {dx:e} {unit}); using {shift} pixels = {} {unit}",
-                    shift as f64 * dx
+                    "note: --offset {offset} {unit} is {:.3} pixels (Δx = {dx:e} {unit}); using {} pixels = {} {unit}",
+                    o.pixels,
+                    o.shift,
+                    o.shift as f64 * dx
                 );
             }
-            (shift, shift as f64 * dx)
+            (o.shift, o.shift as f64 * dx)
         }
     };
     let boundary = match &args.boundary {
         Some(name) => name.parse::<Boundary>()?,
         None => config.boundary,
     };
-    if boundary == Boundary::Free && shift != 0 {
+    if !boundary.allows_offset(shift) {
         bail!(
             "invalid `--offset`/`--offset-px`: a sliding offset wraps the top surface around the periodic box, which a free boundary \
              does not have; give offset 0 with `boundary = free`, or slide with the periodic boundary"
@@ -113,12 +113,12 @@ pub fn run(args: &Args) -> Result<()> {
     let start = Instant::now();
     let info = solver.solve(
         &heights,
-        load / grid.area(),
+        grid.mean_pressure(load),
         config.material.flow_pressure(),
         &mut pressure,
     )?;
     let record = ContactRecord::new(&info, &pressure, start.elapsed().as_secs_f64());
-    let contact: Vec<bool> = pressure.iter().map(|&p| p > 0.0).collect();
+    let contact = wearsim::contact::contact_map(&pressure);
     let fields = solver.gap_and_displacement(&heights, &pressure, &info)?;
     write_npy_f64(&out.join("pressure.npy"), n, ny, &pressure)?;
     write_npy_bool(&out.join("contact.npy"), n, ny, &contact)?;

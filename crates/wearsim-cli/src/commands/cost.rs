@@ -4,7 +4,7 @@
 
 use anyhow::{Context, Result};
 use wearsim::config::RunConfig;
-use wearsim::cost::{cache_dir, Calibration, Estimate, IterationProbe, StepIterations};
+use wearsim::cost::{cache_dir, Calibration, Estimate, IterationProbe, SlurmRequest, StepIterations};
 use wearsim::run::SlidingRun;
 use wearsim::study::Job;
 
@@ -69,20 +69,6 @@ fn memory(bytes: f64) -> String {
     } else {
         format!("{:.1} GiB", mib / 1024.0)
     }
-}
-
-/// Slurm's `--time` (D-HH:MM:SS) and `--mem` (MiB) for an estimate, with room to spare: half the
-/// time again, a quarter of the memory and 100 MiB for the process itself.
-fn slurm(seconds: f64, bytes: f64) -> String {
-    let s = (seconds * 1.5).ceil().max(60.0) as u64;
-    let mem = (bytes * 1.25 / (1u64 << 20) as f64 + 100.0).ceil() as u64;
-    format!(
-        "--time={}-{:02}:{:02}:{:02} --mem={mem}M",
-        s / 86_400,
-        s % 86_400 / 3600,
-        s % 3600 / 60,
-        s % 60
-    )
 }
 
 /// What an estimate assumes, one line; `measured`: its iterations were measured on the run's own
@@ -210,7 +196,7 @@ pub fn print_run(config: &RunConfig) -> Result<Estimate> {
         counted(e.threads, "thread"),
         e.cpu_hours(),
         memory(e.peak_memory),
-        slurm(e.seconds, e.peak_memory)
+        SlurmRequest::with_margins(e.seconds, e.peak_memory)
     );
     tell!("  ({})", assumptions(&c, true));
     Ok(e)
@@ -295,7 +281,7 @@ pub fn print_study(jobs: &[&Job], workers: usize) -> Result<()> {
         memory(peak),
         memory(per_job),
         workers.min(jobs.len()),
-        slurm(seconds, peak)
+        SlurmRequest::with_margins(seconds, peak)
     );
     tell!(
         "  (jobs already done are skipped when the study runs; {})",

@@ -299,8 +299,8 @@ fn run_fit(args: &FitArgs) -> Result<()> {
                 loaded.periodicity.border_step_x,
                 loaded.periodicity.border_step_y
             );
-            if fit.r2.is_some_and(|r| r < 0.9) {
-                tell!("warning: the PSD follows a power law poorly (R² < 0.9): H is a rough estimate");
+            if let Some(w) = fit.poor_fit_warning() {
+                tell!("warning: {w}");
             }
             spectrum = Some(params);
             if verdict.self_affine {

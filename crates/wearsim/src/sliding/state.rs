@@ -183,7 +183,7 @@ impl<'a> SlidingState<'a> {
         self.solver.compose(offset)?;
         let info = self
             .solver
-            .solve_in_place(load / self.grid.area(), self.setup.material.flow_pressure())?;
+            .solve_in_place(self.grid.mean_pressure(load), self.setup.material.flow_pressure())?;
         self.pressure_unsettled = false;
         if let Some(kept) = self.kept.as_mut() {
             kept.copy_from_slice(self.solver.pressure());

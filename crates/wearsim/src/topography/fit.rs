@@ -379,6 +379,14 @@ impl SpectrumFit {
         }
     }
 
+    /// The warning of a fit whose log–log line follows the PSD poorly (R² below 0.9): the slope
+    /// −2(1 + H) of paper §4.1 is then a rough estimate of H. None for a good fit, or an undefined R².
+    pub fn poor_fit_warning(&self) -> Option<String> {
+        self.r2
+            .is_some_and(|r| r < R2_MIN)
+            .then(|| format!("the PSD follows a power law poorly (R² < {R2_MIN}): H is a rough estimate"))
+    }
+
     /// Parameters to generate periodic surfaces with the fitted statistics on `grid`: λ_l raised to
     /// two pixels and λ_u lowered to the box where the fit ran past them (a note says so).
     pub fn spectrum(&self, grid: &Grid) -> (SpectrumParams, Vec<String>) {
@@ -636,6 +644,22 @@ mod tests {
             assert_eq!(f.window, Window::None);
             let v = f.verdict();
             assert!(v.self_affine && v.reasons.is_empty(), "{f:?} {v:?}");
+        }
+    }
+
+    /// The warning of a poor fit: R² below 0.9 and only then, worded as both front ends print it.
+    #[test]
+    fn a_poor_power_law_fit_warns_that_h_is_rough() {
+        let s = generated(Grid::square(128, 1.0).unwrap(), 0.7, 1.0 / 32.0, 0.25, Generation::RandomPhase, 1);
+        let good = fit(&s).unwrap();
+        assert_eq!(good.poor_fit_warning(), None, "{good:?}");
+        let poor = SpectrumFit { r2: Some(0.89), ..good };
+        assert_eq!(
+            poor.poor_fit_warning().as_deref(),
+            Some("the PSD follows a power law poorly (R² < 0.9): H is a rough estimate")
+        );
+        for r2 in [Some(0.9), None] {
+            assert_eq!(SpectrumFit { r2, ..good }.poor_fit_warning(), None);
         }
     }
 
