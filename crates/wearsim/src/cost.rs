@@ -604,7 +604,10 @@ mod tests {
         assert_eq!((r.time_seconds, r.memory_mib), (5400, 1380));
         assert_eq!(r.to_string(), "--time=0-01:30:00 --mem=1380M");
         // A short job still asks for a minute; days are counted apart.
-        assert_eq!(SlurmRequest::with_margins(1.0, 0.0).to_string(), "--time=0-00:01:00 --mem=100M");
+        assert_eq!(
+            SlurmRequest::with_margins(1.0, 0.0).to_string(),
+            "--time=0-00:01:00 --mem=100M"
+        );
         assert_eq!(
             SlurmRequest::with_margins(2.0 * 86_400.0, 0.0).to_string(),
             "--time=3-00:00:00 --mem=100M"

@@ -650,7 +650,14 @@ mod tests {
     /// The warning of a poor fit: R² below 0.9 and only then, worded as both front ends print it.
     #[test]
     fn a_poor_power_law_fit_warns_that_h_is_rough() {
-        let s = generated(Grid::square(128, 1.0).unwrap(), 0.7, 1.0 / 32.0, 0.25, Generation::RandomPhase, 1);
+        let s = generated(
+            Grid::square(128, 1.0).unwrap(),
+            0.7,
+            1.0 / 32.0,
+            0.25,
+            Generation::RandomPhase,
+            1,
+        );
         let good = fit(&s).unwrap();
         assert_eq!(good.poor_fit_warning(), None, "{good:?}");
         let poor = SpectrumFit { r2: Some(0.89), ..good };
