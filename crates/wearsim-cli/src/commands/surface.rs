@@ -10,8 +10,9 @@ use anyhow::{bail, Context, Result};
 use wearsim::io::{write_json, write_text, OutputDir};
 use wearsim::output::{surface_fit_summary, surface_summary, SurfaceStatistics};
 use wearsim::surface::pair_seeds;
+use wearsim::surface::SpectrumParams;
 use wearsim::topography::{self, Detrend, FileSurface, Preprocess};
-use wearsim::Surface;
+use wearsim::{Grid, Surface};
 
 use super::load_run;
 use crate::out::{say, say_part, tell};
@@ -187,7 +188,9 @@ fn run_import(args: &ImportArgs) -> Result<()> {
     super::run_child(command, "the import")
 }
 
-fn run_fit(args: &FitArgs) -> Result<()> {
+/// How `surface fit` reads its file: the units, the sides given (at most two, each positive) and the
+/// levelling.
+fn file_surface(args: &FitArgs) -> Result<FileSurface> {
     let scale = |field: &str, unit: &Option<String>| -> Result<f64> {
         Ok(match unit {
             Some(u) => topography::metres_per(field, u)?,
@@ -217,6 +220,82 @@ fn run_fit(args: &FitArgs) -> Result<()> {
     for &l in &args.length {
         wearsim::check::positive("length", l).context("--length")?;
     }
+    Ok(how)
+}
+
+/// The `[surface]` block that carries the map's spectrum as measured, for a spectrum that is not
+/// self-affine: the map as this command read it (its path made absolute, so that a run file
+/// anywhere finds it), with the units and size it was given.
+fn spectrum_block(args: &FitArgs, grid: &Grid, window: topography::Window, unit: &str) -> String {
+    let mut extra = Vec::new();
+    if let Some(l) = args.length.first() {
+        extra.push(format!("map_length = {l}"));
+    }
+    if let Some(u) = &args.height_unit {
+        extra.push(format!("height_unit = \"{u}\""));
+    }
+    if let Some(u) = &args.lateral_unit {
+        extra.push(format!("lateral_unit = \"{u}\""));
+    }
+    let map_path = std::fs::canonicalize(&args.file).unwrap_or_else(|_| args.file.clone());
+    topography::spectrum_block(
+        &map_path.display().to_string(),
+        grid,
+        window,
+        args.seed,
+        &extra,
+        unit.trim_matches(['(', ')']),
+    )
+}
+
+/// The fit in numbers: its band of wavenumbers, what it left out, the x/y power ratio and the
+/// periodicity of the prepared map.
+fn report_fit(fit: &topography::SpectrumFit, periodicity: &topography::Periodicity) {
+    say!(
+        "fitted C(q) ∝ q^−2(1+H) over q = {:.4e} … {:.4e} (2π/λ, {} shells, {} window), R² = {} (log–log PSD); \
+         left out: {} shells at longer wavelengths than λ_u and {} at shorter than λ_l, down to the floor \
+         (round-off or noise) at {:.1e} of the power law at λ_l; x/y power ratio {:.2}; periodicity of the \
+         prepared map: border jumps {:.1} (x) and {:.1} (y) typical steps",
+        fit.fitted_q[0],
+        fit.fitted_q[1],
+        fit.shells,
+        fit.window.name(),
+        fit.r2.map_or("undefined".into(), |r| format!("{r:.4}")),
+        fit.shells_longer,
+        fit.shells_shorter,
+        fit.floor,
+        fit.anisotropy,
+        periodicity.border_step_x,
+        periodicity.border_step_y
+    );
+}
+
+/// A generated pair in `dir` (top.npy, bottom.npy) with `seed`: self-affine with `params`, else
+/// carrying the measured PSD of `surface` (under `window`); the statistics of each printed.
+fn write_pair(
+    dir: &OutputDir,
+    surface: &Surface,
+    params: Option<&SpectrumParams>,
+    window: topography::Window,
+    seed: u64,
+    unit: &str,
+) -> Result<()> {
+    let grid = surface.grid();
+    let (a, b) = pair_seeds(seed);
+    let psd = topography::MeasuredPsd::of(surface, window)?;
+    for (name, seed) in [("top", a), ("bottom", b)] {
+        let s = match params {
+            Some(params) => Surface::generate(grid, params, seed)?,
+            None => psd.generate(grid, seed)?,
+        };
+        s.write_npy(&dir.join(&format!("{name}.npy")))?;
+        print_statistics(name, &SurfaceStatistics::of(&s), unit);
+    }
+    Ok(())
+}
+
+fn run_fit(args: &FitArgs) -> Result<()> {
+    let how = file_surface(args)?;
     let dir = match &args.out {
         Some(out) => Some(OutputDir::begin(
             out,
@@ -247,31 +326,11 @@ fn run_fit(args: &FitArgs) -> Result<()> {
         Ok(fit) => fit.verdict(),
         Err(e) => topography::Verdict::no_band(&e.to_string()),
     };
-    // The block that carries the map's spectrum as measured, for a spectrum that is not
-    // self-affine: the map as this command read it (its path made absolute, so that a run file
-    // anywhere finds it), with the units and size it was given.
+    // The window of the fit's PSD, else the one the map would be taken under.
     let window = fitted
         .as_ref()
         .map_or_else(|_| topography::Window::for_map(surface), |f| f.window);
-    let mut extra = Vec::new();
-    if let Some(l) = args.length.first() {
-        extra.push(format!("map_length = {l}"));
-    }
-    if let Some(u) = &args.height_unit {
-        extra.push(format!("height_unit = \"{u}\""));
-    }
-    if let Some(u) = &args.lateral_unit {
-        extra.push(format!("lateral_unit = \"{u}\""));
-    }
-    let map_path = std::fs::canonicalize(&args.file).unwrap_or_else(|_| args.file.clone());
-    let spectrum_block = topography::spectrum_block(
-        &map_path.display().to_string(),
-        &grid,
-        window,
-        args.seed,
-        &extra,
-        unit.trim_matches(['(', ')']),
-    );
+    let spectrum_block = spectrum_block(args, &grid, window, unit);
     let mut spectrum = None;
     let mut notes = Vec::new();
     let block = match &fitted {
@@ -282,23 +341,7 @@ fn run_fit(args: &FitArgs) -> Result<()> {
             }
             notes = fit_notes;
             let block = topography::surface_block(&grid, &params, args.seed, &source, unit.trim_matches(['(', ')']));
-            say!(
-                "fitted C(q) ∝ q^−2(1+H) over q = {:.4e} … {:.4e} (2π/λ, {} shells, {} window), R² = {} (log–log PSD); \
-                 left out: {} shells at longer wavelengths than λ_u and {} at shorter than λ_l, down to the floor \
-                 (round-off or noise) at {:.1e} of the power law at λ_l; x/y power ratio {:.2}; periodicity of the \
-                 prepared map: border jumps {:.1} (x) and {:.1} (y) typical steps",
-                fit.fitted_q[0],
-                fit.fitted_q[1],
-                fit.shells,
-                fit.window.name(),
-                fit.r2.map_or("undefined".into(), |r| format!("{r:.4}")),
-                fit.shells_longer,
-                fit.shells_shorter,
-                fit.floor,
-                fit.anisotropy,
-                loaded.periodicity.border_step_x,
-                loaded.periodicity.border_step_y
-            );
+            report_fit(fit, &loaded.periodicity);
             if let Some(w) = fit.poor_fit_warning() {
                 tell!("warning: {w}");
             }
@@ -347,18 +390,9 @@ fn run_fit(args: &FitArgs) -> Result<()> {
         ),
     )?;
     if args.generate {
-        let (a, b) = pair_seeds(args.seed);
         // The self-affine parameters where the spectrum is self-affine, else the spectrum itself.
         let params = spectrum.as_ref().filter(|_| verdict.self_affine);
-        let psd = topography::MeasuredPsd::of(surface, window)?;
-        for (name, seed) in [("top", a), ("bottom", b)] {
-            let s = match params {
-                Some(params) => Surface::generate(grid, params, seed)?,
-                None => psd.generate(grid, seed)?,
-            };
-            s.write_npy(&dir.join(&format!("{name}.npy")))?;
-            print_statistics(name, &SurfaceStatistics::of(&s), unit);
-        }
+        write_pair(&dir, surface, params, window, args.seed, unit)?;
     }
     dir.commit()?;
     say!("wrote {}", args.out.as_ref().expect("an output folder").display());

@@ -96,6 +96,23 @@ pub const MIN_SHELLS: usize = 6;
 /// a tail under the band, not the band.
 const UNDER: f64 = 10.0;
 
+/// Why [`fit`] finds no power-law band in the shells `all`, of which `signal` stand above the floor.
+fn no_band(all: &[PsdShell], signal: &[usize]) -> String {
+    let span = match (signal.first(), signal.last()) {
+        (Some(&a), Some(&b)) => format!(
+            "{} shells stand a factor {ABOVE_FLOOR} above the floor, between q = {} and {} × 2π/L",
+            signal.len(),
+            all[a].q,
+            all[b].q
+        ),
+        _ => format!("no shell stands a factor {ABOVE_FLOOR} above the floor"),
+    };
+    format!(
+        "its PSD follows no power law C(q) ∝ q^−2(1+H) over at least {MIN_SHELLS} wavenumber shells and an octave \
+         ({span}), so H cannot be fitted: use a larger map or finer pixels, or a measurement with less noise"
+    )
+}
+
 /// Estimates H, λ_l, λ_u and h_rms from the radially averaged PSD C(q) of `surface` (paper §4.1:
 /// C(q) ∝ q^−2(1+H) between q = 2π/λ_u and 2π/λ_l).
 ///
@@ -143,21 +160,7 @@ pub fn fit(surface: &Surface) -> Result<SpectrumFit> {
         .filter(|&i| all[i].psd > ROUND_OFF * peak && all[i].psd >= ABOVE_FLOOR * floor)
         .collect();
     let runs = Runs::new(&all, &signal);
-    let (lo, hi) = runs.band().ok_or_else(|| {
-        let span = match (signal.first(), signal.last()) {
-            (Some(&a), Some(&b)) => format!(
-                "{} shells stand a factor {ABOVE_FLOOR} above the floor, between q = {} and {} × 2π/L",
-                signal.len(),
-                all[a].q,
-                all[b].q
-            ),
-            _ => format!("no shell stands a factor {ABOVE_FLOOR} above the floor"),
-        };
-        invalid(format!(
-            "its PSD follows no power law C(q) ∝ q^−2(1+H) over at least {MIN_SHELLS} wavenumber shells and an octave \
-             ({span}), so H cannot be fitted: use a larger map or finer pixels, or a measurement with less noise"
-        ))
-    })?;
+    let (lo, hi) = runs.band().ok_or_else(|| invalid(no_band(&all, &signal)))?;
     // The shells at the ends of the power law straddle the cut-offs (only part of their modes lie
     // inside the band), so the slope comes from the shells between them when there are enough.
     let (a, b) = if hi - lo >= 6 { (lo + 1, hi - 1) } else { (lo, hi) };
