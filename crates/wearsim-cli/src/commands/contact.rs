@@ -7,7 +7,7 @@ use std::time::Instant;
 use anyhow::{bail, Result};
 use wearsim::io::{write_json, write_npy_bool, write_npy_f64, OutputDir};
 use wearsim::output::{contact_summary, ContactRecord};
-use wearsim::{composite_heights, Boundary, ContactSolver};
+use wearsim::{composite_heights, Boundary, ContactSolver, Grid};
 
 use super::load_run;
 use crate::out::{say, tell};
@@ -40,18 +40,11 @@ pub struct Args {
     overwrite: super::Overwrite,
 }
 
-pub fn run(args: &Args) -> Result<()> {
-    super::polls_interrupt();
-    let load = args.load;
-    let config = load_run(&args.run)?;
-    if !(load.is_finite() && load > 0.0) {
-        bail!("invalid `--load`: {load} must be a finite positive normal force");
-    }
-    let grid = config.grid()?;
-    wearsim::check::load(load, grid.area(), config.material.flow_pressure())?;
-    let (n, ny, length, dx) = (grid.nx(), grid.ny(), grid.length_x(), grid.pixel_size());
-    let unit = config.units.length_unit();
-    let (shift, offset) = match (args.offset, args.offset_px) {
+/// The sliding offset asked for, in whole pixels and in the length unit `unit`: `--offset-px`, or
+/// `--offset` rounded to pixels (with a note when it is not whole); 0 by default.
+fn offset_of(args: &Args, grid: &Grid, unit: &str) -> Result<(usize, f64)> {
+    let (n, length, dx) = (grid.nx(), grid.length_x(), grid.pixel_size());
+    Ok(match (args.offset, args.offset_px) {
         (_, Some(px)) => {
             if px >= n {
                 bail!(
@@ -79,7 +72,21 @@ pub fn run(args: &Args) -> Result<()> {
             }
             (o.shift, o.shift as f64 * dx)
         }
-    };
+    })
+}
+
+pub fn run(args: &Args) -> Result<()> {
+    super::polls_interrupt();
+    let load = args.load;
+    let config = load_run(&args.run)?;
+    if !(load.is_finite() && load > 0.0) {
+        bail!("invalid `--load`: {load} must be a finite positive normal force");
+    }
+    let grid = config.grid()?;
+    wearsim::check::load(load, grid.area(), config.material.flow_pressure())?;
+    let (n, ny) = (grid.nx(), grid.ny());
+    let unit = config.units.length_unit();
+    let (shift, offset) = offset_of(args, &grid, unit)?;
     let boundary = match &args.boundary {
         Some(name) => name.parse::<Boundary>()?,
         None => config.boundary,

@@ -294,6 +294,39 @@ fn write_pair(
     Ok(())
 }
 
+/// The `[surface]` block of a fit, with the generation parameters it gives on the map's grid and
+/// the notes on what they leave out: the self-affine block, or for a spectrum that is not
+/// self-affine `spectrum_block` with the fit kept below as comments. The fit is reported.
+fn fitted_block(
+    fit: &topography::SpectrumFit,
+    verdict: &topography::Verdict,
+    loaded: &topography::Loaded,
+    seed: u64,
+    source: &str,
+    unit: &str,
+    spectrum_block: &str,
+) -> (String, SpectrumParams, Vec<String>) {
+    let grid = loaded.surface.grid();
+    let (params, fit_notes) = fit.spectrum(&grid);
+    for note in &fit_notes {
+        tell!("warning: {note}");
+    }
+    let block = topography::surface_block(&grid, &params, seed, source, unit.trim_matches(['(', ')']));
+    report_fit(fit, &loaded.periodicity);
+    if let Some(w) = fit.poor_fit_warning() {
+        tell!("warning: {w}");
+    }
+    let block = if verdict.self_affine {
+        block
+    } else {
+        // One [surface] table per run file: the spectrum's, with the self-affine fit kept
+        // below as comments for its numbers.
+        let commented: String = block.lines().map(|l| format!("# {l}\n")).collect();
+        format!("{spectrum_block}\n# The self-affine fit, which leaves out what the spectrum is not:\n{commented}")
+    };
+    (block, params, fit_notes)
+}
+
 fn run_fit(args: &FitArgs) -> Result<()> {
     let how = file_surface(args)?;
     let dir = match &args.out {
@@ -331,33 +364,13 @@ fn run_fit(args: &FitArgs) -> Result<()> {
         .as_ref()
         .map_or_else(|_| topography::Window::for_map(surface), |f| f.window);
     let spectrum_block = spectrum_block(args, &grid, window, unit);
-    let mut spectrum = None;
-    let mut notes = Vec::new();
-    let block = match &fitted {
+    let (block, spectrum, notes) = match &fitted {
         Ok(fit) => {
-            let (params, fit_notes) = fit.spectrum(&grid);
-            for note in &fit_notes {
-                tell!("warning: {note}");
-            }
-            notes = fit_notes;
-            let block = topography::surface_block(&grid, &params, args.seed, &source, unit.trim_matches(['(', ')']));
-            report_fit(fit, &loaded.periodicity);
-            if let Some(w) = fit.poor_fit_warning() {
-                tell!("warning: {w}");
-            }
-            spectrum = Some(params);
-            if verdict.self_affine {
-                block
-            } else {
-                // One [surface] table per run file: the spectrum's, with the self-affine fit kept
-                // below as comments for its numbers.
-                let commented: String = block.lines().map(|l| format!("# {l}\n")).collect();
-                format!(
-                    "{spectrum_block}\n# The self-affine fit, which leaves out what the spectrum is not:\n{commented}"
-                )
-            }
+            let (block, params, notes) =
+                fitted_block(fit, &verdict, &loaded, args.seed, &source, unit, &spectrum_block);
+            (block, Some(params), notes)
         }
-        Err(_) => spectrum_block.clone(),
+        Err(_) => (spectrum_block.clone(), None, Vec::new()),
     };
     if !verdict.self_affine {
         tell!(
