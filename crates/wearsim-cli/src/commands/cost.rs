@@ -202,10 +202,9 @@ pub fn print_run(config: &RunConfig) -> Result<Estimate> {
     Ok(e)
 }
 
-/// Prints the estimate of a study's (shard's) jobs run `workers` at a time on this machine's
-/// threads.
-pub fn print_study(jobs: &[&Job], workers: usize) -> Result<()> {
-    // The cost model sizes sliding steps: the jobs of a model that takes none are counted apart.
+/// The notes on the jobs the cost model leaves out: it sizes sliding steps, so the jobs of a model
+/// that takes none are counted apart.
+fn note_jobs_left_out(jobs: &[&Job]) {
     for model in wearsim::estimate::WearModel::ALL {
         let n = jobs.iter().filter(|j| j.run.model == model).count();
         if let (Some(note), true) = (model.cost_note(), n > 0) {
@@ -216,11 +215,11 @@ pub fn print_study(jobs: &[&Job], workers: usize) -> Result<()> {
             );
         }
     }
-    let jobs: Vec<&Job> = jobs.iter().copied().filter(|j| j.run.model.slides()).collect();
-    if jobs.is_empty() {
-        return Ok(());
-    }
-    let c = calibration()?;
+}
+
+/// The jobs to probe: one per kind of surface (its key), at the heaviest load of its jobs (the
+/// load, and the job's position in `jobs`).
+fn probe_choices(jobs: &[&Job]) -> Result<Vec<(String, f64, usize)>> {
     // One probe per kind of surface (the source less its seed: the spectrum, the grid, the files),
     // at the heaviest load of its jobs: surface pairs of one spectrum differ in their iterations by
     // far less than the factor the cost model allows, and a study of forty pairs at 4096² would
@@ -239,6 +238,19 @@ pub fn print_study(jobs: &[&Job], workers: usize) -> Result<()> {
             None => probes.push((key, load, k)),
         }
     }
+    Ok(probes)
+}
+
+/// Prints the estimate of a study's (shard's) jobs run `workers` at a time on this machine's
+/// threads.
+pub fn print_study(jobs: &[&Job], workers: usize) -> Result<()> {
+    note_jobs_left_out(jobs);
+    let jobs: Vec<&Job> = jobs.iter().copied().filter(|j| j.run.model.slides()).collect();
+    if jobs.is_empty() {
+        return Ok(());
+    }
+    let c = calibration()?;
+    let probes = probe_choices(&jobs)?;
     let mut measured = Vec::with_capacity(probes.len());
     let mut probe_seconds = 0.0;
     let mut iterations = (0.0, 0.0);

@@ -136,6 +136,31 @@ pub fn run(args: &Args) -> Result<()> {
     Ok(())
 }
 
+/// The constants fitted by `estimate-check --fit`, and the run-file line that estimates with them.
+fn print_fitted(c: &Calibration) {
+    say!(
+        "fitted on {} settings ({} particles): residence_factor (c₁) = {:.3}, merging_factor (c₂) = {:.2}, \
+         volume_factor (c_v) = {:.3}, rate_spread = {:.3}, wear_spread = {:.3}",
+        c.settings,
+        c.particles,
+        c.residence_factor,
+        c.merging_factor,
+        c.volume_factor,
+        c.rate_spread,
+        c.wear_spread
+    );
+    say!(
+        "to estimate with them, add to the [sliding] table of a run file or study of these surfaces:\n  \
+         estimate_constants = {{ residence_factor = {:?}, merging_factor = {:?}, volume_factor = {:?}, rate_spread = \
+         {:?}, wear_spread = {:?} }}",
+        c.residence_factor,
+        c.merging_factor,
+        c.volume_factor,
+        c.rate_spread,
+        c.wear_spread
+    );
+}
+
 /// Warnings printed in full before the rest is left to summary.json.
 const WARNINGS_SHOWN: usize = 12;
 
@@ -190,27 +215,7 @@ pub fn check(args: &CheckArgs) -> Result<()> {
     super::check_interrupt()?;
     out.commit()?;
     if let Some(c) = check.fitted {
-        say!(
-            "fitted on {} settings ({} particles): residence_factor (c₁) = {:.3}, merging_factor (c₂) = {:.2}, \
-             volume_factor (c_v) = {:.3}, rate_spread = {:.3}, wear_spread = {:.3}",
-            c.settings,
-            c.particles,
-            c.residence_factor,
-            c.merging_factor,
-            c.volume_factor,
-            c.rate_spread,
-            c.wear_spread
-        );
-        say!(
-            "to estimate with them, add to the [sliding] table of a run file or study of these surfaces:\n  \
-             estimate_constants = {{ residence_factor = {:?}, merging_factor = {:?}, volume_factor = {:?}, rate_spread = \
-             {:?}, wear_spread = {:?} }}",
-            c.residence_factor,
-            c.merging_factor,
-            c.volume_factor,
-            c.rate_spread,
-            c.wear_spread
-        );
+        print_fitted(&c);
         for line in check.summary.describe("with the fitted constants") {
             say!("{line}");
         }

@@ -327,6 +327,21 @@ fn fitted_block(
     (block, params, fit_notes)
 }
 
+/// The note of a spectrum that is not self-affine (`verdict` says why): the block printed carries
+/// its measured PSD, with the self-affine fit as comments where there is one (`fitted`).
+fn note_not_self_affine(source: &str, verdict: &topography::Verdict, fitted: bool) {
+    tell!(
+        "note: the spectrum of {source} is not self-affine ({}); the block below generates periodic surfaces that \
+         carry its measured 2D PSD (source = \"spectrum\"){}",
+        verdict.reasons.join("; "),
+        if fitted {
+            ", with the self-affine fit kept as comments"
+        } else {
+            ""
+        }
+    );
+}
+
 fn run_fit(args: &FitArgs) -> Result<()> {
     let how = file_surface(args)?;
     let dir = match &args.out {
@@ -373,16 +388,7 @@ fn run_fit(args: &FitArgs) -> Result<()> {
         Err(_) => (spectrum_block.clone(), None, Vec::new()),
     };
     if !verdict.self_affine {
-        tell!(
-            "note: the spectrum of {source} is not self-affine ({}); the block below generates periodic surfaces that \
-             carry its measured 2D PSD (source = \"spectrum\"){}",
-            verdict.reasons.join("; "),
-            if fitted.is_ok() {
-                ", with the self-affine fit kept as comments"
-            } else {
-                ""
-            }
-        );
+        note_not_self_affine(&source, &verdict, fitted.is_ok());
     }
     if args.height_unit.is_some() {
         say!("# in a run file with units = \"si\"");
