@@ -51,6 +51,7 @@ __all__ = [
     "pair_seeds",
     "periodicity",
     "poisson_interval",
+    "poor_fit_warning",
     "power_law_fit",
     "preprocess_surface",
     "radial_psd",
@@ -114,6 +115,7 @@ def read_surface(
 def preprocess_surface(heights: _F64Array, detrend: str = "plane", taper: float = 0.0) -> _F64Array: ...
 def periodicity(heights: _F64Array) -> Tuple[float, float]: ...
 def fit_surface(heights: _F64Array, length: float) -> Dict[str, Any]: ...
+def poor_fit_warning(r2: Optional[float]) -> Optional[str]: ...
 def spectrum_pair(
     map: _F64Array,
     length: float,

@@ -352,7 +352,7 @@ def fit_surface(
     h, lx = as_heights("heights", heights, length)
     h = _wearsim.preprocess_surface(h, detrend, taper)
     fit = _wearsim.fit_surface(h, lx)
-    poor_fit = fit.pop("_poor_fit_warning", None)
+    poor_fit = _wearsim.poor_fit_warning(fit.get("r2"))
     if poor_fit is not None:
         warnings.warn(poor_fit, stacklevel=2)
     if not fit.get("self_affine", True):

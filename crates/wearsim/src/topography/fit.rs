@@ -382,12 +382,9 @@ impl SpectrumFit {
         }
     }
 
-    /// The warning of a fit whose log–log line follows the PSD poorly (R² below 0.9): the slope
-    /// −2(1 + H) of paper §4.1 is then a rough estimate of H. None for a good fit, or an undefined R².
+    /// [`poor_fit_warning`] of this fit.
     pub fn poor_fit_warning(&self) -> Option<String> {
-        self.r2
-            .is_some_and(|r| r < R2_MIN)
-            .then(|| format!("the PSD follows a power law poorly (R² < {R2_MIN}): H is a rough estimate"))
+        poor_fit_warning(self.r2)
     }
 
     /// Parameters to generate periodic surfaces with the fitted statistics on `grid`: λ_l raised to
@@ -431,6 +428,14 @@ impl SpectrumFit {
         }
         (params, notes)
     }
+}
+
+/// The warning of a PSD fit whose log–log line follows the PSD poorly (`r2`, its R², below 0.9):
+/// the slope −2(1 + H) of paper §4.1 is then a rough estimate of H. None for a good fit, or an
+/// undefined R².
+pub fn poor_fit_warning(r2: Option<f64>) -> Option<String> {
+    r2.is_some_and(|r| r < R2_MIN)
+        .then(|| format!("the PSD follows a power law poorly (R² < {R2_MIN}): H is a rough estimate"))
 }
 
 /// The `[surface]` block of a run file that generates periodic surfaces with `spectrum` on `grid`,
