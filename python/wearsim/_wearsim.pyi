@@ -35,6 +35,7 @@ __all__ = [
     "aggregate",
     "collect_study",
     "composite_heights",
+    "contact_map",
     "curve_labels",
     "curves",
     "equal_critical_diameter",
@@ -51,6 +52,7 @@ __all__ = [
     "pair_seeds",
     "periodicity",
     "poisson_interval",
+    "poor_fit_warning",
     "power_law_fit",
     "preprocess_surface",
     "radial_psd",
@@ -117,6 +119,7 @@ def read_surface(
 def preprocess_surface(heights: _F64Array, detrend: str = "plane", taper: float = 0.0) -> _F64Array: ...
 def periodicity(heights: _F64Array) -> Tuple[float, float]: ...
 def fit_surface(heights: _F64Array, length: float) -> Dict[str, Any]: ...
+def poor_fit_warning(r2: Optional[float]) -> Optional[str]: ...
 def spectrum_pair(
     map: _F64Array,
     length: float,
@@ -125,6 +128,7 @@ def spectrum_pair(
     seed: int,
     window: Optional[str] = None,
 ) -> Tuple[_F64Array, _F64Array, List[str]]: ...
+def contact_map(pressure: _F64Array) -> npt.NDArray[np.bool_]: ...
 def label_junctions(
     contact: npt.NDArray[np.bool_], connectivity: int = ...
 ) -> Tuple[npt.NDArray[np.int64], npt.NDArray[np.uint64], npt.NDArray[np.bool_]]: ...

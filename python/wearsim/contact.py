@@ -62,7 +62,7 @@ class ContactResult:
     @property
     def contact(self) -> np.ndarray:
         """Contact map, (Nx, Ny) bool: p > 0."""
-        return self.pressure > 0.0
+        return _wearsim.contact_map(self.pressure)
 
 
 class ContactSolver:

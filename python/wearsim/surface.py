@@ -352,9 +352,9 @@ def fit_surface(
     h, lx = as_heights("heights", heights, length)
     h = _wearsim.preprocess_surface(h, detrend, taper)
     fit = _wearsim.fit_surface(h, lx)
-    r2 = fit.get("r2")
-    if r2 is not None and r2 < 0.9:
-        warnings.warn("the PSD follows a power law poorly (R² < 0.9): H is a rough estimate", stacklevel=2)
+    poor_fit = _wearsim.poor_fit_warning(fit.get("r2"))
+    if poor_fit is not None:
+        warnings.warn(poor_fit, stacklevel=2)
     if not fit.get("self_affine", True):
         warnings.warn(
             f"the spectrum is not self-affine ({'; '.join(fit.get('reasons', []))}): the self-affine parameters "

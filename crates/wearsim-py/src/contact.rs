@@ -239,7 +239,6 @@ impl PyContactSolver {
             None => vec![0.0; shape.0 * shape.1],
             Some(p0) => field_of("initial_pressure", &p0, shape, "solver")?,
         };
-        let area = self.grid.area();
         let start = Instant::now();
         // Locked outside the GIL: a thread waiting for another's call never holds the GIL it needs.
         let (info, fields, seconds) = interruptible(py, None, |interrupt| {
@@ -253,7 +252,7 @@ impl PyContactSolver {
                 }
             };
             solver.set_interrupt(interrupt.clone());
-            let r = solver.solve(&h, load / area, flow_pressure, &mut pressure);
+            let r = solver.solve(&h, self.grid.mean_pressure(load), flow_pressure, &mut pressure);
             solver.set_interrupt(Interrupt::default());
             let info = r?;
             let seconds = start.elapsed().as_secs_f64();
@@ -330,6 +329,13 @@ fn label_junctions<'py>(py: Python<'py>, contact: PyReadonlyArray2<'py, bool>, c
     ))
 }
 
+/// The contact map of a pressure field: p > 0, as `wearsim contact` writes it.
+#[pyfunction]
+fn contact_map<'py>(py: Python<'py>, pressure: PyReadonlyArray2<'py, f64>) -> PyResult<Bound<'py, PyArray2<bool>>> {
+    let (shape, p) = field("pressure", &pressure)?;
+    Ok(to_array(py, shape, wearsim::contact::contact_map(&p)))
+}
+
 /// Static model (paper §2, Frérot et al. 2018) on the junction pixel counts of one contact map.
 #[pyfunction]
 fn static_wear_model<'py>(
@@ -356,6 +362,7 @@ fn static_wear_model<'py>(
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyMaterial>()?;
     m.add_class::<PyContactSolver>()?;
+    m.add_function(wrap_pyfunction!(contact_map, m)?)?;
     m.add_function(wrap_pyfunction!(label_junctions, m)?)?;
     m.add_function(wrap_pyfunction!(static_wear_model, m)?)?;
     Ok(())

@@ -62,17 +62,9 @@ pub fn interruptible<T: Send>(
     interruptible_with_progress(py, threads, None, |interrupt, _| work(interrupt))
 }
 
-/// [`interruptible`] with progress: when `callback` is given, the calling thread calls
-/// `callback(done, total)` whenever the work has advanced its [`Progress`], and once at the end. An
-/// exception in the callback stops the work like Ctrl-C and is raised.
-pub fn interruptible_with_progress<T: Send>(
-    py: Python<'_>,
-    threads: Option<usize>,
-    callback: Option<&Bound<'_, PyAny>>,
-    work: impl FnOnce(&Interrupt, &Progress) -> wearsim::Result<T> + Send,
-) -> PyResult<T> {
-    let interrupt = Interrupt::default();
-    let progress = Progress::default();
+/// The pool of `threads` threads a call asked for (None: the global pool), with a `UserWarning`
+/// when the library's check lowers or questions the number.
+fn thread_pool(py: Python<'_>, threads: Option<usize>) -> PyResult<Option<rayon::ThreadPool>> {
     let threads = match threads {
         Some(requested) => {
             let (t, note) = wearsim::check::threads(requested).map_err(to_py)?;
@@ -89,7 +81,7 @@ pub fn interruptible_with_progress<T: Send>(
         }
         None => None,
     };
-    let pool = match threads {
+    Ok(match threads {
         Some(t) => Some(
             rayon::ThreadPoolBuilder::new()
                 .num_threads(t)
@@ -97,7 +89,21 @@ pub fn interruptible_with_progress<T: Send>(
                 .map_err(|e| PyRuntimeError::new_err(format!("cannot start {t} threads: {e}")))?,
         ),
         None => None,
-    };
+    })
+}
+
+/// [`interruptible`] with progress: when `callback` is given, the calling thread calls
+/// `callback(done, total)` whenever the work has advanced its [`Progress`], and once at the end. An
+/// exception in the callback stops the work like Ctrl-C and is raised.
+pub fn interruptible_with_progress<T: Send>(
+    py: Python<'_>,
+    threads: Option<usize>,
+    callback: Option<&Bound<'_, PyAny>>,
+    work: impl FnOnce(&Interrupt, &Progress) -> wearsim::Result<T> + Send,
+) -> PyResult<T> {
+    let interrupt = Interrupt::default();
+    let progress = Progress::default();
+    let pool = thread_pool(py, threads)?;
     let mut reported = 0;
     let mut report = || -> PyResult<()> {
         let done = progress.done.load(Ordering::Relaxed);

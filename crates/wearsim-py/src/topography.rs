@@ -90,6 +90,14 @@ fn fit_surface<'py>(py: Python<'py>, heights: PyReadonlyArray2<'py, f64>, length
     Ok(d)
 }
 
+/// The warning of a PSD fit of R² `r2` that follows a power law poorly, as `wearsim surface fit`
+/// prints it; None for a good fit.
+#[pyfunction]
+#[pyo3(signature = (r2))]
+fn poor_fit_warning(r2: Option<f64>) -> Option<String> {
+    topography::poor_fit_warning(r2)
+}
+
 /// What `spectrum_pair` returns: top, bottom, notes on what the target grid leaves out.
 type SpectrumPairOut<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>, Vec<String>);
 
@@ -143,6 +151,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(preprocess_surface, m)?)?;
     m.add_function(wrap_pyfunction!(periodicity, m)?)?;
     m.add_function(wrap_pyfunction!(fit_surface, m)?)?;
+    m.add_function(wrap_pyfunction!(poor_fit_warning, m)?)?;
     m.add_function(wrap_pyfunction!(spectrum_pair, m)?)?;
     Ok(())
 }

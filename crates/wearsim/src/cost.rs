@@ -161,6 +161,42 @@ impl Estimate {
     }
 }
 
+/// What a Slurm job of an estimated cost should ask for, with room to spare: half the wall time
+/// again (at least a minute), and a quarter of the memory again plus 100 MiB for the process itself.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+pub struct SlurmRequest {
+    /// `--time`, in whole seconds.
+    pub time_seconds: u64,
+    /// `--mem`, in MiB.
+    pub memory_mib: u64,
+}
+
+impl SlurmRequest {
+    /// The request for `seconds` of wall time and `bytes` of peak memory.
+    pub fn with_margins(seconds: f64, bytes: f64) -> Self {
+        Self {
+            time_seconds: (seconds * 1.5).ceil().max(60.0) as u64,
+            memory_mib: (bytes * 1.25 / (1u64 << 20) as f64 + 100.0).ceil() as u64,
+        }
+    }
+}
+
+impl std::fmt::Display for SlurmRequest {
+    /// As `sbatch` options: `--time=D-HH:MM:SS --mem=<MiB>M`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let s = self.time_seconds;
+        write!(
+            f,
+            "--time={}-{:02}:{:02}:{:02} --mem={}M",
+            s / 86_400,
+            s % 86_400 / 3600,
+            s % 3600 / 60,
+            s % 60,
+            self.memory_mib
+        )
+    }
+}
+
 /// The peak memory of one sliding run on `grid`, in bytes: the library's estimate of the arrays a
 /// run holds (the one place an estimate reads it).
 pub fn peak_memory(grid: Grid) -> f64 {
@@ -561,6 +597,22 @@ fn fit(runs: &[CalibrationRun], stopping: Stopping) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn slurm_requests_leave_room() {
+        let r = SlurmRequest::with_margins(3600.0, 1024.0 * 1024.0 * 1024.0);
+        assert_eq!((r.time_seconds, r.memory_mib), (5400, 1380));
+        assert_eq!(r.to_string(), "--time=0-01:30:00 --mem=1380M");
+        // A short job still asks for a minute; days are counted apart.
+        assert_eq!(
+            SlurmRequest::with_margins(1.0, 0.0).to_string(),
+            "--time=0-00:01:00 --mem=100M"
+        );
+        assert_eq!(
+            SlurmRequest::with_margins(2.0 * 86_400.0, 0.0).to_string(),
+            "--time=3-00:00:00 --mem=100M"
+        );
+    }
 
     fn run(n: usize, stopping: Stopping, iterations: usize, seconds: f64, fine: f64) -> CalibrationRun {
         CalibrationRun {

@@ -87,6 +87,25 @@ impl Grid {
         self.length_x() * self.length_y()
     }
 
+    /// Mean (nominal) pressure p̄ = F_N/(Lx Ly) of a normal load `load` on the box: the load a
+    /// contact solve is given (paper §2, where the apparent pressure sets the contact area).
+    pub fn mean_pressure(&self, load: f64) -> f64 {
+        load / self.area()
+    }
+
+    /// A sliding offset along x, in the length unit, as the whole pixels the top surface moves by
+    /// (the composite height at an offset, paper §2): None when it is not within one period [0, Lx).
+    pub fn offset_pixels(&self, offset: f64) -> Option<PixelOffset> {
+        if !offset.is_finite() || offset < 0.0 || offset >= self.length_x() {
+            return None;
+        }
+        let pixels = offset / self.pixel_size;
+        Some(PixelOffset {
+            pixels,
+            shift: (pixels.round() as usize) % self.nx,
+        })
+    }
+
     /// Number of pixels, Nx Ny.
     pub fn pixels(&self) -> usize {
         self.nx * self.ny
@@ -104,9 +123,43 @@ impl Grid {
     }
 }
 
+/// A sliding offset turned into whole pixels ([`Grid::offset_pixels`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PixelOffset {
+    /// The offset in pixels as given, offset/Δx.
+    pub pixels: f64,
+    /// The whole pixels the top surface moves by, within one period [0, Nx).
+    pub shift: usize,
+}
+
+impl PixelOffset {
+    /// Whether the offset is a whole number of pixels (within 10⁻⁶ of one): if not, rounding
+    /// moved it, which a front end says.
+    pub fn is_whole(&self) -> bool {
+        (self.pixels - self.pixels.round()).abs() <= 1e-6
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn loads_and_offsets_in_pixels() {
+        let g = Grid::new(64, 32, 2.0).unwrap();
+        assert_eq!(g.mean_pressure(3.0), 3.0 / (2.0 * 1.0));
+        let dx = g.pixel_size();
+        let whole = g.offset_pixels(5.0 * dx).unwrap();
+        assert_eq!((whole.shift, whole.is_whole()), (5, true));
+        let rounded = g.offset_pixels(5.4 * dx).unwrap();
+        assert_eq!(rounded.shift, 5);
+        assert!(!rounded.is_whole() && (rounded.pixels - 5.4).abs() < 1e-12);
+        // Just under Lx rounds to Nx pixels, which is offset 0 of the next period.
+        assert_eq!(g.offset_pixels(63.9 * dx).unwrap().shift, 0);
+        for outside in [-dx, 2.0, f64::NAN, f64::INFINITY] {
+            assert_eq!(g.offset_pixels(outside), None, "{outside}");
+        }
+    }
 
     #[test]
     fn pixels_are_square() {

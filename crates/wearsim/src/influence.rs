@@ -43,6 +43,16 @@ impl Boundary {
             Boundary::Free => "free",
         }
     }
+
+    /// Whether the top surface may slide by `shift` pixels over a map of this boundary: a sliding
+    /// offset wraps the top surface around the periodic box (paper §2), which a free boundary does
+    /// not have, so there only offset 0 is a contact of the map as given.
+    pub fn allows_offset(self, shift: usize) -> bool {
+        match self {
+            Boundary::Periodic => true,
+            Boundary::Free => shift == 0,
+        }
+    }
 }
 
 impl FromStr for Boundary {
@@ -249,6 +259,12 @@ impl Influence {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn only_a_periodic_map_slides() {
+        assert!(Boundary::Periodic.allows_offset(0) && Boundary::Periodic.allows_offset(7));
+        assert!(Boundary::Free.allows_offset(0) && !Boundary::Free.allows_offset(1));
+    }
 
     /// Midpoint-rule quadrature of 1/(π E* r) over a pixel, for offsets away from the pixel.
     fn quadrature(x: f64, y: f64, dx: f64, e: f64) -> f64 {

@@ -49,7 +49,7 @@
 //! composite_heights(&top, &bottom, 0, &mut heights);
 //! let mut solver = ContactSolver::new(grid, material.effective_modulus(ModulusConvention::HalfSpace))?;
 //! let mut pressure = vec![0.0; grid.pixels()]; // cold start; the result is written here (in E)
-//! let info = solver.solve(&heights, 1e-3 / grid.area(), p_m, &mut pressure)?;
+//! let info = solver.solve(&heights, grid.mean_pressure(1e-3), p_m, &mut pressure)?;
 //! assert!(pressure.iter().all(|&p| p >= 0.0 && p <= p_m * (1.0 + 1e-12)));
 //! let contact_area = info.contact_pixels as f64 / grid.pixels() as f64; // a fraction of Lx·Ly
 //! assert!(contact_area > 0.0 && contact_area < 0.5);

@@ -7,6 +7,9 @@
 //! submodule `b`), `super::x` in `src/a/b.rs` names `a::x` and in `src/a.rs` the top-level `x`
 //! (inside a file's `mod tests`, `super` is the file itself). A name that is not a module (an item
 //! of the crate root such as `crate::VERSION`) is a re-export and refused.
+//!
+//! Beside the imports, two rules of the workspace's sources: the front ends build runs through the
+//! validating builder only, and no function is longer than 80 lines.
 
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -305,4 +308,84 @@ fn front_ends_build_runs_through_the_validating_builder_only() {
         }
     }
     assert!(found.is_empty(), "runs assembled field by field: {found:#?}");
+}
+
+/// The longest a function may be, from the line of `fn` to the line of its closing brace.
+const MAX_FUNCTION_LINES: usize = 80;
+
+/// The functions of `text` longer than [`MAX_FUNCTION_LINES`]: (first line, lines, name). Read in
+/// rustfmt's layout: the signature ends at the first line ending in `{` (a body), `;` (a
+/// declaration) or `}` (a one-line body), and the body at the next line that is its closing brace
+/// alone at the indentation of `fn`.
+fn long_functions(text: &str) -> Vec<(usize, usize, String)> {
+    let lines: Vec<&str> = text.lines().collect();
+    let mut found = Vec::new();
+    for (i, line) in lines.iter().enumerate() {
+        let trimmed = line.trim_start();
+        let mut rest = trimmed;
+        for prefix in [
+            "pub(crate) ",
+            "pub(super) ",
+            "pub ",
+            "const ",
+            "async ",
+            "unsafe ",
+            "extern \"C\" ",
+        ] {
+            rest = rest.strip_prefix(prefix).unwrap_or(rest);
+        }
+        let Some(name) = rest.strip_prefix("fn ") else { continue };
+        let name: String = name.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
+        let indent = &line[..line.len() - trimmed.len()];
+        let Some(open) = (i..lines.len()).find(|&j| lines[j].trim_end().ends_with(['{', ';', '}'])) else {
+            continue;
+        };
+        if !lines[open].trim_end().ends_with('{') {
+            continue;
+        }
+        let close = format!("{indent}}}");
+        if let Some(end) = (open + 1..lines.len()).find(|&j| lines[j].trim_end() == close) {
+            if end - i + 1 > MAX_FUNCTION_LINES {
+                found.push((i + 1, end - i + 1, name));
+            }
+        }
+    }
+    found
+}
+
+#[test]
+fn the_function_length_check_counts_from_fn_to_its_brace() {
+    let body = |n: usize| "        x += 1;\n".repeat(n);
+    let text = format!(
+        "impl A {{\n    pub(crate) fn long(\n        x: u8,\n    ) -> u8 {{\n{}        x\n    }}\n    fn short() {{}}\n}}\n\
+         trait B {{\n    fn declared(\n        x: u8,\n    ) -> u8;\n    fn fits() {{\n{}    }}\n}}\n",
+        body(76),
+        body(78)
+    );
+    assert_eq!(long_functions(&text), [(2, 81, "long".to_string())]);
+}
+
+#[test]
+fn no_function_is_longer_than_80_lines() {
+    // A longer function is split into named steps, each saying what it does.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let mut found = Vec::new();
+    for krate in ["wearsim/src", "wearsim-cli/src", "wearsim-py/src"] {
+        let mut files = Vec::new();
+        visit(&root.join(krate), &mut files);
+        assert!(!files.is_empty(), "{krate}");
+        for file in files {
+            let text = std::fs::read_to_string(&file).unwrap();
+            for (line, length, name) in long_functions(&text) {
+                let file = file.strip_prefix(&root).unwrap_or(&file).display().to_string();
+                found.push(format!("{file}:{line}: `{name}`, {length} lines"));
+            }
+        }
+    }
+    found.sort();
+    assert!(
+        found.is_empty(),
+        "functions over {MAX_FUNCTION_LINES} lines:\n{}",
+        found.join("\n")
+    );
 }

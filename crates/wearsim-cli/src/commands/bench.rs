@@ -78,18 +78,8 @@ fn paper_pair(n: usize) -> Result<(Surface, Surface)> {
     ))
 }
 
-pub fn run(args: &Args) -> Result<()> {
-    if args.calibrate {
-        return super::cost::recalibrate();
-    }
-    for &n in &args.sizes {
-        check_size(n).with_context(|| format!("--sizes {n}"))?;
-    }
-    let threads = rayon::current_num_threads();
-    say!(
-        "wearsim {} bench, {threads} threads; paper roughness, τ̃ = 0.010 E, F_N = 1e-3 E L²",
-        wearsim::VERSION
-    );
+/// The header of the table `bench` prints, one column per number of a row.
+fn print_header() {
     say!(
         "{:>5} {:>9} {:>10} {:>6} {:>6} {:>9} {:>10} {:>6} {:>6} {:>9} {:>9} {:>9} {:>9}",
         "N",
@@ -106,27 +96,47 @@ pub fn run(args: &Args) -> Result<()> {
         "warm/cold",
         "peak_MiB"
     );
+}
+
+/// The median wall time of `repeats` FFT round trips (r2c + c2r with the kernel multiply fused) on
+/// the grid of `top`: the floor of one solver iteration.
+fn fft_seconds(top: &Surface, repeats: usize) -> f64 {
+    let (nx, ny) = (top.nx(), top.ny());
+    let mut plan = FftPlan::new(nx, ny);
+    let kernel = radial_kernel(nx, ny, |qx, qy| 1.0 / (1.0 + qx * qx + qy * qy));
+    let mut out = vec![0.0; nx * ny];
+    plan.convolve(top.heights(), &kernel, &mut out);
+    median(
+        (0..repeats)
+            .map(|_| {
+                let t = Instant::now();
+                plan.convolve(top.heights(), &kernel, &mut out);
+                t.elapsed().as_secs_f64()
+            })
+            .collect(),
+    )
+}
+
+pub fn run(args: &Args) -> Result<()> {
+    if args.calibrate {
+        return super::cost::recalibrate();
+    }
+    for &n in &args.sizes {
+        check_size(n).with_context(|| format!("--sizes {n}"))?;
+    }
+    let threads = rayon::current_num_threads();
+    say!(
+        "wearsim {} bench, {threads} threads; paper roughness, τ̃ = 0.010 E, F_N = 1e-3 E L²",
+        wearsim::VERSION
+    );
+    print_header();
     let mut rows = Vec::new();
     let material = Material::new(1.0, 0.3, 0.010, vec![], 3.0)?;
     let e_star = material.effective_modulus(ModulusConvention::HalfSpace);
     for &n in &args.sizes {
         let (top, bottom) = paper_pair(n)?;
 
-        // FFT round trip (r2c + c2r with the kernel multiply fused), the floor of one iteration.
-        let mut plan = FftPlan::new(n, n);
-        let kernel = radial_kernel(n, n, |qx, qy| 1.0 / (1.0 + qx * qx + qy * qy));
-        let mut out = vec![0.0; n * n];
-        plan.convolve(top.heights(), &kernel, &mut out);
-        let fft_s = median(
-            (0..args.fft_repeats)
-                .map(|_| {
-                    let t = Instant::now();
-                    plan.convolve(top.heights(), &kernel, &mut out);
-                    t.elapsed().as_secs_f64()
-                })
-                .collect(),
-        );
-        drop((plan, kernel, out));
+        let fft_s = fft_seconds(&top, args.fft_repeats);
 
         // As a sliding run solves: the fields stay in the solver, composed there, warm-started.
         let grid = wearsim::Grid::square(n, 1.0)?;

@@ -7,7 +7,7 @@ use std::time::Instant;
 use anyhow::{bail, Result};
 use wearsim::io::{write_json, write_npy_bool, write_npy_f64, OutputDir};
 use wearsim::output::{contact_summary, ContactRecord};
-use wearsim::{composite_heights, Boundary, ContactSolver};
+use wearsim::{composite_heights, Boundary, ContactSolver, Grid};
 
 use super::load_run;
 use crate::out::{say, tell};
@@ -40,18 +40,11 @@ pub struct Args {
     overwrite: super::Overwrite,
 }
 
-pub fn run(args: &Args) -> Result<()> {
-    super::polls_interrupt();
-    let load = args.load;
-    let config = load_run(&args.run)?;
-    if !(load.is_finite() && load > 0.0) {
-        bail!("invalid `--load`: {load} must be a finite positive normal force");
-    }
-    let grid = config.grid()?;
-    wearsim::check::load(load, grid.area(), config.material.flow_pressure())?;
-    let (n, ny, length, dx) = (grid.nx(), grid.ny(), grid.length_x(), grid.pixel_size());
-    let unit = config.units.length_unit();
-    let (shift, offset) = match (args.offset, args.offset_px) {
+/// The sliding offset asked for, in whole pixels and in the length unit `unit`: `--offset-px`, or
+/// `--offset` rounded to pixels (with a note when it is not whole); 0 by default.
+fn offset_of(args: &Args, grid: &Grid, unit: &str) -> Result<(usize, f64)> {
+    let (n, length, dx) = (grid.nx(), grid.length_x(), grid.pixel_size());
+    Ok(match (args.offset, args.offset_px) {
         (_, Some(px)) => {
             if px >= n {
                 bail!(
@@ -63,28 +56,42 @@ pub fn run(args: &Args) -> Result<()> {
         }
         (offset, None) => {
             let offset = offset.unwrap_or(0.0);
-            if !offset.is_finite() || offset < 0.0 || offset >= length {
+            let Some(o) = grid.offset_pixels(offset) else {
                 bail!(
                     "invalid `--offset`: {offset} {unit} is not within one period [0, Lx = {length} {unit}); the \
                      surfaces are periodic, so give the offset modulo Lx"
                 );
-            }
-            let pixels = offset / dx;
-            let shift = (pixels.round() as usize) % n;
-            if (pixels - pixels.round()).abs() > 1e-6 {
+            };
+            if !o.is_whole() {
                 tell!(
-                    "note: --offset {offset} {unit} is {pixels:.3} pixels (Δx = {dx:e} {unit}); using {shift} pixels = {} {unit}",
-                    shift as f64 * dx
+                    "note: --offset {offset} {unit} is {:.3} pixels (Δx = {dx:e} {unit}); using {} pixels = {} {unit}",
+                    o.pixels,
+                    o.shift,
+                    o.shift as f64 * dx
                 );
             }
-            (shift, shift as f64 * dx)
+            (o.shift, o.shift as f64 * dx)
         }
-    };
+    })
+}
+
+pub fn run(args: &Args) -> Result<()> {
+    super::polls_interrupt();
+    let load = args.load;
+    let config = load_run(&args.run)?;
+    if !(load.is_finite() && load > 0.0) {
+        bail!("invalid `--load`: {load} must be a finite positive normal force");
+    }
+    let grid = config.grid()?;
+    wearsim::check::load(load, grid.area(), config.material.flow_pressure())?;
+    let (n, ny) = (grid.nx(), grid.ny());
+    let unit = config.units.length_unit();
+    let (shift, offset) = offset_of(args, &grid, unit)?;
     let boundary = match &args.boundary {
         Some(name) => name.parse::<Boundary>()?,
         None => config.boundary,
     };
-    if boundary == Boundary::Free && shift != 0 {
+    if !boundary.allows_offset(shift) {
         bail!(
             "invalid `--offset`/`--offset-px`: a sliding offset wraps the top surface around the periodic box, which a free boundary \
              does not have; give offset 0 with `boundary = free`, or slide with the periodic boundary"
@@ -113,12 +120,12 @@ pub fn run(args: &Args) -> Result<()> {
     let start = Instant::now();
     let info = solver.solve(
         &heights,
-        load / grid.area(),
+        grid.mean_pressure(load),
         config.material.flow_pressure(),
         &mut pressure,
     )?;
     let record = ContactRecord::new(&info, &pressure, start.elapsed().as_secs_f64());
-    let contact: Vec<bool> = pressure.iter().map(|&p| p > 0.0).collect();
+    let contact = wearsim::contact::contact_map(&pressure);
     let fields = solver.gap_and_displacement(&heights, &pressure, &info)?;
     write_npy_f64(&out.join("pressure.npy"), n, ny, &pressure)?;
     write_npy_bool(&out.join("contact.npy"), n, ny, &contact)?;

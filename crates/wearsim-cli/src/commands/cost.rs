@@ -4,7 +4,7 @@
 
 use anyhow::{Context, Result};
 use wearsim::config::RunConfig;
-use wearsim::cost::{cache_dir, Calibration, Estimate, IterationProbe, StepIterations};
+use wearsim::cost::{cache_dir, Calibration, Estimate, IterationProbe, SlurmRequest, StepIterations};
 use wearsim::run::SlidingRun;
 use wearsim::study::Job;
 
@@ -69,20 +69,6 @@ fn memory(bytes: f64) -> String {
     } else {
         format!("{:.1} GiB", mib / 1024.0)
     }
-}
-
-/// Slurm's `--time` (D-HH:MM:SS) and `--mem` (MiB) for an estimate, with room to spare: half the
-/// time again, a quarter of the memory and 100 MiB for the process itself.
-fn slurm(seconds: f64, bytes: f64) -> String {
-    let s = (seconds * 1.5).ceil().max(60.0) as u64;
-    let mem = (bytes * 1.25 / (1u64 << 20) as f64 + 100.0).ceil() as u64;
-    format!(
-        "--time={}-{:02}:{:02}:{:02} --mem={mem}M",
-        s / 86_400,
-        s % 86_400 / 3600,
-        s % 3600 / 60,
-        s % 60
-    )
 }
 
 /// What an estimate assumes, one line; `measured`: its iterations were measured on the run's own
@@ -210,16 +196,15 @@ pub fn print_run(config: &RunConfig) -> Result<Estimate> {
         counted(e.threads, "thread"),
         e.cpu_hours(),
         memory(e.peak_memory),
-        slurm(e.seconds, e.peak_memory)
+        SlurmRequest::with_margins(e.seconds, e.peak_memory)
     );
     tell!("  ({})", assumptions(&c, true));
     Ok(e)
 }
 
-/// Prints the estimate of a study's (shard's) jobs run `workers` at a time on this machine's
-/// threads.
-pub fn print_study(jobs: &[&Job], workers: usize) -> Result<()> {
-    // The cost model sizes sliding steps: the jobs of a model that takes none are counted apart.
+/// The notes on the jobs the cost model leaves out: it sizes sliding steps, so the jobs of a model
+/// that takes none are counted apart.
+fn note_jobs_left_out(jobs: &[&Job]) {
     for model in wearsim::estimate::WearModel::ALL {
         let n = jobs.iter().filter(|j| j.run.model == model).count();
         if let (Some(note), true) = (model.cost_note(), n > 0) {
@@ -230,11 +215,11 @@ pub fn print_study(jobs: &[&Job], workers: usize) -> Result<()> {
             );
         }
     }
-    let jobs: Vec<&Job> = jobs.iter().copied().filter(|j| j.run.model.slides()).collect();
-    if jobs.is_empty() {
-        return Ok(());
-    }
-    let c = calibration()?;
+}
+
+/// The jobs to probe: one per kind of surface (its key), at the heaviest load of its jobs (the
+/// load, and the job's position in `jobs`).
+fn probe_choices(jobs: &[&Job]) -> Result<Vec<(String, f64, usize)>> {
     // One probe per kind of surface (the source less its seed: the spectrum, the grid, the files),
     // at the heaviest load of its jobs: surface pairs of one spectrum differ in their iterations by
     // far less than the factor the cost model allows, and a study of forty pairs at 4096² would
@@ -253,6 +238,19 @@ pub fn print_study(jobs: &[&Job], workers: usize) -> Result<()> {
             None => probes.push((key, load, k)),
         }
     }
+    Ok(probes)
+}
+
+/// Prints the estimate of a study's (shard's) jobs run `workers` at a time on this machine's
+/// threads.
+pub fn print_study(jobs: &[&Job], workers: usize) -> Result<()> {
+    note_jobs_left_out(jobs);
+    let jobs: Vec<&Job> = jobs.iter().copied().filter(|j| j.run.model.slides()).collect();
+    if jobs.is_empty() {
+        return Ok(());
+    }
+    let c = calibration()?;
+    let probes = probe_choices(&jobs)?;
     let mut measured = Vec::with_capacity(probes.len());
     let mut probe_seconds = 0.0;
     let mut iterations = (0.0, 0.0);
@@ -295,7 +293,7 @@ pub fn print_study(jobs: &[&Job], workers: usize) -> Result<()> {
         memory(peak),
         memory(per_job),
         workers.min(jobs.len()),
-        slurm(seconds, peak)
+        SlurmRequest::with_margins(seconds, peak)
     );
     tell!(
         "  (jobs already done are skipped when the study runs; {})",

@@ -8,9 +8,9 @@ use anyhow::{Context, Result};
 use wearsim::config::Units;
 use wearsim::estimate::{Calibration, Sampling, CALIBRATION, MAX_SAMPLES};
 use wearsim::io::{write_json, write_text, OutputDir};
-use wearsim::output::{Provenance, Table, ESTIMATE_NOTICE};
+use wearsim::output::{Table, ESTIMATE_NOTICE};
 use wearsim::run::SlidingRun;
-use wearsim::study::compare::{compare, fit_warnings, map_jobs, refuse_output_in_study, summarize, ComparisonSummary};
+use wearsim::study::compare::{compare, fit_warnings, map_jobs, refuse_output_in_study, CheckOutcome};
 
 use super::load_run;
 use super::slide::{report_critical_diameters, with_unit};
@@ -136,26 +136,29 @@ pub fn run(args: &Args) -> Result<()> {
     Ok(())
 }
 
-fn describe(what: &str, s: &ComparisonSummary) {
-    let pct = |v: Option<f64>| v.map_or("undefined".into(), |v| format!("{:.1} %", 100.0 * v));
+/// The constants fitted by `estimate-check --fit`, and the run-file line that estimates with them.
+fn print_fitted(c: &Calibration) {
     say!(
-        "{what}: {} settings with at least {} particles ({} left out): W and k median |error| {}, worst {}; dN*₊/ds \
-         median {}, worst {}; the 95 % interval covers W in {}/{} and dN*₊/ds in {}/{}",
-        s.settings,
-        s.min_particles,
-        s.left_out,
-        pct(s.wear_rate_median_error),
-        pct(s.wear_rate_worst_error),
-        pct(s.particle_rate_median_error),
-        pct(s.particle_rate_worst_error),
-        s.wear_rate_covered,
-        s.settings,
-        s.particle_rate_covered,
-        s.settings
+        "fitted on {} settings ({} particles): residence_factor (c₁) = {:.3}, merging_factor (c₂) = {:.2}, \
+         volume_factor (c_v) = {:.3}, rate_spread = {:.3}, wear_spread = {:.3}",
+        c.settings,
+        c.particles,
+        c.residence_factor,
+        c.merging_factor,
+        c.volume_factor,
+        c.rate_spread,
+        c.wear_spread
     );
-    for n in &s.not_covered {
-        say!("  not covered: {n}");
-    }
+    say!(
+        "to estimate with them, add to the [sliding] table of a run file or study of these surfaces:\n  \
+         estimate_constants = {{ residence_factor = {:?}, merging_factor = {:?}, volume_factor = {:?}, rate_spread = \
+         {:?}, wear_spread = {:?} }}",
+        c.residence_factor,
+        c.merging_factor,
+        c.volume_factor,
+        c.rate_spread,
+        c.wear_spread
+    );
 }
 
 /// Warnings printed in full before the rest is left to summary.json.
@@ -179,11 +182,7 @@ pub fn check(args: &CheckArgs) -> Result<()> {
     if left_out > 0 {
         tell!("note: {left_out} jobs of the study are unfinished or estimates, and are left out");
     }
-    let mut warnings: Vec<String> = mapped
-        .warnings
-        .iter()
-        .map(|(w, on)| format!("{w} (job{} {})", if on.len() == 1 { "" } else { "s" }, job_list(on)))
-        .collect();
+    let mut warnings = mapped.warning_lines();
     // Said before the fit, which may fail on the settings they concern.
     for w in warnings.iter().take(WARNINGS_SHOWN) {
         tell!("warning: {w}");
@@ -207,79 +206,23 @@ pub fn check(args: &CheckArgs) -> Result<()> {
     } else {
         None
     };
-    let calibration = fitted.unwrap_or(CALIBRATION);
-    let rows = compare(jobs, &calibration);
-    let summary = summarize(&rows, args.min_particles);
-    let in_use = summarize(&compare(jobs, &CALIBRATION), args.min_particles);
-    write_text(&out.join("comparison.csv"), &Table::of(&rows).to_csv())?;
+    let check = CheckOutcome::of(jobs, fitted, args.min_particles);
+    write_text(&out.join("comparison.csv"), &Table::of(&check.rows).to_csv())?;
     write_json(
         &out.join("summary.json"),
-        &serde_json::json!({
-            "provenance": Provenance::current(),
-            "study": args.dir,
-            "jobs_compared": jobs.len(),
-            "jobs_left_out": left_out,
-            "samples": args.samples.map_or("per job: the study's estimate_samples, else by the sampling error".into(),
-                |k| format!("{k} static maps per job (--samples)")),
-            "calibration": calibration,
-            "fitted": fitted.is_some(),
-            "calibration_in_use": CALIBRATION,
-            "summary": summary,
-            "summary_with_calibration_in_use": in_use,
-            "warnings": warnings,
-            "error_convention": "estimate/sliding − 1 per setting; W and k share it (both W p_m/F_N)",
-            "units_of_comparison": wearsim::output::units_map(
-                jobs.first().map_or(Units::Reduced, |m| m.job.inputs.units),
-                wearsim::output::columns::<wearsim::study::compare::ComparisonRow>().iter().map(String::as_str)
-            ),
-        }),
+        &check.document(&args.dir, &mapped, args.samples, &warnings),
     )?;
     super::check_interrupt()?;
     out.commit()?;
-    if let Some(c) = fitted {
-        say!(
-            "fitted on {} settings ({} particles): residence_factor (c₁) = {:.3}, merging_factor (c₂) = {:.2}, \
-             volume_factor (c_v) = {:.3}, rate_spread = {:.3}, wear_spread = {:.3}",
-            c.settings,
-            c.particles,
-            c.residence_factor,
-            c.merging_factor,
-            c.volume_factor,
-            c.rate_spread,
-            c.wear_spread
-        );
-        say!(
-            "to estimate with them, add to the [sliding] table of a run file or study of these surfaces:\n  \
-             estimate_constants = {{ residence_factor = {:?}, merging_factor = {:?}, volume_factor = {:?}, rate_spread = \
-             {:?}, wear_spread = {:?} }}",
-            c.residence_factor,
-            c.merging_factor,
-            c.volume_factor,
-            c.rate_spread,
-            c.wear_spread
-        );
-        describe("with the fitted constants", &summary);
+    if let Some(c) = check.fitted {
+        print_fitted(&c);
+        for line in check.summary.describe("with the fitted constants") {
+            say!("{line}");
+        }
     }
-    describe("with the constants in use", &in_use);
+    for line in check.in_use.describe("with the constants in use") {
+        say!("{line}");
+    }
     say!("wrote {}", args.out.display());
     Ok(())
-}
-
-/// Job numbers as ranges: 0–3, 7, 9–10.
-fn job_list(jobs: &[usize]) -> String {
-    let mut parts: Vec<String> = Vec::new();
-    let mut i = 0;
-    while i < jobs.len() {
-        let mut j = i;
-        while j + 1 < jobs.len() && jobs[j + 1] == jobs[j] + 1 {
-            j += 1;
-        }
-        parts.push(if j == i {
-            jobs[i].to_string()
-        } else {
-            format!("{}–{}", jobs[i], jobs[j])
-        });
-        i = j + 1;
-    }
-    parts.join(", ")
 }

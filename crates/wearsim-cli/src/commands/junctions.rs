@@ -62,7 +62,7 @@ pub fn run(args: &Args) -> Result<()> {
         );
     }
     let mut labeller = JunctionLabeller::new(rows, cols, connectivity);
-    let count = labeller.label(|k| array.values[k] > 0.0);
+    let count = labeller.label(|k| wearsim::contact::in_contact(array.values[k]));
     let labels: Vec<i64> = labeller
         .labels()
         .iter()

@@ -1,12 +1,13 @@
 //! `wearsim slide`: the sliding wear model on every load of a run file.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use wearsim::config::Units;
+use wearsim::estimate::WearModel;
 use wearsim::io::{write_json, write_text, OutputDir};
 use wearsim::output::{unit_of, FieldSelection, FieldsWriter};
-use wearsim::run::SlidingRun;
+use wearsim::run::{SlidingOutcome, SlidingRun};
 use wearsim::sliding::{Checkpointing, Resumed};
 
 use super::load_run;
@@ -139,22 +140,27 @@ fn print_results(units: Units, runs: &[wearsim::sliding::LoadRun]) {
     }
 }
 
+/// The note of a run file whose model takes no sliding step (`slide` runs the sliding model
+/// whatever it names): which commands make what it asks for.
+fn note_other_model(model: WearModel) {
+    let makers = model
+        .command()
+        .map_or("study jobs".into(), |c| format!("`wearsim {c}` and study jobs"));
+    tell!(
+        "note: the run file asks for {} (`[sliding] model = \"{}\"`), which {makers} make; `slide` runs the \
+         sliding model",
+        model.description(),
+        model.name()
+    );
+}
+
 pub fn run(args: &Args) -> Result<()> {
     let run = &args.run;
     super::polls_interrupt();
     let config = load_run(run)?;
     wearsim::run::sliding_schedule(&config).with_context(|| format!("run file {}", run.display()))?;
     if !config.model.slides() {
-        let model = config.model;
-        let makers = model
-            .command()
-            .map_or("study jobs".into(), |c| format!("`wearsim {c}` and study jobs"));
-        tell!(
-            "note: the run file asks for {} (`[sliding] model = \"{}\"`), which {makers} make; `slide` runs the \
-             sliding model",
-            model.description(),
-            model.name()
-        );
+        note_other_model(config.model);
     }
     let interrupt = super::interrupt();
     // The estimate comes first: a dry run on a login node sizes a job for the nodes it will run on.
@@ -219,16 +225,21 @@ pub fn run(args: &Args) -> Result<()> {
     if let Some(c) = &checkpointing {
         let _ = std::fs::remove_file(&c.path);
     }
-    let runs = &outcome.runs;
-    print_results(units, runs);
+    print_outcome(units, &outcome, steps_per_load, &args.output.out);
+    Ok(())
+}
+
+/// The results of a finished slide, its warnings, and the steps and time it took (`steps_per_load`
+/// per load) with the folder written.
+fn print_outcome(units: Units, outcome: &SlidingOutcome, steps_per_load: usize, out: &Path) {
+    print_results(units, &outcome.runs);
     for w in &outcome.warnings {
         tell!("warning: {w}");
     }
     say!(
         "{} steps in {:.1} s; wrote {}",
-        steps_per_load * runs.len(),
+        steps_per_load * outcome.runs.len(),
         outcome.seconds,
-        args.output.out.display()
+        out.display()
     );
-    Ok(())
 }

@@ -4,7 +4,9 @@ use std::path::{Path, PathBuf};
 
 use crate::progress::Progress;
 use anyhow::{bail, Context, Result};
-use wearsim::study::{collect as collect_study, expand, prepare_folder, run_jobs, shard, workers_for_memory};
+use wearsim::study::{
+    collect as collect_study, expand, prepare_folder, run_jobs, shard, workers_for_memory, RunSummary,
+};
 
 use crate::out::{say, tell};
 
@@ -163,7 +165,13 @@ pub fn run(args: &RunArgs) -> Result<()> {
             out.join("jobs").display()
         );
     }
-    let summary = outcome?;
+    report_run(out, &outcome?);
+    Ok(())
+}
+
+/// What a study run did: the checkpoints' and recomputed jobs' warnings, the jobs computed and
+/// skipped, and the jobs left to another run on folder `out` with who holds them.
+fn report_run(out: &Path, summary: &RunSummary) {
     for note in &summary.checkpoint_warnings {
         tell!("warning: {note}");
     }
@@ -190,7 +198,6 @@ pub fn run(args: &RunArgs) -> Result<()> {
             tell!("  job {i}: {holder}");
         }
     }
-    Ok(())
 }
 
 pub fn collect(args: &CollectArgs) -> Result<()> {

@@ -10,8 +10,9 @@ use anyhow::{bail, Context, Result};
 use wearsim::io::{write_json, write_text, OutputDir};
 use wearsim::output::{surface_fit_summary, surface_summary, SurfaceStatistics};
 use wearsim::surface::pair_seeds;
+use wearsim::surface::SpectrumParams;
 use wearsim::topography::{self, Detrend, FileSurface, Preprocess};
-use wearsim::Surface;
+use wearsim::{Grid, Surface};
 
 use super::load_run;
 use crate::out::{say, say_part, tell};
@@ -187,7 +188,9 @@ fn run_import(args: &ImportArgs) -> Result<()> {
     super::run_child(command, "the import")
 }
 
-fn run_fit(args: &FitArgs) -> Result<()> {
+/// How `surface fit` reads its file: the units, the sides given (at most two, each positive) and the
+/// levelling.
+fn file_surface(args: &FitArgs) -> Result<FileSurface> {
     let scale = |field: &str, unit: &Option<String>| -> Result<f64> {
         Ok(match unit {
             Some(u) => topography::metres_per(field, u)?,
@@ -217,6 +220,130 @@ fn run_fit(args: &FitArgs) -> Result<()> {
     for &l in &args.length {
         wearsim::check::positive("length", l).context("--length")?;
     }
+    Ok(how)
+}
+
+/// The `[surface]` block that carries the map's spectrum as measured, for a spectrum that is not
+/// self-affine: the map as this command read it (its path made absolute, so that a run file
+/// anywhere finds it), with the units and size it was given.
+fn spectrum_block(args: &FitArgs, grid: &Grid, window: topography::Window, unit: &str) -> String {
+    let mut extra = Vec::new();
+    if let Some(l) = args.length.first() {
+        extra.push(format!("map_length = {l}"));
+    }
+    if let Some(u) = &args.height_unit {
+        extra.push(format!("height_unit = \"{u}\""));
+    }
+    if let Some(u) = &args.lateral_unit {
+        extra.push(format!("lateral_unit = \"{u}\""));
+    }
+    let map_path = std::fs::canonicalize(&args.file).unwrap_or_else(|_| args.file.clone());
+    topography::spectrum_block(
+        &map_path.display().to_string(),
+        grid,
+        window,
+        args.seed,
+        &extra,
+        unit.trim_matches(['(', ')']),
+    )
+}
+
+/// The fit in numbers: its band of wavenumbers, what it left out, the x/y power ratio and the
+/// periodicity of the prepared map.
+fn report_fit(fit: &topography::SpectrumFit, periodicity: &topography::Periodicity) {
+    say!(
+        "fitted C(q) ∝ q^−2(1+H) over q = {:.4e} … {:.4e} (2π/λ, {} shells, {} window), R² = {} (log–log PSD); \
+         left out: {} shells at longer wavelengths than λ_u and {} at shorter than λ_l, down to the floor \
+         (round-off or noise) at {:.1e} of the power law at λ_l; x/y power ratio {:.2}; periodicity of the \
+         prepared map: border jumps {:.1} (x) and {:.1} (y) typical steps",
+        fit.fitted_q[0],
+        fit.fitted_q[1],
+        fit.shells,
+        fit.window.name(),
+        fit.r2.map_or("undefined".into(), |r| format!("{r:.4}")),
+        fit.shells_longer,
+        fit.shells_shorter,
+        fit.floor,
+        fit.anisotropy,
+        periodicity.border_step_x,
+        periodicity.border_step_y
+    );
+}
+
+/// A generated pair in `dir` (top.npy, bottom.npy) with `seed`: self-affine with `params`, else
+/// carrying the measured PSD of `surface` (under `window`); the statistics of each printed.
+fn write_pair(
+    dir: &OutputDir,
+    surface: &Surface,
+    params: Option<&SpectrumParams>,
+    window: topography::Window,
+    seed: u64,
+    unit: &str,
+) -> Result<()> {
+    let grid = surface.grid();
+    let (a, b) = pair_seeds(seed);
+    let psd = topography::MeasuredPsd::of(surface, window)?;
+    for (name, seed) in [("top", a), ("bottom", b)] {
+        let s = match params {
+            Some(params) => Surface::generate(grid, params, seed)?,
+            None => psd.generate(grid, seed)?,
+        };
+        s.write_npy(&dir.join(&format!("{name}.npy")))?;
+        print_statistics(name, &SurfaceStatistics::of(&s), unit);
+    }
+    Ok(())
+}
+
+/// The `[surface]` block of a fit, with the generation parameters it gives on the map's grid and
+/// the notes on what they leave out: the self-affine block, or for a spectrum that is not
+/// self-affine `spectrum_block` with the fit kept below as comments. The fit is reported.
+fn fitted_block(
+    fit: &topography::SpectrumFit,
+    verdict: &topography::Verdict,
+    loaded: &topography::Loaded,
+    seed: u64,
+    source: &str,
+    unit: &str,
+    spectrum_block: &str,
+) -> (String, SpectrumParams, Vec<String>) {
+    let grid = loaded.surface.grid();
+    let (params, fit_notes) = fit.spectrum(&grid);
+    for note in &fit_notes {
+        tell!("warning: {note}");
+    }
+    let block = topography::surface_block(&grid, &params, seed, source, unit.trim_matches(['(', ')']));
+    report_fit(fit, &loaded.periodicity);
+    if let Some(w) = fit.poor_fit_warning() {
+        tell!("warning: {w}");
+    }
+    let block = if verdict.self_affine {
+        block
+    } else {
+        // One [surface] table per run file: the spectrum's, with the self-affine fit kept
+        // below as comments for its numbers.
+        let commented: String = block.lines().map(|l| format!("# {l}\n")).collect();
+        format!("{spectrum_block}\n# The self-affine fit, which leaves out what the spectrum is not:\n{commented}")
+    };
+    (block, params, fit_notes)
+}
+
+/// The note of a spectrum that is not self-affine (`verdict` says why): the block printed carries
+/// its measured PSD, with the self-affine fit as comments where there is one (`fitted`).
+fn note_not_self_affine(source: &str, verdict: &topography::Verdict, fitted: bool) {
+    tell!(
+        "note: the spectrum of {source} is not self-affine ({}); the block below generates periodic surfaces that \
+         carry its measured 2D PSD (source = \"spectrum\"){}",
+        verdict.reasons.join("; "),
+        if fitted {
+            ", with the self-affine fit kept as comments"
+        } else {
+            ""
+        }
+    );
+}
+
+fn run_fit(args: &FitArgs) -> Result<()> {
+    let how = file_surface(args)?;
     let dir = match &args.out {
         Some(out) => Some(OutputDir::begin(
             out,
@@ -247,86 +374,21 @@ fn run_fit(args: &FitArgs) -> Result<()> {
         Ok(fit) => fit.verdict(),
         Err(e) => topography::Verdict::no_band(&e.to_string()),
     };
-    // The block that carries the map's spectrum as measured, for a spectrum that is not
-    // self-affine: the map as this command read it (its path made absolute, so that a run file
-    // anywhere finds it), with the units and size it was given.
+    // The window of the fit's PSD, else the one the map would be taken under.
     let window = fitted
         .as_ref()
         .map_or_else(|_| topography::Window::for_map(surface), |f| f.window);
-    let mut extra = Vec::new();
-    if let Some(l) = args.length.first() {
-        extra.push(format!("map_length = {l}"));
-    }
-    if let Some(u) = &args.height_unit {
-        extra.push(format!("height_unit = \"{u}\""));
-    }
-    if let Some(u) = &args.lateral_unit {
-        extra.push(format!("lateral_unit = \"{u}\""));
-    }
-    let map_path = std::fs::canonicalize(&args.file).unwrap_or_else(|_| args.file.clone());
-    let spectrum_block = topography::spectrum_block(
-        &map_path.display().to_string(),
-        &grid,
-        window,
-        args.seed,
-        &extra,
-        unit.trim_matches(['(', ')']),
-    );
-    let mut spectrum = None;
-    let mut notes = Vec::new();
-    let block = match &fitted {
+    let spectrum_block = spectrum_block(args, &grid, window, unit);
+    let (block, spectrum, notes) = match &fitted {
         Ok(fit) => {
-            let (params, fit_notes) = fit.spectrum(&grid);
-            for note in &fit_notes {
-                tell!("warning: {note}");
-            }
-            notes = fit_notes;
-            let block = topography::surface_block(&grid, &params, args.seed, &source, unit.trim_matches(['(', ')']));
-            say!(
-                "fitted C(q) ∝ q^−2(1+H) over q = {:.4e} … {:.4e} (2π/λ, {} shells, {} window), R² = {} (log–log PSD); \
-                 left out: {} shells at longer wavelengths than λ_u and {} at shorter than λ_l, down to the floor \
-                 (round-off or noise) at {:.1e} of the power law at λ_l; x/y power ratio {:.2}; periodicity of the \
-                 prepared map: border jumps {:.1} (x) and {:.1} (y) typical steps",
-                fit.fitted_q[0],
-                fit.fitted_q[1],
-                fit.shells,
-                fit.window.name(),
-                fit.r2.map_or("undefined".into(), |r| format!("{r:.4}")),
-                fit.shells_longer,
-                fit.shells_shorter,
-                fit.floor,
-                fit.anisotropy,
-                loaded.periodicity.border_step_x,
-                loaded.periodicity.border_step_y
-            );
-            if fit.r2.is_some_and(|r| r < 0.9) {
-                tell!("warning: the PSD follows a power law poorly (R² < 0.9): H is a rough estimate");
-            }
-            spectrum = Some(params);
-            if verdict.self_affine {
-                block
-            } else {
-                // One [surface] table per run file: the spectrum's, with the self-affine fit kept
-                // below as comments for its numbers.
-                let commented: String = block.lines().map(|l| format!("# {l}\n")).collect();
-                format!(
-                    "{spectrum_block}\n# The self-affine fit, which leaves out what the spectrum is not:\n{commented}"
-                )
-            }
+            let (block, params, notes) =
+                fitted_block(fit, &verdict, &loaded, args.seed, &source, unit, &spectrum_block);
+            (block, Some(params), notes)
         }
-        Err(_) => spectrum_block.clone(),
+        Err(_) => (spectrum_block.clone(), None, Vec::new()),
     };
     if !verdict.self_affine {
-        tell!(
-            "note: the spectrum of {source} is not self-affine ({}); the block below generates periodic surfaces that \
-             carry its measured 2D PSD (source = \"spectrum\"){}",
-            verdict.reasons.join("; "),
-            if fitted.is_ok() {
-                ", with the self-affine fit kept as comments"
-            } else {
-                ""
-            }
-        );
+        note_not_self_affine(&source, &verdict, fitted.is_ok());
     }
     if args.height_unit.is_some() {
         say!("# in a run file with units = \"si\"");
@@ -347,18 +409,9 @@ fn run_fit(args: &FitArgs) -> Result<()> {
         ),
     )?;
     if args.generate {
-        let (a, b) = pair_seeds(args.seed);
         // The self-affine parameters where the spectrum is self-affine, else the spectrum itself.
         let params = spectrum.as_ref().filter(|_| verdict.self_affine);
-        let psd = topography::MeasuredPsd::of(surface, window)?;
-        for (name, seed) in [("top", a), ("bottom", b)] {
-            let s = match params {
-                Some(params) => Surface::generate(grid, params, seed)?,
-                None => psd.generate(grid, seed)?,
-            };
-            s.write_npy(&dir.join(&format!("{name}.npy")))?;
-            print_statistics(name, &SurfaceStatistics::of(&s), unit);
-        }
+        write_pair(&dir, surface, params, window, args.seed, unit)?;
     }
     dir.commit()?;
     say!("wrote {}", args.out.as_ref().expect("an output folder").display());

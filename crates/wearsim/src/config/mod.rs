@@ -23,8 +23,8 @@ use crate::material::{Material, ModulusConvention};
 use crate::sliding::{
     SlidingConfig, SlidingSetup, DEFAULT_DISTANCE, DEFAULT_RUNNING_IN, DEFAULT_STEP, DEFAULT_STEP_RUNNING_IN,
 };
-use crate::surface::{pair_seeds, Generation, Surface};
-use crate::topography::{metres_per, FileSurface, MeasuredPsd, Preprocess};
+use crate::surface::{pair_seeds, Generation, SpectrumParams, Surface};
+use crate::topography::{metres_per, FileSurface, MeasuredPsd, Preprocess, Window};
 use crate::wear::ParticleRuleKind;
 
 use raw::{one_line, RawRun};
@@ -361,25 +361,7 @@ impl RunConfig {
             SurfaceSource::Arrays { .. } => Err(Error::run_file(
                 "[surface] the surfaces are arrays held by the caller, neither generated nor read from files",
             )),
-            SurfaceSource::Generated { grid, spectrum, seed } => {
-                crate::check::memory(
-                    "generating the surface pair",
-                    grid.nx(),
-                    grid.ny(),
-                    crate::check::SURFACE_ARRAYS,
-                )?;
-                let (top_seed, bottom_seed) = pair_seeds(*seed);
-                let (top, bottom) = rayon::join(
-                    || Surface::generate(*grid, spectrum, top_seed),
-                    || Surface::generate(*grid, spectrum, bottom_seed),
-                );
-                Ok(SurfacePair {
-                    top: top?,
-                    bottom: bottom?,
-                    notes: Vec::new(),
-                    warnings: Vec::new(),
-                })
-            }
+            SurfaceSource::Generated { grid, spectrum, seed } => generated_pair(*grid, spectrum, *seed),
             SurfaceSource::Spectrum {
                 grid,
                 map,
@@ -405,62 +387,9 @@ impl RunConfig {
                     length_y: None,
                     preprocess: Preprocess::default(),
                 };
-                // The map's periodicity warning is left out: the surfaces made of it are periodic.
-                let loaded = crate::topography::load(map, &how)?;
-                let name = map.display().to_string();
-                let psd = MeasuredPsd::of_map(&loaded.surface, *window)?;
-                let window = psd.window();
-                let (top, bottom) = psd.generate_pair(*grid, *seed)?;
-                let mut notes = loaded.notes;
-                notes.push(format!(
-                    "{name}: the surfaces carry its measured PSD ({} window, {} × {} modes) on a {} × {} grid of box \
-                     {:e} × {:e}: h_rms = {:.4e} (the map's: {:.4e})",
-                    window.name(),
-                    psd.grid().nx(),
-                    psd.grid().ny(),
-                    grid.nx(),
-                    grid.ny(),
-                    grid.length_x(),
-                    grid.length_y(),
-                    psd.carried_rms(grid),
-                    psd.rms_height()
-                ));
-                notes.extend(psd.notes(grid, &name));
-                Ok(SurfacePair {
-                    top,
-                    bottom,
-                    notes,
-                    warnings: Vec::new(),
-                })
+                spectrum_pair(map, &how, *grid, *window, *seed)
             }
-            SurfaceSource::Files { top, bottom, .. } => {
-                let how = self.file_surface()?;
-                let t = crate::topography::load(top, &how)?;
-                let b = crate::topography::load(bottom, &how)?;
-                if t.surface.grid() != b.surface.grid() {
-                    let (tg, bg) = (t.surface.grid(), b.surface.grid());
-                    return Err(Error::InvalidSurface {
-                        name: bottom.display().to_string(),
-                        message: format!(
-                            "its grid, {} × {} pixels of {:e}, differs from the top surface's, {} × {} pixels of {:e}",
-                            bg.nx(),
-                            bg.ny(),
-                            bg.pixel_size(),
-                            tg.nx(),
-                            tg.ny(),
-                            tg.pixel_size()
-                        ),
-                    });
-                }
-                let notes = t.notes.into_iter().chain(b.notes).collect();
-                let warnings = t.warnings.into_iter().chain(b.warnings).collect();
-                Ok(SurfacePair {
-                    top: t.surface,
-                    bottom: b.surface,
-                    notes,
-                    warnings,
-                })
-            }
+            SurfaceSource::Files { top, bottom, .. } => file_pair(top, bottom, &self.file_surface()?),
         }
     }
 
@@ -538,16 +467,23 @@ impl RunConfig {
         self.material.effective_modulus(self.modulus)
     }
 
-    /// Every input of the run as one flat record (the fracture energies and loads aside, which a
-    /// results table has one row per).
     /// The static estimate's constants of this run: the run file's own, else the library's.
     pub fn estimate_calibration(&self) -> crate::estimate::Calibration {
         self.estimate_constants.unwrap_or(crate::estimate::CALIBRATION)
     }
 
+    /// Every input of the run as one flat record (the fracture energies and loads aside, which a
+    /// results table has one row per).
     pub fn inputs(&self) -> InputRecord {
+        let mut record = self.record_without_surfaces();
+        self.record_surfaces(&mut record);
+        record
+    }
+
+    /// The record of every input but the surfaces' (their fields left empty).
+    fn record_without_surfaces(&self) -> InputRecord {
         let m = &self.material;
-        let mut record = InputRecord {
+        InputRecord {
             units: self.units,
             grid: None,
             grid_y: None,
@@ -597,14 +533,27 @@ impl RunConfig {
                     c.residence_factor, c.merging_factor, c.volume_factor, c.rate_spread, c.wear_spread
                 )
             }),
+        }
+    }
+
+    /// Where the surfaces come from, into `record`: the grid, and the spectrum, the measured map or
+    /// the files with their units and preparation.
+    fn record_surfaces(&self, record: &mut InputRecord) {
+        let mut record_grid = |grid: &Grid| {
+            record.grid = Some(grid.nx());
+            if !grid.is_square() {
+                record.grid_y = Some(grid.ny());
+                record.length_y = Some(grid.length_y());
+            }
         };
         match &self.surfaces {
-            SurfaceSource::Generated { grid, spectrum, seed } => {
-                record.grid = Some(grid.nx());
-                if !grid.is_square() {
-                    record.grid_y = Some(grid.ny());
-                    record.length_y = Some(grid.length_y());
-                }
+            SurfaceSource::Generated { grid, .. }
+            | SurfaceSource::Spectrum { grid, .. }
+            | SurfaceSource::Arrays { grid, .. } => record_grid(grid),
+            SurfaceSource::Files { .. } => {}
+        }
+        match &self.surfaces {
+            SurfaceSource::Generated { spectrum, seed, .. } => {
                 record.hurst = Some(spectrum.hurst);
                 record.lambda_lower = Some(spectrum.lambda_lower);
                 record.lambda_upper = Some(spectrum.lambda_upper);
@@ -613,20 +562,15 @@ impl RunConfig {
                 record.generation = (spectrum.generation != Generation::default()).then_some(spectrum.generation);
             }
             SurfaceSource::Spectrum {
-                grid,
                 map,
                 map_length,
                 height_unit,
                 lateral_unit,
                 window,
                 seed,
+                ..
             } => {
                 record.source = Some("spectrum".into());
-                record.grid = Some(grid.nx());
-                if !grid.is_square() {
-                    record.grid_y = Some(grid.ny());
-                    record.length_y = Some(grid.length_y());
-                }
                 record.map = Some(map.display().to_string());
                 record.map_length = Some(*map_length);
                 record.height_unit = height_unit.clone();
@@ -634,13 +578,7 @@ impl RunConfig {
                 record.window = *window;
                 record.seed = Some(*seed);
             }
-            SurfaceSource::Arrays { grid, .. } => {
-                record.grid = Some(grid.nx());
-                if !grid.is_square() {
-                    record.grid_y = Some(grid.ny());
-                    record.length_y = Some(grid.length_y());
-                }
-            }
+            SurfaceSource::Arrays { .. } => {}
             SurfaceSource::Files {
                 top,
                 bottom,
@@ -661,8 +599,89 @@ impl RunConfig {
                 }
             }
         }
-        record
     }
+}
+
+/// A pair of self-affine surfaces generated with `spectrum` on `grid`, seeds derived from `seed`.
+fn generated_pair(grid: Grid, spectrum: &SpectrumParams, seed: u64) -> Result<SurfacePair> {
+    crate::check::memory(
+        "generating the surface pair",
+        grid.nx(),
+        grid.ny(),
+        crate::check::SURFACE_ARRAYS,
+    )?;
+    let (top_seed, bottom_seed) = pair_seeds(seed);
+    let (top, bottom) = rayon::join(
+        || Surface::generate(grid, spectrum, top_seed),
+        || Surface::generate(grid, spectrum, bottom_seed),
+    );
+    Ok(SurfacePair {
+        top: top?,
+        bottom: bottom?,
+        notes: Vec::new(),
+        warnings: Vec::new(),
+    })
+}
+
+/// A pair of periodic surfaces on `grid` carrying the measured PSD of `map` (read as `how` says),
+/// with a note on what they carry of it. The map's periodicity warning is left out: the surfaces
+/// made of it are periodic.
+fn spectrum_pair(map: &Path, how: &FileSurface, grid: Grid, window: Option<Window>, seed: u64) -> Result<SurfacePair> {
+    let loaded = crate::topography::load(map, how)?;
+    let name = map.display().to_string();
+    let psd = MeasuredPsd::of_map(&loaded.surface, window)?;
+    let window = psd.window();
+    let (top, bottom) = psd.generate_pair(grid, seed)?;
+    let mut notes = loaded.notes;
+    notes.push(format!(
+        "{name}: the surfaces carry its measured PSD ({} window, {} × {} modes) on a {} × {} grid of box \
+         {:e} × {:e}: h_rms = {:.4e} (the map's: {:.4e})",
+        window.name(),
+        psd.grid().nx(),
+        psd.grid().ny(),
+        grid.nx(),
+        grid.ny(),
+        grid.length_x(),
+        grid.length_y(),
+        psd.carried_rms(&grid),
+        psd.rms_height()
+    ));
+    notes.extend(psd.notes(&grid, &name));
+    Ok(SurfacePair {
+        top,
+        bottom,
+        notes,
+        warnings: Vec::new(),
+    })
+}
+
+/// The surfaces of files `top` and `bottom`, read as `how` says: an error when their grids differ.
+fn file_pair(top: &Path, bottom: &Path, how: &FileSurface) -> Result<SurfacePair> {
+    let t = crate::topography::load(top, how)?;
+    let b = crate::topography::load(bottom, how)?;
+    if t.surface.grid() != b.surface.grid() {
+        let (tg, bg) = (t.surface.grid(), b.surface.grid());
+        return Err(Error::InvalidSurface {
+            name: bottom.display().to_string(),
+            message: format!(
+                "its grid, {} × {} pixels of {:e}, differs from the top surface's, {} × {} pixels of {:e}",
+                bg.nx(),
+                bg.ny(),
+                bg.pixel_size(),
+                tg.nx(),
+                tg.ny(),
+                tg.pixel_size()
+            ),
+        });
+    }
+    let notes = t.notes.into_iter().chain(b.notes).collect();
+    let warnings = t.warnings.into_iter().chain(b.warnings).collect();
+    Ok(SurfacePair {
+        top: t.surface,
+        bottom: b.surface,
+        notes,
+        warnings,
+    })
 }
 
 impl<'a> SlidingSetup<'a> {

@@ -383,52 +383,55 @@ pub(super) fn surface_source(s: &RawSurface, units: Units, base: &Path, files: S
     }
     match (&s.top, &s.bottom) {
         (Some(top), Some(bottom)) => files_source(s, units, base.join(top), base.join(bottom), files),
-        (None, None) => {
-            for (field, value) in [
-                ("height_unit", s.height_unit.is_some()),
-                ("lateral_unit", s.lateral_unit.is_some()),
-                ("detrend", s.detrend.is_some()),
-                ("taper", s.taper.is_some()),
-            ] {
-                if value {
-                    return Err(Error::run_file(format!(
-                        "[surface] `{field}` applies to surfaces read from files (`top` and `bottom`); remove it"
-                    )));
-                }
-            }
-            let grid = generated_grid(
-                s.grid
-                    .ok_or_else(|| missing("grid", "give the number of pixels per side, e.g. 512"))?,
-                s.length.unwrap_or(PerSide::Both(1.0)),
-            )?;
-            let spectrum = SpectrumParams {
-                hurst: s.hurst.unwrap_or(0.7),
-                lambda_lower: s
-                    .lambda_lower
-                    .ok_or_else(|| missing("lambda_lower", "e.g. 16 pixels, 16·length/grid"))?,
-                lambda_upper: s
-                    .lambda_upper
-                    .ok_or_else(|| missing("lambda_upper", "e.g. length/16"))?,
-                rms_height: s.rms_height.ok_or_else(|| missing("rms_height", "e.g. 0.005·length"))?,
-                generation: s.generation.unwrap_or_default(),
-            };
-            spectrum.validate(&grid)?;
-            Ok(SurfaceSource::Generated {
-                grid,
-                spectrum,
-                seed: s.seed.unwrap_or(0),
-            })
-        }
+        (None, None) => generated_source(s),
         _ => Err(Error::run_file(
             "[surface] give both `top` and `bottom` files, or neither (to generate the surfaces)",
         )),
     }
 }
 
-/// The source of surfaces generated from the measured PSD of a map (`source = "spectrum"`): the
-/// map's path resolved against `base`, its units checked as a file's, its size given or read from
-/// its coordinates; the keys of the other sources refused by name.
-fn spectrum_source(s: &RawSurface, units: Units, base: &Path, files: SurfaceFiles) -> Result<SurfaceSource> {
+/// The source of generated self-affine surfaces (neither `top` nor `bottom`): the keys of files
+/// refused by name, the grid and the spectrum given (H = 0.7 by default) and checked on it.
+fn generated_source(s: &RawSurface) -> Result<SurfaceSource> {
+    for (field, value) in [
+        ("height_unit", s.height_unit.is_some()),
+        ("lateral_unit", s.lateral_unit.is_some()),
+        ("detrend", s.detrend.is_some()),
+        ("taper", s.taper.is_some()),
+    ] {
+        if value {
+            return Err(Error::run_file(format!(
+                "[surface] `{field}` applies to surfaces read from files (`top` and `bottom`); remove it"
+            )));
+        }
+    }
+    let grid = generated_grid(
+        s.grid
+            .ok_or_else(|| missing("grid", "give the number of pixels per side, e.g. 512"))?,
+        s.length.unwrap_or(PerSide::Both(1.0)),
+    )?;
+    let spectrum = SpectrumParams {
+        hurst: s.hurst.unwrap_or(0.7),
+        lambda_lower: s
+            .lambda_lower
+            .ok_or_else(|| missing("lambda_lower", "e.g. 16 pixels, 16·length/grid"))?,
+        lambda_upper: s
+            .lambda_upper
+            .ok_or_else(|| missing("lambda_upper", "e.g. length/16"))?,
+        rms_height: s.rms_height.ok_or_else(|| missing("rms_height", "e.g. 0.005·length"))?,
+        generation: s.generation.unwrap_or_default(),
+    };
+    spectrum.validate(&grid)?;
+    Ok(SurfaceSource::Generated {
+        grid,
+        spectrum,
+        seed: s.seed.unwrap_or(0),
+    })
+}
+
+/// The keys of a `source = "spectrum"` table: those of the other sources refused by name, and the
+/// map's units only with units = "si".
+fn spectrum_keys(s: &RawSurface, units: Units) -> Result<()> {
     for (field, value) in [
         ("hurst", s.hurst.is_some()),
         ("lambda_lower", s.lambda_lower.is_some()),
@@ -458,6 +461,14 @@ fn spectrum_source(s: &RawSurface, units: Units, base: &Path, files: SurfaceFile
             }
         }
     }
+    Ok(())
+}
+
+/// The source of surfaces generated from the measured PSD of a map (`source = "spectrum"`): the
+/// map's path resolved against `base`, its units checked as a file's, its size given or read from
+/// its coordinates; the keys of the other sources refused by name.
+fn spectrum_source(s: &RawSurface, units: Units, base: &Path, files: SurfaceFiles) -> Result<SurfaceSource> {
+    spectrum_keys(s, units)?;
     let map = s.map.as_ref().ok_or_else(|| {
         missing(
             "map",

@@ -430,28 +430,7 @@ fn iteration_passes(backend: &mut dyn ContactBackend, reference: &mut Reference,
         &mut |b| vec![b.displacement_and_stats(0.0, pm).energy],
         "displacement_and_stats",
     );
-    run(
-        &mut |b| {
-            let s = b.displacement_and_stats(1e-3, pm);
-            let l = s.load;
-            vec![
-                s.n_free,
-                s.sum,
-                s.sum_sq,
-                s.max_free,
-                s.min_free,
-                s.min_zero,
-                s.max_plastic,
-                s.n_plastic,
-                s.energy,
-                l.free,
-                l.plastic,
-                l.n_contact as f64,
-                l.max_free,
-            ]
-        },
-        "displacement_and_stats",
-    );
+    run(&mut |b| every_stat(b, pm), "displacement_and_stats");
     run(
         &mut |b| {
             b.scale(1.2, pm, false);
@@ -469,21 +448,7 @@ fn iteration_passes(backend: &mut dyn ContactBackend, reference: &mut Reference,
     );
     for (beta, tau, shift) in [(0.0, 0.5, 0.0), (0.3, 2.0, f64::NAN), (0.5, 1e3, 1e-4)] {
         run(
-            &mut |b| {
-                let (st, sdt) = b.direction(1e-3, beta, pm);
-                let curvature = b.response(if shift.is_nan() { 0.0 } else { shift });
-                let u = b.update(1e-3, tau, shift, pm);
-                vec![
-                    st,
-                    sdt,
-                    curvature,
-                    u.total,
-                    u.stats.energy,
-                    u.stats.sum,
-                    f64::from(u8::from(u.released)),
-                    f64::from(u8::from(u.clipped)),
-                ]
-            },
+            &mut |b| conjugate_step(b, beta, tau, shift, pm),
             "direction, response, update",
         );
         run(
@@ -517,6 +482,44 @@ fn iteration_passes(backend: &mut dyn ContactBackend, reference: &mut Reference,
     backend.apply_influence(&input, &mut a);
     reference.apply_influence(&input, &mut b);
     agree_fields(&a, &b, exact, "apply_influence");
+}
+
+/// Every number `displacement_and_stats` reports (at a gap offset of 10⁻³), its load sums included.
+fn every_stat(b: &mut dyn ContactBackend, pm: f64) -> Vec<f64> {
+    let s = b.displacement_and_stats(1e-3, pm);
+    let l = s.load;
+    vec![
+        s.n_free,
+        s.sum,
+        s.sum_sq,
+        s.max_free,
+        s.min_free,
+        s.min_zero,
+        s.max_plastic,
+        s.n_plastic,
+        s.energy,
+        l.free,
+        l.plastic,
+        l.n_contact as f64,
+        l.max_free,
+    ]
+}
+
+/// One conjugate-gradient step (`direction`, `response`, `update`) and every number it reports.
+fn conjugate_step(b: &mut dyn ContactBackend, beta: f64, tau: f64, shift: f64, pm: f64) -> Vec<f64> {
+    let (st, sdt) = b.direction(1e-3, beta, pm);
+    let curvature = b.response(if shift.is_nan() { 0.0 } else { shift });
+    let u = b.update(1e-3, tau, shift, pm);
+    vec![
+        st,
+        sdt,
+        curvature,
+        u.total,
+        u.stats.energy,
+        u.stats.sum,
+        f64::from(u8::from(u.released)),
+        f64::from(u8::from(u.clipped)),
+    ]
 }
 
 /// Runs `f` on the backend and on the reference; what it returns and the pressure it leaves agree.

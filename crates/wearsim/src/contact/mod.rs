@@ -134,6 +134,19 @@ impl std::str::FromStr for Device {
     }
 }
 
+/// Whether a pixel of pressure `p` is in contact: p > 0 (paper §3: the connected components of the
+/// contact map are the junctions). NaN is not.
+#[inline]
+pub fn in_contact(p: f64) -> bool {
+    p > 0.0
+}
+
+/// The contact map of a pressure field, one bool per pixel in its order ([`in_contact`]): what
+/// `wearsim contact` writes as contact.npy and Python's `ContactResult.contact` is.
+pub fn contact_map(pressure: &[f64]) -> Vec<bool> {
+    pressure.iter().map(|&p| in_contact(p)).collect()
+}
+
 /// Which pixels are in contact (p > 0) after a solve, as labelling reads them: one bit per pixel,
 /// made by the backend where the fields live (only the bits cross to the host).
 #[derive(Debug, Clone, Copy)]
@@ -692,6 +705,12 @@ fn converged(info: SolveInfo) -> Result<SolveInfo> {
 mod tests {
     use super::conformance::{agree_fields, backend_passes, uniform, Broken, MakeBackend, GRIDS};
     use super::*;
+
+    #[test]
+    fn the_contact_map_is_the_pixels_of_positive_pressure() {
+        let p = [0.0, 1e-300, -0.0, 2.5, f64::NAN, -1.0];
+        assert_eq!(contact_map(&p), [false, true, false, true, false, false]);
+    }
 
     /// Whole solves with the backend `make` builds against solves with the reference backend, both
     /// boundaries, saturated and elastic, cold and warm-started: pressures and reports agree.

@@ -62,6 +62,54 @@ fn kept_loads(selection: &FieldSelection, loads: usize) -> Result<Vec<usize>> {
     })
 }
 
+/// The coordinates of the store: the loads kept, the sliding distance s and offset (pixels) of the
+/// steps kept, and the positions x, y of the pixels.
+fn write_coordinates(
+    group: &mut crate::io::ZarrGroup,
+    grid: crate::grid::Grid,
+    units: Units,
+    kept_loads: &[f64],
+    steps: &[usize],
+) -> Result<()> {
+    let (nx, ny, dx) = (grid.nx(), grid.ny(), grid.pixel_size());
+    let length = unit_of(units, "s");
+    group.coordinate_f64(
+        "load",
+        kept_loads,
+        json!({"units": unit_of(units, "load"), "long_name": "normal load F_N"}),
+    )?;
+    let s: Vec<f64> = steps.iter().map(|&o| o as f64 * dx).collect();
+    group.coordinate_f64(
+        "s",
+        &s,
+        json!({"units": length, "long_name": "sliding distance of the top surface along x"}),
+    )?;
+    let offset = group.array(
+        "offset",
+        &["s"],
+        &[steps.len()],
+        &[steps.len().max(1)],
+        crate::io::ZarrType::I64,
+        json!({"units": "pixels", "long_name": "sliding offset in pixels"}),
+    )?;
+    offset.write_chunk(
+        &[0],
+        &steps
+            .iter()
+            .flat_map(|&o| (o as i64).to_le_bytes())
+            .collect::<Vec<u8>>(),
+    )?;
+    let x: Vec<f64> = (0..nx).map(|i| i as f64 * dx).collect();
+    let y: Vec<f64> = (0..ny).map(|j| j as f64 * dx).collect();
+    group.coordinate_f64(
+        "x",
+        &x,
+        json!({"units": length, "long_name": "position along x (sliding)"}),
+    )?;
+    group.coordinate_f64("y", &y, json!({"units": length, "long_name": "position along y"}))?;
+    Ok(())
+}
+
 impl FieldsWriter {
     /// Creates the store at `path` (a folder that must not exist) for a run of `loads` over the
     /// schedule `offsets` (pixels) on `grid`.
@@ -81,7 +129,6 @@ impl FieldsWriter {
         }
         let steps: Vec<usize> = offsets.iter().step_by(selection.every).copied().collect();
         let (nx, ny, dx) = (grid.nx(), grid.ny(), grid.pixel_size());
-        let length = unit_of(units, "s");
         let mut group = crate::io::ZarrGroup::create(
             path,
             json!({
@@ -94,40 +141,7 @@ impl FieldsWriter {
             }),
         )?;
         let kept_loads: Vec<f64> = kept.iter().map(|&i| loads[i]).collect();
-        group.coordinate_f64(
-            "load",
-            &kept_loads,
-            json!({"units": unit_of(units, "load"), "long_name": "normal load F_N"}),
-        )?;
-        let s: Vec<f64> = steps.iter().map(|&o| o as f64 * dx).collect();
-        group.coordinate_f64(
-            "s",
-            &s,
-            json!({"units": length, "long_name": "sliding distance of the top surface along x"}),
-        )?;
-        let offset = group.array(
-            "offset",
-            &["s"],
-            &[steps.len()],
-            &[steps.len().max(1)],
-            crate::io::ZarrType::I64,
-            json!({"units": "pixels", "long_name": "sliding offset in pixels"}),
-        )?;
-        offset.write_chunk(
-            &[0],
-            &steps
-                .iter()
-                .flat_map(|&o| (o as i64).to_le_bytes())
-                .collect::<Vec<u8>>(),
-        )?;
-        let x: Vec<f64> = (0..nx).map(|i| i as f64 * dx).collect();
-        let y: Vec<f64> = (0..ny).map(|j| j as f64 * dx).collect();
-        group.coordinate_f64(
-            "x",
-            &x,
-            json!({"units": length, "long_name": "position along x (sliding)"}),
-        )?;
-        group.coordinate_f64("y", &y, json!({"units": length, "long_name": "position along y"}))?;
+        write_coordinates(&mut group, grid, units, &kept_loads, &steps)?;
         let dims = ["load", "s", "x", "y"];
         let shape = [kept.len(), steps.len(), nx, ny];
         let chunks = [1, 1, nx.min(FIELD_CHUNK), ny.min(FIELD_CHUNK)];

@@ -144,6 +144,27 @@ struct Context {
     critical_diameter: f64,
 }
 
+/// The warnings of the wear-rate fit of one setting (`context` names it): no particle or few over
+/// the fit window, or V(s) far from a line (R² < 0.8).
+fn fit_warnings(context: &str, particles_in_fit: usize, wear_rate_r2: Option<f64>, warnings: &mut Vec<String>) {
+    if particles_in_fit == 0 {
+        warnings.push(format!(
+            "{context}: no particle formed after running-in, so W = 0 and its fit (R²) is undefined; no junction \
+             grows to d* in this box at this load"
+        ));
+    } else if particles_in_fit < FEW_PARTICLES {
+        warnings.push(format!(
+            "{context}: only {particles_in_fit} particles formed after running-in (fewer than {FEW_PARTICLES}); W \
+             rests on a handful of events"
+        ));
+    }
+    if let Some(r2) = wear_rate_r2.filter(|r2| *r2 < 0.8) {
+        warnings.push(format!(
+            "{context}: the wear-rate fit is poor (R² = {r2:.3} < 0.8); V(s) is not linear"
+        ));
+    }
+}
+
 /// The result of one fracture energy: W, dN*₊/ds and k fitted over the fit window, the static
 /// model over every offset, the means of appendix C, with the warnings about them.
 fn result_of_energy(
@@ -179,22 +200,7 @@ fn result_of_energy(
     let particle_rate = particle_fit.and_then(|f| finite(f.slope));
     let wear_rate_r2 = wear_fit.and_then(|f| f.r2);
     let context = format!("F_N = {load:.4e}, 𝒢 = {:.4e} (d* = {d:.4e})", c.fracture_energy);
-    if particles_in_fit == 0 {
-        warnings.push(format!(
-            "{context}: no particle formed after running-in, so W = 0 and its fit (R²) is undefined; no junction \
-             grows to d* in this box at this load"
-        ));
-    } else if particles_in_fit < FEW_PARTICLES {
-        warnings.push(format!(
-            "{context}: only {particles_in_fit} particles formed after running-in (fewer than {FEW_PARTICLES}); W \
-             rests on a handful of events"
-        ));
-    }
-    if let Some(r2) = wear_rate_r2.filter(|r2| *r2 < 0.8) {
-        warnings.push(format!(
-            "{context}: the wear-rate fit is poor (R² = {r2:.3} < 0.8); V(s) is not linear"
-        ));
-    }
+    fit_warnings(&context, particles_in_fit, wear_rate_r2, warnings);
     let (k_mean, k_std) = mean_std(steps.iter().map(|r| r.statics[e].wear_coefficient));
     let (w_mean, w_std) = mean_std(steps.iter().map(|r| r.statics[e].wear_rate_over_omega));
     let (critical_junctions_mean, _) = mean_std(fitted.iter().map(|r| r.wear[e].n_critical as f64));

@@ -170,8 +170,7 @@ impl<'a> SlidingState<'a> {
         }
         let load_index = self.finished.len();
         let load = self.setup.sliding.loads[load_index];
-        let state = self.load.as_mut().expect("a load under way");
-        let step_index = state.steps.len();
+        let step_index = self.load.as_ref().expect("a load under way").steps.len();
         let offset = self.offsets[step_index];
         let dx = self.grid.pixel_size();
         let slid = step_index
@@ -179,15 +178,7 @@ impl<'a> SlidingState<'a> {
             .map_or(0.0, |i| (offset - self.offsets[i]) as f64 * dx);
 
         let t0 = Instant::now();
-        self.pressure_unsettled = true;
-        self.solver.compose(offset)?;
-        let info = self
-            .solver
-            .solve_in_place(load / self.grid.area(), self.setup.material.flow_pressure())?;
-        self.pressure_unsettled = false;
-        if let Some(kept) = self.kept.as_mut() {
-            kept.copy_from_slice(self.solver.pressure());
-        }
+        let info = self.solve_at(offset, load)?;
         let t1 = Instant::now();
         let map = self.solver.contact_map();
         let count = self.labeller.label(|k| map.contains(k));
@@ -198,6 +189,7 @@ impl<'a> SlidingState<'a> {
             .iter()
             .map(|&d| static_wear(&self.junctions, d))
             .collect();
+        let state = self.load.as_mut().expect("a load under way");
         let labelled = LabelledStep {
             labeller: &self.labeller,
             junctions: &self.junctions,
@@ -242,6 +234,21 @@ impl<'a> SlidingState<'a> {
             rules: &state.rules,
             solver: &mut self.solver,
         }))
+    }
+
+    /// The contact solve of a step at `offset` (pixels) under `load`, warm-started from the pressure
+    /// in the solver (the previous step's); the pressure kept for a checkpoint follows it.
+    fn solve_at(&mut self, offset: usize, load: f64) -> Result<crate::contact::SolveInfo> {
+        self.pressure_unsettled = true;
+        self.solver.compose(offset)?;
+        let info = self
+            .solver
+            .solve_in_place(self.grid.mean_pressure(load), self.setup.material.flow_pressure())?;
+        self.pressure_unsettled = false;
+        if let Some(kept) = self.kept.as_mut() {
+            kept.copy_from_slice(self.solver.pressure());
+        }
+        Ok(info)
     }
 
     /// A load begins at s = 0 from a cold start, with fresh particle rules and memory.

@@ -149,6 +149,35 @@ pub struct MappedStudy {
     pub warnings: Vec<(String, Vec<usize>)>,
 }
 
+impl MappedStudy {
+    /// Each warning of the jobs' estimates with the jobs that gave it, as ranges: `… (jobs 0–3, 7)`.
+    pub fn warning_lines(&self) -> Vec<String> {
+        self.warnings
+            .iter()
+            .map(|(w, on)| format!("{w} (job{} {})", if on.len() == 1 { "" } else { "s" }, job_ranges(on)))
+            .collect()
+    }
+}
+
+/// Job numbers (ascending) as ranges: 0–3, 7, 9–10.
+pub fn job_ranges(jobs: &[usize]) -> String {
+    let mut parts: Vec<String> = Vec::new();
+    let mut i = 0;
+    while i < jobs.len() {
+        let mut j = i;
+        while j + 1 < jobs.len() && jobs[j + 1] == jobs[j] + 1 {
+            j += 1;
+        }
+        parts.push(if j == i {
+            jobs[i].to_string()
+        } else {
+            format!("{}–{}", jobs[i], jobs[j])
+        });
+        i = j + 1;
+    }
+    parts.join(", ")
+}
+
 /// The finished sliding jobs of study folder `dir` with the static maps of each, taken as `samples`
 /// says (else as each job's `estimate_samples`, else chosen by the sampling error); unfinished
 /// jobs and jobs of a model other than the paper's sliding model
@@ -308,6 +337,94 @@ pub struct ComparisonSummary {
     pub not_covered: Vec<String>,
 }
 
+impl ComparisonSummary {
+    /// The summary in words, as `wearsim estimate-check` prints it under the heading `what`: one
+    /// line of the errors and the coverage, then one per setting not covered.
+    pub fn describe(&self, what: &str) -> Vec<String> {
+        let pct = |v: Option<f64>| v.map_or("undefined".into(), |v| format!("{:.1} %", 100.0 * v));
+        let mut lines = vec![format!(
+            "{what}: {} settings with at least {} particles ({} left out): W and k median |error| {}, worst {}; \
+             dN*₊/ds median {}, worst {}; the 95 % interval covers W in {}/{} and dN*₊/ds in {}/{}",
+            self.settings,
+            self.min_particles,
+            self.left_out,
+            pct(self.wear_rate_median_error),
+            pct(self.wear_rate_worst_error),
+            pct(self.particle_rate_median_error),
+            pct(self.particle_rate_worst_error),
+            self.wear_rate_covered,
+            self.settings,
+            self.particle_rate_covered,
+            self.settings
+        )];
+        lines.extend(self.not_covered.iter().map(|n| format!("  not covered: {n}")));
+        lines
+    }
+}
+
+/// The comparison of a study's mapped jobs under the constants used (fitted on them, or the
+/// library's), and its summaries under those and under the library's constants.
+#[derive(Debug, Clone)]
+pub struct CheckOutcome {
+    /// The constants fitted on the jobs, if they were.
+    pub fitted: Option<Calibration>,
+    /// The constants of `rows` and `summary`: the fitted ones, else the library's.
+    pub calibration: Calibration,
+    pub rows: Vec<ComparisonRow>,
+    pub summary: ComparisonSummary,
+    /// The summary under the library's constants ([`crate::estimate::CALIBRATION`]).
+    pub in_use: ComparisonSummary,
+}
+
+impl CheckOutcome {
+    /// The rows of `jobs` under `fitted` (else the library's constants), summarised over the
+    /// settings with at least `min_particles` particles.
+    pub fn of(jobs: &[MappedJob], fitted: Option<Calibration>, min_particles: usize) -> Self {
+        let calibration = fitted.unwrap_or(crate::estimate::CALIBRATION);
+        let rows = compare(jobs, &calibration);
+        let summary = summarize(&rows, min_particles);
+        let in_use = summarize(&compare(jobs, &crate::estimate::CALIBRATION), min_particles);
+        Self {
+            fitted,
+            calibration,
+            rows,
+            summary,
+            in_use,
+        }
+    }
+
+    /// The summary.json of `wearsim estimate-check` on study folder `study`: `mapped` its jobs,
+    /// `samples` the static maps per job asked for (else the study's), `warnings` every warning said.
+    pub fn document(
+        &self,
+        study: &Path,
+        mapped: &MappedStudy,
+        samples: Option<usize>,
+        warnings: &[String],
+    ) -> serde_json::Value {
+        let jobs = &mapped.jobs;
+        serde_json::json!({
+            "provenance": crate::output::Provenance::current(),
+            "study": study,
+            "jobs_compared": jobs.len(),
+            "jobs_left_out": mapped.left_out,
+            "samples": samples.map_or("per job: the study's estimate_samples, else by the sampling error".into(),
+                |k| format!("{k} static maps per job (--samples)")),
+            "calibration": self.calibration,
+            "fitted": self.fitted.is_some(),
+            "calibration_in_use": crate::estimate::CALIBRATION,
+            "summary": self.summary,
+            "summary_with_calibration_in_use": self.in_use,
+            "warnings": warnings,
+            "error_convention": "estimate/sliding − 1 per setting; W and k share it (both W p_m/F_N)",
+            "units_of_comparison": crate::output::units_map(
+                jobs.first().map_or(crate::config::Units::Reduced, |m| m.job.inputs.units),
+                crate::output::columns::<ComparisonRow>().iter().map(String::as_str)
+            ),
+        })
+    }
+}
+
 fn median(mut v: Vec<f64>) -> Option<f64> {
     if v.is_empty() {
         return None;
@@ -372,6 +489,28 @@ mod tests {
             particle_rate_covered: Some(covered),
             ..Default::default()
         }
+    }
+
+    #[test]
+    fn jobs_are_listed_as_ranges_and_the_summary_in_words() {
+        assert_eq!(job_ranges(&[0, 1, 2, 3, 7, 9, 10]), "0–3, 7, 9–10");
+        assert_eq!(job_ranges(&[]), "");
+        let mapped = MappedStudy {
+            jobs: Vec::new(),
+            left_out: 0,
+            warnings: vec![("a".into(), vec![4]), ("b".into(), vec![1, 2, 5])],
+        };
+        assert_eq!(mapped.warning_lines(), ["a (job 4)", "b (jobs 1–2, 5)"]);
+        let rows = [r(25, 0.1, true), r(30, -0.3, false)];
+        let lines = summarize(&rows, 20).describe("with the constants in use");
+        assert_eq!(
+            lines[0],
+            "with the constants in use: 2 settings with at least 20 particles (0 left out): W and k median |error| \
+             20.0 %, worst 30.0 %; dN*₊/ds median 20.0 %, worst 30.0 %; the 95 % interval covers W in 1/2 and \
+             dN*₊/ds in 1/2"
+        );
+        assert_eq!(lines.len(), 2);
+        assert!(lines[1].starts_with("  not covered: job 0 "), "{lines:?}");
     }
 
     #[test]

@@ -259,23 +259,7 @@ fn expand_with(text: &str, base: &Path, files: SurfaceFiles) -> Result<Study> {
         .map_err(|e| Error::run_file(e.to_string().trim_end().replace('\n', " ")))?;
     let canonical = toml::to_string(&table).map_err(|e| Error::run_file(e.to_string()))?;
     let hash = format!("{:016x}", fnv1a(canonical.as_bytes()));
-    for key in table.keys() {
-        if !["units", "surface", "material", "materials", "contact", "sliding"].contains(&key.as_str()) {
-            return Err(Error::run_file(format!(
-                "unknown key `{key}` at the top of the study file"
-            )));
-        }
-    }
-    if let Some(Value::Array(units)) = table.get("units") {
-        return Err(Error::param(
-            "units",
-            format!(
-                "`units = {}` is a list, but the unit system is one value for the whole study: give `units = \
-                 \"reduced\"` or `units = \"si\"`, and run one study per unit system",
-                Value::Array(units.clone())
-            ),
-        ));
-    }
+    check_top_level(&table)?;
     let materials = materials(&table)?;
     let base_surface = section(&table, "surface")?;
     let contacts = product(&section(&table, "contact")?, "contact", &[])?;
@@ -328,27 +312,7 @@ fn expand_with(text: &str, base: &Path, files: SurfaceFiles) -> Result<Study> {
         }
     }
     if jobs.is_empty() {
-        // An empty list may be a key in the wrong place (`materials = []` under [surface]): the
-        // study with one value in place of each empty list names it.
-        let mut probe = table.clone();
-        fill_empty_lists(&mut probe);
-        if probe != table {
-            let text = toml::to_string(&probe).map_err(|e| Error::run_file(e.to_string()))?;
-            if let Err(e) = expand_with(&text, base, files) {
-                if e.to_string().contains("unknown field") {
-                    return Err(e);
-                }
-            }
-        }
-        let empty: Vec<String> = find_empty_lists(&table);
-        return Err(Error::run_file(format!(
-            "the study expands to no jobs: {} empty; give at least one value",
-            if empty.is_empty() {
-                "a list is".to_string()
-            } else {
-                format!("{} is", empty.join(", "))
-            }
-        )));
+        return Err(no_jobs(&table, base, files));
     }
     Ok(Study {
         jobs,
@@ -356,6 +320,55 @@ fn expand_with(text: &str, base: &Path, files: SurfaceFiles) -> Result<Study> {
         canonical,
         warnings,
     })
+}
+
+/// The top-level keys of a study file: the tables a run file has, `materials`, and one unit system.
+fn check_top_level(table: &Table) -> Result<()> {
+    for key in table.keys() {
+        if !["units", "surface", "material", "materials", "contact", "sliding"].contains(&key.as_str()) {
+            return Err(Error::run_file(format!(
+                "unknown key `{key}` at the top of the study file"
+            )));
+        }
+    }
+    if let Some(Value::Array(units)) = table.get("units") {
+        return Err(Error::param(
+            "units",
+            format!(
+                "`units = {}` is a list, but the unit system is one value for the whole study: give `units = \
+                 \"reduced\"` or `units = \"si\"`, and run one study per unit system",
+                Value::Array(units.clone())
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Why a study expands to no jobs: an empty list, named; or a key in the wrong place (`materials =
+/// []` under [surface]), which the study with one value in place of each empty list names.
+fn no_jobs(table: &Table, base: &Path, files: SurfaceFiles) -> Error {
+    let mut probe = table.clone();
+    fill_empty_lists(&mut probe);
+    if probe != *table {
+        let text = match toml::to_string(&probe) {
+            Ok(text) => text,
+            Err(e) => return Error::run_file(e.to_string()),
+        };
+        if let Err(e) = expand_with(&text, base, files) {
+            if e.to_string().contains("unknown field") {
+                return e;
+            }
+        }
+    }
+    let empty: Vec<String> = find_empty_lists(table);
+    Error::run_file(format!(
+        "the study expands to no jobs: {} empty; give at least one value",
+        if empty.is_empty() {
+            "a list is".to_string()
+        } else {
+            format!("{} is", empty.join(", "))
+        }
+    ))
 }
 
 /// The model of a schedule (`[sliding] model`, the default when absent); `None` for a value that is

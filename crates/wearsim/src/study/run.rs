@@ -246,70 +246,36 @@ pub fn run_jobs(
     interrupt: &Interrupt,
     progress: impl Fn(StudyProgress) + Sync,
 ) -> Result<RunSummary> {
-    let (pending, mut summary) = pending_jobs(dir, jobs)?;
-    let next = AtomicUsize::new(0);
-    let done = AtomicUsize::new(0);
-    let steps_done = AtomicUsize::new(0);
+    let (pending, summary) = pending_jobs(dir, jobs)?;
+    let queue = JobQueue {
+        dir,
+        pending: &pending,
+        checkpoint_every,
+        interrupt,
+        next: AtomicUsize::new(0),
+        done: AtomicUsize::new(0),
+        steps_done: AtomicUsize::new(0),
+        failed: Mutex::new(Vec::new()),
+        elsewhere: Mutex::new(Vec::new()),
+        held: Mutex::new(Vec::new()),
+        notes: Mutex::new(Vec::new()),
+    };
     let steps_total: usize = pending.iter().map(|j| job_steps(j)).sum();
     let report = |jobs_done: usize| {
         progress(StudyProgress {
             jobs_done,
             jobs_total: pending.len(),
-            steps_done: steps_done.load(Ordering::Relaxed).min(steps_total),
+            steps_done: queue.steps_done.load(Ordering::Relaxed).min(steps_total),
             steps_total,
         })
     };
-    let failed: Mutex<Vec<Error>> = Mutex::new(Vec::new());
-    let elsewhere: Mutex<Vec<usize>> = Mutex::new(Vec::new());
-    let held: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
-    let notes: Mutex<Vec<String>> = Mutex::new(Vec::new());
     let stop = std::sync::atomic::AtomicBool::new(false);
     let workers = workers.clamp(1, pending.len().max(1));
     let threads_per_worker = (rayon::current_num_threads() / workers).max(1);
-    let lock_error = || Error::param("study", "a worker of the study runner panicked");
     std::thread::scope(|scope| -> Result<()> {
-        scope.spawn(|| keep_claims_fresh(&stop, &held));
+        scope.spawn(|| keep_claims_fresh(&stop, &queue.held));
         let handles: Vec<_> = (0..workers)
-            .map(|_| {
-                scope.spawn(|| -> Result<()> {
-                    let pool = rayon::ThreadPoolBuilder::new()
-                        .num_threads(threads_per_worker)
-                        .build()
-                        .map_err(|e| Error::param("threads", format!("cannot start a worker's threads: {e}")))?;
-                    loop {
-                        interrupt.check()?;
-                        let i = next.fetch_add(1, Ordering::SeqCst);
-                        let Some(job) = pending.get(i) else { return Ok(()) };
-                        let Some(claim) = Claim::take(dir, job.index)? else {
-                            elsewhere.lock().map_err(|_| lock_error())?.push(job.index);
-                            continue;
-                        };
-                        // Another run may have finished the job between our look and our claim.
-                        if matches!(stored_result(job, dir)?, Stored::Done(_)) {
-                            continue;
-                        }
-                        held.lock().map_err(|_| lock_error())?.push(claim.path().to_path_buf());
-                        let on_step = || {
-                            steps_done.fetch_add(1, Ordering::Relaxed);
-                            report(done.load(Ordering::Relaxed));
-                        };
-                        let outcome =
-                            pool.install(|| run_and_store(job, dir, checkpoint_every, interrupt, &notes, on_step));
-                        held.lock().map_err(|_| lock_error())?.retain(|p| p != claim.path());
-                        drop(claim);
-                        match outcome {
-                            Ok(()) => report(done.fetch_add(1, Ordering::SeqCst) + 1),
-                            Err(Error::Interrupted) => return Err(Error::Interrupted),
-                            Err(e) => failed.lock().map_err(|_| lock_error())?.push(Error::Job {
-                                index: job.index,
-                                material: job.material.clone(),
-                                load: job.load(),
-                                source: Box::new(e),
-                            }),
-                        }
-                    }
-                })
-            })
+            .map(|_| scope.spawn(|| queue.work(threads_per_worker, &report)))
             .collect();
         let mut first: Result<()> = Ok(());
         for h in handles {
@@ -321,23 +287,106 @@ pub fn run_jobs(
         stop.store(true, Ordering::Relaxed);
         first
     })?;
-    summary.computed = done.into_inner();
-    summary.checkpoint_warnings = notes.into_inner().map_err(|_| lock_error())?;
-    summary.claimed_elsewhere = elsewhere.into_inner().map_err(|_| lock_error())?;
-    // Those the other runs finished meanwhile are done; the rest are left undone by this run.
-    summary
-        .claimed_elsewhere
-        .retain(|&i| !crate::study::store::job_path(dir, i).is_file());
-    summary.claimed_elsewhere.sort_unstable();
-    let mut failed = failed.into_inner().map_err(|_| lock_error())?;
-    if !failed.is_empty() {
-        failed.sort_by_key(|e| if let Error::Job { index, .. } = e { *index } else { 0 });
-        return Err(Error::JobsFailed {
-            failed,
-            total: jobs.len(),
-        });
+    queue.into_summary(summary, jobs.len())
+}
+
+/// The error of a lock that a panicking worker of [`run_jobs`] left poisoned.
+fn lock_error() -> Error {
+    Error::param("study", "a worker of the study runner panicked")
+}
+
+/// The jobs [`run_jobs`] computes and what its workers share: the next job to take, the counts
+/// of jobs and steps done, the jobs failed or claimed by another run, the claims held and the
+/// checkpoints' notes.
+struct JobQueue<'a> {
+    dir: &'a Path,
+    pending: &'a [&'a Job],
+    checkpoint_every: Option<std::time::Duration>,
+    interrupt: &'a Interrupt,
+    next: AtomicUsize,
+    done: AtomicUsize,
+    steps_done: AtomicUsize,
+    failed: Mutex<Vec<Error>>,
+    elsewhere: Mutex<Vec<usize>>,
+    held: Mutex<Vec<PathBuf>>,
+    notes: Mutex<Vec<String>>,
+}
+
+impl JobQueue<'_> {
+    /// One worker: takes the next pending job until none is left, on a pool of `threads`; claims,
+    /// computes, stores and releases it, or leaves it to the run that claimed it. `report(jobs
+    /// done)` after every step and job.
+    fn work(&self, threads: usize, report: &(impl Fn(usize) + Sync)) -> Result<()> {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .map_err(|e| Error::param("threads", format!("cannot start a worker's threads: {e}")))?;
+        loop {
+            self.interrupt.check()?;
+            let i = self.next.fetch_add(1, Ordering::SeqCst);
+            let Some(job) = self.pending.get(i) else { return Ok(()) };
+            let Some(claim) = Claim::take(self.dir, job.index)? else {
+                self.elsewhere.lock().map_err(|_| lock_error())?.push(job.index);
+                continue;
+            };
+            // Another run may have finished the job between our look and our claim.
+            if matches!(stored_result(job, self.dir)?, Stored::Done(_)) {
+                continue;
+            }
+            self.held
+                .lock()
+                .map_err(|_| lock_error())?
+                .push(claim.path().to_path_buf());
+            let on_step = || {
+                self.steps_done.fetch_add(1, Ordering::Relaxed);
+                report(self.done.load(Ordering::Relaxed));
+            };
+            let outcome = pool.install(|| {
+                run_and_store(
+                    job,
+                    self.dir,
+                    self.checkpoint_every,
+                    self.interrupt,
+                    &self.notes,
+                    on_step,
+                )
+            });
+            self.held
+                .lock()
+                .map_err(|_| lock_error())?
+                .retain(|p| p != claim.path());
+            drop(claim);
+            match outcome {
+                Ok(()) => report(self.done.fetch_add(1, Ordering::SeqCst) + 1),
+                Err(Error::Interrupted) => return Err(Error::Interrupted),
+                Err(e) => self.failed.lock().map_err(|_| lock_error())?.push(Error::Job {
+                    index: job.index,
+                    material: job.material.clone(),
+                    load: job.load(),
+                    source: Box::new(e),
+                }),
+            }
+        }
     }
-    Ok(summary)
+
+    /// `summary` (of the jobs already done) completed with what the workers did: an error naming the
+    /// failed jobs among `total`, if any failed.
+    fn into_summary(self, mut summary: RunSummary, total: usize) -> Result<RunSummary> {
+        summary.computed = self.done.into_inner();
+        summary.checkpoint_warnings = self.notes.into_inner().map_err(|_| lock_error())?;
+        summary.claimed_elsewhere = self.elsewhere.into_inner().map_err(|_| lock_error())?;
+        // Those the other runs finished meanwhile are done; the rest are left undone by this run.
+        summary
+            .claimed_elsewhere
+            .retain(|&i| !crate::study::store::job_path(self.dir, i).is_file());
+        summary.claimed_elsewhere.sort_unstable();
+        let mut failed = self.failed.into_inner().map_err(|_| lock_error())?;
+        if !failed.is_empty() {
+            failed.sort_by_key(|e| if let Error::Job { index, .. } = e { *index } else { 0 });
+            return Err(Error::JobsFailed { failed, total });
+        }
+        Ok(summary)
+    }
 }
 
 /// How many of `jobs` can run at once in this machine's memory: `workers`, or fewer with a note saying

@@ -14,6 +14,7 @@ use crate::io::{
 };
 pub use crate::io::{CLAIM_EXPIRY, CLAIM_REFRESH};
 use crate::output::{read_job_file, JobResult};
+use crate::sliding::WearResult;
 use crate::study::expand::{Job, Study};
 
 /// Path of job `index`'s result file in a study folder.
@@ -68,55 +69,8 @@ pub fn out_of_range(r: &JobResult, job: &Job) -> Option<String> {
             energies.len()
         ));
     }
-    let nonneg = |v: f64| v.is_finite() && v >= 0.0;
-    let ratio = |v: f64| v.is_finite() && (-1e-9..=1.0 + 1e-9).contains(&v);
     for (e, (w, &g)) in r.results.iter().zip(energies).enumerate() {
-        let optional = [
-            ("wear_rate", w.wear_rate),
-            ("wear_coefficient", w.wear_coefficient),
-            ("particle_rate", w.particle_rate),
-            ("wear_rate_estimate", w.wear_rate_estimate),
-            ("memory_decay_length", w.memory_decay_length),
-            ("memory_fit_initial_junctions", w.memory_fit_initial_junctions),
-            ("running_in_decay_lengths", w.running_in_decay_lengths),
-            ("critical_residence", w.critical_residence),
-        ];
-        let plain = [
-            ("fit_window_start", w.fit_window_start),
-            ("initial_volume", w.initial_volume),
-            ("static_wear_rate", w.static_wear_rate),
-            ("static_wear_coefficient_std", w.static_wear_coefficient_std),
-            ("static_wear_rate_mean", w.static_wear_rate_mean),
-            ("static_wear_rate_std", w.static_wear_rate_std),
-            ("junctions_mean", w.junctions_mean),
-            ("critical_junctions_mean", w.critical_junctions_mean),
-        ];
-        let ratios = [
-            ("wear_rate_r2", w.wear_rate_r2),
-            ("memory_decay_r2", w.memory_decay_r2),
-            ("static_wear_coefficient", Some(w.static_wear_coefficient)),
-            ("static_wear_coefficient_mean", Some(w.static_wear_coefficient_mean)),
-        ];
-        let bad = optional
-            .iter()
-            .find(|(_, v)| v.is_some_and(|v| !nonneg(v)))
-            .map(|(name, v)| (*name, v.unwrap_or_default(), "≥ 0"))
-            .or_else(|| plain.iter().find(|(_, v)| !nonneg(*v)).map(|(n, v)| (*n, *v, "≥ 0")))
-            .or_else(|| {
-                ratios
-                    .iter()
-                    .find(|(_, v)| v.is_some_and(|v| !ratio(v)))
-                    .map(|(n, v)| (*n, v.unwrap_or_default(), "within [0, 1]"))
-            })
-            .or_else(|| (w.fracture_energy != g).then_some(("fracture_energy", w.fracture_energy, "the job's")))
-            .or_else(|| {
-                (!(w.critical_diameter.is_finite() && w.critical_diameter > 0.0)).then_some((
-                    "critical_diameter",
-                    w.critical_diameter,
-                    "> 0",
-                ))
-            });
-        if let Some((name, value, rule)) = bad {
+        if let Some((name, value, rule)) = result_out_of_range(w, g) {
             return Some(format!("`results[{e}].{name}` = {value:e}, which must be {rule}"));
         }
     }
@@ -128,6 +82,73 @@ pub fn out_of_range(r: &JobResult, job: &Job) -> Option<String> {
     if !r.estimates.is_empty() {
         return Some("estimates in the file of a sliding job".into());
     }
+    steps_out_of_range(r, energies.len())
+}
+
+/// A finite value ≥ 0.
+fn nonneg(v: f64) -> bool {
+    v.is_finite() && v >= 0.0
+}
+
+/// A finite value within [0, 1] (to round-off).
+fn ratio(v: f64) -> bool {
+    v.is_finite() && (-1e-9..=1.0 + 1e-9).contains(&v)
+}
+
+/// The first value of one result (of fracture energy `g`) out of its range: its name, the value and
+/// the rule it breaks.
+fn result_out_of_range(w: &WearResult, g: f64) -> Option<(&'static str, f64, &'static str)> {
+    let optional = [
+        ("wear_rate", w.wear_rate),
+        ("wear_coefficient", w.wear_coefficient),
+        ("particle_rate", w.particle_rate),
+        ("wear_rate_estimate", w.wear_rate_estimate),
+        ("memory_decay_length", w.memory_decay_length),
+        ("memory_fit_initial_junctions", w.memory_fit_initial_junctions),
+        ("running_in_decay_lengths", w.running_in_decay_lengths),
+        ("critical_residence", w.critical_residence),
+    ];
+    let plain = [
+        ("fit_window_start", w.fit_window_start),
+        ("initial_volume", w.initial_volume),
+        ("static_wear_rate", w.static_wear_rate),
+        ("static_wear_coefficient_std", w.static_wear_coefficient_std),
+        ("static_wear_rate_mean", w.static_wear_rate_mean),
+        ("static_wear_rate_std", w.static_wear_rate_std),
+        ("junctions_mean", w.junctions_mean),
+        ("critical_junctions_mean", w.critical_junctions_mean),
+    ];
+    let ratios = [
+        ("wear_rate_r2", w.wear_rate_r2),
+        ("memory_decay_r2", w.memory_decay_r2),
+        ("static_wear_coefficient", Some(w.static_wear_coefficient)),
+        ("static_wear_coefficient_mean", Some(w.static_wear_coefficient_mean)),
+    ];
+    optional
+        .iter()
+        .find(|(_, v)| v.is_some_and(|v| !nonneg(v)))
+        .map(|(name, v)| (*name, v.unwrap_or_default(), "≥ 0"))
+        .or_else(|| plain.iter().find(|(_, v)| !nonneg(*v)).map(|(n, v)| (*n, *v, "≥ 0")))
+        .or_else(|| {
+            ratios
+                .iter()
+                .find(|(_, v)| v.is_some_and(|v| !ratio(v)))
+                .map(|(n, v)| (*n, v.unwrap_or_default(), "within [0, 1]"))
+        })
+        .or_else(|| (w.fracture_energy != g).then_some(("fracture_energy", w.fracture_energy, "the job's")))
+        .or_else(|| {
+            (!(w.critical_diameter.is_finite() && w.critical_diameter > 0.0)).then_some((
+                "critical_diameter",
+                w.critical_diameter,
+                "> 0",
+            ))
+        })
+}
+
+/// What in a sliding job's steps (`energies` fracture energies each) is out of range: none, a count
+/// per step that is not one per energy, a negative distance, a contact area outside [0, 1], volumes
+/// or particle counts that fall along the slide.
+fn steps_out_of_range(r: &JobResult, energies: usize) -> Option<String> {
     if r.steps.is_empty() {
         return Some("no sliding step".into());
     }
@@ -138,7 +159,7 @@ pub fn out_of_range(r: &JobResult, job: &Job) -> Option<String> {
             st.volume.len(),
             st.static_wear_coefficient.len(),
         ];
-        let bad = counts.iter().any(|&c| c != energies.len())
+        let bad = counts.iter().any(|&c| c != energies)
             || !nonneg(st.s)
             || !ratio(st.contact_area)
             || st.volume.iter().any(|&v| !nonneg(v))

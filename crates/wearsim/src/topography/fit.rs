@@ -96,6 +96,23 @@ pub const MIN_SHELLS: usize = 6;
 /// a tail under the band, not the band.
 const UNDER: f64 = 10.0;
 
+/// Why [`fit`] finds no power-law band in the shells `all`, of which `signal` stand above the floor.
+fn no_band(all: &[PsdShell], signal: &[usize]) -> String {
+    let span = match (signal.first(), signal.last()) {
+        (Some(&a), Some(&b)) => format!(
+            "{} shells stand a factor {ABOVE_FLOOR} above the floor, between q = {} and {} × 2π/L",
+            signal.len(),
+            all[a].q,
+            all[b].q
+        ),
+        _ => format!("no shell stands a factor {ABOVE_FLOOR} above the floor"),
+    };
+    format!(
+        "its PSD follows no power law C(q) ∝ q^−2(1+H) over at least {MIN_SHELLS} wavenumber shells and an octave \
+         ({span}), so H cannot be fitted: use a larger map or finer pixels, or a measurement with less noise"
+    )
+}
+
 /// Estimates H, λ_l, λ_u and h_rms from the radially averaged PSD C(q) of `surface` (paper §4.1:
 /// C(q) ∝ q^−2(1+H) between q = 2π/λ_u and 2π/λ_l).
 ///
@@ -143,21 +160,7 @@ pub fn fit(surface: &Surface) -> Result<SpectrumFit> {
         .filter(|&i| all[i].psd > ROUND_OFF * peak && all[i].psd >= ABOVE_FLOOR * floor)
         .collect();
     let runs = Runs::new(&all, &signal);
-    let (lo, hi) = runs.band().ok_or_else(|| {
-        let span = match (signal.first(), signal.last()) {
-            (Some(&a), Some(&b)) => format!(
-                "{} shells stand a factor {ABOVE_FLOOR} above the floor, between q = {} and {} × 2π/L",
-                signal.len(),
-                all[a].q,
-                all[b].q
-            ),
-            _ => format!("no shell stands a factor {ABOVE_FLOOR} above the floor"),
-        };
-        invalid(format!(
-            "its PSD follows no power law C(q) ∝ q^−2(1+H) over at least {MIN_SHELLS} wavenumber shells and an octave \
-             ({span}), so H cannot be fitted: use a larger map or finer pixels, or a measurement with less noise"
-        ))
-    })?;
+    let (lo, hi) = runs.band().ok_or_else(|| invalid(no_band(&all, &signal)))?;
     // The shells at the ends of the power law straddle the cut-offs (only part of their modes lie
     // inside the band), so the slope comes from the shells between them when there are enough.
     let (a, b) = if hi - lo >= 6 { (lo + 1, hi - 1) } else { (lo, hi) };
@@ -379,6 +382,11 @@ impl SpectrumFit {
         }
     }
 
+    /// [`poor_fit_warning`] of this fit.
+    pub fn poor_fit_warning(&self) -> Option<String> {
+        poor_fit_warning(self.r2)
+    }
+
     /// Parameters to generate periodic surfaces with the fitted statistics on `grid`: λ_l raised to
     /// two pixels and λ_u lowered to the box where the fit ran past them (a note says so).
     pub fn spectrum(&self, grid: &Grid) -> (SpectrumParams, Vec<String>) {
@@ -420,6 +428,14 @@ impl SpectrumFit {
         }
         (params, notes)
     }
+}
+
+/// The warning of a PSD fit whose log–log line follows the PSD poorly (`r2`, its R², below 0.9):
+/// the slope −2(1 + H) of paper §4.1 is then a rough estimate of H. None for a good fit, or an
+/// undefined R².
+pub fn poor_fit_warning(r2: Option<f64>) -> Option<String> {
+    r2.is_some_and(|r| r < R2_MIN)
+        .then(|| format!("the PSD follows a power law poorly (R² < {R2_MIN}): H is a rough estimate"))
 }
 
 /// The `[surface]` block of a run file that generates periodic surfaces with `spectrum` on `grid`,
@@ -636,6 +652,29 @@ mod tests {
             assert_eq!(f.window, Window::None);
             let v = f.verdict();
             assert!(v.self_affine && v.reasons.is_empty(), "{f:?} {v:?}");
+        }
+    }
+
+    /// The warning of a poor fit: R² below 0.9 and only then, worded as both front ends print it.
+    #[test]
+    fn a_poor_power_law_fit_warns_that_h_is_rough() {
+        let s = generated(
+            Grid::square(128, 1.0).unwrap(),
+            0.7,
+            1.0 / 32.0,
+            0.25,
+            Generation::RandomPhase,
+            1,
+        );
+        let good = fit(&s).unwrap();
+        assert_eq!(good.poor_fit_warning(), None, "{good:?}");
+        let poor = SpectrumFit { r2: Some(0.89), ..good };
+        assert_eq!(
+            poor.poor_fit_warning().as_deref(),
+            Some("the PSD follows a power law poorly (R² < 0.9): H is a rough estimate")
+        );
+        for r2 in [Some(0.9), None] {
+            assert_eq!(SpectrumFit { r2, ..good }.poor_fit_warning(), None);
         }
     }
 

@@ -281,6 +281,45 @@ fn read_text(path: &Path) -> Result<Measured> {
             ));
         }
     }
+    let (rows, header) = number_rows(path, text, sep, is_data)?;
+    if rows.is_empty() {
+        return Err(Error::file(
+            path,
+            "holds no numbers; expected a height matrix or x y z columns",
+        ));
+    }
+    let mut notes = Vec::new();
+    if header > 0 {
+        notes.push(format!("skipped {header} header line(s) of {}", path.display()));
+    }
+    if rows[0].len() == 3 && rows.len() > 3 {
+        return columns_to_grid(path, &rows, notes);
+    }
+    // Each line is a scan line along x, lines stacked along y (as profilometers export and
+    // SurfaceTopography reads them): the map is the transpose of the file's matrix.
+    let (lines, per_line) = (rows.len(), rows[0].len());
+    let mut heights = Vec::with_capacity(lines * per_line);
+    for i in 0..per_line {
+        heights.extend(rows.iter().map(|line| line[i]));
+    }
+    Ok(Measured {
+        rows: per_line,
+        cols: lines,
+        heights,
+        lengths: None,
+        notes,
+    })
+}
+
+/// The rows of numbers of a text file's data lines (`is_data`), separated by `sep`, with the count
+/// of header lines before them (at most 50 lines that are not numbers); an error for a line of
+/// another length than the first's, or a line that is not numbers after the first numbers.
+fn number_rows(
+    path: &Path,
+    text: &str,
+    sep: Separator,
+    is_data: impl Fn(&str) -> bool,
+) -> Result<(Vec<Vec<f64>>, usize)> {
     let mut rows: Vec<Vec<f64>> = Vec::new();
     let mut header = 0;
     for (k, line) in text.lines().enumerate() {
@@ -319,33 +358,7 @@ fn read_text(path: &Path) -> Result<Measured> {
             }
         }
     }
-    if rows.is_empty() {
-        return Err(Error::file(
-            path,
-            "holds no numbers; expected a height matrix or x y z columns",
-        ));
-    }
-    let mut notes = Vec::new();
-    if header > 0 {
-        notes.push(format!("skipped {header} header line(s) of {}", path.display()));
-    }
-    if rows[0].len() == 3 && rows.len() > 3 {
-        return columns_to_grid(path, &rows, notes);
-    }
-    // Each line is a scan line along x, lines stacked along y (as profilometers export and
-    // SurfaceTopography reads them): the map is the transpose of the file's matrix.
-    let (lines, per_line) = (rows.len(), rows[0].len());
-    let mut heights = Vec::with_capacity(lines * per_line);
-    for i in 0..per_line {
-        heights.extend(rows.iter().map(|line| line[i]));
-    }
-    Ok(Measured {
-        rows: per_line,
-        cols: lines,
-        heights,
-        lengths: None,
-        notes,
-    })
+    Ok((rows, header))
 }
 
 /// x y z columns on a regular grid → a height matrix (rows along x) and the box size.

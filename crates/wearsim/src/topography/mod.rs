@@ -19,7 +19,9 @@ mod load;
 mod prepare;
 mod spectrum;
 
-pub use fit::{fit, spectrum_block, surface_block, SpectrumFit, Verdict, ANISOTROPIC, FIT_METHOD, PEAK};
+pub use fit::{
+    fit, poor_fit_warning, spectrum_block, surface_block, SpectrumFit, Verdict, ANISOTROPIC, FIT_METHOD, PEAK,
+};
 pub use formats::{array_shape, metres_per, read, regular_file, Measured};
 pub use load::{file_grid, file_span, load, probe_grid, FileSurface, Loaded};
 pub use prepare::{periodicity, preprocess, Detrend, Periodicity, Preprocess, NOT_PERIODIC};

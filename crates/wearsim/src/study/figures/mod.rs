@@ -16,8 +16,8 @@ use crate::config::Units;
 use crate::error::{Error, Result};
 use crate::output::{
     aggregate, curve_labels, curves, equal_critical_diameter, has_kim_materials, number, pretty, series_job,
-    severity_fits, unit_of, Cell, CurveMaterial, JobResult, SeriesRow, Table, KIM_EXPERIMENTAL_K, KIM_SEVERITY_FIT,
-    PAPER_SEVERITY_FIT,
+    severity_fits, unit_of, Cell, CurveMaterial, JobResult, MaterialSeverity, SeriesRow, Table, KIM_EXPERIMENTAL_K,
+    KIM_SEVERITY_FIT, PAPER_SEVERITY_FIT,
 };
 use crate::stats::{mean_interval, PowerLawFit};
 
@@ -733,83 +733,11 @@ fn pairs_of<'a>(jobs: &'a [JobResult], job: &JobResult) -> Vec<&'a JobResult> {
 /// The figures of one registry entry.
 fn figure(study: &Study, entry: &'static str) -> Vec<Figure> {
     let (data, shown) = (&study.data, study.shown);
-    let all = || data.curves.iter().collect::<Vec<_>>();
-    let against_load = |panels, fitted| LoadFigure {
-        curves: all(),
-        panels,
-        fitted,
-        by_material: false,
-        band: None,
-    };
     match entry {
-        "fig2" => vec![against_load(
-            vec![
-                LoadPanel::per_area("static_wear_rate_mean", "W_static/ω", shown),
-                LoadPanel::new(
-                    "static_wear_coefficient_mean",
-                    "static wear coefficient k_static",
-                    false,
-                ),
-            ],
-            false,
-        )
-        .build(
-            data,
-            shown,
-            entry,
-            "fig2_static_model",
-            "static model, mean over every offset (the paper's Fig. 2 rows: 𝒢 varied, τ̃ varied)".into(),
-        )],
-        "fig4" => vec![against_load(
-            vec![
-                LoadPanel::per_area("wear_rate", "sliding wear rate W = dV/ds", shown),
-                LoadPanel::new("wear_coefficient", "wear coefficient k = W p_m / F_N", true),
-            ],
-            true,
-        )
-        .build(data, shown, entry, "fig4_sliding_wear", fig4_title(data))],
-        "fig5" => vec![against_load(
-            vec![LoadPanel::per_area("particle_rate", "particle rate dN*₊/ds", shown)],
-            true,
-        )
-        .build(
-            data,
-            shown,
-            entry,
-            "fig5_particle_rate",
-            "wear particles emitted per sliding distance".into(),
-        )],
+        "fig2" | "fig4" | "fig5" => vec![against_load(data, shown, entry)],
         "fig4c" => constant_critical_diameter(data, shown),
         "fig6" => vec![kim_comparison(study)],
-        "appC" => vec![
-            LoadFigure {
-                curves: data.curves.iter().filter(|c| c.energy == 0).collect(),
-                ..against_load(
-                    vec![LoadPanel::new(
-                        "junctions_mean",
-                        "junctions N (mean after running-in)",
-                        true,
-                    )],
-                    false,
-                )
-            }
-            .build(data, shown, entry, "appC_junctions", "number of junctions".into()),
-            against_load(
-                vec![LoadPanel::new(
-                    "critical_junctions_mean",
-                    "junctions ≥ d*, N* (mean after running-in)",
-                    true,
-                )],
-                false,
-            )
-            .build(
-                data,
-                shown,
-                entry,
-                "appC_critical_junctions",
-                "number of critical junctions".into(),
-            ),
-        ],
+        "appC" => junction_counts(data, shown),
         "appB-eq5" => vec![equation_5(data, shown)],
         "appF" => contact_severity(study.tidy, shown).into_iter().collect(),
         "fig3" => vec![series_figure(study, entry, "fig3_wear_volume", wear_volume)],
@@ -822,6 +750,78 @@ fn figure(study: &Study, entry: &'static str) -> Vec<Figure> {
         )],
         _ => Vec::new(),
     }
+}
+
+/// A figure against load of every curve, no band, coloured by curve.
+fn every_curve(data: &Curves, panels: Vec<LoadPanel>, fitted: bool) -> LoadFigure<'_> {
+    LoadFigure {
+        curves: data.curves.iter().collect(),
+        panels,
+        fitted,
+        by_material: false,
+        band: None,
+    }
+}
+
+/// Figs. 2 (the static model over every offset), 4 (the sliding model's W and k) and 5 (the
+/// particle rate), against load.
+fn against_load(data: &Curves, shown: Shown, entry: &'static str) -> Figure {
+    let (panels, fitted, name, title) = match entry {
+        "fig2" => (
+            vec![
+                LoadPanel::per_area("static_wear_rate_mean", "W_static/ω", shown),
+                LoadPanel::new(
+                    "static_wear_coefficient_mean",
+                    "static wear coefficient k_static",
+                    false,
+                ),
+            ],
+            false,
+            "fig2_static_model",
+            "static model, mean over every offset (the paper's Fig. 2 rows: 𝒢 varied, τ̃ varied)".to_string(),
+        ),
+        "fig4" => (
+            vec![
+                LoadPanel::per_area("wear_rate", "sliding wear rate W = dV/ds", shown),
+                LoadPanel::new("wear_coefficient", "wear coefficient k = W p_m / F_N", true),
+            ],
+            true,
+            "fig4_sliding_wear",
+            fig4_title(data),
+        ),
+        _ => (
+            vec![LoadPanel::per_area("particle_rate", "particle rate dN*₊/ds", shown)],
+            true,
+            "fig5_particle_rate",
+            "wear particles emitted per sliding distance".to_string(),
+        ),
+    };
+    every_curve(data, panels, fitted).build(data, shown, entry, name, title)
+}
+
+/// Appendix C: the junctions N, one curve per setting (N does not depend on 𝒢), and the critical
+/// junctions N*, one per curve.
+fn junction_counts(data: &Curves, shown: Shown) -> Vec<Figure> {
+    let junctions = LoadPanel::new("junctions_mean", "junctions N (mean after running-in)", true);
+    let critical = LoadPanel::new(
+        "critical_junctions_mean",
+        "junctions ≥ d*, N* (mean after running-in)",
+        true,
+    );
+    vec![
+        LoadFigure {
+            curves: data.curves.iter().filter(|c| c.energy == 0).collect(),
+            ..every_curve(data, vec![junctions], false)
+        }
+        .build(data, shown, "appC", "appC_junctions", "number of junctions".into()),
+        every_curve(data, vec![critical], false).build(
+            data,
+            shown,
+            "appC",
+            "appC_critical_junctions",
+            "number of critical junctions".into(),
+        ),
+    ]
 }
 
 /// Fig. 4's title: what it draws, and, where the study holds them, that the estimate's curves are
@@ -968,67 +968,66 @@ fn r2_text(fit: &PowerLawFit) -> String {
     fit.r2.map_or("undefined".into(), |r| format!("{r:.3}"))
 }
 
-/// Appendix F: W against the contact severity S_c = p_N √h_rms / K_Ic per material with its fit
-/// W = α S_cⁿ, the fit over all materials, and beside Kim's ceramics the paper's and Kim et al.'s
-/// fits. None with fewer than two jobs with W > 0 on generated surfaces.
-fn contact_severity(tidy: &Table, shown: Shown) -> Option<Figure> {
-    let (materials, all) = severity_fits(tidy);
-    let all = all?;
-    let s_c = materials.iter().flat_map(|m| m.points.iter().map(|p| p.0));
-    let (lo, hi) = s_c.fold((f64::INFINITY, 0.0_f64), |(a, b), x| (a.min(x), b.max(x)));
-    // Fitted lines over the points' span of S_c.
-    let line = |alpha: f64, n: f64| vec![Point::at(lo, alpha * lo.powf(n)), Point::at(hi, alpha * hi.powf(n))];
-    let area = shown.unit("wear_rate");
-    let (mut series, mut legend) = (Vec::new(), Vec::new());
-    for (m, mat) in materials.iter().enumerate() {
-        let kim = mat.kim.map_or(String::new(), |k| format!(" (Kim et al.'s {})", k.name));
-        series.push(Series {
-            label: format!("{}{kim}", mat.material),
-            color: Color::Palette(m),
-            marker: m,
-            style: Style::Markers,
-            points: mat.points.iter().map(|&(x, y)| Point::at(x, y)).collect(),
-        });
-        let label = match mat.fit {
-            Some(fit) => {
-                series.push(Series {
-                    label: format!("{}: fit", mat.material),
-                    color: Color::Palette(m),
-                    marker: m,
-                    style: Style::Line {
-                        dashed: false,
-                        width: 1,
-                    },
-                    points: line(fit.prefactor, fit.exponent),
-                });
-                format!(
-                    "{}{kim}: α = {}, n = {:.2}, R² = {}",
-                    mat.material,
-                    number(fit.prefactor),
-                    fit.exponent,
-                    r2_text(&fit)
-                )
-            }
-            None => format!("{}{kim}: one S_c, no fit", mat.material),
-        };
-        legend.push(LegendEntry {
-            label,
-            color: Color::Palette(m),
-            marker: m,
-            swatch: if mat.fit.is_some() {
-                Swatch::LineMarker
-            } else {
-                Swatch::Marker
-            },
-        });
-    }
+/// A fitted power law drawn over a span of S_c.
+type Line<'a> = &'a dyn Fn(f64, f64) -> Vec<Point>;
+
+/// One material of appendix F: its points (S_c, W), its fit W = α S_cⁿ where it has one, and its
+/// legend entry.
+fn material_severity(m: usize, mat: &MaterialSeverity, line: Line) -> (Vec<Series>, LegendEntry) {
+    let kim = mat.kim.map_or(String::new(), |k| format!(" (Kim et al.'s {})", k.name));
+    let mut series = vec![Series {
+        label: format!("{}{kim}", mat.material),
+        color: Color::Palette(m),
+        marker: m,
+        style: Style::Markers,
+        points: mat.points.iter().map(|&(x, y)| Point::at(x, y)).collect(),
+    }];
+    let label = match mat.fit {
+        Some(fit) => {
+            series.push(Series {
+                label: format!("{}: fit", mat.material),
+                color: Color::Palette(m),
+                marker: m,
+                style: Style::Line {
+                    dashed: false,
+                    width: 1,
+                },
+                points: line(fit.prefactor, fit.exponent),
+            });
+            format!(
+                "{}{kim}: α = {}, n = {:.2}, R² = {}",
+                mat.material,
+                number(fit.prefactor),
+                fit.exponent,
+                r2_text(&fit)
+            )
+        }
+        None => format!("{}{kim}: one S_c, no fit", mat.material),
+    };
+    let swatch = if mat.fit.is_some() {
+        Swatch::LineMarker
+    } else {
+        Swatch::Marker
+    };
+    let entry = LegendEntry {
+        label,
+        color: Color::Palette(m),
+        marker: m,
+        swatch,
+    };
+    (series, entry)
+}
+
+/// The reference lines of appendix F: the fit over all materials, and beside Kim's ceramics (SI
+/// units; the paper's numbers belong to them only) the paper's fit to its simulations and Kim et
+/// al.'s to their experiments.
+fn severity_references(all: PowerLawFit, kim: bool) -> Vec<((f64, f64), String, Color)> {
     let mut references = vec![(
         (all.prefactor, all.exponent),
         "all materials, least-squares fit (log–log)".to_string(),
         Color::Black,
     )];
-    // The paper's numbers belong to Kim's ceramics (SI units) only.
-    if materials.iter().any(|m| m.kim.is_some()) {
+    if kim {
         for ((alpha, n), who) in [
             (
                 PAPER_SEVERITY_FIT,
@@ -1043,14 +1042,28 @@ fn contact_severity(tidy: &Table, shown: Shown) -> Option<Figure> {
             ));
         }
     }
-    for ((alpha, n), label, color) in references {
-        series.push(Series {
-            label: label.clone(),
-            color,
-            marker: 0,
-            style: Style::Line { dashed: true, width: 1 },
-            points: line(alpha, n),
-        });
+    references
+}
+
+/// Appendix F: W against the contact severity S_c = p_N √h_rms / K_Ic per material with its fit
+/// W = α S_cⁿ, the fit over all materials, and beside Kim's ceramics the paper's and Kim et al.'s
+/// fits. None with fewer than two jobs with W > 0 on generated surfaces.
+fn contact_severity(tidy: &Table, shown: Shown) -> Option<Figure> {
+    let (materials, all) = severity_fits(tidy);
+    let all = all?;
+    let s_c = materials.iter().flat_map(|m| m.points.iter().map(|p| p.0));
+    let (lo, hi) = s_c.fold((f64::INFINITY, 0.0_f64), |(a, b), x| (a.min(x), b.max(x)));
+    // Fitted lines over the points' span of S_c.
+    let line = |alpha: f64, n: f64| vec![Point::at(lo, alpha * lo.powf(n)), Point::at(hi, alpha * hi.powf(n))];
+    let area = shown.unit("wear_rate");
+    let (mut series, mut legend) = (Vec::new(), Vec::new());
+    for (m, mat) in materials.iter().enumerate() {
+        let (mine, entry) = material_severity(m, mat, &line);
+        series.extend(mine);
+        legend.push(entry);
+    }
+    for ((alpha, n), label, color) in severity_references(all, materials.iter().any(|m| m.kim.is_some())) {
+        series.push(line_series(label.clone(), color, true, 1, line(alpha, n)));
         legend.push(LegendEntry {
             label,
             color,
@@ -1058,6 +1071,16 @@ fn contact_severity(tidy: &Table, shown: Shown) -> Option<Figure> {
             swatch: Swatch::Line { dashed: true },
         });
     }
+    let x = Axis {
+        label: "contact severity S_c = p_N √h_rms / K_Ic".into(),
+        log: true,
+        fallback: (1e-3, 1.0),
+    };
+    let y = Axis {
+        label: format!("wear rate W ({area})"),
+        log: true,
+        fallback: (1e-6, 1.0),
+    };
     Some(Figure {
         entry: "appF",
         name: "appF_contact_severity".into(),
@@ -1067,22 +1090,7 @@ fn contact_severity(tidy: &Table, shown: Shown) -> Option<Figure> {
             all.exponent,
             r2_text(&all)
         ),
-        panels: vec![Panel {
-            x: Axis {
-                label: "contact severity S_c = p_N √h_rms / K_Ic".into(),
-                log: true,
-                fallback: (1e-3, 1.0),
-            },
-            y: Axis {
-                label: format!("wear rate W ({area})"),
-                log: true,
-                fallback: (1e-6, 1.0),
-            },
-            x_band: None,
-            y_band: None,
-            diagonal: false,
-            series,
-        }],
+        panels: one_panel(x, y, series),
         legend_title: String::new(),
         legend,
         note: None,
@@ -1128,7 +1136,7 @@ fn who(r: &JobResult, shown: Shown, with_pair: bool) -> String {
     )
 }
 
-fn line(label: String, color: Color, dashed: bool, width: u32, points: Vec<Point>) -> Series {
+fn line_series(label: String, color: Color, dashed: bool, width: u32, points: Vec<Point>) -> Series {
     Series {
         label,
         color,
@@ -1174,7 +1182,7 @@ fn wear_volume(r: &JobResult, _pairs: Option<&[&JobResult]>, shown: Shown) -> Fi
             .iter()
             .filter_map(|st| Some(Point::at(st.s, *st.volume.get(e)?)))
             .collect();
-        series.push(line(label.clone(), color, false, 2, v));
+        series.push(line_series(label.clone(), color, false, 2, v));
         legend.push(LegendEntry {
             label,
             color,
@@ -1187,7 +1195,7 @@ fn wear_volume(r: &JobResult, _pairs: Option<&[&JobResult]>, shown: Shown) -> Fi
                 .map_or("undefined (no particle)".into(), |x| format!("{x:.3}"));
             let label = format!("fit: W = {} {}, R² = {r2}", number(slope), shown.unit("wear_rate"));
             let fit = vec![Point::at(0.0, intercept), Point::at(s_max, intercept + slope * s_max)];
-            series.push(line(label.clone(), color, true, 1, fit));
+            series.push(line_series(label.clone(), color, true, 1, fit));
             legend.push(LegendEntry {
                 label,
                 color,
@@ -1244,7 +1252,7 @@ fn particle_counts(r: &JobResult, _pairs: Option<&[&JobResult]>, shown: Shown) -
         for (value, dashed, width, what) in counts {
             let label = format!("{what}, {d}");
             let points = mine.iter().map(|row| Point::at(row.s, value(row))).collect();
-            series.push(line(label.clone(), color, dashed, width, points));
+            series.push(line_series(label.clone(), color, dashed, width, points));
             legend.push(LegendEntry {
                 label,
                 color,
@@ -1275,54 +1283,62 @@ fn particle_counts(r: &JobResult, _pairs: Option<&[&JobResult]>, shown: Shown) -
     }
 }
 
+/// One surface pair of the memory figure: N₀(s), its fit while it expects a junction or more, its
+/// legend entry, and its decay length ℓ where it has a fit.
+fn memory_of_pair(i: usize, r: &JobResult, shown: Shown) -> (Vec<Series>, LegendEntry, Option<f64>) {
+    let color = Color::Palette(i);
+    let points = r
+        .steps
+        .iter()
+        .map(|st| Point::at(st.s, st.initial_junctions as f64))
+        .collect();
+    let pair = r
+        .inputs
+        .seed
+        .map_or(format!("job {}", r.index), |s| format!("pair {s}"));
+    let mut label = format!("{pair}: N₀(s)");
+    let mut series = vec![line_series(label.clone(), color, false, 2, points)];
+    let first = r.results.first();
+    let fit = first.and_then(|w| Some((w.memory_decay_length?, w.memory_fit_initial_junctions?)));
+    if let Some((decay_length, initial)) = fit {
+        let curve = r
+            .steps
+            .iter()
+            .map(|st| Point::at(st.s, initial * (-st.s / decay_length).exp()))
+            .take_while(|p| p.y >= 1.0)
+            .collect();
+        series.push(line_series(format!("{pair}: fit"), color, true, 1, curve));
+        let r2 = first
+            .and_then(|w| w.memory_decay_r2)
+            .map_or("undefined".into(), |x| format!("{x:.2}"));
+        let run_in = first
+            .and_then(|w| w.running_in_decay_lengths)
+            .map_or(String::new(), |x| format!(", s_r = {} ℓ", number(x)));
+        label = format!(
+            "{label}, fit ℓ = {} {} (R² = {r2}{run_in})",
+            number(decay_length),
+            shown.unit("length")
+        );
+    }
+    let entry = LegendEntry {
+        label,
+        color,
+        marker: 0,
+        swatch: Swatch::Line { dashed: false },
+    };
+    (series, entry, fit.map(|f| f.0))
+}
+
 /// The memory of the initial contact (§3): N₀(s) of every surface pair of one setting, each with its
 /// fitted N₀(0) e^(−s/ℓ) (dashed, while it expects a junction or more), and the mean ℓ with its 95 %
 /// interval over the pairs as the legend's title.
 fn memory(pairs: &[&JobResult], shown: Shown) -> Figure {
     let (mut series, mut legend, mut lengths) = (Vec::new(), Vec::new(), Vec::new());
     for (i, r) in pairs.iter().enumerate() {
-        let color = Color::Palette(i);
-        let points = r
-            .steps
-            .iter()
-            .map(|st| Point::at(st.s, st.initial_junctions as f64))
-            .collect();
-        let pair = r
-            .inputs
-            .seed
-            .map_or(format!("job {}", r.index), |s| format!("pair {s}"));
-        let mut label = format!("{pair}: N₀(s)");
-        series.push(line(label.clone(), color, false, 2, points));
-        let first = r.results.first();
-        if let Some((decay_length, initial)) =
-            first.and_then(|w| Some((w.memory_decay_length?, w.memory_fit_initial_junctions?)))
-        {
-            lengths.push(decay_length);
-            let curve = r
-                .steps
-                .iter()
-                .map(|st| Point::at(st.s, initial * (-st.s / decay_length).exp()))
-                .take_while(|p| p.y >= 1.0)
-                .collect();
-            series.push(line(format!("{pair}: fit"), color, true, 1, curve));
-            let r2 = first
-                .and_then(|w| w.memory_decay_r2)
-                .map_or("undefined".into(), |x| format!("{x:.2}"));
-            let run_in = first
-                .and_then(|w| w.running_in_decay_lengths)
-                .map_or(String::new(), |x| format!(", s_r = {} ℓ", number(x)));
-            label = format!(
-                "{label}, fit ℓ = {} {} (R² = {r2}{run_in})",
-                number(decay_length),
-                shown.unit("length")
-            );
-        }
-        legend.push(LegendEntry {
-            label,
-            color,
-            marker: 0,
-            swatch: Swatch::Line { dashed: false },
-        });
+        let (mine, entry, length) = memory_of_pair(i, r, shown);
+        series.extend(mine);
+        legend.push(entry);
+        lengths.extend(length);
     }
     let legend_title = match mean_interval(&lengths) {
         Some(i) => format!(

@@ -226,45 +226,7 @@ pub(super) fn compare(a: &Setting, b: &Setting, what: &str, q: Compared, region:
         };
     }
     match q {
-        Compared::WearRate | Compared::ParticleRate => {
-            let (na, nb): (u64, u64) = (
-                pairs.iter().map(|(p, _)| p.particles()).sum(),
-                pairs.iter().map(|(_, r)| r.particles()).sum(),
-            );
-            let scale = match q {
-                Compared::WearRate => (a.critical_diameter / b.critical_diameter).powi(3),
-                _ => 1.0,
-            };
-            let scaled = if scale == 1.0 {
-                String::new()
-            } else {
-                format!(" × (d*_a/d*_b)³ = {}", fmt(scale))
-            };
-            match count_ratio(na, nb) {
-                Some(i) => {
-                    let i = i.map(|x| x * scale);
-                    let side = region.side(&i);
-                    let needed = (side == Side::Undecided)
-                        .then(|| pairs_needed_for_counts(na, nb, pairs.len(), scale, region))
-                        .flatten();
-                    Outcome::Judged {
-                        side,
-                        text: format!(
-                            "{label}: {} ratio = {} (count test: {na} vs {nb} particles over {} shared pairs{scaled})",
-                            q.name(),
-                            show(&i),
-                            pairs.len()
-                        ),
-                        needed,
-                    }
-                }
-                None => Outcome::Judged {
-                    side: Side::Undecided,
-                    text: format!("{label}: no particle in either over {} shared pairs", pairs.len()),
-                    needed: None,
-                },
-            }
-        }
+        Compared::WearRate | Compared::ParticleRate => compare_counts(a, b, &label, q, region, &pairs),
         Compared::Column(..) | Compared::Derived(..) => {
             let diffs: Vec<f64> = values.iter().map(|(x, y)| x - y).collect();
             let zero = region.map(|_| 0.0);
@@ -277,6 +239,55 @@ pub(super) fn compare(a: &Setting, b: &Setting, what: &str, q: Compared, region:
                 pairs.len(),
             )
         }
+    }
+}
+
+/// [`compare`] of particle rates (or W) on settings with a pair without particles: the count test of
+/// two Poisson rates on the particles summed over the shared `pairs`, W scaled by (d*_a/d*_b)³.
+fn compare_counts(
+    a: &Setting,
+    b: &Setting,
+    label: &str,
+    q: Compared,
+    region: Region,
+    pairs: &[(&Pair, &Pair)],
+) -> Outcome {
+    let (na, nb): (u64, u64) = (
+        pairs.iter().map(|(p, _)| p.particles()).sum(),
+        pairs.iter().map(|(_, r)| r.particles()).sum(),
+    );
+    let scale = match q {
+        Compared::WearRate => (a.critical_diameter / b.critical_diameter).powi(3),
+        _ => 1.0,
+    };
+    let scaled = if scale == 1.0 {
+        String::new()
+    } else {
+        format!(" × (d*_a/d*_b)³ = {}", fmt(scale))
+    };
+    match count_ratio(na, nb) {
+        Some(i) => {
+            let i = i.map(|x| x * scale);
+            let side = region.side(&i);
+            let needed = (side == Side::Undecided)
+                .then(|| pairs_needed_for_counts(na, nb, pairs.len(), scale, region))
+                .flatten();
+            Outcome::Judged {
+                side,
+                text: format!(
+                    "{label}: {} ratio = {} (count test: {na} vs {nb} particles over {} shared pairs{scaled})",
+                    q.name(),
+                    show(&i),
+                    pairs.len()
+                ),
+                needed,
+            }
+        }
+        None => Outcome::Judged {
+            side: Side::Undecided,
+            text: format!("{label}: no particle in either over {} shared pairs", pairs.len()),
+            needed: None,
+        },
     }
 }
 
