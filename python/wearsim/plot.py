@@ -246,8 +246,19 @@ def draw(figure: Dict[str, Any]) -> Any:
         ax.set_title(_shown(figure["title"]) if p == 0 else "", loc="left", fontsize=10)
     handles = [_handle(e) for e in figure["legend"]]
     title = _shown(figure["legend_title"])
-    fig.legend(handles=handles, loc="center right", fontsize=8, frameon=False, title=title, title_fontsize=8)
     fig.tight_layout(rect=(0, 0, 0.72, 1))
+    # The legend in its own column right of the panels, never over the data (a figure saved with
+    # ``bbox_inches="tight"`` widens to hold it).
+    fig.legend(
+        handles=handles,
+        loc="center left",
+        bbox_to_anchor=(0.72, 0.5),
+        fontsize=8,
+        frameon=False,
+        title=title,
+        title_fontsize=8,
+        alignment="left",
+    )
     return fig
 
 
@@ -465,7 +476,7 @@ def study_figures(
     for data in study_figure_data(out, job):
         fig = draw(data)
         path = folder / f"{data['name']}.png"
-        fig.savefig(path, dpi=110)
+        fig.savefig(path, dpi=110, bbox_inches="tight")
         plt.close(fig)
         (folder / f"{data['name']}.csv").write_text(data["csv"])
         written += [path, folder / f"{data['name']}.csv"]
