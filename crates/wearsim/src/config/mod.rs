@@ -371,12 +371,7 @@ impl RunConfig {
                 window,
                 seed,
             } => {
-                crate::check::memory(
-                    "generating the surface pair",
-                    grid.nx(),
-                    grid.ny(),
-                    crate::check::SURFACE_ARRAYS,
-                )?;
+                check_pair_memory(*grid)?;
                 let how = FileSurface {
                     height_scale: match (self.units, height_unit) {
                         (Units::Si, Some(u)) => metres_per("height_unit", u)?,
@@ -602,14 +597,19 @@ impl RunConfig {
     }
 }
 
-/// A pair of self-affine surfaces generated with `spectrum` on `grid`, seeds derived from `seed`.
-fn generated_pair(grid: Grid, spectrum: &SpectrumParams, seed: u64) -> Result<SurfacePair> {
+/// Refuses a surface pair on `grid` that does not fit in the memory this process may use.
+fn check_pair_memory(grid: Grid) -> Result<()> {
     crate::check::memory(
         "generating the surface pair",
         grid.nx(),
         grid.ny(),
         crate::check::SURFACE_ARRAYS,
-    )?;
+    )
+}
+
+/// A pair of self-affine surfaces generated with `spectrum` on `grid`, seeds derived from `seed`.
+fn generated_pair(grid: Grid, spectrum: &SpectrumParams, seed: u64) -> Result<SurfacePair> {
+    check_pair_memory(grid)?;
     let (top_seed, bottom_seed) = pair_seeds(seed);
     let (top, bottom) = rayon::join(
         || Surface::generate(grid, spectrum, top_seed),
