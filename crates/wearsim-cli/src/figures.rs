@@ -1,8 +1,9 @@
 //! Drawing figures: the bundled font, one [`Figure`] drawn into both PNG and SVG by [`save`], and the
 //! pieces every figure shares — axes that may be logarithmic (drawn in log₁₀ of the value, with
 //! ticks at 1, 2 and 5 of each decade and labels such as `2.5e-4`), a legend in its own column so
-//! that it never hides data, a colour-blind-safe palette and marker shapes. Plotting is a front-end
-//! concern and stays out of the library; the text is drawn with the DejaVu Sans font shipped in
+//! that it never hides data, a colour-blind-safe palette and marker shapes. What a study's figures
+//! plot is the library's (`wearsim::study::figures`); drawing it is this front end's. The text is
+//! drawn with the DejaVu Sans font shipped in
 //! `assets/` (STIX General for the script 𝒢 it lacks, see [`crate::raster`]), so no system font is
 //! needed.
 
