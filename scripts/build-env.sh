@@ -16,8 +16,8 @@ build_env_install() {
         ! cmp -s scripts/build-requirements.txt "$build_venv/requirements.txt"; then
         rm -rf "$build_venv"
         python3 -m venv "$build_venv"
-        "$build_venv/bin/python" -m pip install -q --no-compile --upgrade pip
-        "$build_venv/bin/python" -m pip install -q --no-compile -r scripts/build-requirements.txt
+        "$build_venv/bin/python" -m pip install -q --upgrade pip
+        "$build_venv/bin/python" -m pip install -q -r scripts/build-requirements.txt
         cp scripts/build-requirements.txt "$build_venv/requirements.txt"
     fi
 }

@@ -13,13 +13,13 @@ venv=target/floors-venv
 if [ "${2:-}" = install ]; then
     rm -rf "$venv"
     python3 -m venv "$venv"
-    "$venv/bin/python" -m pip install -q --no-compile --upgrade pip
+    "$venv/bin/python" -m pip install -q --upgrade pip
     python3 scripts/floors.py >target/floors.txt
-    "$venv/bin/python" -m pip install -q --no-compile --only-binary=:all: -r target/floors.txt
+    "$venv/bin/python" -m pip install -q --only-binary=:all: -r target/floors.txt
     exit 0
 fi
 wheel="$1"
-"$venv/bin/python" -m pip install -q --no-compile --force-reinstall --no-deps "$wheel"
+"$venv/bin/python" -m pip install -q --force-reinstall --no-deps "$wheel"
 # The venv must hold the floors, not whatever pip resolved the wheel's dependencies to.
 "$venv/bin/python" - target/floors.txt <<'PY'
 import sys

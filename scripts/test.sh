@@ -15,8 +15,6 @@
 #   the tutorials of examples/tutorials (run, and converted to notebooks), the pytest suite (API,
 #   studies on a Dask LocalCluster, cross-checks against tamaas from PyPI); the pytest suite again
 #   in a venv holding the oldest versions pyproject.toml allows (scripts/test-floors.sh).
-# Installs skip byte-compiling every module of every package (--no-compile): Python compiles what
-# the tests import when they first import it.
 # Phases that do not need each other run side by side: package installs while Rust compiles, the
 # Slurm test and the Python checks beside the Rust tests. Their output is shown when they end
 # (logs in target/test-logs/), with the seconds they started and ended at.
@@ -124,8 +122,8 @@ echo "linker: $CARGO_TARGET_X86_64_UNKNOWN_LINUX_GNU_LINKER"
 phase "In the background: .venv with the pinned test dependencies, the floors venv"
 setup_venv() {
     [ -x .venv/bin/python ] || python3 -m venv .venv
-    .venv/bin/python -m pip install -q --no-compile --upgrade pip
-    .venv/bin/python -m pip install -q --no-compile -r tests/python/requirements.txt
+    .venv/bin/python -m pip install -q --upgrade pip
+    .venv/bin/python -m pip install -q -r tests/python/requirements.txt
 }
 background venv setup_venv
 background floors-venv scripts/test-floors.sh "" install
@@ -162,7 +160,7 @@ fresh_venv() {
     fresh="$(mktemp -d)/venv"
     python3 -m venv "$fresh"
     no_cargo_path=$(printf '%s' "$PATH" | tr ':' '\n' | grep -v -e cargo -e rustup | paste -sd: -)
-    (cd /tmp && env PATH="$no_cargo_path" "$fresh/bin/python" -m pip install -q --no-compile "$wheel[examples]")
+    (cd /tmp && env PATH="$no_cargo_path" "$fresh/bin/python" -m pip install -q "$wheel[examples]")
     (cd /tmp && env PATH="$no_cargo_path" "$fresh/bin/python" -c "import shutil, wearsim; assert shutil.which('cargo') is None; print('wearsim', wearsim.__version__, 'from the wheel, without cargo')")
     env PATH="$no_cargo_path" MPLBACKEND=Agg "$fresh/bin/python" examples/python/quickstart.py --out "$(mktemp -d)/python-example"
     rm -rf "$(dirname "$fresh")"
@@ -174,7 +172,7 @@ python_checks() {
     .venv/bin/ruff check
     .venv/bin/ruff format --check
     echo "-- the wheel in .venv; type stubs against the compiled module (stubtest); mypy"
-    .venv/bin/python -m pip install -q --no-compile --force-reinstall --no-deps "$wheel"
+    .venv/bin/python -m pip install -q --force-reinstall --no-deps "$wheel"
     (cd /tmp && "$root/.venv/bin/python" -c "import wearsim; print('wearsim', wearsim.__version__, 'imported from', wearsim.__file__)")
     (cd /tmp && "$root/.venv/bin/python" -m mypy.stubtest wearsim._wearsim)
     (cd python && ../.venv/bin/python -m mypy wearsim)
