@@ -29,7 +29,6 @@ root="$PWD"
 logs="$root/target/test-logs"
 rm -rf "$logs"
 mkdir -p "$logs"
-phase() { printf '\n== [%4ds] %s\n' "$SECONDS" "$1"; }
 # `cpu_seconds`: sets $cpu to the CPU seconds (user + system) of the processes this shell started
 # that have ended. `times` is a builtin: run in this shell (not in $(...), a copy) it reads this
 # shell's own counters.
@@ -38,9 +37,37 @@ cpu_seconds() {
     times >"$file"
     cpu=$(awk 'NR == 2 {
         for (i = 1; i <= 2; i++) { split($i, t, /[ms]/); total += t[1] * 60 + t[2] }
-        printf "%.0f", total
+        printf "%.1f", total
     }' "$file")
     rm -f "$file"
+}
+# The CPU of each phase. The main shell's own counters also take in each background step as soon as
+# it ends, whenever that is, so they cannot be split by phase: instead a phase's commands are run by
+# `run`, in a subshell that reports the CPU of what it started, and `phase` shows the sum when the
+# next phase begins. The background steps show theirs when they finish; the end shows both lists.
+phase_title="" phase_cpu=0
+cpu_table=()
+phase() {
+    end_phase
+    phase_title=$1
+    printf '\n== [%4ds] %s\n' "$SECONDS" "$1"
+}
+end_phase() {
+    if [ -n "$phase_title" ]; then
+        printf '(%.1f s of CPU in this phase, the background steps not counted)\n' "$phase_cpu"
+        cpu_table+=("$(printf '%7.1f s  %s' "$phase_cpu" "$phase_title")")
+    fi
+    phase_cpu=0
+}
+# `run COMMAND...`: runs it (a program or a shell function) and adds its CPU to the phase's.
+run() {
+    local file="$logs/.run.cpu"
+    (
+        "$@"
+        cpu_seconds
+        echo "$cpu" >"$file"
+    )
+    phase_cpu=$(awk -v a="$phase_cpu" -v b="$(cat "$file")" 'BEGIN { printf "%.1f", a + b }')
 }
 
 # A step in the background: `background NAME COMMAND...` starts it with its output in
@@ -60,6 +87,7 @@ background() {
         wait $! || status=$?
         cpu_seconds
         printf '(%s: from %ds to %ds, %s s of CPU, exit status %d)\n' "$name" "$start" "$SECONDS" "$cpu" "$status"
+        echo "$cpu" >"$logs/$name.cpu"
         echo "$status" >"$logs/$name.status"
         exit "$status"
     ) >"$logs/$name.log" 2>&1 &
@@ -87,7 +115,7 @@ phase "Build tools for glibc 2.17: target/build-venv (maturin, zig, cargo-zigbui
 background slurm-packages scripts/test-slurm.sh install
 background cargo-fetch cargo fetch --locked
 source scripts/build-env.sh
-build_env_install
+run build_env_install
 build_env_export
 echo "linker: $CARGO_TARGET_X86_64_UNKNOWN_LINUX_GNU_LINKER"
 
@@ -102,19 +130,19 @@ background floors-venv scripts/test-floors.sh "" install
 
 phase "Formatting: cargo fmt --check"
 finish cargo-fetch
-cargo fmt --all --check
+run cargo fmt --all --check
 
 phase "Lints: cargo clippy --profile ci --workspace --all-targets -- -D warnings"
-cargo clippy --profile ci --workspace --all-targets --locked -q -- -D warnings
+run cargo clippy --profile ci --workspace --all-targets --locked -q -- -D warnings
 
 phase "Rust build: the tests and the wearsim program (profile ci, linked for glibc 2.17)"
-cargo test --profile ci --workspace --locked --no-run -q
+run cargo test --profile ci --workspace --locked --no-run -q
 
 phase "Rust API reference: cargo doc --no-deps, warnings are errors"
-WEARSIM_CARGO_PROFILE=ci scripts/api-docs.sh rust
+run env WEARSIM_CARGO_PROFILE=ci scripts/api-docs.sh rust
 
 phase "For cluster nodes: the CLI, the manylinux wheel and the sdist (scripts/build-dist.sh ci)"
-scripts/build-dist.sh ci
+run scripts/build-dist.sh ci
 wheel=$(ls "$root"/target/dist/wearsim-*.whl)
 # What ships is what the Python tests, the tutorials and Slurm drive (the same build as the Rust
 # tests' program).
@@ -158,7 +186,7 @@ python_checks() {
     done
 }
 background python-checks python_checks
-cargo test --profile ci --workspace --locked
+run cargo test --profile ci --workspace --locked
 
 phase "Python lints, the wheel in .venv, stubtest, mypy, pdoc, tutorials (began beside the Rust tests)"
 finish venv
@@ -171,7 +199,7 @@ floors_test() {
     WEARSIM_BIN="$bin" PYTEST_ADDOPTS="--basetemp=$root/target/floors-pytest" scripts/test-floors.sh "$wheel"
 }
 background floors floors_test
-WEARSIM_BIN="$bin" .venv/bin/python -m pytest -rs tests/python
+run env WEARSIM_BIN="$bin" .venv/bin/python -m pytest -rs tests/python
 
 phase "Python tests on the oldest allowed versions (scripts/test-floors.sh)"
 finish floors-venv
@@ -185,5 +213,11 @@ finish slurm-packages
 finish slurm
 
 phase "All tests passed"
+echo "CPU seconds (user + system) of each phase's own commands:"
+printf '%s\n' "${cpu_table[@]}"
+echo "and of each background step:"
+for file in "$logs"/*.cpu; do
+    printf '%7s s  %s\n' "$(cat "$file")" "$(basename "$file" .cpu)"
+done
 cpu_seconds
 echo "CPU time of all phases: $cpu s (user + system; the Slurm daemons and jobs not counted)"

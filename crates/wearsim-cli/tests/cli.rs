@@ -1,6 +1,6 @@
 //! The CLI on good and bad input: one-line errors naming the field, non-zero exit, nothing written.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -3,7 +3,7 @@
 //! results and exits as if nothing had been printed (not 101, "failed printing to stdout: Broken
 //! pipe", with no results); an error or a stop signal still exits with its own status.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::process::{ExitStatus, Stdio};

@@ -1,7 +1,7 @@
 //! Cost estimates before the work: `slide --dry-run` and `study run --dry-run` print the wall time
 //! and peak memory and write nothing; the calibration is made once and then read from the cache.
 
-mod common;
+use crate::common;
 
 use common::{file, run_file, s, stderr, wearsim, GENERATED};
 

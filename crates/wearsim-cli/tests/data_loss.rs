@@ -2,7 +2,7 @@
 //! mixing or deleting each other's results in one folder, `--overwrite` deleting the run's inputs,
 //! staging folders of killed runs left forever. One test per class, each running the real binary.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::process::Output;

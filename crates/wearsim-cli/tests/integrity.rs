@@ -4,7 +4,7 @@
 //! R² = 7, one digit changed) is never collected: `collect` names it and `study run` recomputes it;
 //! a checkpoint that cannot be written warns and the run goes on to its results.
 
-mod common;
+use crate::common;
 
 use std::os::unix::process::CommandExt;
 use std::path::Path;

@@ -5,7 +5,7 @@
 //! devices are no surfaces; a constant offset of a measured map changes nothing; a solver tolerance
 //! loose enough to move the results is warned about.
 
-mod common;
+use crate::common;
 
 use std::io::Write;
 use std::path::Path;

@@ -4,7 +4,7 @@
 //! size; `wearsim surface fit` recovers the parameters of generated surfaces and writes a block that
 //! runs; a study on measured maps keeps their warnings as `slide` does.
 
-mod common;
+use crate::common;
 
 use std::fmt::Write as _;
 use std::path::Path;

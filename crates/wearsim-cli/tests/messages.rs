@@ -1,7 +1,7 @@
 //! Inputs a user gets wrong, and the one-line error that names the input and the fix (each case
 //! reproduced from a trial of the CLI as a user would try it).
 
-mod common;
+use crate::common;
 
 use common::{file, run, s, stderr, wearsim, GENERATED};
 

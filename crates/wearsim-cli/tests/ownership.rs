@@ -4,7 +4,7 @@
 //! path is spelled; temporary files and claims of failed or killed runs never block or litter later
 //! runs. Each test runs the real binary and fails on the behaviour it replaced.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -2,7 +2,7 @@
 //! folder or half-written figure beside it, and an earlier figures folder stays whole; a full disk
 //! (here a file-size limit) is said in words, naming the folder, not in the drawing backend's terms.
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeMap;
 use std::os::unix::process::CommandExt;

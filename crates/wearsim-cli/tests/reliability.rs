@@ -3,7 +3,7 @@
 //! on silently, a crash or a hang. One test per class, each running the real binary; the test names
 //! say what used to break.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::process::{Command, Stdio};

@@ -2,7 +2,7 @@
 //! after a checkpoint, then run again by the same command, give the results of an uninterrupted run
 //! byte for byte, and leave no checkpoint behind.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::process::Stdio;

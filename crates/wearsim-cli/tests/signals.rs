@@ -4,7 +4,7 @@
 //! again resumes to the uninterrupted results byte for byte. The children's signal dispositions are
 //! set to the default first: a test started from a background shell inherits SIGINT ignored.
 
-mod common;
+use crate::common;
 
 use std::os::unix::process::CommandExt;
 use std::path::Path;

@@ -2,7 +2,7 @@
 //! CLI, note what the map cannot say, refuse keys of other sources; `surface fit` says when a
 //! spectrum is not self-affine and writes the block that carries it.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

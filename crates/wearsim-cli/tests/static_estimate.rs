@@ -2,7 +2,7 @@
 //! estimate and hold the intervals; the comparison with a study's sliding runs and the fit of the
 //! constants run on a small study; bad input is named.
 
-mod common;
+use crate::common;
 
 use common::{file, s, stderr, stdout, wearsim};
 

@@ -1,7 +1,7 @@
 //! `wearsim surface import`: an instrument file turned into the map a run file reads (in Python,
 //! with SurfaceTopography), and the pointer to it where an instrument file is refused.
 
-mod common;
+use crate::common;
 
 use std::process::Command;
 

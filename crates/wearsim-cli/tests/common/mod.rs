@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 /// The binary, without the cost estimate before a run (its calibration would take seconds in every
-/// test; `tests/estimate.rs` tests it).
+/// test; `tests/cost.rs` tests it).
 pub fn wearsim() -> Command {
     let mut command = Command::new(env!("CARGO_BIN_EXE_wearsim"));
     command.env("WEARSIM_NO_ESTIMATE", "1");
