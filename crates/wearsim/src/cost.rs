@@ -560,7 +560,7 @@ fn calibration_run(
         interrupt: interrupt.clone(),
     };
     let t = clock();
-    let runs = SlidingState::new(top, bottom, setup)?.finish()?;
+    let runs = SlidingState::new(top.into(), bottom.into(), setup)?.finish()?;
     let seconds = clock() - t;
     let run: &LoadRun = &runs[0];
     let mean = |steps: &[crate::sliding::StepRecord]| {

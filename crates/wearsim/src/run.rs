@@ -15,6 +15,7 @@
 //! the [`Slide`] itself.
 
 use std::path::Path;
+use std::sync::Arc;
 use std::time::Instant;
 
 use serde_json::Value;
@@ -262,7 +263,7 @@ impl<'a> SlidingRun<'a> {
     /// and [`PROBE_STEPS`] steps of each of the schedule's kinds (`step_running_in`, then `step`),
     /// solved as the run solves them (its stopping rule, warm-started from the step before). About
     /// 2 + 2·[`PROBE_STEPS`] sliding steps' worth of solver work: a few steps of the run's hundreds.
-    pub fn probe_iterations(self) -> Result<IterationProbe> {
+    pub fn probe_iterations(&self) -> Result<IterationProbe> {
         let start = Instant::now();
         let nx = self.grid().nx();
         let load = self.sliding.loads.iter().copied().fold(f64::MIN, f64::max);
@@ -275,7 +276,7 @@ impl<'a> SlidingRun<'a> {
             sliding: &probe,
             ..self.setup.clone()
         };
-        let SurfacePair { top, bottom, .. } = self.pair;
+        let (top, bottom) = (Arc::clone(&self.pair.top), Arc::clone(&self.pair.bottom));
         let runs = SlidingState::new(top, bottom, setup)?.finish()?;
         let steps = &runs[0].steps;
         let (mut kinds, mut counts) = ([0.0f64; 3], [0usize; 3]);
@@ -314,7 +315,7 @@ impl<'a> SlidingRun<'a> {
     ) -> Result<EstimateOutcome<'a>> {
         let start = Instant::now();
         let kind = self.config.surfaces.estimate_kind(self.pair.top.grid());
-        let SurfacePair { top, bottom, .. } = self.pair;
+        let (top, bottom) = self.pair.into_surfaces();
         let mut estimator = Estimator::new(top, bottom, &self.setup)?;
         let loads = self.sliding.loads.len();
         let most = loads

@@ -120,9 +120,17 @@ fn iterations_measured_on_the_runs_own_surfaces_follow_a_rough_pair_and_match_it
         let config = probe_config(rough);
         let sliding = config.sliding.clone().unwrap();
         let grid = config.grid().unwrap();
-        let probe = SlidingRun::prepare(&config).unwrap().probe_iterations().unwrap();
+        // The probe slides on the run's own surfaces, which the run then slides on: made once.
+        let prepared = SlidingRun::prepare(&config).unwrap();
+        let probe = prepared.probe_iterations().unwrap();
         let e = calibration.estimate_measured(grid, &sliding, config.stopping, Some(probe.iterations));
-        let run = SlidingRun::prepare(&config).unwrap().run(|_| {}).unwrap();
+        let run = prepared.run(|_| {}).unwrap();
+        if !rough {
+            // Probing first leaves the run as it was: every step and result of a run not probed.
+            let unprobed = SlidingRun::prepare(&config).unwrap().run(|_| {}).unwrap();
+            assert_eq!(run.runs[0].steps, unprobed.runs[0].steps);
+            assert_eq!(run.runs[0].results, unprobed.runs[0].results);
+        }
         let taken = run.runs[0].total_iterations as f64;
         let ratio = e.iterations / taken;
         eprintln!(

@@ -145,11 +145,11 @@ fn skipped(dry_run: bool) -> bool {
 /// Prints the estimate of a run before it starts. An estimate that cannot be made is an error on a
 /// dry run (it is all the dry run does) and a note otherwise (the run goes on), unless the
 /// calibration was interrupted (Ctrl-C stops the command).
-pub fn report_run(config: &RunConfig, dry_run: bool) -> Result<()> {
+pub fn report_run(run: &SlidingRun, dry_run: bool) -> Result<()> {
     if skipped(dry_run) {
         return Ok(());
     }
-    lenient(print_run(config).map(|_| ()), dry_run)
+    lenient(print_run(run).map(|_| ()), dry_run)
 }
 
 /// [`report_run`] for a study's jobs.
@@ -175,12 +175,16 @@ fn is_interrupted(e: &anyhow::Error) -> bool {
         .any(|c| matches!(c.downcast_ref::<wearsim::Error>(), Some(wearsim::Error::Interrupted)))
 }
 
-/// Prints the estimate of a run file's sliding run.
-pub fn print_run(config: &RunConfig) -> Result<Estimate> {
+/// Prints the estimate of a prepared sliding run, its iterations measured on its own surfaces (the
+/// run then slides on the same surfaces: they are made once).
+pub fn print_run(run: &SlidingRun) -> Result<Estimate> {
+    let config = run.config();
     let sliding = config.sliding.as_ref().context("a [sliding] table is needed")?;
     let grid = config.grid()?;
     let c = calibration()?;
-    let probe = probe(config)?;
+    let probe = run
+        .probe_iterations()
+        .context("measuring the iterations of a few steps on the run's own surfaces")?;
     let e = c.estimate_measured(grid, sliding, config.stopping, Some(probe.iterations));
     tell!("  {}", measured_line(&probe, &c.iterations(grid, config.stopping), &e));
     tell!(

@@ -163,19 +163,26 @@ pub fn run(args: &Args) -> Result<()> {
         note_other_model(config.model);
     }
     let interrupt = super::interrupt();
-    // The estimate comes first: a dry run on a login node sizes a job for the nodes it will run on.
-    super::cost::report_run(&config, args.dry_run)?;
-    if args.dry_run {
-        return Ok(());
-    }
-    // The output folder is made (and checked) before any work.
-    let out = OutputDir::begin(
-        &args.output.out,
-        "slide",
-        args.output.overwrite.replace,
-        &super::run_inputs(run, &config),
-    )?;
+    // The output folder is made (and checked) before any work; a dry run writes nothing.
+    let out = if args.dry_run {
+        None
+    } else {
+        Some(OutputDir::begin(
+            &args.output.out,
+            "slide",
+            args.output.overwrite.replace,
+            &super::run_inputs(run, &config),
+        )?)
+    };
+    // The surfaces are made once: the cost estimate measures a few steps on them, and the run
+    // slides on them.
     let prepared = SlidingRun::prepare(&config)?.interrupted_by(interrupt);
+    // The estimate comes before the run: a dry run on a login node sizes a job for the nodes it will
+    // run on.
+    super::cost::report_run(&prepared, args.dry_run)?;
+    let Some(out) = out else {
+        return Ok(());
+    };
     super::report_surfaces(prepared.surfaces(), false);
     let sliding = prepared.sliding();
     let units = config.units;

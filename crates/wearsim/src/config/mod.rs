@@ -10,6 +10,7 @@ pub use record::InputRecord;
 pub use source::{SurfaceFiles, SurfacePair, SurfaceSource};
 
 use std::path::Path;
+use std::sync::Arc;
 
 use crate::check::connectivity as check_connectivity;
 use crate::contact::{Device, SolverOptions, Stopping, SLIDING_STOPPING};
@@ -350,7 +351,7 @@ impl RunConfig {
 
     /// The top and bottom surfaces: generated (seeds derived from the run's seed) or read.
     pub fn surfaces(&self) -> Result<(Surface, Surface)> {
-        self.surface_pair().map(|p| (p.top, p.bottom))
+        self.surface_pair().map(SurfacePair::into_surfaces)
     }
 
     /// The top and bottom surfaces with notes on how files were read and prepared, and warnings
@@ -616,8 +617,8 @@ fn generated_pair(grid: Grid, spectrum: &SpectrumParams, seed: u64) -> Result<Su
         || Surface::generate(grid, spectrum, bottom_seed),
     );
     Ok(SurfacePair {
-        top: top?,
-        bottom: bottom?,
+        top: Arc::new(top?),
+        bottom: Arc::new(bottom?),
         notes: Vec::new(),
         warnings: Vec::new(),
     })
@@ -648,8 +649,8 @@ fn spectrum_pair(map: &Path, how: &FileSurface, grid: Grid, window: Option<Windo
     ));
     notes.extend(psd.notes(&grid, &name));
     Ok(SurfacePair {
-        top,
-        bottom,
+        top: Arc::new(top),
+        bottom: Arc::new(bottom),
         notes,
         warnings: Vec::new(),
     })
@@ -677,8 +678,8 @@ fn file_pair(top: &Path, bottom: &Path, how: &FileSurface) -> Result<SurfacePair
     let notes = t.notes.into_iter().chain(b.notes).collect();
     let warnings = t.warnings.into_iter().chain(b.warnings).collect();
     Ok(SurfacePair {
-        top: t.surface,
-        bottom: b.surface,
+        top: Arc::new(t.surface),
+        bottom: Arc::new(b.surface),
         notes,
         warnings,
     })

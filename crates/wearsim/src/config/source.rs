@@ -180,13 +180,21 @@ impl serde::Serialize for SurfaceSource {
 /// The two surfaces of a run, with notes on how files were read and warnings about them.
 #[derive(Debug, Clone)]
 pub struct SurfacePair {
-    pub top: Surface,
-    pub bottom: Surface,
+    /// Shared, so that a run and the few steps that measure its cost slide on the same surfaces
+    /// without a copy.
+    pub top: std::sync::Arc<Surface>,
+    pub bottom: std::sync::Arc<Surface>,
     pub notes: Vec<String>,
     pub warnings: Vec<String>,
 }
 
 impl SurfacePair {
+    /// The two surfaces, owned (a copy only of one still shared elsewhere).
+    pub fn into_surfaces(self) -> (Surface, Surface) {
+        let own = |s: std::sync::Arc<Surface>| std::sync::Arc::try_unwrap(s).unwrap_or_else(|s| (*s).clone());
+        (own(self.top), own(self.bottom))
+    }
+
     /// Two surfaces handed over as arrays (a [`SurfaceSource::Arrays`] run). They may be measured
     /// maps, so each is checked for periodicity as a file is, named "top" and "bottom" in the
     /// warnings.
@@ -196,8 +204,8 @@ impl SurfacePair {
             .filter_map(|(name, s)| crate::topography::periodicity(s.heights(), s.nx(), s.ny()).warning(name))
             .collect();
         Self {
-            top,
-            bottom,
+            top: std::sync::Arc::new(top),
+            bottom: std::sync::Arc::new(bottom),
             notes: Vec::new(),
             warnings,
         }

@@ -100,12 +100,12 @@ pub(crate) struct SlidingState<'a> {
 
 impl<'a> SlidingState<'a> {
     /// Checks the run and makes what every step reuses: the solver (its fields, FFT plans and
-    /// influence operator) and the labeller.
-    pub(crate) fn new(top: Surface, bottom: Surface, setup: SlidingSetup<'a>) -> Result<Self> {
+    /// influence operator) and the labeller. The surfaces are shared, not copied: a run's few
+    /// probing steps and the run itself slide on the same two.
+    pub(crate) fn new(top: Arc<Surface>, bottom: Arc<Surface>, setup: SlidingSetup<'a>) -> Result<Self> {
         let grid = top.grid();
         check_run(&top, &bottom, &setup)?;
         let offsets = setup.sliding.offsets(grid.nx());
-        let (top, bottom) = (Arc::new(top), Arc::new(bottom));
         let mut solver = ContactSolver::on_device(setup.device, grid, setup.effective_modulus, Boundary::Periodic)?
             .with_options(setup.solver)
             .with_interrupt(setup.interrupt.clone());
