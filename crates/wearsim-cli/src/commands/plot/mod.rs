@@ -74,14 +74,13 @@ pub fn run(args: &Args) -> Result<()> {
     let figures = wearsim::io::OutputDir::begin(&dir.join("figures"), "study plot", false, &[])?;
     let (out, shown) = (figures.join(""), dir.join("figures"));
     draw(&study.figures, &out, &shown)?;
-    let data = &study;
     // The paper's findings on this study, judged on the runs of its sliding model only: an estimate
     // (or any other model) is no sliding run.
-    let (sliding, others) = wearsim::output::sliding_rows(&data.tidy);
+    let (sliding, others) = wearsim::output::sliding_rows(&study.tidy);
     let found = if sliding.rows.is_empty() {
         Vec::new()
     } else {
-        findings(&data.tidy)
+        findings(&study.tidy)
     };
     let note = match (others, sliding.rows.len()) {
         (0, _) => String::new(),
