@@ -19,6 +19,7 @@ use crate::output::{
     severity_fits, unit_of, Cell, CurveMaterial, JobResult, MaterialSeverity, SeriesRow, Table, KIM_EXPERIMENTAL_K,
     KIM_SEVERITY_FIT, PAPER_SEVERITY_FIT,
 };
+use crate::sliding::RUN_IN_DECAY_LENGTHS;
 use crate::stats::{mean_interval, PowerLawFit};
 
 use crate::study::findings::RESOLVED_PARTICLES;
@@ -1157,6 +1158,25 @@ fn one_panel(x: Axis, y: Axis, series: Vec<Series>) -> Vec<Panel> {
     }]
 }
 
+/// Whether a job's pair is run in by the findings' rule (paper §3): its fit window starts after
+/// [`RUN_IN_DECAY_LENGTHS`] decay lengths ℓ of the memory of the initial contact; the findings set
+/// a pair that is not aside.
+fn run_in_words(r: &JobResult) -> String {
+    match r.results.first().and_then(|w| w.running_in_decay_lengths) {
+        Some(x) if x >= RUN_IN_DECAY_LENGTHS => {
+            format!(
+                "run in (fit window from {} ℓ, at least {RUN_IN_DECAY_LENGTHS})",
+                number(x)
+            )
+        }
+        Some(x) => format!(
+            "not run in (fit window from {} ℓ, under {RUN_IN_DECAY_LENGTHS}): the findings set this pair aside",
+            number(x)
+        ),
+        None => "run-in undefined (no decay of the initial contact fitted): the findings set this pair aside".into(),
+    }
+}
+
 /// Fig. 3: V(s) of one job per fracture energy, with the results' line W·s + b fitted over the fit
 /// window, and the running-in shaded.
 fn wear_volume(r: &JobResult, _pairs: Option<&[&JobResult]>, shown: Shown) -> Figure {
@@ -1221,7 +1241,7 @@ fn wear_volume(r: &JobResult, _pairs: Option<&[&JobResult]>, shown: Shown) -> Fi
     Figure {
         entry: "",
         name: String::new(),
-        title: format!("wear volume V(s) — {}", who(r, shown, true)),
+        title: format!("wear volume V(s) — {}; {}", who(r, shown, true), run_in_words(r)),
         panels,
         legend_title: String::new(),
         legend,
@@ -1320,6 +1340,9 @@ fn memory_of_pair(i: usize, r: &JobResult, shown: Shown) -> (Vec<Series>, Legend
             shown.unit("length")
         );
     }
+    let run_in = run_in_words(r);
+    let verdict = run_in.split(" (").next().unwrap_or(&run_in);
+    label = format!("{label} — {verdict}");
     let entry = LegendEntry {
         label,
         color,
@@ -1333,7 +1356,22 @@ fn memory_of_pair(i: usize, r: &JobResult, shown: Shown) -> (Vec<Series>, Legend
 /// fitted N₀(0) e^(−s/ℓ) (dashed, while it expects a junction or more), and the mean ℓ with its 95 %
 /// interval over the pairs as the legend's title.
 fn memory(pairs: &[&JobResult], shown: Shown) -> Figure {
-    let (mut series, mut legend, mut lengths) = (Vec::new(), Vec::new(), Vec::new());
+    // The fit window of every pair starts at the run's running-in distance: shaded before it.
+    let fit_start = pairs
+        .first()
+        .and_then(|r| r.results.first())
+        .map_or(0.0, |w| w.fit_window_start);
+    let mut legend = vec![LegendEntry {
+        label: format!(
+            "running-in (not fitted): the fit window starts at s = {} {}",
+            number(fit_start),
+            shown.unit("length")
+        ),
+        color: Color::Light,
+        marker: 0,
+        swatch: Swatch::Band,
+    }];
+    let (mut series, mut lengths) = (Vec::new(), Vec::new());
     for (i, r) in pairs.iter().enumerate() {
         let (mine, entry, length) = memory_of_pair(i, r, shown);
         series.extend(mine);
@@ -1362,15 +1400,23 @@ fn memory(pairs: &[&JobResult], shown: Shown) -> Figure {
         entry: "",
         name: String::new(),
         title,
-        panels: one_panel(
-            shown.distance_axis(),
-            Axis {
-                label: "junctions descending from s = 0, N₀".into(),
-                log: true,
-                fallback: (0.5, 10.0),
-            },
-            series,
-        ),
+        panels: vec![Panel {
+            x_band: Some(Band {
+                low: 0.0,
+                high: fit_start,
+                color: Color::Light,
+            }),
+            ..one_panel(
+                shown.distance_axis(),
+                Axis {
+                    label: "junctions descending from s = 0, N₀".into(),
+                    log: true,
+                    fallback: (0.5, 10.0),
+                },
+                series,
+            )
+            .remove(0)
+        }],
         legend_title,
         legend,
         note: None,

@@ -255,4 +255,31 @@ fn the_memory_figure_shows_every_pair_of_the_setting() {
         .collect();
     assert_eq!(labels, ["pair 1: N₀(s)", "pair 2: N₀(s)", "pair 3: N₀(s)"]);
     assert!(fig[0].legend_title.starts_with("mean ℓ = "), "{}", fig[0].legend_title);
+    // Each pair says whether the findings count it as run in (s_r = 5/seed ℓ against 3 ℓ), and the
+    // running-in before the fit window is shaded.
+    let verdicts: Vec<bool> = fig[0].legend[1..]
+        .iter()
+        .map(|e| e.label.ends_with("— run in"))
+        .collect();
+    assert_eq!(verdicts, [true, false, false], "{:?}", fig[0].legend);
+    assert!(fig[0].legend[2].label.ends_with("— not run in"));
+    let band = fig[0].panels[0].x_band.clone().unwrap();
+    assert_eq!((band.low, band.high), (0.0, 0.25 * 0.5));
+    // Fig. 3 says it of its job.
+    let fig3 = |job| {
+        study_figures(&tidy, &results, Some(job), Some(&["fig3".into()])).unwrap()[0]
+            .title
+            .clone()
+    };
+    assert!(
+        fig3(0).ends_with("; run in (fit window from 5 ℓ, at least 3)"),
+        "{}",
+        fig3(0)
+    );
+    let pair_2 = results.iter().find(|r| r.inputs.seed == Some(2)).unwrap().index;
+    assert!(
+        fig3(pair_2).contains("; not run in (fit window from 2.5 ℓ, under 3)"),
+        "{}",
+        fig3(pair_2)
+    );
 }
