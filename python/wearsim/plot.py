@@ -38,6 +38,9 @@ FIGURES: List[Tuple[str, str]] = [tuple(f) for f in _wearsim.FIGURES]  # type: i
 #: studies of Kim's ceramics.
 KIM_RANGE = tuple(_wearsim.KIM_EXPERIMENTAL_K)
 
+#: What the points and bars of the figures against load are (the legend's title).
+BARS = "mean over surface pairs; bars: 95 % confidence interval of the mean (Student t)"
+
 #: Particles in the fit window of a point, summed over its surface pairs, below which its fitted
 #: rates rest on too few events to be judged: drawn hollow (the rule of the paper's findings).
 RESOLVED_PARTICLES = _wearsim.RESOLVED_PARTICLES
@@ -77,6 +80,13 @@ def curves(tidy: pd.DataFrame) -> List[Tuple[str, pd.DataFrame]]:
     return out
 
 
+def per_area_label(label: str, tidy: pd.DataFrame) -> str:
+    """The axis label of a rate divided by the nominal area, as the library's figures write it."""
+    si = "units" in tidy.columns and len(tidy) and str(tidy["units"].iloc[0]) == "si"
+    unit = "m²/m²" if si else "= a box L × L (the paper's)"
+    return f"{label} / (Lx·Ly) (per unit nominal area, {unit})"
+
+
 def _shown(label: str) -> str:
     """A library label as matplotlib draws it: the script 𝒢, which its default font lacks, in mathtext."""
     return label.replace("𝒢", r"$\mathcal{G}$")
@@ -112,9 +122,10 @@ def _values(points: List[Dict[str, Any]], key: str) -> np.ndarray:
 
 
 def _limits(panel: Dict[str, Any], axis: str) -> Optional[Tuple[float, float]]:
-    """An axis' range as the CLI spans it: the values (and interval ends, and a shaded range) with
-    some room; None without values."""
-    points = [p for s in panel["series"] for p in s["points"]]
+    """An axis' range as the CLI spans it: the data's values (and interval ends, and a shaded range;
+    fitted and reference lines are drawn over them, not spanned) with some room; None without
+    values."""
+    points = [p for s in panel["series"] if not s["reference"] for p in s["points"]]
     keys: Tuple[str, ...] = ("x",) if axis == "x" else ("y", "low", "high")
     if panel["diagonal"]:
         keys = ("x", "y", "low", "high")
@@ -375,12 +386,16 @@ def wear_volume(
     fig, ax = plt.subplots(figsize=(9.5, 5.0))
     ax.axvspan(0, running_in, color="0.85", label="running-in (not fitted)")
     for i, (g, group) in enumerate(rows.groupby("fracture_energy", sort=False)):
-        ax.plot(group["s"], group["volume"], color=f"C{i}", lw=2, label=rf"V, $\mathcal{{G}}$ = {g:.3g}")
+        ax.plot(
+            group["s"], group["volume"], color=PALETTE[i % len(PALETTE)], lw=2, label=rf"V, $\mathcal{{G}}$ = {g:.3g}"
+        )
         r = _result_of(results, float(group["load"].iloc[0]), float(group["fracture_energy"].iloc[0]))
         if r is not None and _defined(r["wear_rate"]) and _defined(r["wear_volume_intercept"]):
             slope, intercept = float(r["wear_rate"]), float(r["wear_volume_intercept"])
             s = np.array([0, group["s"].max()])
-            ax.plot(s, intercept + slope * s, "--", color=f"C{i}", lw=1, label=f"fit: W = {slope:.3g}")
+            ax.plot(
+                s, intercept + slope * s, "--", color=PALETTE[i % len(PALETTE)], lw=1, label=f"fit: W = {slope:.3g}"
+            )
     ax.set(xlabel=f"sliding distance s ({length_unit})", ylabel=f"wear volume V ({length_unit}³)")
     ax.legend(fontsize=8)
     fig.tight_layout()
@@ -393,9 +408,28 @@ def particle_counts(series: pd.DataFrame, *, load: Optional[float] = None, lengt
     rows = _one_load(series, load)
     fig, ax = plt.subplots(figsize=(9.5, 5.0))
     for i, (g, group) in enumerate(rows.groupby("fracture_energy", sort=False)):
-        ax.plot(group["s"], group["n_formed"], color=f"C{i}", lw=2, label=rf"N*₊, $\mathcal{{G}}$ = {g:.3g}")
-        ax.plot(group["s"], group["n_critical"], "--", color=f"C{i}", lw=2, label=rf"N*, $\mathcal{{G}}$ = {g:.3g}")
-        ax.plot(group["s"], group["n_shrunk"], color=f"C{i}", lw=0.8, label=rf"N*₋, $\mathcal{{G}}$ = {g:.3g}")
+        ax.plot(
+            group["s"],
+            group["n_formed"],
+            color=PALETTE[i % len(PALETTE)],
+            lw=2,
+            label=rf"N*₊, $\mathcal{{G}}$ = {g:.3g}",
+        )
+        ax.plot(
+            group["s"],
+            group["n_critical"],
+            "--",
+            color=PALETTE[i % len(PALETTE)],
+            lw=2,
+            label=rf"N*, $\mathcal{{G}}$ = {g:.3g}",
+        )
+        ax.plot(
+            group["s"],
+            group["n_shrunk"],
+            color=PALETTE[i % len(PALETTE)],
+            lw=0.8,
+            label=rf"N*₋, $\mathcal{{G}}$ = {g:.3g}",
+        )
     ax.set(xlabel=f"sliding distance s ({length_unit})", ylabel="number of junctions")
     ax.legend(fontsize=8)
     fig.tight_layout()
@@ -430,9 +464,9 @@ def memory(
             s = rows["s"].to_numpy()
             fit = initial * np.exp(-s / decay_length)
             keep = fit >= 1.0
-            ax.plot(s[keep], fit[keep], "--", color=f"C{i}", lw=1)
+            ax.plot(s[keep], fit[keep], "--", color=PALETTE[i % len(PALETTE)], lw=1)
             label = f"{name}, fit ℓ = {decay_length:.3g} {length_unit}"
-        ax.plot(rows["s"], rows["initial_junctions"], color=f"C{i}", lw=2, label=label)
+        ax.plot(rows["s"], rows["initial_junctions"], color=PALETTE[i % len(PALETTE)], lw=2, label=label)
     interval = _wearsim.mean_interval(lengths)
     if interval is not None:
         mean, low, high, n = interval

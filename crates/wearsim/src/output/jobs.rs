@@ -163,9 +163,10 @@ pub fn sliding_rows(tidy: &Table) -> (Table, usize) {
 /// Columns that neither identify a setting nor are averaged: the job index, the seed, the warnings.
 pub const NOT_A_SETTING: [&str; 3] = ["job", "surface.seed", "warnings"];
 
-/// Setting columns that change along one curve of the paper's figures (a setting against load):
-/// the load and what follows from it with the setting's other inputs.
-pub const ALONG_A_CURVE: [&str; 3] = ["load", "nominal_pressure", "contact_severity"];
+/// Columns that name no curve of the paper's figures (a setting against load): the load and what
+/// follows from it with the setting's other inputs, which change along a curve, and the nominal area
+/// Lx·Ly, which follows from the box (its inputs name the curve) and is no setting of its own.
+pub const ALONG_A_CURVE: [&str; 4] = ["load", "nominal_pressure", "contact_severity", "nominal_area"];
 
 /// The curves of a table of settings (tidy or aggregated): the grouping of every figure of the
 /// paper that draws a quantity against load.

@@ -29,10 +29,11 @@ fn xy(points: &[data::Point]) -> Vec<(f64, f64)> {
     points.iter().map(|p| (p.x, p.y)).collect()
 }
 
-/// A panel's axes: each spanning its values (the interval's ends and a shaded range included);
-/// both spanning x and y where the panel draws y = x.
+/// A panel's axes: each spanning the data's values (the interval's ends and a shaded range
+/// included; fitted and reference lines are drawn over them, not spanned); both spanning x and y
+/// where the panel draws y = x.
 fn axes(panel: &data::Panel) -> (Axis, Axis) {
-    let points = || panel.series.iter().flat_map(|s| &s.points);
+    let points = || panel.series.iter().filter(|s| !s.reference).flat_map(|s| &s.points);
     let xs: Vec<f64> = points().map(|p| p.x).collect();
     let mut ys: Vec<f64> = points().flat_map(|p| [p.y, p.low, p.high]).collect();
     ys.extend(panel.y_band.iter().flat_map(|b| [b.low, b.high]));

@@ -49,6 +49,12 @@ fn draw(figures: &[Figure], out: &Path, shown: &Path) -> Result<()> {
         if let Some(note) = &figure.note {
             say!("{}: {note}", figure.entry);
         }
+        if figure.entry == "appF" {
+            // The fits W = α S_cⁿ, as the legend gives them.
+            for entry in &figure.legend {
+                say!("contact severity fit, {}", entry.label);
+            }
+        }
         save(out, shown, &figure.name, size(figure), &Drawn(figure))?;
         write_into(out, shown, &format!("{}.csv", figure.name), figure.to_csv().as_bytes())
             .with_context(|| format!("cannot write the numbers of {} into {}", figure.name, shown.display()))?;

@@ -27,6 +27,7 @@ fn every_style() -> Figure {
         marker: 2,
         style,
         points,
+        reference: false,
     };
     let means = vec![
         point(1e-3, 2e-4, false, false),

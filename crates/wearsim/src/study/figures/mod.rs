@@ -32,7 +32,7 @@ pub struct FigureSpec {
 }
 
 /// Every figure of a study, in the order drawn. A new figure is one entry here and its function in
-/// [`figure`].
+/// `figure`.
 pub const FIGURES: [FigureSpec; 11] = [
     FigureSpec {
         name: "fig2",
@@ -163,6 +163,8 @@ pub struct Series {
     pub marker: usize,
     pub style: Style,
     pub points: Vec<Point>,
+    /// A fitted or reference line drawn over the data: the axes span the data, not it.
+    pub reference: bool,
 }
 
 /// An axis: its label with its unit, whether it is logarithmic, and the range shown when it has no
@@ -375,7 +377,14 @@ impl Curves {
         let column = |name: &str| tidy.column(name);
         let value = |row: &[Cell], name: &str| column(name).map_or(f64::NAN, |c| row[c].number());
         let mut materials: Vec<String> = Vec::new();
-        let mut energies: Vec<(usize, Vec<u64>)> = Vec::new();
+        // The settings less the fracture energy: the curves of one setting, one per 𝒢.
+        let without_energy: Vec<usize> = found
+            .settings
+            .iter()
+            .filter(|c| c.as_str() != "fracture_energy")
+            .filter_map(|c| column(c))
+            .collect();
+        let mut settings: Vec<(String, Vec<String>)> = Vec::new();
         let mut out: Vec<Curve> = Vec::new();
         for (row, &c) in tidy.rows.iter().zip(&found.index) {
             if c < out.len() {
@@ -383,23 +392,13 @@ impl Curves {
             }
             let name = column("material").map_or("material".into(), |m| row[m].text());
             let material = materials.iter().position(|m| *m == name).unwrap_or_else(|| {
-                materials.push(name);
+                materials.push(name.clone());
                 materials.len() - 1
             });
-            // The fracture energy's index among the curves of the same job (one job holds every
-            // fracture energy of its setting).
-            let job = column("job").map_or(c, |j| row[j].number() as usize);
-            let energy_bits = value(row, "fracture_energy").to_bits();
-            let energy = match energies.iter_mut().find(|(j, _)| *j == job) {
-                Some((_, seen)) => {
-                    seen.push(energy_bits);
-                    seen.len() - 1
-                }
-                None => {
-                    energies.push((job, vec![energy_bits]));
-                    0
-                }
-            };
+            // The fracture energy's index among the curves of its setting, in order of appearance.
+            let setting = (name, without_energy.iter().map(|&i| row[i].text()).collect());
+            let energy = settings.iter().filter(|s| **s == setting).count();
+            settings.push(setting);
             let model = column("sliding.model").map(|m| row[m].text());
             out.push(Curve {
                 label: labels.get(c).cloned().unwrap_or_default(),
@@ -547,6 +546,7 @@ impl LoadFigure<'_> {
                         marker,
                         style: Style::Means,
                         points: data.points(c, spec.quantity, spec.per_area, self.fitted),
+                        reference: false,
                     }
                 })
                 .collect();
@@ -931,6 +931,7 @@ fn equation_5(data: &Curves, shown: Shown) -> Figure {
             marker: c.material,
             style: Style::Markers,
             points,
+            reference: false,
         });
         legend.push(LegendEntry {
             label: c.label.clone(),
@@ -982,6 +983,7 @@ fn material_severity(m: usize, mat: &MaterialSeverity, line: Line) -> (Vec<Serie
         marker: m,
         style: Style::Markers,
         points: mat.points.iter().map(|&(x, y)| Point::at(x, y)).collect(),
+        reference: false,
     }];
     let label = match mat.fit {
         Some(fit) => {
@@ -994,6 +996,7 @@ fn material_severity(m: usize, mat: &MaterialSeverity, line: Line) -> (Vec<Serie
                     width: 1,
                 },
                 points: line(fit.prefactor, fit.exponent),
+                reference: true,
             });
             format!(
                 "{}{kim}: α = {}, n = {:.2}, R² = {}",
@@ -1064,7 +1067,7 @@ fn contact_severity(tidy: &Table, shown: Shown) -> Option<Figure> {
         legend.push(entry);
     }
     for ((alpha, n), label, color) in severity_references(all, materials.iter().any(|m| m.kim.is_some())) {
-        series.push(line_series(label.clone(), color, true, 1, line(alpha, n)));
+        series.push(fit_line(label.clone(), color, line(alpha, n)));
         legend.push(LegendEntry {
             label,
             color,
@@ -1144,6 +1147,15 @@ fn line_series(label: String, color: Color, dashed: bool, width: u32, points: Ve
         marker: 0,
         style: Style::Line { dashed, width },
         points,
+        reference: false,
+    }
+}
+
+/// A fitted or reference line (dashed, thin): drawn over the data, not widening the axes.
+fn fit_line(label: String, color: Color, points: Vec<Point>) -> Series {
+    Series {
+        reference: true,
+        ..line_series(label, color, true, 1, points)
     }
 }
 
@@ -1215,7 +1227,7 @@ fn wear_volume(r: &JobResult, _pairs: Option<&[&JobResult]>, shown: Shown) -> Fi
                 .map_or("undefined (no particle)".into(), |x| format!("{x:.3}"));
             let label = format!("fit: W = {} {}, R² = {r2}", number(slope), shown.unit("wear_rate"));
             let fit = vec![Point::at(0.0, intercept), Point::at(s_max, intercept + slope * s_max)];
-            series.push(line_series(label.clone(), color, true, 1, fit));
+            series.push(fit_line(label.clone(), color, fit));
             legend.push(LegendEntry {
                 label,
                 color,
@@ -1327,7 +1339,7 @@ fn memory_of_pair(i: usize, r: &JobResult, shown: Shown) -> (Vec<Series>, Legend
             .map(|st| Point::at(st.s, initial * (-st.s / decay_length).exp()))
             .take_while(|p| p.y >= 1.0)
             .collect();
-        series.push(line_series(format!("{pair}: fit"), color, true, 1, curve));
+        series.push(fit_line(format!("{pair}: fit"), color, curve));
         let r2 = first
             .and_then(|w| w.memory_decay_r2)
             .map_or("undefined".into(), |x| format!("{x:.2}"));

@@ -226,6 +226,31 @@ fn rates_are_per_unit_area_with_intervals_and_kims_band_only_for_kims_ceramics()
 }
 
 #[test]
+fn junctions_are_one_curve_per_setting_and_fits_do_not_span_the_axes() {
+    let (results, mut tidy) = study(REDUCED);
+    // Two τ̃ × two 𝒢: four curves of N*, two of N (it does not depend on 𝒢), with or without the job
+    // column (a table made by hand).
+    for _ in 0..2 {
+        let fig = study_figures(&tidy, &[], None, Some(&["appC".into()])).unwrap();
+        assert_eq!(named(&fig, "appC_junctions").panels[0].series.len(), 2);
+        assert_eq!(named(&fig, "appC_critical_junctions").panels[0].series.len(), 4);
+        if let Some(job) = tidy.column("job") {
+            tidy.columns.remove(job);
+            tidy.rows.iter_mut().for_each(|r| {
+                r.remove(job);
+            });
+        }
+    }
+    // Fitted lines are drawn over the data; the data alone span the axes.
+    let fig = study_figures(&tidy, &results, Some(0), Some(&["fig3".into(), "memory".into()])).unwrap();
+    for f in &fig {
+        for s in &f.panels[0].series {
+            assert_eq!(s.reference, s.label.contains("fit"), "{}: {}", f.name, s.label);
+        }
+    }
+}
+
+#[test]
 fn equation_5_pairs_w_and_its_estimate_of_the_same_row() {
     let fig = figures(REDUCED, &["appB-eq5"]);
     // The made-up estimate is 0.9 W in every row: a point off that line pairs two rows.

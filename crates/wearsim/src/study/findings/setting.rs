@@ -140,6 +140,7 @@ pub(super) fn settings(tidy: &Table) -> Vec<Setting> {
         "load",
         "nominal_pressure",
         "contact_severity",
+        "nominal_area",
     ];
     let numeric: Vec<usize> = (0..tidy.columns.len())
         .filter(|&c| tidy.rows.iter().any(|r| matches!(r[c], Cell::Float(_) | Cell::Int(_))))

@@ -436,6 +436,9 @@ fn axis_row(job: usize, seed: u64, length: f64, lambda_lower: f64, w: f64, junct
         job,
         material: "m".into(),
         nominal_pressure: inputs.nominal_pressure(1e-3),
+        // As `TidyRow::of_job` writes it: a column that differs between boxes without being a
+        // setting of its own.
+        nominal_area: inputs.nominal_area(),
         inputs,
         load: 1e-3,
         result,
