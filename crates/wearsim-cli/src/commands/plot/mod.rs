@@ -2,7 +2,7 @@
 //! layout of the paper (Brink, Frérot & Molinari 2021), and the paper's findings judged on the study
 //! (`findings.md`, also printed). The figures and their numbers are the library's
 //! (`wearsim::study::figures`: one registry, [`FIGURES`], whose names `--figures` takes and
-//! `--help` lists; Python's `wearsim.plot` draws the same); this command draws them ([`draw`]) and
+//! `--help` lists; Python's `wearsim.plot` draws the same); this command draws them ([`mod@draw`]) and
 //! writes each figure's numbers as CSV beside its PNG and SVG.
 
 mod draw;
