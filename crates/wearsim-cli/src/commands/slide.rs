@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
-use wearsim::config::Units;
+use wearsim::config::{RunConfig, Units};
 use wearsim::estimate::WearModel;
 use wearsim::io::{write_json, write_text, OutputDir};
 use wearsim::output::{unit_of, FieldSelection, FieldsWriter};
@@ -154,6 +154,20 @@ fn note_other_model(model: WearModel) {
     );
 }
 
+/// The output folder, made (and checked) before any work; none for a dry run, which writes nothing.
+fn output_folder(args: &Args, config: &RunConfig) -> Result<Option<OutputDir>> {
+    if args.dry_run {
+        return Ok(None);
+    }
+    let folder = OutputDir::begin(
+        &args.output.out,
+        "slide",
+        args.output.overwrite.replace,
+        &super::run_inputs(&args.run, config),
+    )?;
+    Ok(Some(folder))
+}
+
 pub fn run(args: &Args) -> Result<()> {
     let run = &args.run;
     super::polls_interrupt();
@@ -163,17 +177,7 @@ pub fn run(args: &Args) -> Result<()> {
         note_other_model(config.model);
     }
     let interrupt = super::interrupt();
-    // The output folder is made (and checked) before any work; a dry run writes nothing.
-    let out = if args.dry_run {
-        None
-    } else {
-        Some(OutputDir::begin(
-            &args.output.out,
-            "slide",
-            args.output.overwrite.replace,
-            &super::run_inputs(run, &config),
-        )?)
-    };
+    let out = output_folder(args, &config)?;
     // The surfaces are made once: the cost estimate measures a few steps on them, and the run
     // slides on them.
     let prepared = SlidingRun::prepare(&config)?.interrupted_by(interrupt);
