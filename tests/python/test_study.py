@@ -138,7 +138,8 @@ def test_figures_from_python_and_job_series(tmp_path, study_file, wearsim_bin):
         assert (python / f"{stem}.png").stat().st_size > 1000
     # What matplotlib plots is the CSV's numbers: every series, point by point.
     for data in wearsim.plot.study_figure_data(out):
-        table = pd.read_csv(cli / f"{data['name']}.csv")
+        # Read exactly: the CSV holds each number in its shortest round-trip form.
+        table = pd.read_csv(cli / f"{data['name']}.csv", float_precision="round_trip")
         points = table[table["kind"] == "point"]
         fig = wearsim.plot.draw(data)
         drawn = _drawn_numbers(fig)
