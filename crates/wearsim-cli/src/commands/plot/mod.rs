@@ -10,7 +10,7 @@ mod draw;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, Result};
-use wearsim::study::figures::{study_folder_figures, Figure, FIGURES};
+use wearsim::study::figures::{study_folder_figures, Figure, Swatch, FIGURES};
 use wearsim::study::findings::{findings, markdown};
 
 use crate::figures::{save, write_into};
@@ -50,8 +50,14 @@ fn draw(figures: &[Figure], out: &Path, shown: &Path) -> Result<()> {
             say!("{}: {note}", figure.entry);
         }
         if figure.entry == "appF" {
-            // The fits W = α S_cⁿ, as the legend gives them.
-            for entry in &figure.legend {
+            // The fits W = α S_cⁿ: over all materials (the title), then each material's (its legend
+            // entry; the reference lines' entries are the paper's and Kim et al.'s numbers).
+            say!("contact severity fit, {}", figure.title);
+            for entry in figure
+                .legend
+                .iter()
+                .filter(|e| !matches!(e.swatch, Swatch::Line { .. }))
+            {
                 say!("contact severity fit, {}", entry.label);
             }
         }
