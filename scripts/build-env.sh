@@ -5,6 +5,11 @@
 # for the host target so that the tests, the CLI and the wheel share one build of each crate.
 #   build_env_install   the tools of scripts/build-requirements.txt into target/build-venv (once)
 #   build_env_export    the linker for this shell's Cargo builds (CARGO_TARGET_..._LINKER)
+#   venv_create DIR, venv_install PYTHON ARGS...
+#                       a venv of the test scripts, and packages installed into it, by uv (from
+#                       target/build-venv): pip's work at a tenth of its CPU time, and without
+#                       compiling every installed module to bytecode (scripts/test.sh keeps the
+#                       bytecode of what its processes import instead)
 # x86_64 Linux only (the wrapper names x86_64-linux-gnu).
 
 build_venv="$PWD/target/build-venv"
@@ -20,6 +25,16 @@ build_env_install() {
         "$build_venv/bin/python" -m pip install -q -r scripts/build-requirements.txt
         cp scripts/build-requirements.txt "$build_venv/requirements.txt"
     fi
+}
+
+venv_create() {
+    "$build_venv/bin/uv" venv -q "$1"
+}
+
+venv_install() {
+    local python=$1
+    shift
+    "$build_venv/bin/uv" pip install -q --python "$python" "$@"
 }
 
 build_env_export() {

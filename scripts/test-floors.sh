@@ -10,16 +10,18 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 venv=target/floors-venv
+# venv_create, venv_install (uv from target/build-venv).
+source scripts/build-env.sh
 if [ "${2:-}" = install ]; then
+    build_env_install
     rm -rf "$venv"
-    python3 -m venv "$venv"
-    "$venv/bin/python" -m pip install -q --upgrade pip
+    venv_create "$venv"
     python3 scripts/floors.py >target/floors.txt
-    "$venv/bin/python" -m pip install -q --only-binary=:all: -r target/floors.txt
+    venv_install "$venv/bin/python" --only-binary :all: -r target/floors.txt
     exit 0
 fi
 wheel="$1"
-"$venv/bin/python" -m pip install -q --force-reinstall --no-deps "$wheel"
+venv_install "$venv/bin/python" --reinstall --no-deps "$wheel"
 # The venv must hold the floors, not whatever pip resolved the wheel's dependencies to.
 "$venv/bin/python" - target/floors.txt <<'PY'
 import sys

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # All of wearsim's tests, each phase announced with the seconds elapsed since the start:
-#   formatting and lints (cargo fmt, clippy, ruff);
+#   formatting and lints (cargo fmt; clippy, as the build compiles; ruff);
 #   one Cargo build (the `ci` profile of Cargo.toml, linked for glibc 2.17 by scripts/build-env.sh)
 #   that gives the Rust unit, validation and CLI tests, the `wearsim` program the other phases drive,
 #   and, with the Python extension added, the wheel;
@@ -26,6 +26,11 @@ cd "$(dirname "$0")/.."
 # calibrate and check it.
 export WEARSIM_NO_ESTIMATE=1
 root="$PWD"
+# The venvs are installed without bytecode (uv; pip --no-compile): the Python processes of the tests
+# compile what they import and keep it, once, under target/pycache, even where the environment says
+# not to write bytecode beside the sources.
+unset PYTHONDONTWRITEBYTECODE
+export PYTHONPYCACHEPREFIX="$root/target/pycache"
 logs="$root/target/test-logs"
 rm -rf "$logs"
 mkdir -p "$logs"
@@ -121,9 +126,8 @@ echo "linker: $CARGO_TARGET_X86_64_UNKNOWN_LINUX_GNU_LINKER"
 
 phase "In the background: .venv with the pinned test dependencies, the floors venv"
 setup_venv() {
-    [ -x .venv/bin/python ] || python3 -m venv .venv
-    .venv/bin/python -m pip install -q --upgrade pip
-    .venv/bin/python -m pip install -q -r tests/python/requirements.txt
+    [ -x .venv/bin/python ] || venv_create .venv
+    venv_install .venv/bin/python -r tests/python/requirements.txt
 }
 background venv setup_venv
 background floors-venv scripts/test-floors.sh "" install
@@ -132,10 +136,19 @@ phase "Formatting: cargo fmt --check"
 finish cargo-fetch
 run cargo fmt --all --check
 
-phase "Lints: cargo clippy --profile ci --workspace --all-targets -- -D warnings"
-run cargo clippy --profile ci --workspace --all-targets --locked -q -- -D warnings
-
-phase "Rust build: the tests and the wearsim program (profile ci, linked for glibc 2.17)"
+# Clippy lints every crate of the workspace as it compiles it: clippy-driver stands in for rustc on
+# the workspace's own crates (what `cargo clippy` does, but in a build, not a check), with warnings
+# made errors, so the crates are parsed and type-checked once for the lints and the build together.
+# Every later cargo command (the tests, the API reference, the wheel) runs the same way, so none of
+# them compiles a crate again.
+if ! command -v clippy-driver >/dev/null; then
+    echo "error: clippy-driver is not on the PATH: install clippy (rustup component add clippy)" >&2
+    exit 1
+fi
+export RUSTC_WORKSPACE_WRAPPER
+RUSTC_WORKSPACE_WRAPPER=$(command -v clippy-driver)
+export CLIPPY_ARGS="-D__CLIPPY_HACKERY__warnings__CLIPPY_HACKERY__"
+phase "Rust build, linted: the tests and the wearsim program (profile ci, linked for glibc 2.17; clippy -D warnings)"
 run cargo test --profile ci --workspace --locked --no-run -q
 
 phase "Rust API reference: cargo doc --no-deps, warnings are errors"
@@ -160,7 +173,7 @@ fresh_venv() {
     fresh="$(mktemp -d)/venv"
     python3 -m venv "$fresh"
     no_cargo_path=$(printf '%s' "$PATH" | tr ':' '\n' | grep -v -e cargo -e rustup | paste -sd: -)
-    (cd /tmp && env PATH="$no_cargo_path" "$fresh/bin/python" -m pip install -q "$wheel[examples]")
+    (cd /tmp && env PATH="$no_cargo_path" "$fresh/bin/python" -m pip install -q --no-compile "$wheel[examples]")
     (cd /tmp && env PATH="$no_cargo_path" "$fresh/bin/python" -c "import shutil, wearsim; assert shutil.which('cargo') is None; print('wearsim', wearsim.__version__, 'from the wheel, without cargo')")
     env PATH="$no_cargo_path" MPLBACKEND=Agg "$fresh/bin/python" examples/python/quickstart.py --out "$(mktemp -d)/python-example"
     rm -rf "$(dirname "$fresh")"
@@ -172,7 +185,7 @@ python_checks() {
     .venv/bin/ruff check
     .venv/bin/ruff format --check
     echo "-- the wheel in .venv; type stubs against the compiled module (stubtest); mypy"
-    .venv/bin/python -m pip install -q --force-reinstall --no-deps "$wheel"
+    venv_install .venv/bin/python --reinstall --no-deps "$wheel"
     (cd /tmp && "$root/.venv/bin/python" -c "import wearsim; print('wearsim', wearsim.__version__, 'imported from', wearsim.__file__)")
     (cd /tmp && "$root/.venv/bin/python" -m mypy.stubtest wearsim._wearsim)
     (cd python && ../.venv/bin/python -m mypy wearsim)
