@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # All of wearsim's tests, each phase announced with the seconds elapsed since the start:
-#   formatting and lints (cargo fmt; clippy, as the build compiles; ruff);
+#   formatting and lints (cargo fmt, clippy, ruff);
 #   one Cargo build (the `ci` profile of Cargo.toml, linked for glibc 2.17 by scripts/build-env.sh)
 #   that gives the Rust unit, validation and CLI tests, the `wearsim` program the other phases drive,
 #   and, with the Python extension added, the wheel;
@@ -136,19 +136,10 @@ phase "Formatting: cargo fmt --check"
 finish cargo-fetch
 run cargo fmt --all --check
 
-# Clippy lints every crate of the workspace as it compiles it: clippy-driver stands in for rustc on
-# the workspace's own crates (what `cargo clippy` does, but in a build, not a check), with warnings
-# made errors, so the crates are parsed and type-checked once for the lints and the build together.
-# Every later cargo command (the tests, the API reference, the wheel) runs the same way, so none of
-# them compiles a crate again.
-if ! command -v clippy-driver >/dev/null; then
-    echo "error: clippy-driver is not on the PATH: install clippy (rustup component add clippy)" >&2
-    exit 1
-fi
-export RUSTC_WORKSPACE_WRAPPER
-RUSTC_WORKSPACE_WRAPPER=$(command -v clippy-driver)
-export CLIPPY_ARGS="-D__CLIPPY_HACKERY__warnings__CLIPPY_HACKERY__"
-phase "Rust build, linted: the tests and the wearsim program (profile ci, linked for glibc 2.17; clippy -D warnings)"
+phase "Lints: cargo clippy --profile ci --workspace --all-targets -- -D warnings"
+run cargo clippy --profile ci --workspace --all-targets --locked -q -- -D warnings
+
+phase "Rust build: the tests and the wearsim program (profile ci, linked for glibc 2.17)"
 run cargo test --profile ci --workspace --locked --no-run -q
 
 phase "Rust API reference: cargo doc --no-deps, warnings are errors"
