@@ -1,10 +1,12 @@
 //! The influence of material properties (paper §4.1, Fig. 4, §6): the level of k, its trend with load,
-//! Archard-like wear, and which d* wears more at low and high loads.
+//! Archard-like wear, and how the wear of a larger d* against a smaller one changes with load.
 
-use crate::stats::Region;
+use crate::stats::{line_fit, mean_interval, LineFit, Region};
 
-use super::rules::{compare, curve_label, exponents_by_seed, judge_values, pair_exponents, per_setting, Compared};
-use super::setting::{curves, curves_differing_in_g, d_star_pairs, fmt, high, param, Setting};
+use super::rules::{
+    compare, curve_label, exponents_by_seed, judge_values, pair_exponents, per_setting, show, Compared, Outcome,
+};
+use super::setting::{curves, curves_differing_in_g, d_star_pairs, fmt, param, Setting};
 use super::{finding, Finding, Tally};
 
 /// §4.1: k an order of magnitude below the static model's, per setting.
@@ -192,31 +194,137 @@ pub(super) fn tougher_reaches_k_max_later(all: &[Setting]) -> Finding {
     )
 }
 
-/// §4.1, Fig. 4a–b: at high loads, the larger d* wears more.
+/// §4.1, Fig. 4a–b: "wear rates at higher loads are usually higher for materials with larger d*",
+/// beside "at low loads, the systems with smaller fracture energy wear more": the curves cross. Judged
+/// as a crossover: per pair of curves differing in 𝒢 or τ̃ alone, the ratio W(larger d*)/W(smaller d*)
+/// grows with the load, per surface pair; where the study's loads bracket it, the load at which the
+/// ratio crosses 1 is given with its interval. No load is called high for lying above the others.
 pub(super) fn larger_d_star_wears_more_at_high_load(all: &[Setting]) -> Finding {
     let mut tally = Tally::default();
-    for (a, b, what) in d_star_pairs(all).into_iter().filter(|(a, ..)| high(all, a.pressure)) {
-        tally.file(compare(a, b, what, Compared::WearRate, Region::Above(1.0), true));
+    let curves = curves(all);
+    for (larger, smaller, what) in curves_differing_in_d_star(&curves) {
+        tally.file(crossover(larger, smaller, what));
     }
     finding(
         "larger-d-star-wears-more-at-high-load",
-        "sliding model (§4.1, Fig. 4a–b): wear rates at higher loads are usually higher for materials with larger d*",
-        "per pair of settings at one load in the upper half of the study's loads, differing in 𝒢 or in τ̃ alone: \
-         W(larger d*)/W(smaller d*) > 1, paired over the shared run-in surface pairs, or by the count test where a pair \
-         has no particle"
+        "sliding model (§4.1, Fig. 4a–b): wear rates at higher loads are usually higher for materials with larger d* \
+         (and at low loads the systems with smaller fracture energy wear more: the curves cross)",
+        "per pair of curves against load differing in 𝒢 or in τ̃ alone: the slope of ln[W(larger d*)/W(smaller d*)] \
+         against ln F_N, fitted per surface pair over the loads where both are run in and wear (a pair needs two such \
+         loads), > 0 by its Student-t interval over the pairs: the larger d* gains on the smaller with load. Where the \
+         study's loads bracket it, the load where the ratio crosses 1 (per pair, from its fitted line) is given with \
+         its interval (geometric mean over the pairs, Student t on the logs)"
             .into(),
-        "pairs of settings",
+        "pairs of curves",
         tally,
     )
 }
 
+/// Pairs of curves against load (two loads or more) of one family and material whose d* differs
+/// through 𝒢 alone or τ̃ alone: (the curve of the larger d*, of the smaller, "via 𝒢" or "via τ̃").
+fn curves_differing_in_d_star<'c, 's>(
+    curves: &'c [Vec<&'s Setting>],
+) -> Vec<(&'c [&'s Setting], &'c [&'s Setting], &'static str)> {
+    let long = || curves.iter().filter(|c| c.len() >= 2);
+    let mut out = Vec::new();
+    for a in long() {
+        for b in long() {
+            let (a0, b0) = (a[0], b[0]);
+            if a0.family != b0.family || a0.material != b0.material {
+                continue;
+            }
+            if a0.shear_strength == b0.shear_strength && a0.fracture_energy > b0.fracture_energy {
+                out.push((a.as_slice(), b.as_slice(), "via 𝒢"));
+            } else if a0.fracture_energy == b0.fracture_energy && a0.shear_strength < b0.shear_strength {
+                out.push((a.as_slice(), b.as_slice(), "via τ̃"));
+            }
+        }
+    }
+    out
+}
+
+/// One pair of curves judged as a crossover ([`larger_d_star_wears_more_at_high_load`]).
+fn crossover(larger: &[&Setting], smaller: &[&Setting], what: &str) -> Outcome {
+    let label = format!("{} vs {} ({what})", curve_label(larger), curve_label(smaller));
+    let fits = |run_in: bool| -> Vec<LineFit> {
+        larger[0]
+            .pairs
+            .iter()
+            .filter_map(|p| {
+                let (x, y): (Vec<f64>, Vec<f64>) = larger
+                    .iter()
+                    .filter_map(|a| {
+                        let b = smaller.iter().find(|b| b.pressure == a.pressure)?;
+                        let (pa, pb) = (a.pair(&p.seed)?, b.pair(&p.seed)?);
+                        let ratio = pa.get("wear_rate") / pb.get("wear_rate");
+                        let ok = (!run_in || pa.run_in() && pb.run_in()) && ratio.is_finite() && ratio > 0.0;
+                        ok.then(|| (a.pressure.ln(), ratio.ln()))
+                    })
+                    .unzip();
+                line_fit(&x, &y)
+            })
+            .collect()
+    };
+    let fitted = fits(true);
+    if fitted.len() < 2 && fits(false).len() >= 2 {
+        return Outcome::NotRunIn(format!(
+            "{label}: {} pairs with two run-in loads where both wear",
+            fitted.len()
+        ));
+    }
+    let slopes: Vec<f64> = fitted.iter().map(|f| f.slope).collect();
+    let note = crossing_note(larger, &fitted);
+    judge_values(
+        &label,
+        "d ln[W(larger d*)/W(smaller d*)]/d ln F_N",
+        &slopes,
+        Region::Above(0.0),
+        &note,
+        larger[0].pairs.len(),
+    )
+}
+
+/// "; W ratio = 1 at F_N/(Lx·Ly) = 2e-3 [1.6e-3, 2.5e-3]" where every pair's ratio rises through 1
+/// and the pairs' crossing lies within the curve's loads; else what the ratio does there.
+fn crossing_note(curve: &[&Setting], fitted: &[LineFit]) -> String {
+    if fitted.len() < 2 || fitted.iter().any(|f| f.slope <= 0.0) {
+        return String::new();
+    }
+    let logs: Vec<f64> = fitted.iter().map(|f| -f.intercept / f.slope).collect();
+    let Some(i) = mean_interval(&logs) else {
+        return String::new();
+    };
+    let (lo, hi) = (curve[0].pressure, curve[curve.len() - 1].pressure);
+    let at = i.map(f64::exp);
+    if at.estimate < lo {
+        format!(
+            "; the ratio is above 1 over all the loads (it would cross 1 at F_N/(Lx·Ly) ≈ {})",
+            fmt(at.estimate)
+        )
+    } else if at.estimate > hi {
+        format!(
+            "; the ratio is below 1 over all the loads (it would cross 1 at F_N/(Lx·Ly) ≈ {})",
+            fmt(at.estimate)
+        )
+    } else {
+        format!("; W ratio = 1 at F_N/(Lx·Ly) = {}", show(&at))
+    }
+}
+
 /// §4.1, Fig. 4a: at low loads, the smaller 𝒢 wears more; read as reduced adhesion (a larger 𝒢),
-/// the reason the paper gives for experiments one or two orders of magnitude below its k.
+/// the reason the paper gives for experiments one or two orders of magnitude below its k. Judged at
+/// the lowest load of the settings' family.
 pub(super) fn smaller_g_wears_more_at_low_load(all: &[Setting]) -> Finding {
     let mut tally = Tally::default();
+    let lowest = |s: &Setting| {
+        all.iter()
+            .filter(|x| x.family == s.family)
+            .map(|x| x.pressure)
+            .fold(f64::INFINITY, f64::min)
+    };
     let pairs = d_star_pairs(all)
         .into_iter()
-        .filter(|(a, _, what)| *what == "via 𝒢" && !high(all, a.pressure));
+        .filter(|(a, _, what)| *what == "via 𝒢" && a.pressure == lowest(a));
     for (a, b, _) in pairs {
         tally.file(compare(
             b,
@@ -232,9 +340,9 @@ pub(super) fn smaller_g_wears_more_at_low_load(all: &[Setting]) -> Finding {
         "sliding model (§4.1, Fig. 4a): at low loads, the systems with smaller fracture energy wear more; reduced \
          adhesion (a larger 𝒢) reduces wear at low loads, the paper's reading of experiments one or two orders of \
          magnitude below its k",
-        "per pair of settings at one load in the lower half of the study's loads, differing in 𝒢 alone: W(smaller \
-         𝒢)/W(larger 𝒢) > 1, paired over the shared run-in surface pairs, or by the count test (W as ω d*³ times the \
-         particles, Eq. 5) where a pair has no particle"
+        "per pair of settings at the study's lowest load, differing in 𝒢 alone: W(smaller 𝒢)/W(larger 𝒢) > 1, paired \
+         over the shared run-in surface pairs, or by the count test (W as ω d*³ times the particles, Eq. 5) where a \
+         pair has no particle"
             .into(),
         "pairs of settings",
         tally,

@@ -4,7 +4,7 @@
 use crate::stats::{count_ratio, judge::smallest, Interval, Region, Side};
 
 use super::rules::{all_of, compare, curve_label, show, Compared, Outcome};
-use super::setting::{curves, curves_differing_in_g, high, param, pressures, Pair, Setting};
+use super::setting::{at_highest_load, curves, curves_differing_in_g, param, pressures, Pair, Setting};
 use super::{finding, Finding, Tally};
 
 /// Particles of the seeds `a` and `b` share, both run in: (particles of a, of b, pairs).
@@ -149,7 +149,7 @@ pub(super) fn hardest_least_tough_emits_most_wears_least(all: &[Setting]) -> Fin
                 Region::Above(1.0),
                 true,
             )];
-            if high(all, x.pressure) {
+            if at_highest_load(all, x) {
                 parts.push(compare(
                     x,
                     y,
@@ -168,8 +168,8 @@ pub(super) fn hardest_least_tough_emits_most_wears_least(all: &[Setting]) -> Fin
          emit the most wear particles (much smaller ones)",
         "per load and other setting of it: the setting of the largest τ̃ and smallest 𝒢 of the load against it, both \
          halves paired over the shared run-in pairs (count test where a pair has no particle): dN*₊/ds ratio > 1 at \
-         every load, and W ratio < 1 at loads in the upper half of the study's (at low loads the paper's Fig. 4a has \
-         the smaller 𝒢 wearing more, so that half is not judged there); holds when every judged half holds. With one \
+         every load, and W ratio < 1 at the study's highest load (below it the paper's Fig. 4a has the smaller 𝒢 \
+         wearing more at low loads, so that half is judged at the top of the range only); holds when every judged half holds. With one \
          τ̃ the hardness half is untested"
             .into(),
         "comparisons",
@@ -220,7 +220,7 @@ pub(super) fn severe_wear_from_large_particles(all: &[Setting]) -> Finding {
     let mut tally = Tally::default();
     for at in at_loads(all)
         .into_iter()
-        .filter(|at| high(all, at.settings[0].pressure))
+        .filter(|at| at_highest_load(all, at.settings[0]))
     {
         for (i, a) in at.settings.iter().enumerate() {
             for b in &at.settings[i + 1..] {
@@ -256,11 +256,11 @@ pub(super) fn severe_wear_from_large_particles(all: &[Setting]) -> Finding {
     finding(
         "severe-wear-from-large-particles",
         "§4.1: more severe wear is due to the detachment of large wear particles",
-        "per pair of settings at one load in the upper half of the study's loads whose W differ (W ratio decided, \
+        "per pair of settings at the study's highest load whose W differ (W ratio decided, \
          paired or by the count test): the mean particle volume W/(dN*₊/ds) of the one that wears more over the \
          other's > 1, paired over the shared run-in pairs; a pair of settings whose W ratio is undecided is \
          inconclusive. At low loads the paper's own Fig. 4a has the smaller d*, with its smaller particles, wearing \
-         more, so they are not judged"
+         more, so lower loads are not judged"
             .into(),
         "pairs of settings",
         tally,

@@ -273,11 +273,16 @@ pub(super) fn pressures(all: &[Setting]) -> Vec<f64> {
     p
 }
 
-/// Whether a pressure is in the upper half of the study's pressures (the "high loads" of the paper's
-/// statements): at or above the median of the distinct pressures.
-pub(super) fn high(all: &[Setting], pressure: f64) -> bool {
-    let p = pressures(all);
-    p.len() > 1 && pressure >= p[p.len() / 2]
+/// Whether a setting is at the highest load of its family: the "high loads" of the paper's
+/// statements read as the top of the study's range, not as whatever lies above its median.
+pub(super) fn at_highest_load(all: &[Setting], s: &Setting) -> bool {
+    let top = all
+        .iter()
+        .filter(|x| x.family == s.family)
+        .map(|x| x.pressure)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let loads = pressures(all).len();
+    loads > 1 && s.pressure == top
 }
 
 /// Pairs of settings in the same family at the same load whose d* differs through one parameter:
