@@ -146,8 +146,9 @@ impl Tally {
             .map(|(line, needed)| match needed {
                 Some(n) => format!("{line}, {n} pairs would decide it"),
                 None => format!(
-                    "{line}, no number of pairs decides it (an effect of about zero, none up to 100,000 pairs; or \
-                     fewer than two pairs with a value)"
+                    "{line}, no number of pairs named (an effect of about zero, none up to 100,000 pairs; fewer \
+                     than two pairs with a value; or a sample without spread or judged by a bootstrap, which the \
+                     count of pairs does not extrapolate)"
                 ),
             })
             .collect();

@@ -79,6 +79,19 @@ pub(super) fn judge_values(
     note: &str,
     pairs: usize,
 ) -> Outcome {
+    // Every pair exactly 0 (no event in any of them): a sample without spread is no evidence either
+    // way, whatever side of the threshold 0 lies on.
+    let finite: Vec<f64> = values.iter().copied().filter(|v| v.is_finite()).collect();
+    if finite.len() >= 2 && finite.iter().all(|v| *v == 0.0) {
+        return Outcome::Judged {
+            side: Side::Undecided,
+            text: format!(
+                "{label}: {what} = 0 in each of {} pairs: no spread, no interval{note}",
+                finite.len()
+            ),
+            needed: None,
+        };
+    }
     match mean_interval(values) {
         Some(i) => {
             let side = region.side(&i);

@@ -2,10 +2,10 @@
 //! contact, and Eq. 5. Sliding quantities are judged on the surface pairs that are run in.
 
 use crate::sliding::RUN_IN_DECAY_LENGTHS;
-use crate::stats::{mean_interval, pairs_needed, Region, Side};
+use crate::stats::{mean_interval, pairs_needed, ratio_of_means, Region, Side};
 
 use super::rules::{on_run_in_pairs, pair_exponents, per_setting, show, Outcome};
-use super::setting::{contact_histories, fmt, history_curves, Setting};
+use super::setting::{contact_histories, fmt, history_curves, Pair, Setting};
 use super::{finding, Finding, Tally};
 
 /// §3, Fig. 3: V(s) linear after running-in, per setting.
@@ -25,18 +25,50 @@ pub(super) fn volume_linear_after_running_in(all: &[Setting]) -> Finding {
 
 /// §3, Fig. 3: V₀ much larger than the later increments, per setting.
 pub(super) fn initial_volume_much_larger_than_increments(all: &[Setting]) -> Finding {
-    let tally = per_setting(all, "V₀/(W·Δx)", Region::Above(5.0), |s, p| {
-        p.get("initial_volume") / (p.get("wear_rate") * s.pixel_size)
-    });
+    let mut tally = Tally::default();
+    for s in all {
+        tally.file(initial_volume_ratio(s));
+    }
     finding(
         "initial-volume-much-larger-than-increments",
         "sliding model (§3, Fig. 3): the instantaneous wear volume V₀ is much higher than the increments δV",
-        "per setting: V₀ over the mean increment of a one-pixel step, V₀/(W·Δx), > 5, by its Student-t interval over \
-         the run-in pairs (pairs with W = 0 left out)"
+        "per setting: V₀ over the mean increment of a one-pixel step, V₀/(W·Δx), > 5 over the run-in pairs (pairs \
+         with W = 0 left out): the mean of the pairs' ratios by its Student-t interval; where V₀ = 0 in most pairs \
+         (no critical junction at s = 0), the ratio of the means ΣV₀/Σ(W·Δx) by a bootstrap over the pairs; where \
+         V₀ = 0 in every pair, undecided (no spread: no evidence)"
             .into(),
         "settings",
         tally,
     )
+}
+
+/// One setting of [`initial_volume_much_larger_than_increments`].
+fn initial_volume_ratio(s: &Setting) -> Outcome {
+    let value = |s: &Setting, p: &Pair| p.get("initial_volume") / (p.get("wear_rate") * s.pixel_size);
+    let region = Region::Above(5.0);
+    let run = s.run_in_pairs();
+    let pairs: Vec<(f64, f64)> = run
+        .iter()
+        .map(|p| (p.get("initial_volume"), p.get("wear_rate") * s.pixel_size))
+        .filter(|(v0, wdx)| v0.is_finite() && wdx.is_finite() && *wdx > 0.0)
+        .collect();
+    let zeros = pairs.iter().filter(|(v0, _)| *v0 == 0.0).count();
+    if run.len() < 2 || s.pairs.len() < 2 || 2 * zeros <= pairs.len() || zeros == pairs.len() {
+        return on_run_in_pairs(s, "V₀/(W·Δx)", region, value);
+    }
+    match ratio_of_means(&pairs) {
+        Some(i) => Outcome::Judged {
+            side: region.side(&i),
+            text: format!(
+                "{}: ΣV₀/Σ(W·Δx) = {} (V₀ = 0 in {zeros} of {} run-in pairs; bootstrap over the pairs)",
+                s.label(),
+                show(&i),
+                pairs.len()
+            ),
+            needed: None,
+        },
+        None => on_run_in_pairs(s, "V₀/(W·Δx)", region, value),
+    }
 }
 
 /// §3, Fig. 3: during running-in V(s) can rise more steeply than after it.

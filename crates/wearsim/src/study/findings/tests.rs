@@ -581,3 +581,37 @@ fn the_largest_mean_k_of_a_curve_is_never_a_zero_from_pairs_not_run_in() {
     let o = observed(&tidy);
     assert!(!o.contains("k = 0 ") && o.contains("largest mean k ="), "{o}");
 }
+
+#[test]
+fn a_volume_at_s_0_that_is_zero_in_most_or_all_pairs_is_not_evidence_of_its_size() {
+    let mut tidy = study(None);
+    // τ̃ = 0.008 at the low load: a critical junction at s = 0 in one pair of three (V₀ = 30 W Δx
+    // there); τ̃ = 0.012 at the low load: in none.
+    let w = 2e-5 / 64.0;
+    set(
+        &mut tidy,
+        0.008,
+        1e-3,
+        "initial_volume",
+        &[Cell::Float(0.0), Cell::Float(0.0), Cell::Float(30.0 * w)],
+    );
+    set(&mut tidy, 0.012, 1e-3, "initial_volume", &[Cell::Float(0.0)]);
+    let v0 = get(&findings(&tidy), "initial-volume-much-larger-than-increments").clone();
+    // The other two settings hold (V₀/(W·Δx) = 50 in every pair); the two above are undecided, one
+    // by the bootstrap of ΣV₀/Σ(W·Δx), whose resamples without the one pair give 0, and one for want
+    // of any spread, never as "0 [0, 0]" against the paper.
+    assert_eq!(v0.counts, (2, 0, 2, 0), "{}", v0.observed);
+    assert!(
+        v0.observed
+            .contains("ΣV₀/Σ(W·Δx) = 10 [0, 29.1] (V₀ = 0 in 2 of 3 run-in pairs; bootstrap over the pairs)"),
+        "{}",
+        v0.observed
+    );
+    assert!(
+        v0.observed
+            .contains("V₀/(W·Δx) = 0 in each of 3 pairs: no spread, no interval"),
+        "{}",
+        v0.observed
+    );
+    assert!(!v0.observed.contains("0 [0, 0]"), "{}", v0.observed);
+}
