@@ -284,8 +284,8 @@ fn crossover(larger: &[&Setting], smaller: &[&Setting], what: &str) -> Outcome {
     )
 }
 
-/// "; W ratio = 1 at F_N/(Lx·Ly) = 2e-3 [1.6e-3, 2.5e-3]" where every pair's ratio rises through 1
-/// and the pairs' crossing lies within the curve's loads; else what the ratio does there.
+/// "; W ratio = 1 at F_N/(Lx·Ly) = 2e-3 [1.6e-3, 2.5e-3]" where every pair's fitted ratio rises and
+/// the pairs' crossings lie, on average, within the curve's loads; else on which side of them.
 fn crossing_note(curve: &[&Setting], fitted: &[LineFit]) -> String {
     if fitted.len() < 2 || fitted.iter().any(|f| f.slope <= 0.0) {
         return String::new();
@@ -296,14 +296,11 @@ fn crossing_note(curve: &[&Setting], fitted: &[LineFit]) -> String {
     };
     let (lo, hi) = (curve[0].pressure, curve[curve.len() - 1].pressure);
     let at = i.map(f64::exp);
-    if at.estimate < lo {
+    if at.estimate < lo || at.estimate > hi {
         format!(
-            "; the ratio is above 1 over all the loads (it would cross 1 at F_N/(Lx·Ly) ≈ {})",
-            fmt(at.estimate)
-        )
-    } else if at.estimate > hi {
-        format!(
-            "; the ratio is below 1 over all the loads (it would cross 1 at F_N/(Lx·Ly) ≈ {})",
+            "; the pairs' fitted ratios cross 1 {} the study's loads, at F_N/(Lx·Ly) ≈ {} (geometric mean over the \
+             pairs)",
+            if at.estimate < lo { "below" } else { "above" },
             fmt(at.estimate)
         )
     } else {

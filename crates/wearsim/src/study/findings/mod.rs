@@ -231,10 +231,11 @@ pub fn method_statement() -> String {
          over pairs by {}; two settings of the study, which share their surface pairs (same seeds), by the {} (the \
          geometric mean of the per-pair ratios), or, where a pair has no particle, by the {} on the particles summed \
          over the shared pairs (W as ω d*³ times the count, Eq. 5); a trend over load by the exponent of a power law \
-         fitted per surface pair (least squares in log–log), with its Student-t interval over pairs. A unit holds \
-         when its interval lies on the paper's side of the rule's threshold, is contrary when it lies on the other \
-         side, and is inconclusive otherwise, with the surface pairs that would decide it if the pairs kept the \
-         observed mean and spread. A surface pair is run in when its fit window starts after \
+         fitted per surface pair (least squares in log–log), with its Student-t interval over pairs; a quantity \
+         that is zero in most pairs as a ratio of means by a {}. A unit holds when its interval lies on the \
+         paper's side of the rule's threshold, is contrary when it lies on the other side, and is inconclusive \
+         otherwise (always when every pair gives 0: no spread is no evidence), with the surface pairs that would \
+         decide it if the pairs kept the observed mean and spread. A surface pair is run in when its fit window starts after \
          {RUN_IN_DECAY_LENGTHS} of its own decay lengths ℓ of the memory of the initial contact (paper §3); \
          sliding quantities are judged on the run-in pairs (the line says how many), and a unit with fewer than \
          two is counted as not run in. The verdict follows from the counts: reproduced when it holds in every \
@@ -244,7 +245,8 @@ pub fn method_statement() -> String {
         LEVEL * 100.0,
         Method::StudentT.name(),
         Method::PairedRatio.name(),
-        Method::CountRatio.name()
+        Method::CountRatio.name(),
+        "percentile bootstrap over surface pairs"
     )
 }
 

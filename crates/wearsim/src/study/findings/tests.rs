@@ -286,14 +286,14 @@ fn a_difference_within_the_spread_of_the_pairs_decides_nothing() {
 
 /// Two toughnesses at τ̃ = 0.012 over four pairs at three loads: W(16 px) ∝ F_N^0.93 and the ratio
 /// W(33 px)/W(16 px) ∝ F_N^m with m = 1.35 … 1.65 pair by pair, equal to 0.85 … 1.15 at the middle
-/// load: the curves cross there, as the paper's Fig. 4a has them.
-fn crossing_toughnesses() -> Table {
+/// load: the curves cross there, as the paper's Fig. 4a has them. Every ratio times `shift`.
+fn crossing_toughnesses(shift: f64) -> Table {
     let mut rows = Vec::new();
     for seed in 1..=4u64 {
         let k = seed as f64 - 2.5;
         for load in [1e-3, 2e-3, 4e-3] {
             let w16 = 1e-5 * (load / 1e-3f64).powf(0.93) * (1.0 + 0.05 * k);
-            let ratio = (1.0 + 0.1 * k) * (load / 2e-3f64).powf(1.5 + 0.1 * k);
+            let ratio = shift * (1.0 + 0.1 * k) * (load / 2e-3f64).powf(1.5 + 0.1 * k);
             for (g, w, n) in [(0.25e-6, w16, 60), (0.5e-6, w16 * ratio, 20)] {
                 rows.push(row(rows.len(), seed, result(0.012, g, load, w, n), 0.012, load, None));
             }
@@ -304,7 +304,7 @@ fn crossing_toughnesses() -> Table {
 
 #[test]
 fn the_crossover_is_judged_by_the_slope_of_the_ratio_and_its_crossing_load() {
-    let f = findings(&crossing_toughnesses());
+    let f = findings(&crossing_toughnesses(1.0));
     let larger = get(&f, "larger-d-star-wears-more-at-high-load");
     assert_eq!(larger.counts, (1, 0, 0, 0), "{}", larger.observed);
     assert_eq!(larger.verdict, Verdict::Reproduced);
@@ -614,4 +614,20 @@ fn a_volume_at_s_0_that_is_zero_in_most_or_all_pairs_is_not_evidence_of_its_size
         v0.observed
     );
     assert!(!v0.observed.contains("0 [0, 0]"), "{}", v0.observed);
+}
+
+#[test]
+fn a_crossing_outside_the_loads_is_said_to_lie_outside() {
+    // The ratios a fifth of the above: they would reach 1 near 5.9e-3, above the top load 4e-3.
+    let f = findings(&crossing_toughnesses(0.2));
+    let larger = get(&f, "larger-d-star-wears-more-at-high-load");
+    assert_eq!(larger.counts, (1, 0, 0, 0), "{}", larger.observed);
+    assert!(
+        larger
+            .observed
+            .contains("the pairs' fitted ratios cross 1 above the study's loads, at F_N/(Lx·Ly) ≈ 0.00594"),
+        "{}",
+        larger.observed
+    );
+    assert!(!larger.observed.contains("W ratio = 1 at"), "{}", larger.observed);
 }
