@@ -6,7 +6,7 @@ use crate::stats::{line_fit, mean_interval, LineFit, Region};
 use super::rules::{
     compare, curve_label, exponents_by_seed, judge_values, pair_exponents, per_setting, show, Compared, Outcome,
 };
-use super::setting::{curves, curves_differing_in_g, d_star_pairs, fmt, param, Setting};
+use super::setting::{curves, curves_differing_in_d_star, curves_differing_in_g, d_star_pairs, fmt, param, Setting};
 use super::{finding, Finding, Tally};
 
 /// §4.1: k an order of magnitude below the static model's, per setting.
@@ -218,29 +218,6 @@ pub(super) fn larger_d_star_wears_more_at_high_load(all: &[Setting]) -> Finding 
         "pairs of curves",
         tally,
     )
-}
-
-/// Pairs of curves against load (two loads or more) of one family and material whose d* differs
-/// through 𝒢 alone or τ̃ alone: (the curve of the larger d*, of the smaller, "via 𝒢" or "via τ̃").
-fn curves_differing_in_d_star<'c, 's>(
-    curves: &'c [Vec<&'s Setting>],
-) -> Vec<(&'c [&'s Setting], &'c [&'s Setting], &'static str)> {
-    let long = || curves.iter().filter(|c| c.len() >= 2);
-    let mut out = Vec::new();
-    for a in long() {
-        for b in long() {
-            let (a0, b0) = (a[0], b[0]);
-            if a0.family != b0.family || a0.material != b0.material {
-                continue;
-            }
-            if a0.shear_strength == b0.shear_strength && a0.fracture_energy > b0.fracture_energy {
-                out.push((a.as_slice(), b.as_slice(), "via 𝒢"));
-            } else if a0.fracture_energy == b0.fracture_energy && a0.shear_strength < b0.shear_strength {
-                out.push((a.as_slice(), b.as_slice(), "via τ̃"));
-            }
-        }
-    }
-    out
 }
 
 /// One pair of curves judged as a crossover ([`larger_d_star_wears_more_at_high_load`]).

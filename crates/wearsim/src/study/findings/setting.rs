@@ -234,21 +234,38 @@ pub(super) fn curves(all: &[Setting]) -> Vec<Vec<&Setting>> {
         .collect()
 }
 
+/// Pairs of curves against load (two loads or more) of one family and material whose d* differs
+/// through 𝒢 alone or τ̃ alone: (the curve of the larger d*, of the smaller, "via 𝒢" or "via τ̃").
+pub(super) fn curves_differing_in_d_star<'c, 's>(
+    curves: &'c [Vec<&'s Setting>],
+) -> Vec<(&'c [&'s Setting], &'c [&'s Setting], &'static str)> {
+    let long = || curves.iter().filter(|c| c.len() >= 2);
+    let mut out = Vec::new();
+    for a in long() {
+        for b in long() {
+            let (a0, b0) = (a[0], b[0]);
+            if a0.family != b0.family || a0.material != b0.material {
+                continue;
+            }
+            if a0.shear_strength == b0.shear_strength && a0.fracture_energy > b0.fracture_energy {
+                out.push((a.as_slice(), b.as_slice(), "via 𝒢"));
+            } else if a0.fracture_energy == b0.fracture_energy && a0.shear_strength < b0.shear_strength {
+                out.push((a.as_slice(), b.as_slice(), "via τ̃"));
+            }
+        }
+    }
+    out
+}
+
 /// Pairs of curves against load (each of two loads or more) of one family, material and τ̃ that
 /// differ in 𝒢: (the curve of the larger 𝒢, the tougher; the curve of the smaller).
 pub(super) fn curves_differing_in_g<'c, 's>(
     curves: &'c [Vec<&'s Setting>],
 ) -> Vec<(&'c [&'s Setting], &'c [&'s Setting])> {
-    let long = || curves.iter().filter(|c| c.len() >= 2);
-    long()
-        .flat_map(|a| long().map(move |b| (a.as_slice(), b.as_slice())))
-        .filter(|(a, b)| {
-            let (a0, b0) = (a[0], b[0]);
-            a0.family == b0.family
-                && a0.material == b0.material
-                && a0.shear_strength == b0.shear_strength
-                && a0.fracture_energy > b0.fracture_energy
-        })
+    curves_differing_in_d_star(curves)
+        .into_iter()
+        .filter(|(.., via)| *via == "via 𝒢")
+        .map(|(a, b, _)| (a, b))
         .collect()
 }
 
