@@ -407,29 +407,17 @@ def particle_counts(series: pd.DataFrame, *, load: Optional[float] = None, lengt
     plt = _pyplot()
     rows = _one_load(series, load)
     fig, ax = plt.subplots(figsize=(9.5, 5.0))
+    curves = [("n_formed", "N*₊", "-", 2.0), ("n_critical", "N*", "--", 2.0), ("n_shrunk", "N*₋", "-", 0.8)]
     for i, (g, group) in enumerate(rows.groupby("fracture_energy", sort=False)):
-        ax.plot(
-            group["s"],
-            group["n_formed"],
-            color=PALETTE[i % len(PALETTE)],
-            lw=2,
-            label=rf"N*₊, $\mathcal{{G}}$ = {g:.3g}",
-        )
-        ax.plot(
-            group["s"],
-            group["n_critical"],
-            "--",
-            color=PALETTE[i % len(PALETTE)],
-            lw=2,
-            label=rf"N*, $\mathcal{{G}}$ = {g:.3g}",
-        )
-        ax.plot(
-            group["s"],
-            group["n_shrunk"],
-            color=PALETTE[i % len(PALETTE)],
-            lw=0.8,
-            label=rf"N*₋, $\mathcal{{G}}$ = {g:.3g}",
-        )
+        for column, name, style, width in curves:
+            ax.plot(
+                group["s"],
+                group[column],
+                style,
+                color=PALETTE[i % len(PALETTE)],
+                lw=width,
+                label=rf"{name}, $\mathcal{{G}}$ = {g:.3g}",
+            )
     ax.set(xlabel=f"sliding distance s ({length_unit})", ylabel="number of junctions")
     ax.legend(fontsize=8)
     fig.tight_layout()

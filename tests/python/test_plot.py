@@ -175,3 +175,30 @@ def test_settings_of_equal_critical_diameter_by_the_library():
     assert sum("τ̃" in t for t in _legend_texts(figures[0])) == 2
     assert _wearsim.equal_critical_diameter([(0.01, 0.008, 1e-6), (0.0114, 0.012, 1e-6)], 0.15) == [[0, 1]]
     plt.close(figures[0])
+
+
+def test_particle_counts_draws_three_curves_per_fracture_energy():
+    """Appendix B on one run's series: N*₊ solid and thick, N* dashed, N*₋ thin, one colour per 𝒢,
+    at the load asked for."""
+    s = np.linspace(0.0, 0.5, 11)
+    series = pd.DataFrame(
+        [
+            {"load": load, "fracture_energy": g, "s": x, "n_formed": k, "n_critical": k / 2 + 1, "n_shrunk": k / 2}
+            for load in (1e-3, 2e-3)
+            for g in (2.5e-7, 5e-7)
+            for k, x in enumerate(s)
+        ]
+    )
+    fig = wearsim.plot.particle_counts(series, load=1e-3)
+    lines = fig.axes[0].lines
+    assert [line.get_label() for line in lines] == [
+        rf"{name}, $\mathcal{{G}}$ = {g:.3g}" for g in (2.5e-7, 5e-7) for name in ("N*₊", "N*", "N*₋")
+    ]
+    assert [(line.get_linestyle(), line.get_linewidth()) for line in lines] == [
+        ("-", 2.0),
+        ("--", 2.0),
+        ("-", 0.8),
+    ] * 2
+    assert len({line.get_color() for line in lines[:3]}) == 1 and lines[0].get_color() != lines[3].get_color()
+    np.testing.assert_array_equal(lines[1].get_ydata(), np.arange(11) / 2 + 1)
+    matplotlib.pyplot.close(fig)
