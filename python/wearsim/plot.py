@@ -494,7 +494,8 @@ def study_figures(
     tidy, _ = study.collect(out)
     _, markdown = study.findings(tidy)
     (folder / "findings.md").write_text(f"# The paper's findings on this study\n\n{markdown}")
-    written = [folder / "findings.md"]
+    (folder / "findings_units.csv").write_text(study.findings_units_csv(tidy))
+    written = [folder / "findings.md", folder / "findings_units.csv"]
     for data in study_figure_data(out, job):
         fig = draw(data)
         path = folder / f"{data['name']}.png"

@@ -227,6 +227,22 @@ def findings(tidy: pd.DataFrame) -> Tuple[pd.DataFrame, str]:
     """The paper's findings judged on a study's tidy table under the library's rules (95 % intervals
     over surface pairs, per-pair run-in; the rules ``wearsim study plot`` writes to
     ``figures/findings.md``): one row per finding (key, paper, rule, observed, verdict, counts as
-    (holds, contrary, inconclusive, not run in), pairs_to_decide), and the Markdown table."""
-    rows, markdown = _wearsim.findings({str(c): tidy[c].tolist() for c in tidy.columns})
+    (holds, contrary, inconclusive, not run in), pairs_to_decide, kind: what kind of result it is,
+    verdict_under_holm: the verdict once the units' p-values are Holm-adjusted within the finding,
+    where it differs), and the Markdown of findings.md."""
+    rows, markdown, _ = _wearsim.findings({str(c): tidy[c].tolist() for c in tidy.columns})
     return pd.DataFrame(rows), markdown
+
+
+def findings_units_csv(tidy: pd.DataFrame) -> str:
+    """Every unit of every finding (one row each: finding, unit, outcome, quantity, estimate, low,
+    high, n, method, rule, p, p_holm, margin, pairs_to_decide, line) as the CSV text that
+    ``wearsim study plot`` writes to ``figures/findings_units.csv``."""
+    return _wearsim.findings({str(c): tidy[c].tolist() for c in tidy.columns})[2]
+
+
+def findings_units(tidy: pd.DataFrame) -> pd.DataFrame:
+    """:func:`findings_units_csv` as a table."""
+    import io
+
+    return pd.read_csv(io.StringIO(findings_units_csv(tidy)))

@@ -161,6 +161,12 @@ def test_figures_from_python_and_job_series(tmp_path, study_file, wearsim_bin):
     assert (python / "findings.md").read_text().count("| ") > 10
     rows, markdown = wearsim.study.findings(tidy)
     assert "archard-like" in set(rows["key"]) and "95 % confidence interval" in markdown
+    # Every unit's numbers, the same from both front ends, one row per unit the findings count.
+    assert (python / "findings_units.csv").read_text() == (cli / "findings_units.csv").read_text()
+    units = wearsim.study.findings_units(tidy)
+    counted = rows[rows["verdict"] != "shown, not counted"]["counts"].map(sum).sum()
+    assert len(units[units["outcome"] != "shown"]) == counted
+    assert set(units["finding"]) <= set(rows["key"])
 
 
 def test_job_series_is_the_librarys_series_of_the_job_file(tmp_path, study_file):

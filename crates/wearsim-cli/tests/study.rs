@@ -224,6 +224,20 @@ fn shards_and_worker_counts_give_the_unsharded_results() {
         findings.contains("static model") && findings.contains("| finding (paper) |"),
         "{findings}"
     );
+    // It opens with one line per finding; every unit's numbers are in findings_units.csv.
+    assert!(
+        findings.starts_with("# The paper's findings")
+            && findings.contains(
+                "| finding (paper) | verdict | the deciding unit, with its 95 % interval | what kind of result |"
+            ),
+        "{findings}"
+    );
+    let units = std::fs::read_to_string(sharded.join("figures/findings_units.csv")).unwrap();
+    assert!(
+        units.starts_with("finding,unit,outcome,quantity,estimate,low,high,n,method,rule,p,p_holm,margin,")
+            && units.lines().count() > 10,
+        "{units}"
+    );
     // A chosen job's series, a chosen set of figures; the folder is replaced whole.
     let o = wearsim()
         .args([
@@ -243,8 +257,8 @@ fn shards_and_worker_counts_give_the_unsharded_results() {
         .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
         .filter(|n| !n.starts_with('.'))
         .collect();
-    // Two figures, each as PNG, SVG and its numbers as CSV, and findings.md.
-    assert_eq!(names.len(), 7, "{names:?}");
+    // Two figures, each as PNG, SVG and its numbers as CSV, findings.md and findings_units.csv.
+    assert_eq!(names.len(), 8, "{names:?}");
     assert!(String::from_utf8_lossy(&o.stdout).contains("series of job 5"));
     for bad in [&["--job", "999"][..], &["--figures", "fig9"][..]] {
         let o = wearsim()

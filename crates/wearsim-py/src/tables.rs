@@ -199,16 +199,20 @@ fn severity_fits<'py>(
 }
 
 /// The paper's findings judged on a tidy table: one dict per finding (key, paper, rule, observed,
-/// verdict, counts (holds, contrary, inconclusive, not run in), pairs_to_decide), and the Markdown
-/// of `figures/findings.md`.
+/// verdict, counts (holds, contrary, inconclusive, not run in), pairs_to_decide, kind,
+/// verdict_under_holm), the Markdown of `figures/findings.md` and the text of
+/// `figures/findings_units.csv`.
 #[pyfunction]
-fn findings<'py>(py: Python<'py>, columns: &Bound<'py, PyDict>) -> PyResult<(Vec<Bound<'py, PyDict>>, String)> {
+fn findings<'py>(py: Python<'py>, columns: &Bound<'py, PyDict>) -> PyResult<(Vec<Bound<'py, PyDict>>, String, String)> {
     let found = wearsim::study::findings::findings(&table_of(columns)?);
     let markdown = wearsim::study::findings::markdown(&found);
+    let units = wearsim::study::findings::units_csv(&found);
     let out = found
         .into_iter()
         .map(|f| {
             let d = PyDict::new(py);
+            d.set_item("kind", f.kind())?;
+            d.set_item("verdict_under_holm", f.verdict_under_holm.map(|v| v.name()))?;
             d.set_item("key", f.key)?;
             d.set_item("paper", f.paper)?;
             d.set_item("rule", f.rule)?;
@@ -219,7 +223,7 @@ fn findings<'py>(py: Python<'py>, columns: &Bound<'py, PyDict>) -> PyResult<(Vec
             Ok(d)
         })
         .collect::<PyResult<Vec<_>>>()?;
-    Ok((out, markdown))
+    Ok((out, markdown, units))
 }
 
 /// Figures as Python dicts: the library's figure (serde) with its CSV under "csv".

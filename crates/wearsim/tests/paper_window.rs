@@ -85,7 +85,13 @@ fn the_main_job_decides_most_of_the_papers_findings_it_can_test() {
     );
     let md = markdown(&all);
     assert!(md.contains("95 % confidence interval over surface pairs"));
-    assert_eq!(md.lines().filter(|l| l.starts_with("| ")).count(), all.len() + 1);
+    // One line per finding first, then the table of rules: a header and a row per finding each.
+    assert_eq!(md.lines().filter(|l| l.starts_with("| ")).count(), 2 * (all.len() + 1));
+    // The particle sizes Eq. 5 fixes are shown against (d*₁/d*₂)³, not counted again.
+    assert_eq!(get("severe-wear-from-large-particles").verdict, Verdict::Cited);
+    assert!(get("severe-wear-from-large-particles")
+        .observed
+        .contains("Eq. 5's (d*₁/d*₂)³ = "));
     // The findings the paper's sliding model rests on hold.
     for key in [
         "static-k-below-one-and-rising",

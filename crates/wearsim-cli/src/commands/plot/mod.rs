@@ -1,6 +1,6 @@
 //! `wearsim study plot DIR`: the figures of a finished study, as PNG and SVG in `DIR/figures`, in the
 //! layout of the paper (Brink, Frérot & Molinari 2021), and the paper's findings judged on the study
-//! (`findings.md`, also printed). The figures and their numbers are the library's
+//! (`findings.md`, also printed, with every unit's numbers in `findings_units.csv`). The figures and their numbers are the library's
 //! (`wearsim::study::figures`: one registry, [`FIGURES`], whose names `--figures` takes and
 //! `--help` lists; Python's `wearsim.plot` draws the same); this command draws them ([`mod@draw`]) and
 //! writes each figure's numbers as CSV beside its PNG and SVG.
@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, Result};
 use wearsim::study::figures::{study_folder_figures, Figure, Swatch, FIGURES};
-use wearsim::study::findings::{findings, markdown};
+use wearsim::study::findings::{findings, markdown, units_csv};
 
 use crate::figures::{save, write_into};
 use crate::out::say;
@@ -113,16 +113,21 @@ pub fn run(args: &Args) -> Result<()> {
     );
     write_into(&out, &shown, "findings.md", text.as_bytes())
         .with_context(|| format!("cannot write findings.md into {}", shown.display()))?;
+    write_into(&out, &shown, "findings_units.csv", units_csv(&found).as_bytes())
+        .with_context(|| format!("cannot write findings_units.csv into {}", shown.display()))?;
     figures.commit()?;
     for f in &found {
         say!("{:<18} {}: {}", f.verdict.name(), f.key, f.observed);
     }
     match study.series_job {
         Some(job) => say!(
-            "wrote figures and findings.md to {} (series of job {job})",
+            "wrote figures, findings.md and findings_units.csv to {} (series of job {job})",
             shown.display()
         ),
-        None => say!("wrote figures and findings.md to {}", shown.display()),
+        None => say!(
+            "wrote figures, findings.md and findings_units.csv to {}",
+            shown.display()
+        ),
     }
     Ok(())
 }

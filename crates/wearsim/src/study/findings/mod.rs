@@ -24,7 +24,8 @@ mod static_model;
 
 use crate::output::Table;
 use crate::sliding::RUN_IN_DECAY_LENGTHS;
-use crate::stats::{Method, LEVEL};
+use crate::stats::{t_critical, Interval, Method, Region, Side, LEVEL};
+use statrs::distribution::{ContinuousCDF, StudentsT};
 
 /// Whether a study reproduces a finding of the paper, from the counts of a [`Tally`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -40,6 +41,9 @@ pub enum Verdict {
     Inconclusive,
     /// No unit of the study speaks to the finding.
     NotTestable,
+    /// The finding restates what another finding's comparison or an equation of the model fixes:
+    /// its numbers are shown against that value and it is not counted again.
+    Cited,
 }
 
 impl Verdict {
@@ -50,6 +54,7 @@ impl Verdict {
             Verdict::NotReproduced => "not reproduced",
             Verdict::Inconclusive => "inconclusive",
             Verdict::NotTestable => "not testable here",
+            Verdict::Cited => "shown, not counted",
         }
     }
 }
@@ -72,6 +77,190 @@ pub struct Finding {
     /// that would decide at least half of the units at the effects and spreads observed; `None`
     /// when no number of pairs would (effects of zero, units not run in).
     pub pairs_to_decide: Option<usize>,
+    /// Every unit with its numbers, in the order judged (`findings_units.csv`).
+    pub units: Vec<Unit>,
+    /// The verdict when the units' Student-t p-values are Holm-adjusted within the finding (a unit
+    /// decided at 95 % alone but not after the adjustment counted inconclusive), when it differs.
+    pub verdict_under_holm: Option<Verdict>,
+    /// For a [`Verdict::Cited`] finding: what fixes its numbers and which finding judges its
+    /// comparison.
+    pub cites: Option<&'static str>,
+}
+
+/// The interval that decided a unit, with the quantity it is of and the region the rule asks of it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Numbers {
+    pub quantity: String,
+    pub interval: Interval,
+    pub region: Region,
+}
+
+impl Numbers {
+    /// The threshold nearest the estimate (a region between two bounds has two).
+    fn threshold(&self) -> f64 {
+        match self.region {
+            Region::Above(t) | Region::Below(t) => t,
+            Region::Within(a, b) => {
+                if (self.interval.estimate - a).abs() <= (self.interval.estimate - b).abs() {
+                    a
+                } else {
+                    b
+                }
+            }
+        }
+    }
+
+    /// How far the interval lies clear of the rule's threshold, in the quantity's own units:
+    /// positive when it lies wholly on one side (the unit is decided), negative by how far it
+    /// reaches across the nearer threshold when it is undecided.
+    pub fn margin(&self) -> f64 {
+        let (low, high) = (self.interval.low, self.interval.high);
+        let clear = |t: f64| {
+            if low > t {
+                low - t
+            } else if high < t {
+                t - high
+            } else {
+                -(t - low).min(high - t)
+            }
+        };
+        match self.region {
+            Region::Above(t) | Region::Below(t) => clear(t),
+            Region::Within(a, b) => match self.region.side(&self.interval) {
+                Side::Holds => (low - a).min(b - high),
+                Side::Contrary => clear(a).max(clear(b)),
+                Side::Undecided => [a, b]
+                    .into_iter()
+                    .map(clear)
+                    .filter(|m| *m < 0.0)
+                    .fold(f64::NEG_INFINITY, f64::max),
+            },
+        }
+    }
+
+    /// The two-sided p-value of the interval's Student-t test against the nearer threshold (on the
+    /// log scale for a paired ratio), recovered from the interval itself: below 1 − LEVEL exactly
+    /// when the interval excludes the threshold. `None` for the other methods (exact counts,
+    /// Welch, bootstrap), whose intervals are not a t statistic of n − 1 degrees of freedom.
+    pub fn p_value(&self) -> Option<f64> {
+        let i = &self.interval;
+        let scale = |x: f64| if i.method == Method::PairedRatio { x.ln() } else { x };
+        if !matches!(i.method, Method::StudentT | Method::PairedRatio) || i.n < 2 {
+            return None;
+        }
+        let se = (scale(i.high) - scale(i.estimate)) / t_critical(i.n - 1);
+        if se.is_nan() || se <= 0.0 {
+            return None;
+        }
+        let t = (scale(i.estimate) - scale(self.threshold())) / se;
+        let dist = StudentsT::new(0.0, 1.0, (i.n - 1) as f64).ok()?;
+        Some((2.0 * (1.0 - dist.cdf(t.abs()))).clamp(0.0, 1.0))
+    }
+}
+
+/// One unit of a finding as `findings_units.csv` lists it.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Unit {
+    /// What the unit is (a setting, two settings, a curve), as its line begins.
+    pub label: String,
+    /// holds, contrary, inconclusive or not run in.
+    pub outcome: &'static str,
+    /// The quantity judged, its estimate and 95 % interval, and over how many pairs (or
+    /// particles, for a count test) it was taken; empty where no interval decided the unit.
+    pub quantity: String,
+    pub estimate: Option<f64>,
+    pub low: Option<f64>,
+    pub high: Option<f64>,
+    pub n: Option<usize>,
+    pub method: String,
+    /// The rule's side of its threshold ("> 1", "in [0.6, 1]").
+    pub rule: String,
+    /// Two-sided Student-t p-value against the nearer threshold, alone and Holm-adjusted over the
+    /// finding's units that have one.
+    pub p: Option<f64>,
+    pub p_holm: Option<f64>,
+    /// [`Numbers::margin`].
+    pub margin: Option<f64>,
+    /// Surface pairs that would decide an undecided unit.
+    pub pairs_to_decide: Option<usize>,
+    /// The unit's whole line: the numbers, the pairs left out and why.
+    pub text: String,
+}
+
+impl Unit {
+    fn of(outcome: &rules::Outcome) -> Unit {
+        let text = outcome.text().to_string();
+        let label = text.split_once(": ").map_or(text.as_str(), |(l, _)| l).to_string();
+        let (outcome_name, needed) = match outcome {
+            rules::Outcome::Judged { side, needed, .. } => (
+                match side {
+                    Side::Holds => "holds",
+                    Side::Contrary => "contrary",
+                    Side::Undecided => "inconclusive",
+                },
+                *needed,
+            ),
+            rules::Outcome::NotRunIn(_) => ("not run in", None),
+        };
+        let numbers = outcome.numbers();
+        Unit {
+            label,
+            outcome: outcome_name,
+            quantity: numbers.map_or(String::new(), |n| n.quantity.clone()),
+            estimate: numbers.map(|n| n.interval.estimate),
+            low: numbers.map(|n| n.interval.low),
+            high: numbers.map(|n| n.interval.high),
+            n: numbers.map(|n| n.interval.n),
+            method: numbers.map_or(String::new(), |n| n.interval.method.name().to_string()),
+            rule: numbers.map_or(String::new(), |n| rule_text(n.region)),
+            p: numbers.and_then(Numbers::p_value),
+            p_holm: None,
+            margin: numbers.map(Numbers::margin),
+            pairs_to_decide: needed,
+            text,
+        }
+    }
+}
+
+/// The rule's side of its threshold in words, its numbers as the findings print them: "> 1",
+/// "in [0.667, 1.5]".
+fn rule_text(region: Region) -> String {
+    match region {
+        Region::Above(t) => format!("> {}", setting::fmt(t)),
+        Region::Below(t) => format!("< {}", setting::fmt(t)),
+        Region::Within(a, b) => format!("in [{}, {}]", setting::fmt(a), setting::fmt(b)),
+    }
+}
+
+/// Holm's step-down adjustment of the p-values of a finding's units (those that have one), filled
+/// into `p_holm`.
+fn holm(units: &mut [Unit]) {
+    let mut order: Vec<usize> = (0..units.len()).filter(|&k| units[k].p.is_some()).collect();
+    order.sort_by(|&a, &b| units[a].p.unwrap_or(1.0).total_cmp(&units[b].p.unwrap_or(1.0)));
+    let m = order.len();
+    let mut running: f64 = 0.0;
+    for (rank, &k) in order.iter().enumerate() {
+        let adjusted = ((m - rank) as f64 * units[k].p.unwrap_or(1.0)).min(1.0);
+        running = running.max(adjusted);
+        units[k].p_holm = Some(running);
+    }
+}
+
+/// The verdict once every unit decided at 95 % alone whose Holm-adjusted p-value is not below
+/// 1 − LEVEL is counted inconclusive.
+fn verdict_under_holm(units: &[Unit]) -> Verdict {
+    let alpha = 1.0 - LEVEL;
+    let mut tally = Tally::default();
+    for u in units {
+        let undone = u.p_holm.is_some_and(|p| p >= alpha);
+        match (u.outcome, undone) {
+            ("holds", false) => tally.holds.push(String::new()),
+            ("contrary", false) => tally.contrary.push(String::new()),
+            ("not run in", _) => tally.not_run_in.push(String::new()),
+            _ => tally.inconclusive.push((String::new(), None)),
+        }
+    }
+    tally.verdict()
 }
 
 /// Particles in a setting's fit window, summed over its surface pairs, below which the figures draw
@@ -89,6 +278,8 @@ pub struct Tally {
     pub inconclusive: Vec<(String, Option<usize>)>,
     /// Fewer than two surface pairs whose fit window starts after [`RUN_IN_DECAY_LENGTHS`] decay lengths.
     pub not_run_in: Vec<String>,
+    /// Every unit filed, in order, with its numbers.
+    pub units: Vec<Unit>,
 }
 
 impl Tally {
@@ -167,7 +358,9 @@ impl Tally {
     }
 }
 
-fn finding(key: &'static str, paper: &'static str, rule: String, unit: &str, tally: Tally) -> Finding {
+fn finding(key: &'static str, paper: &'static str, rule: String, unit: &str, mut tally: Tally) -> Finding {
+    holm(&mut tally.units);
+    let under_holm = verdict_under_holm(&tally.units);
     Finding {
         key,
         paper,
@@ -181,6 +374,9 @@ fn finding(key: &'static str, paper: &'static str, rule: String, unit: &str, tal
             tally.not_run_in.len(),
         ),
         pairs_to_decide: tally.pairs_to_decide(),
+        verdict_under_holm: (under_holm != tally.verdict()).then_some(under_holm),
+        units: tally.units,
+        cites: None,
     }
 }
 
@@ -241,19 +437,156 @@ pub fn method_statement() -> String {
          two is counted as not run in. The verdict follows from the counts: reproduced when it holds in every \
          decided unit and at least half are decided, partly when it holds in more than it is contrary in, not \
          reproduced otherwise, inconclusive when fewer than half are decided (the last column gives the pairs \
-         per setting that would decide it), not testable when the study has no unit.",
+         per setting that would decide it), not testable when the study has no unit. Each interval is read at \
+         {:.0} % on its own; where a finding has several units, their Student-t p-values are also Holm-adjusted \
+         within the finding, and a verdict the adjustment would change says so. A finding whose numbers an equation \
+         of the model fixes, and whose comparison another finding judges, is shown against that value and not \
+         counted (\"shown, not counted\").",
         LEVEL * 100.0,
         Method::StudentT.name(),
         Method::PairedRatio.name(),
         Method::CountRatio.name(),
-        "percentile bootstrap over surface pairs"
+        "percentile bootstrap over surface pairs",
+        LEVEL * 100.0
     )
 }
 
-/// The findings as Markdown: how the units are counted, then one table row per finding with its rule.
+/// For a finding a study cannot test: what a study needs to test it, and the study file of this
+/// repository that has it.
+pub fn needed_study(key: &str) -> &'static str {
+    match key {
+        "static-wear-grows-with-hardness" => {
+            "settings differing in τ̃ alone (studies/paper-evidence.toml: τ̃ = 0.008 and 0.012 E)"
+        }
+        "hardest-least-tough-emits-most-wears-least" | "soft-tough-fewest-particles" => {
+            "several τ̃ and 𝒢 at one load (studies/paper-evidence.toml: two τ̃ × four 𝒢)"
+        }
+        "static-wear-falls-with-toughness"
+        | "smaller-g-wears-more-at-low-load"
+        | "delayed-onset-for-large-g"
+        | "larger-d-star-wears-more-at-high-load"
+        | "severe-wear-from-large-particles"
+        | "tougher-reaches-k-max-later" => {
+            "curves against load differing in 𝒢 alone (studies/paper-evidence.toml: four 𝒢, five loads up to \
+             2.5×10⁻³ E)"
+        }
+        "toughest-not-yet-ahead" => {
+            "𝒢 = 0.75 and 10⁻⁶ E L at 2.5×10⁻³ E (studies/paper-evidence.toml; the paper's box: \
+             studies/paper-reduced.toml)"
+        }
+        "kim-hierarchy" | "kim-k-above-experiments" => "Kim's ceramics (studies/kim1986-window.toml)",
+        "appendix-a-discretization" => "two pixel sizes (studies/appendix-discretization-reduced.toml)",
+        "appendix-c-box-size" | "appendix-c-more-spots-not-more-wear" => {
+            "two boxes at one pixel size (studies/appendix-area-reduced.toml)"
+        }
+        "appendix-d-lambda-lower" | "appendix-e-rms-height" => {
+            "two λ_l and two h_rms (studies/appendix-lambda-h-reduced.toml)"
+        }
+        "decay-length-varies-with-load" | "archard-like" | "k-rises-with-load" | "static-wear-superlinear" => {
+            "several loads with run-in surface pairs (studies/paper-window.toml)"
+        }
+        _ => "sliding runs whose surface pairs run in and form particles (studies/paper-window.toml)",
+    }
+}
+
+impl Finding {
+    /// The unit a reader looks at first: on the verdict's side, the one nearest to its threshold
+    /// (the weakest holding unit of a reproduced finding, the weakest contrary one of a
+    /// not-reproduced one); of an inconclusive finding, the undecided unit nearest to deciding.
+    pub fn deciding_unit(&self) -> Option<&Unit> {
+        let side = match self.verdict {
+            Verdict::Reproduced | Verdict::Partly => "holds",
+            Verdict::NotReproduced => "contrary",
+            Verdict::Inconclusive => "inconclusive",
+            Verdict::Cited => "shown",
+            Verdict::NotTestable => return None,
+        };
+        let on_side = self.units.iter().filter(|u| u.outcome == side);
+        let with_margin = on_side.clone().filter(|u| u.margin.is_some());
+        let best = match side {
+            // The least negative margin: the undecided unit nearest to deciding.
+            "inconclusive" => with_margin.max_by(|a, b| a.margin.unwrap_or(0.0).total_cmp(&b.margin.unwrap_or(0.0))),
+            _ => with_margin.min_by(|a, b| a.margin.unwrap_or(0.0).total_cmp(&b.margin.unwrap_or(0.0))),
+        };
+        best.or_else(|| on_side.clone().next())
+    }
+
+    /// What kind of result the finding is, in words: reproduced; contrary, i.e. a departure of
+    /// this implementation (or of this study's box) from the paper's model, naming the units;
+    /// inconclusive, with the pairs that would decide it; not testable, with the study that can.
+    pub fn kind(&self) -> String {
+        let (h, c, i, n) = self.counts;
+        let total = h + c + i + n;
+        let mut contrary: Vec<String> = self
+            .units
+            .iter()
+            .filter(|u| u.outcome == "contrary")
+            .map(|u| u.label.clone())
+            .collect();
+        if contrary.len() > 3 {
+            let more = contrary.len() - 3;
+            contrary.truncate(3);
+            contrary.push(format!("{more} more in findings_units.csv"));
+        }
+        let mut kind = match self.verdict {
+            Verdict::Reproduced => format!("reproduced: holds in all {h} decided of {total} units"),
+            Verdict::Partly | Verdict::NotReproduced => format!(
+                "{}: holds in {h}, contrary in {c} of {total} units (a departure from the paper's model in this \
+                 implementation or this study's box: {})",
+                self.verdict.name(),
+                contrary.join("; ")
+            ),
+            Verdict::Inconclusive => match self.pairs_to_decide {
+                Some(p) => format!("inconclusive: {p} surface pairs per setting would decide it"),
+                None => "inconclusive: more surface pairs alone do not decide it".to_string(),
+            },
+            Verdict::NotTestable => format!("this study cannot show it; it needs {}", needed_study(self.key)),
+            Verdict::Cited => format!("not counted: {}", self.cites.unwrap_or("restates another finding")),
+        };
+        if let Some(v) = self.verdict_under_holm {
+            kind += &format!(" — {} once the p-values are Holm-adjusted within the finding", v.name());
+        }
+        kind
+    }
+}
+
+/// "k = 0.089 [0.071, 0.107] (rule > 0.05)" of a unit, or its line where no interval decided it.
+fn unit_number(u: &Unit) -> String {
+    match (u.estimate, u.low, u.high) {
+        (Some(e), Some(l), Some(h)) => format!(
+            "{}: {} = {} [{}, {}] (rule {})",
+            u.label,
+            u.quantity,
+            setting::fmt(e),
+            setting::fmt(l),
+            setting::fmt(h),
+            u.rule
+        ),
+        _ => u.text.clone(),
+    }
+}
+
+/// The findings as Markdown: one line per finding (the paper's sentence, the verdict, the number
+/// that decides it, what kind of result it is), how the units are counted, then the table of every
+/// finding with its rule and all its units (`findings_units.csv` has each unit's numbers).
 pub fn markdown(findings: &[Finding]) -> String {
-    let mut text = format!(
-        "{}\n\n| finding (paper) | rule | this study | verdict | pairs to decide |\n|---|---|---|---|---|\n",
+    let mut text = String::from(
+        "| finding (paper) | verdict | the deciding unit, with its 95 % interval | what kind of result |\n|---|---|---|---|\n",
+    );
+    for f in findings {
+        text += &format!(
+            "| {} | {} | {} | {} |\n",
+            f.paper,
+            f.verdict.name(),
+            f.deciding_unit().map_or("—".to_string(), unit_number).replace('|', "/"),
+            f.kind().replace('|', "/")
+        );
+    }
+    text += &format!(
+        "\nThe deciding unit is, on the verdict's side, the one nearest to its threshold (of an inconclusive \
+         finding, the undecided one nearest to deciding). Every unit's numbers, p-values (alone and Holm-adjusted \
+         within its finding) and margin are in findings_units.csv.\n\n{}\n\n| finding (paper) | rule | this study | \
+         verdict | pairs to decide |\n|---|---|---|---|---|\n",
         method_statement()
     );
     for f in findings {
@@ -272,6 +605,54 @@ pub fn markdown(findings: &[Finding]) -> String {
         );
     }
     text
+}
+
+/// Every unit of every finding, one row each: `findings_units.csv`, which `wearsim study plot`
+/// writes beside findings.md (columns: finding, then [`Unit`]'s fields).
+pub fn units_csv(findings: &[Finding]) -> String {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let opt = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v}"));
+    w.write_record([
+        "finding",
+        "unit",
+        "outcome",
+        "quantity",
+        "estimate",
+        "low",
+        "high",
+        "n",
+        "method",
+        "rule",
+        "p",
+        "p_holm",
+        "margin",
+        "pairs_to_decide",
+        "line",
+    ])
+    .expect("writing to memory");
+    for f in findings {
+        for u in &f.units {
+            w.write_record([
+                f.key.to_string(),
+                u.label.clone(),
+                u.outcome.to_string(),
+                u.quantity.clone(),
+                opt(u.estimate),
+                opt(u.low),
+                opt(u.high),
+                u.n.map_or(String::new(), |n| n.to_string()),
+                u.method.clone(),
+                u.rule.clone(),
+                opt(u.p),
+                opt(u.p_holm),
+                opt(u.margin),
+                u.pairs_to_decide.map_or(String::new(), |n| n.to_string()),
+                u.text.clone(),
+            ])
+            .expect("writing to memory");
+        }
+    }
+    String::from_utf8(w.into_inner().expect("writing to memory")).expect("UTF-8 text")
 }
 
 #[cfg(test)]

@@ -4,8 +4,8 @@
 use crate::stats::{count_ratio, judge::smallest, Interval, Region, Side};
 
 use super::rules::{all_of, compare, curve_label, show, Compared, Outcome};
-use super::setting::{at_highest_load, curves, curves_differing_in_g, param, pressures, Pair, Setting};
-use super::{finding, Finding, Tally};
+use super::setting::{at_highest_load, curves, curves_differing_in_g, fmt, param, pressures, Pair, Setting};
+use super::{finding, Finding, Tally, Unit, Verdict};
 
 /// Particles of the seeds `a` and `b` share, both run in: (particles of a, of b, pairs).
 fn shared_counts(a: &Setting, b: &Setting) -> (u64, u64, usize) {
@@ -52,11 +52,7 @@ fn onset(a: &[&Setting], b: &[&Setting]) -> Outcome {
         Some((na, nb, n, sa))
     };
     let (Some(low), Some(top)) = (at(0), at(a.len() - 1)) else {
-        return Outcome::Judged {
-            side: Side::Undecided,
-            text: format!("{label}: the curves share no load"),
-            needed: None,
-        };
+        return Outcome::undecided(format!("{label}: the curves share no load"));
     };
     if low.2 < 2 || top.2 < 2 {
         return Outcome::NotRunIn(format!(
@@ -92,6 +88,8 @@ fn onset(a: &[&Setting], b: &[&Setting]) -> Outcome {
         needed: (side == Side::Undecided)
             .then(|| smallest(low.2, |k| side_at(k) != Side::Undecided))
             .flatten(),
+        // Two intervals compared with each other, not one against a threshold.
+        numbers: None,
     }
 }
 
@@ -215,54 +213,75 @@ fn particle_volume(p: &Pair) -> f64 {
     p.get("wear_rate") / p.get("particle_rate")
 }
 
-/// §4.1: more severe wear is due to the detachment of large wear particles.
+/// §4.1: more severe wear is due to the detachment of large wear particles. In the model every
+/// particle a junction larger than d* emits has a volume ≈ ω d*³ (Eq. 5), so between settings of
+/// different d* the ratio of their mean particle volumes is fixed at (d*₁/d*₂)³ and which of them
+/// wears more is the W comparison the crossover finding judges: the ratio is shown against Eq. 5's
+/// value and not counted.
 pub(super) fn severe_wear_from_large_particles(all: &[Setting]) -> Finding {
-    let mut tally = Tally::default();
+    let mut units = Vec::new();
+    let mut lines = Vec::new();
     for at in at_loads(all)
         .into_iter()
         .filter(|at| at_highest_load(all, at.settings[0]))
     {
         for (i, a) in at.settings.iter().enumerate() {
             for b in &at.settings[i + 1..] {
-                let wear = compare(a, b, "W", Compared::WearRate, Region::Above(1.0), true);
-                // The heavier wearer, when W's ratio is decided either way.
-                let (heavy, light) = match wear.side() {
-                    Some(Side::Holds) => (*a, *b),
-                    Some(Side::Contrary) => (*b, *a),
-                    _ => {
-                        tally.file(match wear {
-                            Outcome::Judged { text, needed, .. } => Outcome::Judged {
-                                side: Side::Undecided,
-                                text: format!("{text} (which wears more is undecided)"),
-                                needed,
-                            },
-                            other => other,
-                        });
-                        continue;
-                    }
+                if a.critical_diameter == b.critical_diameter {
+                    continue;
+                }
+                let (large, small) = if a.critical_diameter > b.critical_diameter {
+                    (*a, *b)
+                } else {
+                    (*b, *a)
                 };
-                let size = compare(
-                    heavy,
-                    light,
-                    "heavier vs lighter wearer",
+                let eq5 = (large.critical_diameter / small.critical_diameter).powi(3);
+                let ratio = compare(
+                    large,
+                    small,
+                    "larger vs smaller d*",
                     Compared::Derived(particle_volume, "mean particle volume W/(dN*₊/ds)"),
-                    Region::Above(1.0),
+                    Region::Within(eq5, eq5),
                     true,
-                );
-                tally.file(size);
+                )
+                .map_text(|text| format!("{text}; Eq. 5's (d*₁/d*₂)³ = {}", fmt(eq5)));
+                let mut unit = Unit::of(&ratio);
+                unit.outcome = "shown";
+                unit.p = None;
+                unit.margin = None;
+                unit.pairs_to_decide = None;
+                unit.rule = format!("= {} by Eq. 5", fmt(eq5));
+                lines.push(unit.text.clone());
+                units.push(unit);
             }
         }
     }
-    finding(
-        "severe-wear-from-large-particles",
-        "§4.1: more severe wear is due to the detachment of large wear particles",
-        "per pair of settings at the study's highest load whose W differ (W ratio decided, \
-         paired or by the count test): the mean particle volume W/(dN*₊/ds) of the one that wears more over the \
-         other's > 1, paired over the shared run-in pairs; a pair of settings whose W ratio is undecided is \
-         inconclusive. At low loads the paper's own Fig. 4a has the smaller d*, with its smaller particles, wearing \
-         more, so lower loads are not judged"
+    let verdict = if units.is_empty() {
+        Verdict::NotTestable
+    } else {
+        Verdict::Cited
+    };
+    Finding {
+        key: "severe-wear-from-large-particles",
+        paper: "§4.1: more severe wear is due to the detachment of large wear particles",
+        rule: "per pair of settings of different d* at the study's highest load: their mean particle volumes \
+               W/(dN*₊/ds), paired over the shared run-in pairs, shown against (d*₁/d*₂)³, the ratio Eq. 5 fixes \
+               (every particle ≈ ω d*³); which of them wears more is judged once, by \
+               larger-d-star-wears-more-at-high-load (and Fig. 5's wear half), so this finding is not counted"
             .into(),
-        "pairs of settings",
-        tally,
-    )
+        observed: if lines.is_empty() {
+            "no pair of settings of different d* at the highest load".into()
+        } else {
+            lines.join("; ")
+        },
+        verdict,
+        counts: (0, 0, 0, 0),
+        pairs_to_decide: None,
+        units,
+        verdict_under_holm: None,
+        cites: Some(
+            "Eq. 5 fixes the particle-volume ratio at (d*₁/d*₂)³; which setting wears more is judged once, by \
+             the crossover finding (larger d* wears more at high load) and Fig. 5's wear half",
+        ),
+    }
 }

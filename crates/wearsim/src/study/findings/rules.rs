@@ -7,17 +7,19 @@ use crate::stats::{
 };
 
 use super::setting::{fmt, Pair, Setting};
-use super::Tally;
+use super::{Numbers, Tally, Unit};
 
 /// How one unit of a finding came out.
 #[derive(Debug, Clone, PartialEq)]
 pub(super) enum Outcome {
     /// Judged by an interval: holds, contrary or undecided (then with the surface pairs that would
-    /// decide it at the observed effect and spread, when any number would).
+    /// decide it at the observed effect and spread, when any number would). `numbers` are the
+    /// interval that decided it and the rule's region, when the unit has one.
     Judged {
         side: Side,
         text: String,
         needed: Option<usize>,
+        numbers: Option<Numbers>,
     },
     /// Fewer than two of its surface pairs are run in.
     NotRunIn(String),
@@ -36,11 +38,62 @@ impl Outcome {
             Outcome::Judged { text, .. } | Outcome::NotRunIn(text) => text,
         }
     }
+
+    /// A unit that no interval decides (no spread, no shared load, no particle): `text` says why.
+    pub fn undecided(text: String) -> Outcome {
+        Outcome::Judged {
+            side: Side::Undecided,
+            text,
+            needed: None,
+            numbers: None,
+        }
+    }
+
+    /// A unit judged by the interval `i` of `quantity` against `region`.
+    pub fn by_interval(i: Interval, quantity: &str, region: Region, text: String, needed: Option<usize>) -> Outcome {
+        Outcome::Judged {
+            side: region.side(&i),
+            text,
+            needed,
+            numbers: Some(Numbers {
+                quantity: quantity.to_string(),
+                interval: i,
+                region,
+            }),
+        }
+    }
+
+    /// The interval that decided the unit, when it has one.
+    pub fn numbers(&self) -> Option<&Numbers> {
+        match self {
+            Outcome::Judged { numbers, .. } => numbers.as_ref(),
+            Outcome::NotRunIn(_) => None,
+        }
+    }
+
+    /// The same outcome with its text rewritten (a note added).
+    pub fn map_text(self, f: impl FnOnce(String) -> String) -> Outcome {
+        match self {
+            Outcome::Judged {
+                side,
+                text,
+                needed,
+                numbers,
+            } => Outcome::Judged {
+                side,
+                text: f(text),
+                needed,
+                numbers,
+            },
+            Outcome::NotRunIn(text) => Outcome::NotRunIn(f(text)),
+        }
+    }
 }
 
 impl Tally {
     /// Files one unit under its outcome.
     pub(super) fn file(&mut self, outcome: Outcome) {
+        self.units.push(Unit::of(&outcome));
         match outcome {
             Outcome::Judged {
                 side: Side::Holds,
@@ -56,6 +109,7 @@ impl Tally {
                 side: Side::Undecided,
                 text,
                 needed,
+                ..
             } => self.inconclusive.push((text, needed)),
             Outcome::NotRunIn(text) => self.not_run_in.push(text),
         }
@@ -83,14 +137,10 @@ pub(super) fn judge_values(
     // way, whatever side of the threshold 0 lies on.
     let finite: Vec<f64> = values.iter().copied().filter(|v| v.is_finite()).collect();
     if finite.len() >= 2 && finite.iter().all(|v| *v == 0.0) {
-        return Outcome::Judged {
-            side: Side::Undecided,
-            text: format!(
-                "{label}: {what} = 0 in each of {} pairs: no spread, no interval{note}",
-                finite.len()
-            ),
-            needed: None,
-        };
+        return Outcome::undecided(format!(
+            "{label}: {what} = 0 in each of {} pairs: no spread, no interval{note}",
+            finite.len()
+        ));
     }
     match mean_interval(values) {
         Some(i) => {
@@ -100,21 +150,14 @@ pub(super) fn judge_values(
                 .then(|| pairs_needed(values, region))
                 .flatten()
                 .map(|n| (n as f64 * scale).ceil() as usize);
-            Outcome::Judged {
-                side,
-                text: format!("{label}: {what} = {} ({} pairs{note})", show(&i), i.n),
-                needed,
-            }
+            let text = format!("{label}: {what} = {} ({} pairs{note})", show(&i), i.n);
+            Outcome::by_interval(i, what, region, text, needed)
         }
-        None => Outcome::Judged {
-            side: Side::Undecided,
-            text: format!(
-                "{label}: {what} defined in {} pair{} only, no interval{note}",
-                values.iter().filter(|v| v.is_finite()).count(),
-                if values.len() == 1 { "" } else { "s" }
-            ),
-            needed: None,
-        },
+        None => Outcome::undecided(format!(
+            "{label}: {what} defined in {} pair{} only, no interval{note}",
+            values.iter().filter(|v| v.is_finite()).count(),
+            if values.len() == 1 { "" } else { "s" }
+        )),
     }
 }
 
@@ -144,11 +187,11 @@ pub(super) fn on_run_in_pairs(
     if s.pairs.len() < 2 {
         // A study of one surface pair has no spread to measure: no interval, whatever the pair shows.
         let v = run.first().map_or(f64::NAN, |p| value(s, p));
-        return Outcome::Judged {
-            side: Side::Undecided,
-            text: format!("{}: {what} = {} (one surface pair: no interval)", s.label(), fmt(v)),
-            needed: None,
-        };
+        return Outcome::undecided(format!(
+            "{}: {what} = {} (one surface pair: no interval)",
+            s.label(),
+            fmt(v)
+        ));
     }
     if run.len() < 2 {
         return Outcome::NotRunIn(format!("{}: {}", s.label(), s.run_in_note()));
@@ -232,11 +275,8 @@ pub(super) fn compare(a: &Setting, b: &Setting, what: &str, q: Compared, region:
         let needed = (side == Side::Undecided)
             .then(|| pairs_needed(&logs, region.map(f64::ln)))
             .flatten();
-        return Outcome::Judged {
-            side,
-            text: format!("{label}: {} ratio = {} (paired, {} pairs)", q.name(), show(&i), i.n),
-            needed,
-        };
+        let text = format!("{label}: {} ratio = {} (paired, {} pairs)", q.name(), show(&i), i.n);
+        return Outcome::by_interval(i, &format!("{} ratio", q.name()), region, text, needed);
     }
     match q {
         Compared::WearRate | Compared::ParticleRate => compare_counts(a, b, &label, q, region, &pairs),
@@ -285,22 +325,18 @@ fn compare_counts(
             let needed = (side == Side::Undecided)
                 .then(|| pairs_needed_for_counts(na, nb, pairs.len(), scale, region))
                 .flatten();
-            Outcome::Judged {
-                side,
-                text: format!(
-                    "{label}: {} ratio = {} (count test: {na} vs {nb} particles over {} shared pairs{scaled})",
-                    q.name(),
-                    show(&i),
-                    pairs.len()
-                ),
-                needed,
-            }
+            let text = format!(
+                "{label}: {} ratio = {} (count test: {na} vs {nb} particles over {} shared pairs{scaled})",
+                q.name(),
+                show(&i),
+                pairs.len()
+            );
+            Outcome::by_interval(i, &format!("{} ratio", q.name()), region, text, needed)
         }
-        None => Outcome::Judged {
-            side: Side::Undecided,
-            text: format!("{label}: no particle in either over {} shared pairs", pairs.len()),
-            needed: None,
-        },
+        None => Outcome::undecided(format!(
+            "{label}: no particle in either over {} shared pairs",
+            pairs.len()
+        )),
     }
 }
 
@@ -371,11 +407,25 @@ pub(super) fn all_of(label: &str, parts: Vec<Outcome>) -> Outcome {
         parts.iter().map(Outcome::text).collect::<Vec<_>>().join("; ")
     );
     let sides: Vec<Option<Side>> = parts.iter().map(Outcome::side).collect();
+    // The part that decides the unit: the first contrary one, else the holding part nearest to its
+    // threshold, else the first undecided part with an interval.
+    let decisive = |side: Side| {
+        let mut on: Vec<&Numbers> = parts
+            .iter()
+            .filter(|p| p.side() == Some(side))
+            .filter_map(Outcome::numbers)
+            .collect();
+        if side == Side::Holds {
+            on.sort_by(|a, b| a.margin().total_cmp(&b.margin()));
+        }
+        on.first().map(|n| (*n).clone())
+    };
     if sides.contains(&Some(Side::Contrary)) {
         return Outcome::Judged {
             side: Side::Contrary,
             text,
             needed: None,
+            numbers: decisive(Side::Contrary),
         };
     }
     if sides.contains(&None) {
@@ -386,6 +436,7 @@ pub(super) fn all_of(label: &str, parts: Vec<Outcome>) -> Outcome {
             side: Side::Holds,
             text,
             needed: None,
+            numbers: decisive(Side::Holds),
         };
     }
     let needed: Option<Vec<usize>> = parts
@@ -403,6 +454,7 @@ pub(super) fn all_of(label: &str, parts: Vec<Outcome>) -> Outcome {
         side: Side::Undecided,
         text,
         needed: needed.and_then(|n| n.into_iter().max()),
+        numbers: decisive(Side::Undecided),
     }
 }
 
@@ -424,17 +476,14 @@ pub(super) fn compare_unpaired(a: &Setting, b: &Setting, what: &str, q: Compared
         let needed = (side == Side::Undecided)
             .then(|| crate::stats::pairs_needed_unpaired(&logs(&va), &logs(&vb), region.map(f64::ln)))
             .flatten();
-        return Outcome::Judged {
-            side,
-            text: format!(
-                "{label}: {} ratio = {} (Welch, {} and {} pairs)",
-                q.name(),
-                show(&i),
-                va.len(),
-                vb.len()
-            ),
-            needed,
-        };
+        let text = format!(
+            "{label}: {} ratio = {} (Welch, {} and {} pairs)",
+            q.name(),
+            show(&i),
+            va.len(),
+            vb.len()
+        );
+        return Outcome::by_interval(i, &format!("{} ratio", q.name()), region, text, needed);
     }
     let (na, nb): (u64, u64) = (
         ra.iter().map(|p| p.particles()).sum(),
@@ -452,24 +501,16 @@ pub(super) fn compare_unpaired(a: &Setting, b: &Setting, what: &str, q: Compared
     match (q, count_ratio(na, nb)) {
         (Compared::WearRate | Compared::ParticleRate, Some(i)) => {
             let i = i.map(|x| x * scale);
-            let side = region.side(&i);
-            Outcome::Judged {
-                side,
-                text: format!(
-                    "{label}: {} ratio = {} (count test: {na} vs {nb} particles over {} and {} pairs, per pair and \
-                     fit-window distance)",
-                    q.name(),
-                    show(&i),
-                    ra.len(),
-                    rb.len()
-                ),
-                needed: None,
-            }
+            let text = format!(
+                "{label}: {} ratio = {} (count test: {na} vs {nb} particles over {} and {} pairs, per pair and \
+                 fit-window distance)",
+                q.name(),
+                show(&i),
+                ra.len(),
+                rb.len()
+            );
+            Outcome::by_interval(i, &format!("{} ratio", q.name()), region, text, None)
         }
-        _ => Outcome::Judged {
-            side: Side::Undecided,
-            text: format!("{label}: {} not positive in every pair; no interval", q.name()),
-            needed: None,
-        },
+        _ => Outcome::undecided(format!("{label}: {} not positive in every pair; no interval", q.name())),
     }
 }

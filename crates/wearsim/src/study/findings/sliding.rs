@@ -6,7 +6,7 @@ use crate::stats::{mean_interval, pairs_needed, ratio_of_means, Region, Side};
 
 use super::rules::{on_run_in_pairs, pair_exponents, per_setting, show, Outcome};
 use super::setting::{contact_histories, fmt, history_curves, Pair, Setting};
-use super::{finding, Finding, Tally};
+use super::{finding, Finding, Numbers, Tally};
 
 /// §3, Fig. 3: V(s) linear after running-in, per setting.
 pub(super) fn volume_linear_after_running_in(all: &[Setting]) -> Finding {
@@ -57,16 +57,15 @@ fn initial_volume_ratio(s: &Setting) -> Outcome {
         return on_run_in_pairs(s, "V₀/(W·Δx)", region, value);
     }
     match ratio_of_means(&pairs) {
-        Some(i) => Outcome::Judged {
-            side: region.side(&i),
-            text: format!(
+        Some(i) => {
+            let text = format!(
                 "{}: ΣV₀/Σ(W·Δx) = {} (V₀ = 0 in {zeros} of {} run-in pairs; bootstrap over the pairs)",
                 s.label(),
                 show(&i),
                 pairs.len()
-            ),
-            needed: None,
-        },
+            );
+            Outcome::by_interval(i, "ΣV₀/Σ(W·Δx)", region, text, None)
+        }
         None => on_run_in_pairs(s, "V₀/(W·Δx)", region, value),
     }
 }
@@ -136,11 +135,13 @@ pub(super) fn running_in_sufficient(all: &[Setting]) -> Finding {
                 fmt(r),
                 fmt(p.get("memory_decay_length"))
             );
-            if p.run_in() {
-                tally.holds.push(line);
-            } else {
-                tally.contrary.push(line);
-            }
+            // One measurement per pair, no interval: its side as it is.
+            tally.file(Outcome::Judged {
+                side: if p.run_in() { Side::Holds } else { Side::Contrary },
+                text: line,
+                needed: None,
+                numbers: None,
+            });
         }
     }
     finding(
@@ -186,13 +187,20 @@ pub(super) fn decay_length_varies_with_load(all: &[Setting]) -> Finding {
                     side,
                     text: format!("{label}: exponent of ℓ ∝ F_N^m = {} ({} pairs)", show(&i), i.n),
                     needed: (side == Side::Undecided).then(|| pairs_needed(&m, towards)).flatten(),
+                    // Its margin: from 0 (the side the estimate lies on), or, where ℓ is practically
+                    // uniform, inside ±UNIFORM.
+                    numbers: Some(Numbers {
+                        quantity: "exponent of ℓ ∝ F_N^m".into(),
+                        interval: i,
+                        region: if side == Side::Contrary {
+                            Region::Within(-UNIFORM, UNIFORM)
+                        } else {
+                            towards
+                        },
+                    }),
                 }
             }
-            None => Outcome::Judged {
-                side: Side::Undecided,
-                text: format!("{label}: ℓ fitted at two loads in {} pairs only", m.len()),
-                needed: None,
-            },
+            None => Outcome::undecided(format!("{label}: ℓ fitted at two loads in {} pairs only", m.len())),
         };
         tally.file(outcome);
     }
@@ -234,11 +242,7 @@ pub(super) fn equation_5_slightly_below_w(all: &[Setting]) -> Finding {
             }
         };
         tally.file(match outcome {
-            Outcome::Judged { side, text, needed } => Outcome::Judged {
-                side,
-                text: size(&text),
-                needed,
-            },
+            judged @ Outcome::Judged { .. } => judged.map_text(|text| size(&text)),
             other => other,
         });
     }

@@ -168,7 +168,8 @@ fn findings_on_a_hand_made_study() {
         Verdict::NotTestable
     );
     let md = markdown(&f);
-    assert_eq!(md.lines().filter(|l| l.starts_with("| ")).count(), f.len() + 1);
+    // The one-line table and the table of rules, each a header and one row per finding.
+    assert_eq!(md.lines().filter(|l| l.starts_with("| ")).count(), 2 * (f.len() + 1));
     assert!(md.contains("95 % confidence interval over surface pairs"));
 }
 
@@ -265,14 +266,27 @@ fn a_difference_within_the_spread_of_the_pairs_decides_nothing() {
         "{}",
         fig5.observed
     );
-    // Which of the two wears more is as undecided for the particle sizes, with the pairs that would
-    // decide it.
+    // The particle sizes restate Eq. 5 (every particle ≈ ω d*³) and the W comparison: shown against
+    // (d*₁/d*₂)³ = 8, not counted.
     let severe = get(&f, "severe-wear-from-large-particles");
-    assert_eq!(severe.counts, (0, 0, 1, 0), "{}", severe.observed);
-    assert_eq!(severe.verdict, Verdict::Inconclusive);
-    let needed = severe.pairs_to_decide.expect("more pairs decide it");
-    assert!(needed > 5, "{needed}");
-    assert!(markdown(&f).contains(&format!("| {needed} |")));
+    assert_eq!(severe.counts, (0, 0, 0, 0), "{}", severe.observed);
+    assert_eq!(severe.verdict, Verdict::Cited);
+    assert_eq!(severe.units.len(), 1);
+    assert_eq!(severe.units[0].outcome, "shown");
+    assert!(
+        severe.observed.contains("Eq. 5's (d*₁/d*₂)³ = 8"),
+        "{}",
+        severe.observed
+    );
+    let line = markdown(&f)
+        .lines()
+        .find(|l| l.starts_with(&format!("| {} |", severe.paper)))
+        .expect("a line for the finding")
+        .to_string();
+    assert!(
+        line.contains("| shown, not counted |") && line.contains("not counted: Eq. 5 fixes"),
+        "{line}"
+    );
     // The crossover: only the first pair wears at both loads (the others form no particle of 33 px
     // at the low load): one slope, no interval, undecided.
     let larger = get(&f, "larger-d-star-wears-more-at-high-load");
@@ -339,9 +353,136 @@ fn the_crossover_is_judged_by_the_slope_of_the_ratio_and_its_crossing_load() {
     let fig5 = get(&f, "hardest-least-tough-emits-most-wears-least");
     assert_eq!(fig5.observed.matches("wears less").count(), 1, "{}", fig5.observed);
     let severe = get(&f, "severe-wear-from-large-particles");
-    let units = severe.counts.0 + severe.counts.1 + severe.counts.2 + severe.counts.3;
-    assert_eq!(units, 1, "{}", severe.observed);
+    assert_eq!(severe.units.len(), 1, "{}", severe.observed);
     assert!(!severe.observed.contains("F_N/(Lx·Ly) = 0.002"), "{}", severe.observed);
+}
+
+fn numbers(values: &[f64], region: Region) -> Numbers {
+    Numbers {
+        quantity: "x".into(),
+        interval: crate::stats::mean_interval(values).unwrap(),
+        region,
+    }
+}
+
+#[test]
+fn a_units_p_value_and_margin_agree_with_its_interval() {
+    // Mean 3, sd 1.58 over 5 pairs: the 95 % interval [1.04, 4.96].
+    let values = [1.0, 2.0, 3.0, 4.0, 5.0];
+    let n = numbers(&values, Region::Above(2.0));
+    assert!((n.margin() + (2.0 - n.interval.low)).abs() < 1e-12, "{}", n.margin());
+    // t = (3 − 2)/(1.58/√5) = 1.414 on 4 degrees of freedom: p = 0.230.
+    assert!((n.p_value().unwrap() - 0.2302).abs() < 1e-3, "{:?}", n.p_value());
+    // Decided exactly when p < 0.05 and the margin is positive, on either side of the threshold.
+    for t in [-1.0, 0.5, 1.0, 1.03, 1.05, 2.0, 4.9, 5.0, 7.0] {
+        for region in [Region::Above(t), Region::Below(t)] {
+            let n = numbers(&values, region);
+            let decided = region.side(&n.interval) != Side::Undecided;
+            assert_eq!(decided, n.p_value().unwrap() < 0.05, "{region:?}");
+            assert_eq!(decided, n.margin() > 0.0, "{region:?}");
+        }
+    }
+    // Inside a band: the distance to its nearer edge.
+    let band = numbers(&values, Region::Within(0.0, 6.0));
+    assert!((band.margin() - (6.0 - band.interval.high)).abs() < 1e-12);
+    // A paired ratio is tested on the log scale; counts and bootstraps have no t statistic.
+    let ratio = Numbers {
+        interval: Interval {
+            estimate: 2.0,
+            low: 1.0,
+            high: 4.0,
+            n: 5,
+            method: Method::PairedRatio,
+        },
+        ..numbers(&values, Region::Above(1.0))
+    };
+    assert!((ratio.p_value().unwrap() - 0.05).abs() < 1e-9, "{:?}", ratio.p_value());
+    let count = Numbers {
+        interval: Interval {
+            method: Method::CountRatio,
+            ..ratio.interval
+        },
+        ..ratio.clone()
+    };
+    assert_eq!(count.p_value(), None);
+}
+
+#[test]
+fn holm_adjusts_within_a_finding_and_a_verdict_it_flips_is_flagged() {
+    let unit = |outcome: &'static str, p: Option<f64>| Unit {
+        label: String::new(),
+        outcome,
+        quantity: String::new(),
+        estimate: None,
+        low: None,
+        high: None,
+        n: None,
+        method: String::new(),
+        rule: String::new(),
+        p,
+        p_holm: None,
+        margin: None,
+        pairs_to_decide: None,
+        text: String::new(),
+    };
+    let mut units = vec![
+        unit("holds", Some(0.04)),
+        unit("holds", Some(0.01)),
+        unit("holds", Some(0.03)),
+        unit("inconclusive", None),
+    ];
+    holm(&mut units);
+    let adjusted: Vec<Option<f64>> = units.iter().map(|u| u.p_holm).collect();
+    let close = |a: Option<f64>, b: f64| a.is_some_and(|a| (a - b).abs() < 1e-12);
+    // 3 × 0.01, then max(0.03, 2 × 0.03), then max(0.06, 1 × 0.04).
+    assert!(
+        close(adjusted[1], 0.03) && close(adjusted[2], 0.06) && close(adjusted[0], 0.06),
+        "{adjusted:?}"
+    );
+    assert_eq!(adjusted[3], None);
+    // Three of four hold alone; after Holm one of four is decided: fewer than half.
+    assert_eq!(verdict_under_holm(&units), Verdict::Inconclusive);
+}
+
+#[test]
+fn findings_md_opens_with_one_line_per_finding_and_the_units_csv_has_every_unit() {
+    let f = findings(&study(None));
+    let md = markdown(&f);
+    let header = "| finding (paper) | verdict | the deciding unit, with its 95 % interval | what kind of result |";
+    assert!(md.starts_with(header), "{md}");
+    let table: Vec<&str> = md.lines().skip(2).take_while(|l| l.starts_with("| ")).collect();
+    assert_eq!(table.len(), f.len());
+    for (line, finding) in table.iter().zip(&f) {
+        assert!(
+            line.starts_with(&format!("| {} | {} |", finding.paper, finding.verdict.name())),
+            "{line}"
+        );
+        if finding.verdict == Verdict::NotTestable {
+            assert!(line.contains("this study cannot show it; it needs "), "{line}");
+        }
+    }
+    // Archard-like in this study: W ∝ F_N in every pair, its exponent's interval inside the band.
+    let archard = table[f.iter().position(|x| x.key == "archard-like").unwrap()];
+    assert!(
+        archard.contains("m of W ∝ F_N^m = 1 [1, 1] (rule in [0.667, 1.5])"),
+        "{archard}"
+    );
+    let csv = units_csv(&f);
+    let counted: usize = f
+        .iter()
+        .map(|x| x.counts.0 + x.counts.1 + x.counts.2 + x.counts.3)
+        .sum();
+    let records: Vec<csv::StringRecord> = csv::Reader::from_reader(csv.as_bytes())
+        .records()
+        .map(Result::unwrap)
+        .collect();
+    // One row per unit a finding counts, and the units a cited finding shows.
+    let shown = records.iter().filter(|r| &r[2] == "shown").count();
+    assert_eq!(records.len(), counted + shown, "{csv}");
+    for record in &records {
+        assert!(f.iter().any(|x| x.key == &record[0]), "{record:?}");
+        assert!(["holds", "contrary", "inconclusive", "not run in", "shown"].contains(&&record[2]));
+    }
 }
 
 #[test]
@@ -408,6 +549,7 @@ fn the_verdict_and_the_pairs_to_decide_follow_from_the_counts() {
         contrary: vec![String::new(); c],
         inconclusive: i.iter().map(|x| (String::new(), *x)).collect(),
         not_run_in: vec![String::new(); n],
+        units: Vec::new(),
     };
     assert_eq!(Tally::default().verdict(), Verdict::NotTestable);
     assert_eq!(tally(0, 0, &[None], 0).verdict(), Verdict::Inconclusive);
