@@ -53,6 +53,17 @@ pub struct JobResult {
 
 impl JobResult {
     /// The job file's text.
+    /// N₀(s_r)/N₀(0) of result `w` of this job: as the job file has it, or, in a job file written
+    /// before it was kept, counted from its steps.
+    pub fn lineages_left(&self, w: &WearResult) -> Option<f64> {
+        w.initial_lineages_left.or_else(|| {
+            crate::sliding::lineages_left(
+                self.steps.iter().map(|r| (r.s, r.initial_junctions)),
+                w.fit_window_start,
+            )
+        })
+    }
+
     pub fn to_json(&self) -> String {
         serde_json::to_string(self).expect("job results serialise")
     }
@@ -123,7 +134,11 @@ impl TidyRow {
                     load: result.load,
                     nominal_pressure,
                     nominal_area: p.nominal_area(),
-                    result: w.clone(),
+                    result: WearResult {
+                        // Job files written before the count existed: from their steps.
+                        initial_lineages_left: result.lineages_left(w),
+                        ..w.clone()
+                    },
                     flow_pressure: result.flow_pressure,
                     contact_severity: p.rms_height.map(|h| nominal_pressure * h.sqrt() / toughness),
                     warnings: mine.join("; "),
@@ -601,6 +616,40 @@ mod tests {
             ..job(0, 0.01, 0.01)
         });
         assert_eq!(measured[0].contact_severity, None);
+    }
+
+    #[test]
+    fn a_job_file_without_the_lineages_left_has_them_counted_from_its_steps() {
+        let step = |s: f64, initial_junctions: usize| StepRow {
+            s,
+            junctions: 7,
+            wrapping_junctions: 0,
+            contact_area: 0.1,
+            initial_junctions,
+            volume: vec![0.0],
+            static_wear_coefficient: vec![0.3],
+            n_critical: vec![0],
+            n_formed: vec![0],
+        };
+        let result = |written: Option<f64>| JobResult {
+            results: vec![WearResult {
+                fit_window_start: 0.5,
+                initial_lineages_left: written,
+                ..WearResult::default()
+            }],
+            steps: vec![step(0.0, 20), step(0.25, 4), step(0.5, 1), step(0.75, 0)],
+            ..job(0, 0.01, 0.01)
+        };
+        // An earlier job file: 1 of the 20 lineages of s = 0 left at s_r = 0.5.
+        assert_eq!(
+            TidyRow::of_job(&result(None))[0].result.initial_lineages_left,
+            Some(0.05)
+        );
+        // A job file that has the count keeps it.
+        assert_eq!(
+            TidyRow::of_job(&result(Some(0.0)))[0].result.initial_lineages_left,
+            Some(0.0)
+        );
     }
 
     #[test]

@@ -4,7 +4,7 @@ use crate::junctions::particle_volume;
 use crate::material::Material;
 use crate::stats::{line_fit, mean_std, LineFit};
 
-use super::records::{finite, StepRecord, WearResult, RUN_IN_DECAY_LENGTHS};
+use super::records::{finite, StepRecord, WearResult, RUN_IN_DECAY_LENGTHS, RUN_IN_LINEAGES_LEFT};
 use super::schedule::SlidingSetup;
 
 /// Fewest particles after running-in for a wear rate worth a number without a warning.
@@ -39,6 +39,7 @@ struct LoadFits {
     memory_decay_r2: Option<f64>,
     memory_fit_initial_junctions: Option<f64>,
     running_in_decay_lengths: Option<f64>,
+    initial_lineages_left: Option<f64>,
 }
 
 /// The fitted results of one load per fracture energy (paper §3 and appendices B, C), and the
@@ -98,14 +99,24 @@ fn load_fits(load: f64, steps: &[StepRecord], fitted: &[&StepRecord], warnings: 
         (None, Some(_)) => Some(0.0),
         (None, None) => None,
     };
-    if let Some(r) = running_in_decay_lengths.filter(|r| *r < RUN_IN_DECAY_LENGTHS) {
+    let initial_lineages_left =
+        super::records::lineages_left(steps.iter().map(|r| (r.s, r.initial_junctions)), fit_start);
+    // Run in once at most RUN_IN_LINEAGES_LEFT of the lineages of s = 0 are left where the fit window
+    // starts, counted; where none was there to count, by the decay lengths.
+    let not_run_in = match (initial_lineages_left, running_in_decay_lengths) {
+        (Some(left), r) => (left > RUN_IN_LINEAGES_LEFT).then_some((left, r)),
+        (None, Some(r)) => (r < RUN_IN_DECAY_LENGTHS).then_some(((-r).exp(), Some(r))),
+        (None, None) => None,
+    };
+    if let Some((left, r)) = not_run_in {
         let decay = memory_decay_length.map_or("does not decay".to_string(), |l| format!("decays over ℓ = {l:.4e}"));
+        let lengths = r.map_or(String::new(), |r| format!(", {r:.2} decay lengths"));
         warnings.push(format!(
             "F_N = {load:.4e}: not run in: the memory of the initial contact {decay}, and the fit window starts at s = \
-             {fit_start:.4e}, {r:.2} decay lengths (under {RUN_IN_DECAY_LENGTHS}), with {:.0} % of the junction \
-             lineages of s = 0 expected still present; raise `running_in` (and `distance`) to at least \
-             {RUN_IN_DECAY_LENGTHS} ℓ",
-            100.0 * (-r).exp()
+             {fit_start:.4e}{lengths}, with {:.0} % of the junction lineages of s = 0 still present (at most {:.0} % \
+             run in); raise `running_in` (and `distance`), to at least {RUN_IN_DECAY_LENGTHS} ℓ",
+            100.0 * left,
+            100.0 * RUN_IN_LINEAGES_LEFT
         ));
     }
     let (junctions_mean, _) = mean_std(fitted.iter().map(|r| r.junctions as f64));
@@ -130,6 +141,7 @@ fn load_fits(load: f64, steps: &[StepRecord], fitted: &[&StepRecord], warnings: 
         memory_decay_r2,
         memory_fit_initial_junctions,
         running_in_decay_lengths,
+        initial_lineages_left,
     }
 }
 
@@ -229,6 +241,7 @@ fn result_of_energy(
         memory_decay_r2: shared.memory_decay_r2,
         memory_fit_initial_junctions: shared.memory_fit_initial_junctions,
         running_in_decay_lengths: shared.running_in_decay_lengths,
+        initial_lineages_left: shared.initial_lineages_left,
         critical_residence: particle_rate
             .filter(|r| *r > 0.0)
             .and_then(|r| finite(critical_junctions_mean / r)),

@@ -100,6 +100,12 @@ pub struct WearResult {
     /// [`RUN_IN_DECAY_LENGTHS`] the fit window starts while the initial contact is still remembered
     /// (paper §3) and the run is not run in; the run's `warnings` say so.
     pub running_in_decay_lengths: Option<f64>,
+    /// N₀(s_r)/N₀(0): the fraction of the junction lineages of s = 0 still present where the fit
+    /// window starts, counted (paper §3: run in once the memory of the initial contact has faded;
+    /// at most [`RUN_IN_LINEAGES_LEFT`]); absent without a junction at s = 0. Job files written before
+    /// it existed have it filled from their steps when collected.
+    #[serde(default)]
+    pub initial_lineages_left: Option<f64>,
     /// N*/(dN*₊/ds): the sliding distance a junction stays at least d* per particle it forms
     /// (Little's law over the fit window). A junction forms one particle and is then disabled while
     /// it overlaps itself (paper §3), so when critical junctions grow and live longer with load, this
@@ -137,6 +143,7 @@ impl WearResult {
         ("memory_fit_initial_junctions", "", ""),
         ("box_wrapping_steps", "", ""),
         ("running_in_decay_lengths", "1", "1"),
+        ("initial_lineages_left", "1", "1"),
         ("critical_residence", "L", "m"),
     ];
 }
@@ -146,6 +153,25 @@ impl WearResult {
 /// The paper (§3) finds the decay length not predictable and takes L/4 as a safety margin; this rule
 /// checks that margin on each run's own measured decay.
 pub const RUN_IN_DECAY_LENGTHS: f64 = 3.0;
+
+/// The fraction of the junction lineages of s = 0 at most left at the start of the fit window for a
+/// run to count as run in: what [`RUN_IN_DECAY_LENGTHS`] aims at (e^−3 ≈ 5 %), counted instead of
+/// extrapolated from a fitted ℓ, which a tail of a few persisting lineages can dominate.
+pub const RUN_IN_LINEAGES_LEFT: f64 = 0.05;
+
+/// N₀(s_r)/N₀(0) of a run's steps (s, N₀): the lineages of s = 0 left at the first step at or after
+/// `fit_start`; `None` without a junction at s = 0 or without such a step.
+pub fn lineages_left(steps: impl IntoIterator<Item = (f64, usize)>, fit_start: f64) -> Option<f64> {
+    let mut steps = steps.into_iter();
+    let (_, initial) = steps.next()?;
+    if initial == 0 {
+        return None;
+    }
+    let at = std::iter::once((0.0, initial))
+        .chain(steps)
+        .find(|(s, _)| *s >= fit_start - 1e-9 * fit_start.abs().max(f64::MIN_POSITIVE))?;
+    Some(at.1 as f64 / initial as f64)
+}
 
 /// Time spent per part of the sliding loop, in seconds.
 #[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -167,4 +193,23 @@ pub struct LoadRun {
     pub timing: Timing,
     /// What makes a result of this load under-resolved or undefined, one sentence each.
     pub warnings: Vec<String>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_lineages_left_are_counted_at_the_first_step_of_the_fit_window() {
+        let steps = [(0.0, 40), (0.01, 12), (0.02, 3), (0.03, 1), (0.04, 0)];
+        // The fit window starts at the step of s = 0.02 (or between steps: at the next one).
+        assert_eq!(lineages_left(steps, 0.02), Some(3.0 / 40.0));
+        assert_eq!(lineages_left(steps, 0.025), Some(1.0 / 40.0));
+        assert_eq!(lineages_left(steps, 0.04), Some(0.0));
+        assert_eq!(lineages_left(steps, 0.0), Some(1.0));
+        // No junction at s = 0, no step there, or no step as far: not counted.
+        assert_eq!(lineages_left([(0.0, 0), (0.01, 0)], 0.01), None);
+        assert_eq!(lineages_left(steps, 0.05), None);
+        assert_eq!(lineages_left(std::iter::empty(), 0.0), None);
+    }
 }

@@ -106,6 +106,7 @@ fn result_out_of_range(w: &WearResult, g: f64) -> Option<(&'static str, f64, &'s
         ("memory_decay_length", w.memory_decay_length),
         ("memory_fit_initial_junctions", w.memory_fit_initial_junctions),
         ("running_in_decay_lengths", w.running_in_decay_lengths),
+        ("initial_lineages_left", w.initial_lineages_left),
         ("critical_residence", w.critical_residence),
     ];
     let plain = [

@@ -19,7 +19,7 @@ use crate::output::{
     severity_fits, unit_of, Cell, CurveMaterial, JobResult, MaterialSeverity, SeriesRow, Table, KIM_EXPERIMENTAL_K,
     KIM_SEVERITY_FIT, PAPER_SEVERITY_FIT,
 };
-use crate::sliding::RUN_IN_DECAY_LENGTHS;
+use crate::sliding::{RUN_IN_DECAY_LENGTHS, RUN_IN_LINEAGES_LEFT};
 use crate::stats::{mean_interval, PowerLawFit};
 
 use crate::study::findings::RESOLVED_PARTICLES;
@@ -1170,11 +1170,30 @@ fn one_panel(x: Axis, y: Axis, series: Vec<Series>) -> Vec<Panel> {
     }]
 }
 
-/// Whether a job's pair is run in by the findings' rule (paper §3): its fit window starts after
-/// [`RUN_IN_DECAY_LENGTHS`] decay lengths ℓ of the memory of the initial contact; the findings set
-/// a pair that is not aside.
+/// Whether a job's pair is run in by the findings' rule (paper §3): at most
+/// [`RUN_IN_LINEAGES_LEFT`] of the junction lineages of s = 0 left where its fit window starts
+/// (where none was there to count, its fit window after [`RUN_IN_DECAY_LENGTHS`] decay lengths ℓ);
+/// the findings set a pair that is not aside.
 fn run_in_words(r: &JobResult) -> String {
-    match r.results.first().and_then(|w| w.running_in_decay_lengths) {
+    let first = r.results.first();
+    if let Some(left) = first.and_then(|w| r.lineages_left(w)) {
+        let lengths = first
+            .and_then(|w| w.running_in_decay_lengths)
+            .map_or(String::new(), |x| format!(", {} ℓ", number(x)));
+        let share = format!(
+            "{:.0} % of the lineages of s = 0 left at the fit window{lengths}",
+            100.0 * left
+        );
+        return if left <= RUN_IN_LINEAGES_LEFT {
+            format!("run in ({share})")
+        } else {
+            format!(
+                "not run in ({share}; over {:.0} %): the findings set this pair aside",
+                100.0 * RUN_IN_LINEAGES_LEFT
+            )
+        };
+    }
+    match first.and_then(|w| w.running_in_decay_lengths) {
         Some(x) if x >= RUN_IN_DECAY_LENGTHS => {
             format!(
                 "run in (fit window from {} ℓ, at least {RUN_IN_DECAY_LENGTHS})",

@@ -90,6 +90,8 @@ fn result_of(job: &Job) -> JobResult {
                 memory_decay_r2: Some(0.9),
                 memory_fit_initial_junctions: Some(20.0),
                 running_in_decay_lengths: Some(5.0 / seed),
+                // As the decay expects: e^(−5/seed) of the lineages left at the fit window.
+                initial_lineages_left: Some((-5.0 / seed).exp()),
                 ..WearResult::default()
             }
         })
@@ -280,7 +282,8 @@ fn the_memory_figure_shows_every_pair_of_the_setting() {
         .collect();
     assert_eq!(labels, ["pair 1: N₀(s)", "pair 2: N₀(s)", "pair 3: N₀(s)"]);
     assert!(fig[0].legend_title.starts_with("mean ℓ = "), "{}", fig[0].legend_title);
-    // Each pair says whether the findings count it as run in (s_r = 5/seed ℓ against 3 ℓ), and the
+    // Each pair says whether the findings count it as run in (e^(−5/seed) of the lineages left against
+    // 5 %), and the
     // running-in before the fit window is shaded.
     let verdicts: Vec<bool> = fig[0].legend[1..]
         .iter()
@@ -297,13 +300,13 @@ fn the_memory_figure_shows_every_pair_of_the_setting() {
             .clone()
     };
     assert!(
-        fig3(0).ends_with("; run in (fit window from 5 ℓ, at least 3)"),
+        fig3(0).ends_with("; run in (1 % of the lineages of s = 0 left at the fit window, 5 ℓ)"),
         "{}",
         fig3(0)
     );
     let pair_2 = results.iter().find(|r| r.inputs.seed == Some(2)).unwrap().index;
     assert!(
-        fig3(pair_2).contains("; not run in (fit window from 2.5 ℓ, under 3)"),
+        fig3(pair_2).contains("; not run in (8 % of the lineages of s = 0 left at the fit window, 2.5 ℓ; over 5 %)"),
         "{}",
         fig3(pair_2)
     );

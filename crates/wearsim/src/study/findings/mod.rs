@@ -23,8 +23,9 @@ mod sliding;
 mod static_model;
 
 use crate::output::Table;
-use crate::sliding::RUN_IN_DECAY_LENGTHS;
+use crate::sliding::{RUN_IN_DECAY_LENGTHS, RUN_IN_LINEAGES_LEFT};
 use crate::stats::{t_critical, Interval, Method, Region, Side, LEVEL};
+pub use setting::RunInRule;
 use statrs::distribution::{ContinuousCDF, StudentsT};
 
 /// Whether a study reproduces a finding of the paper, from the counts of a [`Tally`].
@@ -85,6 +86,9 @@ pub struct Finding {
     /// For a [`Verdict::Cited`] finding: what fixes its numbers and which finding judges its
     /// comparison.
     pub cites: Option<&'static str>,
+    /// The verdict when a surface pair counts as run in by the decay lengths (s_r ≥ 3 ℓ,
+    /// [`RunInRule::DecayLengths`]) instead of the lineages left, when it differs.
+    pub verdict_under_decay_lengths: Option<Verdict>,
 }
 
 /// The interval that decided a unit, with the quantity it is of and the region the rule asks of it.
@@ -377,46 +381,57 @@ fn finding(key: &'static str, paper: &'static str, rule: String, unit: &str, mut
         verdict_under_holm: (under_holm != tally.verdict()).then_some(under_holm),
         units: tally.units,
         cites: None,
+        verdict_under_decay_lengths: None,
     }
 }
 
-/// The paper's findings judged on a study's tidy table (`results.csv`), each under its rule.
+/// The paper's findings judged on a study's tidy table (`results.csv`), each under its rule, a
+/// surface pair run in by the lineages left; a verdict that the decay-length rule would change
+/// says so.
 pub fn findings(tidy: &Table) -> Vec<Finding> {
     // The findings are the sliding model's: rows of the static estimate are not judged.
     let (sliding, _) = crate::output::sliding_rows(tidy);
-    let all = setting::settings(&sliding);
+    let mut found = findings_of(&setting::settings(&sliding, RunInRule::LineagesLeft));
+    let other = findings_of(&setting::settings(&sliding, RunInRule::DecayLengths));
+    for (f, o) in found.iter_mut().zip(other) {
+        f.verdict_under_decay_lengths = (o.verdict != f.verdict).then_some(o.verdict);
+    }
+    found
+}
+
+fn findings_of(all: &[setting::Setting]) -> Vec<Finding> {
     vec![
-        static_model::static_k_below_one_and_rising(&all),
-        static_model::static_wear_superlinear(&all),
-        static_model::static_wear_grows_with_hardness(&all),
-        static_model::static_wear_falls_with_toughness(&all),
-        sliding::volume_linear_after_running_in(&all),
-        sliding::initial_volume_much_larger_than_increments(&all),
-        sliding::running_in_steeper(&all),
-        sliding::memory_decays_exponentially(&all),
-        sliding::running_in_sufficient(&all),
-        sliding::decay_length_varies_with_load(&all),
-        sliding::equation_5_slightly_below_w(&all),
-        materials::sliding_k_below_static(&all),
-        materials::sliding_k_below_0_1(&all),
-        materials::sliding_k_in_dry_sliding_range(&all),
-        materials::archard_like(&all),
-        materials::k_rises_with_load(&all),
-        materials::tougher_reaches_k_max_later(&all),
-        materials::larger_d_star_wears_more_at_high_load(&all),
-        materials::smaller_g_wears_more_at_low_load(&all),
-        materials::toughest_not_yet_ahead(&all),
-        particles::delayed_onset_for_large_g(&all),
-        particles::hardest_least_tough_emits_most_wears_least(&all),
-        particles::soft_tough_fewest_particles(&all),
-        particles::severe_wear_from_large_particles(&all),
-        kim::kim_hierarchy(&all),
-        kim::kim_k_above_experiments(&all),
-        appendix::appendix_a_discretization(&all),
-        appendix::appendix_c_box_size(&all),
-        appendix::appendix_c_more_spots_not_more_wear(&all),
-        appendix::appendix_d_lambda_lower(&all),
-        appendix::appendix_e_rms_height(&all),
+        static_model::static_k_below_one_and_rising(all),
+        static_model::static_wear_superlinear(all),
+        static_model::static_wear_grows_with_hardness(all),
+        static_model::static_wear_falls_with_toughness(all),
+        sliding::volume_linear_after_running_in(all),
+        sliding::initial_volume_much_larger_than_increments(all),
+        sliding::running_in_steeper(all),
+        sliding::memory_decays_exponentially(all),
+        sliding::running_in_sufficient(all),
+        sliding::decay_length_varies_with_load(all),
+        sliding::equation_5_slightly_below_w(all),
+        materials::sliding_k_below_static(all),
+        materials::sliding_k_below_0_1(all),
+        materials::sliding_k_in_dry_sliding_range(all),
+        materials::archard_like(all),
+        materials::k_rises_with_load(all),
+        materials::tougher_reaches_k_max_later(all),
+        materials::larger_d_star_wears_more_at_high_load(all),
+        materials::smaller_g_wears_more_at_low_load(all),
+        materials::toughest_not_yet_ahead(all),
+        particles::delayed_onset_for_large_g(all),
+        particles::hardest_least_tough_emits_most_wears_least(all),
+        particles::soft_tough_fewest_particles(all),
+        particles::severe_wear_from_large_particles(all),
+        kim::kim_hierarchy(all),
+        kim::kim_k_above_experiments(all),
+        appendix::appendix_a_discretization(all),
+        appendix::appendix_c_box_size(all),
+        appendix::appendix_c_more_spots_not_more_wear(all),
+        appendix::appendix_d_lambda_lower(all),
+        appendix::appendix_e_rms_height(all),
     ]
 }
 
@@ -431,8 +446,10 @@ pub fn method_statement() -> String {
          that is zero in most pairs as a ratio of means by a {}. A unit holds when its interval lies on the \
          paper's side of the rule's threshold, is contrary when it lies on the other side, and is inconclusive \
          otherwise (always when every pair gives 0: no spread is no evidence), with the surface pairs that would \
-         decide it if the pairs kept the observed mean and spread. A surface pair is run in when its fit window starts after \
-         {RUN_IN_DECAY_LENGTHS} of its own decay lengths ℓ of the memory of the initial contact (paper §3); \
+         decide it if the pairs kept the observed mean and spread. A surface pair is run in when at most {:.0} % of the \
+         junction lineages present at s = 0 are left where its fit window starts, counted in its steps (paper §3: \
+         the memory of the initial contact has faded); a verdict that the other defensible rule, a fit window \
+         starting after {RUN_IN_DECAY_LENGTHS} of the pair's own fitted decay lengths ℓ, would change says so; \
          sliding quantities are judged on the run-in pairs (the line says how many), and a unit with fewer than \
          two is counted as not run in. The verdict follows from the counts: reproduced when it holds in every \
          decided unit and at least half are decided, partly when it holds in more than it is contrary in, not \
@@ -447,6 +464,7 @@ pub fn method_statement() -> String {
         Method::PairedRatio.name(),
         Method::CountRatio.name(),
         "percentile bootstrap over surface pairs",
+        RUN_IN_LINEAGES_LEFT * 100.0,
         LEVEL * 100.0
     )
 }
@@ -545,6 +563,12 @@ impl Finding {
         };
         if let Some(v) = self.verdict_under_holm {
             kind += &format!(" — {} once the p-values are Holm-adjusted within the finding", v.name());
+        }
+        if let Some(v) = self.verdict_under_decay_lengths {
+            kind += &format!(
+                " — {} if a pair counts as run in by s_r ≥ {RUN_IN_DECAY_LENGTHS} ℓ instead of the lineages left",
+                v.name()
+            );
         }
         kind
     }

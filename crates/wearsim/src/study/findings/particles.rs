@@ -279,6 +279,7 @@ pub(super) fn severe_wear_from_large_particles(all: &[Setting]) -> Finding {
         pairs_to_decide: None,
         units,
         verdict_under_holm: None,
+        verdict_under_decay_lengths: None,
         cites: Some(
             "Eq. 5 fixes the particle-volume ratio at (d*₁/d*₂)³; which setting wears more is judged once, by \
              the crossover finding (larger d* wears more at high load) and Fig. 5's wear half",

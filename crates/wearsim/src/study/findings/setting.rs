@@ -5,7 +5,20 @@
 use std::collections::BTreeMap;
 
 use crate::output::{kim_of_row, settings as setting_groups, Cell, Table};
-use crate::sliding::RUN_IN_DECAY_LENGTHS;
+use crate::sliding::{RUN_IN_DECAY_LENGTHS, RUN_IN_LINEAGES_LEFT};
+
+/// Which rule says that a surface pair is run in (paper §3: once the memory of the initial contact
+/// has faded).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RunInRule {
+    /// At most [`RUN_IN_LINEAGES_LEFT`] of the junction lineages of s = 0 left at the start of the
+    /// fit window, counted in the run's steps (the findings' rule).
+    LineagesLeft,
+    /// The fit window starts at least [`RUN_IN_DECAY_LENGTHS`] fitted decay lengths ℓ after s = 0:
+    /// the same 5 % extrapolated from ℓ, which a tail of a few persisting lineages can dominate (the
+    /// other defensible rule, whose verdicts findings.md gives where they differ).
+    DecayLengths,
+}
 
 /// One surface pair of a setting: its seed and every numeric column of its row of the tidy table.
 #[derive(Debug, Clone)]
@@ -13,6 +26,7 @@ pub(super) struct Pair {
     /// The surface pair's seed as text (settings that share it share the surfaces).
     pub seed: String,
     values: BTreeMap<String, f64>,
+    rule: RunInRule,
 }
 
 impl Pair {
@@ -26,10 +40,21 @@ impl Pair {
         self.get("running_in_decay_lengths")
     }
 
-    /// Run in: the fit window starts at least [`RUN_IN_DECAY_LENGTHS`] of the pair's own decay lengths
-    /// after s = 0. A pair whose memory is gone by the first step (no decay fitted, empty cell) is
-    /// run in.
+    /// N₀(s_r)/N₀(0), the lineages of s = 0 left at the start of the fit window (NaN when not
+    /// counted: no junction at s = 0).
+    pub fn lineages_left(&self) -> f64 {
+        self.get("initial_lineages_left")
+    }
+
+    /// Run in under the study's [`RunInRule`]: at most [`RUN_IN_LINEAGES_LEFT`] of the lineages of
+    /// s = 0 left where the fit window starts (where they were not counted, by the decay lengths),
+    /// or the fit window at least [`RUN_IN_DECAY_LENGTHS`] of the pair's own decay lengths after
+    /// s = 0. A pair whose memory is gone by the first step (no decay fitted, empty cell) is run in.
     pub fn run_in(&self) -> bool {
+        let left = self.lineages_left();
+        if self.rule == RunInRule::LineagesLeft && left.is_finite() {
+            return left <= RUN_IN_LINEAGES_LEFT;
+        }
         let r = self.decay_lengths();
         r.is_nan() || r >= RUN_IN_DECAY_LENGTHS
     }
@@ -102,10 +127,21 @@ impl Setting {
     /// "3 of 5 pairs run in (s_r/ℓ = 5.06, 4.80, 2.40, 3.43, 0.97)".
     pub fn run_in_note(&self) -> String {
         let r: Vec<String> = self.pairs.iter().map(|p| fmt(p.decay_lengths())).collect();
+        let counted = self.pairs.iter().any(|p| p.lineages_left().is_finite());
+        let left: Vec<String> = self
+            .pairs
+            .iter()
+            .map(|p| format!("{:.0} %", 100.0 * p.lineages_left()).replace("NaN %", "—"))
+            .collect();
         format!(
-            "{} of {} pairs run in (s_r/ℓ = {})",
+            "{} of {} pairs run in ({}s_r/ℓ = {})",
             self.run_in_pairs().len(),
             self.pairs.len(),
+            if counted {
+                format!("lineages of s = 0 left = {}; ", left.join(", "))
+            } else {
+                String::new()
+            },
             r.join(", ")
         )
     }
@@ -130,7 +166,7 @@ fn material_prefix(material: &str) -> String {
 }
 
 /// The settings of a tidy table, grouped by the library's grouping (`output::settings`).
-pub(super) fn settings(tidy: &Table) -> Vec<Setting> {
+pub(super) fn settings(tidy: &Table, rule: RunInRule) -> Vec<Setting> {
     let found = setting_groups(tidy);
     let col = |name: &str| tidy.column(name);
     let not_family = [
@@ -175,6 +211,7 @@ pub(super) fn settings(tidy: &Table) -> Vec<Setting> {
                             .iter()
                             .map(|&c| (tidy.columns[c].clone(), row[c].number()))
                             .collect(),
+                        rule,
                     }
                 })
                 .collect();

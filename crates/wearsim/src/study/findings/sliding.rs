@@ -1,7 +1,7 @@
 //! The sliding model (paper §3, Fig. 3, appendix B): V(s) after running-in, the memory of the initial
 //! contact, and Eq. 5. Sliding quantities are judged on the surface pairs that are run in.
 
-use crate::sliding::RUN_IN_DECAY_LENGTHS;
+use crate::sliding::{RUN_IN_DECAY_LENGTHS, RUN_IN_LINEAGES_LEFT};
 use crate::stats::{mean_interval, pairs_needed, ratio_of_means, Region, Side};
 
 use super::rules::{on_run_in_pairs, pair_exponents, per_setting, show, Outcome};
@@ -128,10 +128,16 @@ pub(super) fn running_in_sufficient(all: &[Setting]) -> Finding {
     for s in contact_histories(all) {
         for p in &s.pairs {
             let r = p.decay_lengths();
+            let left = p.lineages_left();
             let line = format!(
-                "{}, pair {}: s_r = {} ℓ, ℓ = {}",
+                "{}, pair {}: {}s_r = {} ℓ, ℓ = {}",
                 s.history_label(),
                 p.seed,
+                if left.is_finite() {
+                    format!("{:.0} % of the lineages of s = 0 left at s_r, ", 100.0 * left)
+                } else {
+                    String::new()
+                },
                 fmt(r),
                 fmt(p.get("memory_decay_length"))
             );
@@ -148,9 +154,11 @@ pub(super) fn running_in_sufficient(all: &[Setting]) -> Finding {
         "running-in-sufficient",
         "sliding model (§3): the running-in is a safety margin after which the system is definitely run in",
         format!(
-            "per surface pair and contact history: the fit window starts after ≥ {RUN_IN_DECAY_LENGTHS} of the pair's \
-             own decay lengths ℓ (≤ 5 % of the initial lineages expected left); a pair's s_r/ℓ is one measurement, \
-             read without an interval (ℓ's fit error is not propagated)"
+            "per surface pair and contact history: at most {:.0} % of the junction lineages of s = 0 left where the \
+             fit window starts (s_r), counted in the pair's steps (where not counted, s_r ≥ {RUN_IN_DECAY_LENGTHS} of the \
+             pair's own fitted decay lengths ℓ, which aims at the same e^−3); one count per pair, read without an \
+             interval",
+            RUN_IN_LINEAGES_LEFT * 100.0
         ),
         "pairs",
         tally,

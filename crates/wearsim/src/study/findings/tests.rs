@@ -211,6 +211,68 @@ fn run_in_is_judged_pair_by_pair() {
     let run_in = get(&f, "running-in-sufficient");
     assert_eq!(run_in.counts, (9, 3, 0, 0), "{}", run_in.observed);
     assert_eq!(run_in.verdict, Verdict::Partly);
+    assert_eq!(run_in.verdict_under_decay_lengths, None);
+}
+
+#[test]
+fn run_in_is_the_lineages_left_and_a_verdict_the_decay_lengths_would_change_is_flagged() {
+    let mut tidy = study(None);
+    // The same short decay lengths as above (s_r/ℓ under 3 in three pairs), but every lineage of s = 0
+    // is gone by the start of the fit window but one in 40 (2.5 %): a tail the fitted ℓ extrapolates.
+    for (tau, r) in [(0.008, [5.06, 4.8, 0.97]), (0.012, [2.4, 3.43, 0.97])] {
+        let cells: Vec<Cell> = r.iter().map(|x| Cell::Float(*x)).collect();
+        set(&mut tidy, tau, 2e-3, "running_in_decay_lengths", &cells);
+        set(
+            &mut tidy,
+            tau,
+            2e-3,
+            "initial_lineages_left",
+            &[Cell::Float(0.0), Cell::Float(0.025), Cell::Float(0.0)],
+        );
+    }
+    // One pair with 10 % left is not run in, whatever its ℓ says.
+    set(
+        &mut tidy,
+        0.008,
+        1e-3,
+        "initial_lineages_left",
+        &[Cell::Float(0.0), Cell::Float(0.1), Cell::Float(0.0)],
+    );
+    let f = findings(&tidy);
+    let k = get(&f, "sliding-k-below-0.1");
+    assert_eq!(k.counts, (4, 0, 0, 0), "{}", k.observed);
+    assert!(
+        k.observed
+            .contains("2 of 3 pairs run in (lineages of s = 0 left = 0 %, 10 %, 0 %; s_r/ℓ = 8, 8, 8)"),
+        "{}",
+        k.observed
+    );
+    let run_in = get(&f, "running-in-sufficient");
+    assert_eq!(run_in.counts, (11, 1, 0, 0), "{}", run_in.observed);
+    assert!(
+        run_in.observed.contains("10 % of the lineages of s = 0 left"),
+        "{}",
+        run_in.observed
+    );
+    // By s_r ≥ 3 ℓ the same pairs give 3 of 12 short, and 1 short of the 12 by the lineages: the
+    // verdict is the same, partly; k < 0.1 is reproduced under both.
+    assert_eq!(run_in.verdict, Verdict::Partly);
+    assert_eq!(run_in.verdict_under_decay_lengths, None);
+    // Every pair's lineages gone: reproduced, where s_r ≥ 3 ℓ would call it partly; flagged.
+    set(
+        &mut tidy,
+        0.008,
+        1e-3,
+        "initial_lineages_left",
+        &[Cell::Float(0.0), Cell::Float(0.0), Cell::Float(0.0)],
+    );
+    let f = findings(&tidy);
+    let run_in = get(&f, "running-in-sufficient");
+    assert_eq!(run_in.verdict, Verdict::Reproduced, "{}", run_in.observed);
+    assert_eq!(run_in.verdict_under_decay_lengths, Some(Verdict::Partly));
+    assert!(run_in
+        .kind()
+        .contains("partly reproduced if a pair counts as run in by s_r ≥ 3 ℓ"));
 }
 
 /// Two toughnesses (d* 16 and 33 px at τ̃ = 0.012) over five pairs at two loads, with the issue's
@@ -568,11 +630,11 @@ fn the_verdict_and_the_pairs_to_decide_follow_from_the_counts() {
 
 #[test]
 fn the_pressure_of_a_setting_is_the_load_over_the_box_area() {
-    let square = setting::settings(&study(None));
+    let square = setting::settings(&study(None), RunInRule::LineagesLeft);
     assert!(square.iter().all(|s| s.pressure == 1e-3 || s.pressure == 2e-3));
     assert!(square.iter().all(|s| s.pairs.len() == 3));
     // The same rows on a box of 1 × 0.5: twice the pressure.
-    let oblong = setting::settings(&study(Some(0.5)));
+    let oblong = setting::settings(&study(Some(0.5)), RunInRule::LineagesLeft);
     assert!(oblong.iter().all(|s| s.pressure == 2e-3 || s.pressure == 4e-3));
 }
 
