@@ -285,9 +285,10 @@ fn bytes_in_words(bytes: f64) -> String {
 /// last finished step that a checkpoint saves when the run is stopped.
 pub const SLIDING_ARRAYS: f64 = 13.0;
 
-/// Memory of generating a surface pair, in arrays of N² doubles, measured: both surfaces are
-/// generated at once, each with its spectrum.
-pub const SURFACE_ARRAYS: f64 = 4.0;
+/// Memory of generating a surface pair, in arrays of N² doubles, measured (peak resident size of
+/// `wearsim surface` at 2048², within 2 %; 4096² about 7 % below): the surfaces are generated one
+/// after the other, so the first one's heights and the second one's spectrum and heights.
+pub const SURFACE_ARRAYS: f64 = 3.0;
 
 /// Memory of `wearsim contact` (periodic boundary), in arrays of N² doubles, measured: the solver's
 /// fields, the surfaces, heights and pressure, and the displacement, gap and contact map written.

@@ -612,13 +612,14 @@ fn check_pair_memory(grid: Grid) -> Result<()> {
 fn generated_pair(grid: Grid, spectrum: &SpectrumParams, seed: u64) -> Result<SurfacePair> {
     check_pair_memory(grid)?;
     let (top_seed, bottom_seed) = pair_seeds(seed);
-    let (top, bottom) = rayon::join(
-        || Surface::generate(grid, spectrum, top_seed),
-        || Surface::generate(grid, spectrum, bottom_seed),
-    );
+    // One after the other (each FFT is parallel inside): the peak memory is then the same whatever
+    // the threads and the load ([`crate::check::SURFACE_ARRAYS`]); at once, it depended on whether a
+    // second worker woke in time.
+    let top = Surface::generate(grid, spectrum, top_seed)?;
+    let bottom = Surface::generate(grid, spectrum, bottom_seed)?;
     Ok(SurfacePair {
-        top: Arc::new(top?),
-        bottom: Arc::new(bottom?),
+        top: Arc::new(top),
+        bottom: Arc::new(bottom),
         notes: Vec::new(),
         warnings: Vec::new(),
     })

@@ -448,6 +448,47 @@ pub fn aggregate(tidy: &Table) -> Table {
     Table { columns, rows }
 }
 
+/// The results of a sliding run measured over its fit window (after running-in): what the findings
+/// read on the run-in surface pairs only.
+pub const FIT_WINDOW_COLUMNS: [&str; 10] = [
+    "wear_rate",
+    "wear_rate_r2",
+    "wear_volume_intercept",
+    "wear_coefficient",
+    "particle_rate",
+    "wear_rate_estimate",
+    "particles_in_fit",
+    "junctions_mean",
+    "critical_junctions_mean",
+    "critical_residence",
+];
+
+/// `tidy` with the fit-window results ([`FIT_WINDOW_COLUMNS`]) of every surface pair that is not run
+/// in emptied ([`crate::sliding::is_run_in`]), in each setting that has a run-in pair (a setting
+/// with none keeps all its pairs: the findings count it as not run in, and the figures still show
+/// it); rows without a memory of the initial contact, such as a static estimate's, are kept. Its
+/// [`aggregate`] averages the fit-window results over the pairs the findings judge (its
+/// `surface_pairs` column still counts them all).
+pub fn run_in_rows(tidy: &Table) -> Table {
+    let col = |name: &str| tidy.column(name);
+    let (left, lengths) = (col("initial_lineages_left"), col("running_in_decay_lengths"));
+    let fit: Vec<usize> = FIT_WINDOW_COLUMNS.iter().filter_map(|c| col(c)).collect();
+    let number = |row: &[Cell], c: Option<usize>| c.map(|c| row[c].number()).filter(|x| x.is_finite());
+    let run_in = |row: &[Cell]| crate::sliding::is_run_in(number(row, left), number(row, lengths));
+    let mut out = tidy.clone();
+    for group in settings(tidy).groups {
+        if !group.rows.iter().any(|&r| run_in(&tidy.rows[r])) {
+            continue;
+        }
+        for &r in group.rows.iter().filter(|&&r| !run_in(&tidy.rows[r])) {
+            for &c in &fit {
+                out.rows[r][c] = Cell::Empty;
+            }
+        }
+    }
+    out
+}
+
 /// Writes `results.csv` (tidy), `results_aggregated.csv` and `results.units.json` (the unit of every
 /// column that has one) into `dir`, together (a failure leaves the earlier files); returns the row
 /// counts of the two tables.

@@ -103,11 +103,10 @@ fn load_fits(load: f64, steps: &[StepRecord], fitted: &[&StepRecord], warnings: 
         super::records::lineages_left(steps.iter().map(|r| (r.s, r.initial_junctions)), fit_start);
     // Run in once at most RUN_IN_LINEAGES_LEFT of the lineages of s = 0 are left where the fit window
     // starts, counted; where none was there to count, by the decay lengths.
-    let not_run_in = match (initial_lineages_left, running_in_decay_lengths) {
-        (Some(left), r) => (left > RUN_IN_LINEAGES_LEFT).then_some((left, r)),
-        (None, Some(r)) => (r < RUN_IN_DECAY_LENGTHS).then_some(((-r).exp(), Some(r))),
-        (None, None) => None,
-    };
+    let not_run_in = (!super::records::is_run_in(initial_lineages_left, running_in_decay_lengths)).then(|| {
+        let left = initial_lineages_left.unwrap_or_else(|| (-running_in_decay_lengths.unwrap_or(0.0)).exp());
+        (left, running_in_decay_lengths)
+    });
     if let Some((left, r)) = not_run_in {
         let decay = memory_decay_length.map_or("does not decay".to_string(), |l| format!("decays over ℓ = {l:.4e}"));
         let lengths = r.map_or(String::new(), |r| format!(", {r:.2} decay lengths"));

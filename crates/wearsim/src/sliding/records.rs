@@ -159,6 +159,22 @@ pub const RUN_IN_DECAY_LENGTHS: f64 = 3.0;
 /// extrapolated from a fitted ℓ, which a tail of a few persisting lineages can dominate.
 pub const RUN_IN_LINEAGES_LEFT: f64 = 0.05;
 
+/// Whether a run is run in (paper §3: the memory of the initial contact has faded by the start of
+/// its fit window), from its counted share of the lineages of s = 0 left there
+/// ([`RUN_IN_LINEAGES_LEFT`] at most) or, where none was there to count, from the running-in in
+/// fitted decay lengths ([`RUN_IN_DECAY_LENGTHS`] at least); a run with neither (its memory gone by
+/// the first step) is run in. The findings, the figures and the run's warning ask this one rule.
+pub fn is_run_in(lineages_left: Option<f64>, decay_lengths: Option<f64>) -> bool {
+    match (
+        lineages_left.filter(|x| x.is_finite()),
+        decay_lengths.filter(|x| x.is_finite()),
+    ) {
+        (Some(left), _) => left <= RUN_IN_LINEAGES_LEFT,
+        (None, Some(r)) => r >= RUN_IN_DECAY_LENGTHS,
+        (None, None) => true,
+    }
+}
+
 /// N₀(s_r)/N₀(0) of a run's steps (s, N₀): the lineages of s = 0 left at the first step at or after
 /// `fit_start`; `None` without a junction at s = 0 or without such a step.
 pub fn lineages_left(steps: impl IntoIterator<Item = (f64, usize)>, fit_start: f64) -> Option<f64> {
@@ -211,5 +227,15 @@ mod tests {
         assert_eq!(lineages_left([(0.0, 0), (0.01, 0)], 0.01), None);
         assert_eq!(lineages_left(steps, 0.05), None);
         assert_eq!(lineages_left(std::iter::empty(), 0.0), None);
+    }
+
+    #[test]
+    fn a_run_is_run_in_by_the_lineages_counted_else_by_the_decay_lengths() {
+        // Counted: at most 5 % left, whatever ℓ says (a tail of persisting lineages stretches it).
+        assert!(is_run_in(Some(0.05), Some(0.4)));
+        assert!(!is_run_in(Some(0.06), Some(8.0)));
+        // Not counted (no junction at s = 0): s_r ≥ 3 ℓ; neither: its memory is gone, run in.
+        assert!(is_run_in(None, Some(3.0)) && !is_run_in(None, Some(2.9)));
+        assert!(is_run_in(Some(f64::NAN), None) && is_run_in(None, None));
     }
 }

@@ -3,7 +3,21 @@
 //! other side, and is undecided otherwise (a difference smaller than the spread between surface
 //! pairs decides nothing).
 
-use super::interval::{count_ratio, t_critical, t_critical_real, Interval};
+use statrs::distribution::{ContinuousCDF, Normal, StudentsT};
+
+use super::interval::{count_ratio, t_critical, t_critical_real, Interval, LEVEL};
+
+/// The power at which the pairs-needed functions plan: with that many pairs, a study whose pairs
+/// keep the observed mean and spread decides the rule in 80 % of its repetitions (the usual planning
+/// power; the interval's own level is [`LEVEL`]).
+pub const POWER: f64 = 0.8;
+
+/// The one-sided Student-t quantile at [`POWER`] (0.941 for 4 degrees of freedom, 0.842 in the
+/// limit): what the distance to the threshold needs beyond the interval's half-width.
+fn t_power(df: f64) -> f64 {
+    let t = StudentsT::new(0.0, 1.0, df.max(1.0)).expect("a positive number of degrees of freedom");
+    t.inverse_cdf(POWER)
+}
 
 /// The paper's side of a rule's threshold.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -78,9 +92,9 @@ impl Region {
 }
 
 /// The number of surface pairs whose Student-t interval would decide `region` (hold or be contrary)
-/// if the pair values kept the mean and the spread of `values`: the smallest n ≥ 2 with
-/// t(n − 1) · sd/√n below the distance from the mean to the threshold. `None` when the mean lies on
-/// the threshold, with fewer than two values, or beyond [`MAX_PAIRS`].
+/// with [`POWER`] if the pair values kept the mean and the spread of `values`: the smallest n ≥ 2
+/// with (t₀.₉₇₅(n − 1) + t₀.₈(n − 1)) · sd/√n below the distance from the mean to the threshold.
+/// `None` when the mean lies on the threshold, with fewer than two values, or beyond [`MAX_PAIRS`].
 pub fn pairs_needed(values: &[f64], region: Region) -> Option<usize> {
     let v: Vec<f64> = values.iter().copied().filter(|x| x.is_finite()).collect();
     if v.len() < 2 {
@@ -93,13 +107,13 @@ pub fn pairs_needed(values: &[f64], region: Region) -> Option<usize> {
     if effect <= 0.0 || !effect.is_finite() {
         return None;
     }
-    let decides = |k: usize| t_critical(k - 1) * sd / (k as f64).sqrt() < effect;
+    let decides = |k: usize| (t_critical(k - 1) + t_power((k - 1) as f64)) * sd / (k as f64).sqrt() < effect;
     smallest(2, decides)
 }
 
 /// The number of surface pairs per side at which Welch's interval of two independent sets of values
-/// (`a` and `b`, on the scale `region` is stated in: logs of a ratio) would decide `region`, if each
-/// side kept its mean and spread; `None` when the difference lies on the threshold, a side has fewer
+/// (`a` and `b`, on the scale `region` is stated in: logs of a ratio) would decide `region` with
+/// [`POWER`], if each side kept its mean and spread; `None` when the difference lies on the threshold, a side has fewer
 /// than two values, or beyond [`MAX_PAIRS`].
 pub fn pairs_needed_unpaired(a: &[f64], b: &[f64], region: Region) -> Option<usize> {
     let stats = |v: &[f64]| {
@@ -120,22 +134,37 @@ pub fn pairs_needed_unpaired(a: &[f64], b: &[f64], region: Region) -> Option<usi
         let (sa, sb) = (va / n, vb / n);
         let se = (sa + sb).sqrt();
         let df = (sa + sb).powi(2) / ((sa * sa + sb * sb) / (n - 1.0));
-        se == 0.0 || t_critical_real(df) * se < effect
+        se == 0.0 || (t_critical_real(df) + t_power(df)) * se < effect
     };
     smallest(2, decides)
 }
 
 /// The number of surface pairs at which two particle counts, `a` and `b` observed over `pairs`
-/// pairs and growing in proportion to the pairs, would decide `region` for `scale` · a/b (the
-/// count test of [`count_ratio`]); `None` when the observed ratio lies on the threshold or beyond
-/// [`MAX_PAIRS`].
+/// pairs and growing in proportion to the pairs, would decide `region` for `scale` · a/b: where both
+/// counts are positive, with [`POWER`] (the log of the ratio of two Poisson counts, of standard error
+/// √(1/a + 1/b)); where one is 0, when the count test of [`count_ratio`] at the grown counts decides
+/// it. `None` when the observed ratio lies on the threshold or beyond [`MAX_PAIRS`].
 pub fn pairs_needed_for_counts(a: u64, b: u64, pairs: usize, scale: f64, region: Region) -> Option<usize> {
     if pairs == 0 || a + b == 0 {
         return None;
     }
+    let grow = |c: u64, k: usize| (c as f64 * k as f64 / pairs as f64).round() as u64;
+    if a > 0 && b > 0 {
+        let effect = region.map(f64::ln).distance((scale * a as f64 / b as f64).ln());
+        if effect <= 0.0 || !effect.is_finite() {
+            return None;
+        }
+        let z = Normal::standard();
+        let margin = z.inverse_cdf(0.5 + LEVEL / 2.0) + z.inverse_cdf(POWER);
+        let decides = |k: usize| {
+            let (ak, bk) = (grow(a, k).max(1) as f64, grow(b, k).max(1) as f64);
+            margin * (1.0 / ak + 1.0 / bk).sqrt() < effect
+        };
+        return smallest(pairs, decides);
+    }
     let decides = |k: usize| {
-        let grow = |c: u64| (c as f64 * k as f64 / pairs as f64).round() as u64;
-        count_ratio(grow(a), grow(b)).is_some_and(|i| region.side_of(scale * i.low, scale * i.high) != Side::Undecided)
+        count_ratio(grow(a, k), grow(b, k))
+            .is_some_and(|i| region.side_of(scale * i.low, scale * i.high) != Side::Undecided)
     };
     smallest(pairs, decides)
 }
@@ -187,12 +216,13 @@ mod tests {
     }
 
     #[test]
-    fn the_pairs_needed_decide_at_the_observed_mean_and_spread() {
-        // Mean 1, sample sd 1 (values 0, 1, 2), threshold 0: t(n−1)/√n < 1 first at n = 7
-        // (t(6) = 2.447, 2.447/√7 = 0.925; t(5) = 2.571, 2.571/√6 = 1.050).
+    fn the_pairs_needed_decide_at_the_observed_mean_and_spread_with_80_percent_power() {
+        // Mean 1, sample sd 1 (values 0, 1, 2), threshold 0: (t₀.₉₇₅(n−1) + t₀.₈(n−1))/√n < 1 first
+        // at n = 10 ((2.262 + 0.883)/√10 = 0.995; (2.306 + 0.889)/3 = 1.065 at 9).
         let values = [0.0, 1.0, 2.0];
-        assert_eq!(pairs_needed(&values, Region::Above(0.0)), Some(7));
-        // Those 7 pairs of the same mean and spread do decide it; 6 do not.
+        assert_eq!(pairs_needed(&values, Region::Above(0.0)), Some(10));
+        // Half the time (the interval's own half-width alone, t(n−1)/√n < 1) 7 pairs would do: 7
+        // pairs of exactly the observed mean and spread decide it, 6 do not.
         let spread = |n: usize| -> Vec<f64> {
             // n values of mean 1 and sample sd 1.
             let raw: Vec<f64> = (0..n).map(|i| i as f64).collect();
@@ -204,7 +234,7 @@ mod tests {
         assert!(mean_interval(&spread(6)).unwrap().low < 0.0);
         // On the threshold: no number of pairs decides it.
         assert_eq!(pairs_needed(&values, Region::Above(1.0)), None);
-        // Already decided by its own pairs: their number or fewer.
+        // Decided by a wide margin: a few pairs.
         assert_eq!(pairs_needed(&[10.0, 10.5, 11.0], Region::Above(0.0)), Some(2));
     }
 
@@ -215,6 +245,9 @@ mod tests {
         assert!(n > 5, "{n}");
         let grow = |c: u64| (c as f64 * n as f64 / 5.0).round() as u64;
         assert!(count_ratio(grow(8), grow(12)).unwrap().high < 1.0);
+        // At 80 % power: (1.960 + 0.842) √(1/a + 1/b) < |ln(2/3)| = 0.405 needs 1/a + 1/b < 0.0209:
+        // 80 against 120 particles, 50 pairs (49 pairs give 78 and 118).
+        assert_eq!(n, 50);
         // Equal counts never decide a ratio of 1.
         assert_eq!(pairs_needed_for_counts(10, 10, 5, 1.0, Region::Below(1.0)), None);
     }

@@ -5,7 +5,7 @@
 //!   Poisson for particle counts, paired log-ratios of two settings that share their pairs, the
 //!   conditional test of two Poisson counts, a ratio of means by a bootstrap over pairs);
 //! - [`judge`]: whether an interval lies on the paper's side of a threshold, and how many surface
-//!   pairs would decide it at the observed effect and spread.
+//!   pairs would decide it, with 80 % power, at the observed effect and spread.
 
 pub mod fit;
 pub mod interval;
@@ -16,4 +16,4 @@ pub use interval::{
     count_ratio, mean_interval, paired_ratio, poisson_interval, ratio_of_means, t_critical, unpaired_ratio, Interval,
     Method, BOOTSTRAP_RESAMPLES, LEVEL,
 };
-pub use judge::{pairs_needed, pairs_needed_for_counts, pairs_needed_unpaired, Region, Side, MAX_PAIRS};
+pub use judge::{pairs_needed, pairs_needed_for_counts, pairs_needed_unpaired, Region, Side, MAX_PAIRS, POWER};

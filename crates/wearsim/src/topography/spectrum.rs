@@ -162,11 +162,8 @@ impl MeasuredPsd {
     /// binding both make their pairs here, so that one seed gives the same surfaces, bit for bit.
     pub fn generate_pair(&self, target: Grid, seed: u64) -> Result<(Surface, Surface)> {
         let (top_seed, bottom_seed) = crate::surface::pair_seeds(seed);
-        let (top, bottom) = rayon::join(
-            || self.generate(target, top_seed),
-            || self.generate(target, bottom_seed),
-        );
-        Ok((top?, bottom?))
+        // One after the other, as generated pairs are: a peak memory that does not depend on the load.
+        Ok((self.generate(target, top_seed)?, self.generate(target, bottom_seed)?))
     }
 
     /// The map's grid.

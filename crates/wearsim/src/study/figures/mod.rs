@@ -373,7 +373,8 @@ impl Curves {
     fn of(tidy: &Table) -> Result<Self> {
         let found = curves(tidy);
         let labels = curve_labels(tidy);
-        let aggregated = aggregate(tidy);
+        // The fit-window results over the run-in pairs, the pairs the findings judge.
+        let aggregated = aggregate(&crate::output::run_in_rows(tidy));
         let column = |name: &str| tidy.column(name);
         let value = |row: &[Cell], name: &str| column(name).map_or(f64::NAN, |c| row[c].number());
         let mut materials: Vec<String> = Vec::new();
@@ -794,7 +795,8 @@ fn against_load(data: &Curves, shown: Shown, entry: &'static str) -> Figure {
             vec![LoadPanel::per_area("particle_rate", "particle rate dN*₊/ds", shown)],
             true,
             "fig5_particle_rate",
-            "wear particles emitted per sliding distance".to_string(),
+            "wear particles emitted per sliding distance, means over the run-in surface pairs (over all where none is)"
+                .to_string(),
         ),
     };
     every_curve(data, panels, fitted).build(data, shown, entry, name, title)
@@ -828,7 +830,9 @@ fn junction_counts(data: &Curves, shown: Shown) -> Vec<Figure> {
 /// Fig. 4's title: what it draws, and, where the study holds them, that the estimate's curves are
 /// labelled as such.
 fn fig4_title(data: &Curves) -> String {
-    let mut title = "sliding model (the paper's Fig. 4 rows: W, k)".to_string();
+    let mut title =
+        "sliding model (the paper's Fig. 4 rows: W, k), means over the run-in surface pairs (over all where none is)"
+            .to_string();
     if data.curves.iter().any(|c| !c.slides) {
         title += "; curves labelled \"static estimate\" are the static estimate";
     }
@@ -1184,7 +1188,7 @@ fn run_in_words(r: &JobResult) -> String {
             "{:.0} % of the lineages of s = 0 left at the fit window{lengths}",
             100.0 * left
         );
-        return if left <= RUN_IN_LINEAGES_LEFT {
+        return if crate::sliding::is_run_in(Some(left), None) {
             format!("run in ({share})")
         } else {
             format!(

@@ -90,8 +90,9 @@ fn result_of(job: &Job) -> JobResult {
                 memory_decay_r2: Some(0.9),
                 memory_fit_initial_junctions: Some(20.0),
                 running_in_decay_lengths: Some(5.0 / seed),
-                // As the decay expects: e^(−5/seed) of the lineages left at the fit window.
-                initial_lineages_left: Some((-5.0 / seed).exp()),
+                // Every lineage of s = 0 gone by the fit window: run in (`decaying` makes seeds 2
+                // and 3 keep some).
+                initial_lineages_left: Some(0.0),
                 ..WearResult::default()
             }
         })
@@ -134,6 +135,20 @@ fn result_of(job: &Job) -> JobResult {
 fn study(text: &str) -> (Vec<JobResult>, Table) {
     let study = crate::study::expand::expand(text, Path::new(".")).expect("the test study expands");
     let results: Vec<JobResult> = study.jobs.iter().map(result_of).collect();
+    let rows: Vec<TidyRow> = results.iter().flat_map(TidyRow::of_job).collect();
+    (results, Table::of(&rows))
+}
+
+/// The study with the lineages of s = 0 left at the fit window as the fitted decay expects,
+/// e^(−5/seed): seed 1 run in (0.7 %), seeds 2 and 3 not (8 % and 19 %).
+fn decaying(text: &str) -> (Vec<JobResult>, Table) {
+    let (mut results, _) = study(text);
+    for r in &mut results {
+        let seed = r.inputs.seed.unwrap_or(1) as f64;
+        for w in &mut r.results {
+            w.initial_lineages_left = Some((-5.0 / seed).exp());
+        }
+    }
     let rows: Vec<TidyRow> = results.iter().flat_map(TidyRow::of_job).collect();
     (results, Table::of(&rows))
 }
@@ -228,6 +243,26 @@ fn rates_are_per_unit_area_with_intervals_and_kims_band_only_for_kims_ceramics()
 }
 
 #[test]
+fn the_rates_against_load_are_means_over_the_run_in_pairs_as_in_the_findings() {
+    let (results, tidy) = decaying(REDUCED);
+    let fig = study_figures(&tidy, &results, None, Some(&["fig4".into(), "fig2".into()])).unwrap();
+    let fig4 = named(&fig, "fig4_sliding_wear");
+    assert!(
+        fig4.title.contains("means over the run-in surface pairs"),
+        "{}",
+        fig4.title
+    );
+    // Only pair 1 is run in: W is its value (1.1 times the base), without an interval.
+    let p = fig4.panels[0].series[0].points[0];
+    let all = named(&figures(REDUCED, &["fig4"]), "fig4_sliding_wear").panels[0].series[0].points[0];
+    assert!((p.y / all.y - 1.1 / 1.2).abs() < 1e-12, "{p:?} against {all:?}");
+    assert!(p.low.is_nan() && p.high.is_nan(), "{p:?}");
+    // The static model is over every pair, run in or not.
+    let static_of = |f: &[Figure]| named(f, "fig2_static_model").panels[0].series[0].points[0];
+    assert_eq!(static_of(&fig), static_of(&figures(REDUCED, &["fig2"])));
+}
+
+#[test]
 fn junctions_are_one_curve_per_setting_and_fits_do_not_span_the_axes() {
     let (results, mut tidy) = study(REDUCED);
     // Two τ̃ × two 𝒢: four curves of N*, two of N (it does not depend on 𝒢), with or without the job
@@ -266,7 +301,7 @@ fn equation_5_pairs_w_and_its_estimate_of_the_same_row() {
 
 #[test]
 fn the_memory_figure_shows_every_pair_of_the_setting() {
-    let (results, tidy) = study(REDUCED);
+    let (results, tidy) = decaying(REDUCED);
     let fig = study_figures(&tidy, &results, Some(0), Some(&["memory".into()])).unwrap();
     let labels: Vec<&str> = fig[0].panels[0]
         .series
@@ -283,8 +318,7 @@ fn the_memory_figure_shows_every_pair_of_the_setting() {
     assert_eq!(labels, ["pair 1: N₀(s)", "pair 2: N₀(s)", "pair 3: N₀(s)"]);
     assert!(fig[0].legend_title.starts_with("mean ℓ = "), "{}", fig[0].legend_title);
     // Each pair says whether the findings count it as run in (e^(−5/seed) of the lineages left against
-    // 5 %), and the
-    // running-in before the fit window is shaded.
+    // 5 %), and the running-in before the fit window is shaded.
     let verdicts: Vec<bool> = fig[0].legend[1..]
         .iter()
         .map(|e| e.label.ends_with("— run in"))

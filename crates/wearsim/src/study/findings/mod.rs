@@ -339,7 +339,7 @@ impl Tally {
             .inconclusive
             .iter()
             .map(|(line, needed)| match needed {
-                Some(n) => format!("{line}, {n} pairs would decide it"),
+                Some(n) => format!("{line}, {n} pairs would decide it (80 % power)"),
                 None => format!(
                     "{line}, no number of pairs named (an effect of about zero, none up to 100,000 pairs; fewer \
                      than two pairs with a value; or a sample without spread or judged by a bootstrap, which the \
@@ -446,7 +446,7 @@ pub fn method_statement() -> String {
          that is zero in most pairs as a ratio of means by a {}. A unit holds when its interval lies on the \
          paper's side of the rule's threshold, is contrary when it lies on the other side, and is inconclusive \
          otherwise (always when every pair gives 0: no spread is no evidence), with the surface pairs that would \
-         decide it if the pairs kept the observed mean and spread. A surface pair is run in when at most {:.0} % of the \
+         decide it with 80 % power if the pairs kept the observed mean and spread. A surface pair is run in when at most {:.0} % of the \
          junction lineages present at s = 0 are left where its fit window starts, counted in its steps (paper §3: \
          the memory of the initial contact has faded); a verdict that the other defensible rule, a fit window \
          starting after {RUN_IN_DECAY_LENGTHS} of the pair's own fitted decay lengths ℓ, would change says so; \
@@ -555,7 +555,7 @@ impl Finding {
                 contrary.join("; ")
             ),
             Verdict::Inconclusive => match self.pairs_to_decide {
-                Some(p) => format!("inconclusive: {p} surface pairs per setting would decide it"),
+                Some(p) => format!("inconclusive: {p} surface pairs per setting would decide it (80 % power)"),
                 None => "inconclusive: more surface pairs alone do not decide it".to_string(),
             },
             Verdict::NotTestable => format!("this study cannot show it; it needs {}", needed_study(self.key)),

@@ -5,16 +5,15 @@
 use std::collections::BTreeMap;
 
 use crate::output::{kim_of_row, settings as setting_groups, Cell, Table};
-use crate::sliding::{RUN_IN_DECAY_LENGTHS, RUN_IN_LINEAGES_LEFT};
 
 /// Which rule says that a surface pair is run in (paper §3: once the memory of the initial contact
 /// has faded).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum RunInRule {
-    /// At most [`RUN_IN_LINEAGES_LEFT`] of the junction lineages of s = 0 left at the start of the
+    /// At most [`RUN_IN_LINEAGES_LEFT`](crate::sliding::RUN_IN_LINEAGES_LEFT) of the junction lineages of s = 0 left at the start of the
     /// fit window, counted in the run's steps (the findings' rule).
     LineagesLeft,
-    /// The fit window starts at least [`RUN_IN_DECAY_LENGTHS`] fitted decay lengths ℓ after s = 0:
+    /// The fit window starts at least [`RUN_IN_DECAY_LENGTHS`](crate::sliding::RUN_IN_DECAY_LENGTHS) fitted decay lengths ℓ after s = 0:
     /// the same 5 % extrapolated from ℓ, which a tail of a few persisting lineages can dominate (the
     /// other defensible rule, whose verdicts findings.md gives where they differ).
     DecayLengths,
@@ -46,17 +45,16 @@ impl Pair {
         self.get("initial_lineages_left")
     }
 
-    /// Run in under the study's [`RunInRule`]: at most [`RUN_IN_LINEAGES_LEFT`] of the lineages of
+    /// Run in under the study's [`RunInRule`]: at most [`RUN_IN_LINEAGES_LEFT`](crate::sliding::RUN_IN_LINEAGES_LEFT) of the lineages of
     /// s = 0 left where the fit window starts (where they were not counted, by the decay lengths),
-    /// or the fit window at least [`RUN_IN_DECAY_LENGTHS`] of the pair's own decay lengths after
+    /// or the fit window at least [`RUN_IN_DECAY_LENGTHS`](crate::sliding::RUN_IN_DECAY_LENGTHS) of the pair's own decay lengths after
     /// s = 0. A pair whose memory is gone by the first step (no decay fitted, empty cell) is run in.
     pub fn run_in(&self) -> bool {
-        let left = self.lineages_left();
-        if self.rule == RunInRule::LineagesLeft && left.is_finite() {
-            return left <= RUN_IN_LINEAGES_LEFT;
+        let r = Some(self.decay_lengths());
+        match self.rule {
+            RunInRule::LineagesLeft => crate::sliding::is_run_in(Some(self.lineages_left()), r),
+            RunInRule::DecayLengths => crate::sliding::is_run_in(None, r),
         }
-        let r = self.decay_lengths();
-        r.is_nan() || r >= RUN_IN_DECAY_LENGTHS
     }
 
     /// Particles formed in the fit window.
