@@ -195,6 +195,16 @@ def _with_units(table: pd.DataFrame, units: Dict[str, str]) -> pd.DataFrame:
     return table
 
 
+def _read_exact(source: Any, text: Optional[Dict[str, Any]] = None) -> pd.DataFrame:
+    """One of wearsim's CSV tables, each number read exactly (the files hold the shortest
+    round-trip form): pandas 3 does so by default and deprecates asking; older pandas only with
+    ``float_precision="round_trip"``, else the last digit may differ, and so would the findings
+    judged on the table. ``text``: columns that stay text; empty cells are missing values."""
+    if int(pd.__version__.split(".")[0]) >= 3:
+        return pd.read_csv(source, dtype=text, keep_default_na=False, na_values=[""])
+    return pd.read_csv(source, dtype=text, keep_default_na=False, na_values=[""], float_precision="round_trip")
+
+
 def collect(out: PathLike) -> Tuple[pd.DataFrame, pd.DataFrame]:
     """Collects a finished result folder, writing ``results.csv`` and ``results_aggregated.csv``
     there as ``wearsim study collect`` does; returns both as DataFrames (tidy: one row per job and
@@ -206,8 +216,8 @@ def collect(out: PathLike) -> Tuple[pd.DataFrame, pd.DataFrame]:
     units = json.loads((out / "results.units.json").read_text())["columns"]
     # Text columns (material names, warnings) stay text even when every cell is empty.
     text = {"material": str, "warnings": str, "surface.top": str, "surface.bottom": str}
-    tidy = pd.read_csv(out / "results.csv", dtype=text, keep_default_na=False, na_values=[""])
-    aggregated = pd.read_csv(out / "results_aggregated.csv", dtype=text, keep_default_na=False, na_values=[""])
+    tidy = _read_exact(out / "results.csv", text)
+    aggregated = _read_exact(out / "results_aggregated.csv", text)
     for table in (tidy, aggregated):
         for column in ("warnings",):
             if column in table.columns:
@@ -245,4 +255,4 @@ def findings_units(tidy: pd.DataFrame) -> pd.DataFrame:
     """:func:`findings_units_csv` as a table."""
     import io
 
-    return pd.read_csv(io.StringIO(findings_units_csv(tidy)))
+    return _read_exact(io.StringIO(findings_units_csv(tidy)), {"finding": str, "unit": str, "line": str})
