@@ -167,7 +167,8 @@ impl Numbers {
 pub struct Unit {
     /// What the unit is (a setting, two settings, a curve), as its line begins.
     pub label: String,
-    /// holds, contrary, inconclusive or not run in.
+    /// holds, contrary, inconclusive or not run in; "shown" for the units of a
+    /// [`Verdict::Cited`] finding, which are not counted.
     pub outcome: &'static str,
     /// The quantity judged, its estimate and 95 % interval, and over how many pairs (or
     /// particles, for a count test) it was taken; empty where no interval decided the unit.
