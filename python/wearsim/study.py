@@ -239,7 +239,8 @@ def findings(tidy: pd.DataFrame) -> Tuple[pd.DataFrame, str]:
     ``figures/findings.md``): one row per finding (key, paper, rule, observed, verdict, counts as
     (holds, contrary, inconclusive, not run in), pairs_to_decide, kind: what kind of result it is,
     verdict_under_holm: the verdict once the units' p-values are Holm-adjusted within the finding,
-    where it differs), and the Markdown of findings.md."""
+    verdict_under_decay_lengths: the verdict were a surface pair run in by s_r ≥ 3 ℓ instead of at
+    most 5 % of the lineages of s = 0 left, each where it differs), and the Markdown of findings.md."""
     rows, markdown, _ = _wearsim.findings({str(c): tidy[c].tolist() for c in tidy.columns})
     return pd.DataFrame(rows), markdown
 

@@ -167,6 +167,11 @@ def test_figures_from_python_and_job_series(tmp_path, study_file, wearsim_bin):
     counted = rows[rows["verdict"] != "shown, not counted"]["counts"].map(sum).sum()
     assert len(units[units["outcome"] != "shown"]) == counted
     assert set(units["finding"]) <= set(rows["key"])
+    # A verdict another rule would change says which, in its own column and in words.
+    for _, row in rows.iterrows():
+        for column in ("verdict_under_holm", "verdict_under_decay_lengths"):
+            if isinstance(row[column], str):
+                assert row[column] != row["verdict"] and row[column] in row["kind"], row["key"]
 
 
 def test_job_series_is_the_librarys_series_of_the_job_file(tmp_path, study_file):
