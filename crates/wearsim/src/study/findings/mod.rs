@@ -48,6 +48,22 @@ pub enum Verdict {
 }
 
 impl Verdict {
+    /// The verdict of a finding whose units hold in `holds` and are contrary in `contrary` of
+    /// `total`: with fewer than half of them decided, inconclusive whatever the decided ones say.
+    fn of_counts(holds: usize, contrary: usize, total: usize) -> Verdict {
+        if total == 0 {
+            Verdict::NotTestable
+        } else if 2 * (holds + contrary) < total {
+            Verdict::Inconclusive
+        } else if contrary == 0 {
+            Verdict::Reproduced
+        } else if holds > contrary {
+            Verdict::Partly
+        } else {
+            Verdict::NotReproduced
+        }
+    }
+
     pub fn name(self) -> &'static str {
         match self {
             Verdict::Reproduced => "reproduced",
@@ -254,18 +270,13 @@ fn holm(units: &mut [Unit]) {
 /// The verdict once every unit decided at 95 % alone whose Holm-adjusted p-value is not below
 /// 1 − LEVEL is counted inconclusive.
 fn verdict_under_holm(units: &[Unit]) -> Verdict {
-    let alpha = 1.0 - LEVEL;
-    let mut tally = Tally::default();
-    for u in units {
-        let undone = u.p_holm.is_some_and(|p| p >= alpha);
-        match (u.outcome, undone) {
-            ("holds", false) => tally.holds.push(String::new()),
-            ("contrary", false) => tally.contrary.push(String::new()),
-            ("not run in", _) => tally.not_run_in.push(String::new()),
-            _ => tally.inconclusive.push((String::new(), None)),
-        }
-    }
-    tally.verdict()
+    let still_decided = |outcome: &str| {
+        units
+            .iter()
+            .filter(|u| u.outcome == outcome && !u.p_holm.is_some_and(|p| p >= 1.0 - LEVEL))
+            .count()
+    };
+    Verdict::of_counts(still_decided("holds"), still_decided("contrary"), units.len())
 }
 
 /// Particles in a setting's fit window, summed over its surface pairs, below which the figures draw
@@ -299,18 +310,7 @@ impl Tally {
     /// The verdict from the counts alone: with fewer than half of all units decided, the study is
     /// inconclusive whatever the decided ones say.
     pub fn verdict(&self) -> Verdict {
-        let (holds, contrary) = (self.holds.len(), self.contrary.len());
-        if self.total() == 0 {
-            Verdict::NotTestable
-        } else if 2 * self.decided() < self.total() {
-            Verdict::Inconclusive
-        } else if contrary == 0 {
-            Verdict::Reproduced
-        } else if holds > contrary {
-            Verdict::Partly
-        } else {
-            Verdict::NotReproduced
-        }
+        Verdict::of_counts(self.holds.len(), self.contrary.len(), self.total())
     }
 
     /// The surface pairs that would decide enough inconclusive units for half of all to be decided
