@@ -1180,35 +1180,34 @@ fn one_panel(x: Axis, y: Axis, series: Vec<Series>) -> Vec<Panel> {
 /// the findings set a pair that is not aside.
 fn run_in_words(r: &JobResult) -> String {
     let first = r.results.first();
-    if let Some(left) = first.and_then(|w| r.lineages_left(w)) {
-        let lengths = first
-            .and_then(|w| w.running_in_decay_lengths)
-            .map_or(String::new(), |x| format!(", {} ℓ", number(x)));
-        let share = format!(
-            "{:.0} % of the lineages of s = 0 left at the fit window{lengths}",
-            100.0 * left
-        );
-        return if crate::sliding::is_run_in(Some(left), None) {
-            format!("run in ({share})")
-        } else {
-            format!(
-                "not run in ({share}; over {:.0} %): the findings set this pair aside",
-                100.0 * RUN_IN_LINEAGES_LEFT
-            )
-        };
-    }
-    match first.and_then(|w| w.running_in_decay_lengths) {
-        Some(x) if x >= RUN_IN_DECAY_LENGTHS => {
-            format!(
-                "run in (fit window from {} ℓ, at least {RUN_IN_DECAY_LENGTHS})",
-                number(x)
-            )
-        }
-        Some(x) => format!(
-            "not run in (fit window from {} ℓ, under {RUN_IN_DECAY_LENGTHS}): the findings set this pair aside",
-            number(x)
+    let left = first.and_then(|w| r.lineages_left(w));
+    let lengths = first.and_then(|w| w.running_in_decay_lengths);
+    // The findings' rule decides; the words say what it read.
+    let run_in = crate::sliding::is_run_in(left, lengths);
+    let why = match (left, lengths) {
+        (Some(left), lengths) => format!(
+            "{:.0} % of the lineages of s = 0 left at the fit window{}{}",
+            100.0 * left,
+            lengths.map_or(String::new(), |x| format!(", {} ℓ", number(x))),
+            if run_in {
+                String::new()
+            } else {
+                format!("; over {:.0} %", 100.0 * RUN_IN_LINEAGES_LEFT)
+            }
         ),
-        None => "run-in undefined (no decay of the initial contact fitted): the findings set this pair aside".into(),
+        (None, Some(x)) => format!(
+            "fit window from {} ℓ, {} {RUN_IN_DECAY_LENGTHS}",
+            number(x),
+            if run_in { "at least" } else { "under" }
+        ),
+        (None, None) => "no lineage of s = 0 to follow and no decay fitted: the memory of the initial contact is \
+                         gone by the first step"
+            .into(),
+    };
+    if run_in {
+        format!("run in ({why})")
+    } else {
+        format!("not run in ({why}): the findings set this pair aside")
     }
 }
 

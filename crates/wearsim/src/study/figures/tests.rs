@@ -243,6 +243,23 @@ fn rates_are_per_unit_area_with_intervals_and_kims_band_only_for_kims_ceramics()
 }
 
 #[test]
+fn fig3_says_a_pair_without_a_memory_to_follow_is_run_in_as_the_findings_count_it() {
+    let (mut results, tidy) = study(REDUCED);
+    // No junction of s = 0 in any step, no decay fitted: the findings count the pair as run in.
+    for st in &mut results[0].steps {
+        st.initial_junctions = 0;
+    }
+    for w in &mut results[0].results {
+        (w.initial_lineages_left, w.running_in_decay_lengths) = (None, None);
+    }
+    let job = results[0].index;
+    let title = study_figures(&tidy, &results, Some(job), Some(&["fig3".into()])).unwrap()[0]
+        .title
+        .clone();
+    assert!(title.ends_with("; run in (no lineage of s = 0 to follow and no decay fitted: the memory of the initial contact is gone by the first step)"), "{title}");
+}
+
+#[test]
 fn the_rates_against_load_are_means_over_the_run_in_pairs_as_in_the_findings() {
     let (results, tidy) = decaying(REDUCED);
     let fig = study_figures(&tidy, &results, None, Some(&["fig4".into(), "fig2".into()])).unwrap();
