@@ -123,6 +123,10 @@ source scripts/build-env.sh
 run build_env_install
 build_env_export
 echo "linker: $CARGO_TARGET_X86_64_UNKNOWN_LINUX_GNU_LINKER"
+# The test harnesses compile unoptimised (scripts/rustc-test-harness.sh says why). Set for every
+# Cargo command of the build (the wrapper is part of what Cargo compares before reusing a build),
+# except clippy, which puts its own driver there.
+export RUSTC_WORKSPACE_WRAPPER="$root/scripts/rustc-test-harness.sh"
 
 phase "In the background: .venv with the pinned test dependencies, the floors venv"
 setup_venv() {
@@ -137,7 +141,7 @@ finish cargo-fetch
 run cargo fmt --all --check
 
 phase "Lints: cargo clippy --profile ci --workspace --all-targets -- -D warnings"
-run cargo clippy --profile ci --workspace --all-targets --locked -q -- -D warnings
+run env -u RUSTC_WORKSPACE_WRAPPER cargo clippy --profile ci --workspace --all-targets --locked -q -- -D warnings
 
 phase "Rust build: the tests and the wearsim program (profile ci, linked for glibc 2.17)"
 run cargo test --profile ci --workspace --locked --no-run -q
