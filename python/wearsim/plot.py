@@ -331,28 +331,35 @@ def contact_severity(tidy: pd.DataFrame) -> Any:
     return draw(figures[0])
 
 
-def _one_load(series: pd.DataFrame, load: Optional[float]) -> pd.DataFrame:
-    loads = series["load"].unique()
-    load = loads[-1] if load is None else load
-    return series[np.isclose(series["load"], load, rtol=1e-12, atol=0)]
-
-
 Results = Union[pd.DataFrame, Sequence[Dict[str, Any]]]
 
 
-def _result_of(results: Results, load: float, fracture_energy: Optional[float] = None) -> Optional[pd.Series]:
-    """The library's results (a row of ``summary["results"]`` or of the tidy table) of one load and,
-    when given, one fracture energy; None when ``results`` holds none."""
-    table = pd.DataFrame(results) if not isinstance(results, pd.DataFrame) else results
-    mine = np.isclose(table["load"].astype(float), load, rtol=1e-12, atol=0)
-    if fracture_energy is not None:
-        mine &= np.isclose(table["fracture_energy"].astype(float), fracture_energy, rtol=1e-12, atol=0)
-    rows = table[mine]
-    return None if rows.empty else rows.iloc[0]
+def _units(length_unit: str) -> str:
+    """The unit system whose labels a run's figure takes: lengths in L (reduced units) or in metres."""
+    if length_unit == "L":
+        return "reduced"
+    if length_unit == "m":
+        return "si"
+    raise ValueError(
+        f"invalid `length_unit` {length_unit!r}: 'L' (reduced units, lengths in units of L) or 'm' (SI, a run "
+        'file with units = "si")'
+    )
 
 
-def _defined(value: Any) -> bool:
-    return value is not None and not pd.isna(value)
+def _run_figure(
+    entry: str,
+    runs: Sequence[Tuple[str, pd.DataFrame, Optional[Results]]],
+    load: Optional[float],
+    length_unit: str,
+) -> Any:
+    """Draws the library's figure ``entry`` of one run's series (or several runs', the memory figure):
+    the figure and its numbers are the library's, as a study's series figures are."""
+    units = _units(length_unit)
+    tables = [
+        (label, _columns(series), None if results is None else _columns(pd.DataFrame(results)))
+        for label, series, results in runs
+    ]
+    return draw(_wearsim.run_figure(entry, tables, load, units))
 
 
 def _required(results: Optional[Results], what: str) -> Results:
@@ -372,56 +379,28 @@ def wear_volume(
     length_unit: str = "L",
 ) -> Any:
     """Paper Fig. 3: V(s) of one load (default: the last) per fracture energy, with the line
-    V ≈ W s + b fitted over the fit window, drawn in the curve's colour. The line and the window are
-    the library's: ``wear_rate``, ``wear_volume_intercept`` and ``fit_window_start`` of ``results``
+    V ≈ W s + b fitted over the fit window, drawn in the curve's colour, and the running-in shaded.
+    The figure is the library's (the study figure ``fig3_wear_volume`` of one run): the line and the
+    window are ``wear_rate``, ``wear_volume_intercept`` and ``fit_window_start`` of ``results``
     (``summary["results"]`` of :func:`wearsim.slide`, or the job's rows of the tidy table), which
-    are required: the figure draws the library's fit, never one of its own."""
-    plt = _pyplot()
+    are required: the figure draws the library's fit, never one of its own. ``length_unit``: "L"
+    (reduced units) or "m" (SI)."""
     results = _required(results, "wear_rate, wear_volume_intercept, fit_window_start")
-    rows = _one_load(series, load)
-    first = _result_of(results, float(rows["load"].iloc[0]))
-    if first is None or not _defined(first.get("fit_window_start")):
-        raise ValueError("invalid `results`: none of this load holds `fit_window_start` (a run of this version)")
-    running_in = float(first["fit_window_start"])
-    fig, ax = plt.subplots(figsize=(9.5, 5.0))
-    ax.axvspan(0, running_in, color="0.85", label="running-in (not fitted)")
-    for i, (g, group) in enumerate(rows.groupby("fracture_energy", sort=False)):
-        ax.plot(
-            group["s"], group["volume"], color=PALETTE[i % len(PALETTE)], lw=2, label=rf"V, $\mathcal{{G}}$ = {g:.3g}"
-        )
-        r = _result_of(results, float(group["load"].iloc[0]), float(group["fracture_energy"].iloc[0]))
-        if r is not None and _defined(r["wear_rate"]) and _defined(r["wear_volume_intercept"]):
-            slope, intercept = float(r["wear_rate"]), float(r["wear_volume_intercept"])
-            s = np.array([0, group["s"].max()])
-            ax.plot(
-                s, intercept + slope * s, "--", color=PALETTE[i % len(PALETTE)], lw=1, label=f"fit: W = {slope:.3g}"
-            )
-    ax.set(xlabel=f"sliding distance s ({length_unit})", ylabel=f"wear volume V ({length_unit}³)")
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    return fig
+    return _run_figure("fig3", [("V(s)", series, results)], load, length_unit)
 
 
-def particle_counts(series: pd.DataFrame, *, load: Optional[float] = None, length_unit: str = "L") -> Any:
-    """Paper appendix B: N*₊ (solid), N* (dashed) and N*₋ = N*₊ − N* (thin) against s."""
-    plt = _pyplot()
-    rows = _one_load(series, load)
-    fig, ax = plt.subplots(figsize=(9.5, 5.0))
-    curves = [("n_formed", "N*₊", "-", 2.0), ("n_critical", "N*", "--", 2.0), ("n_shrunk", "N*₋", "-", 0.8)]
-    for i, (g, group) in enumerate(rows.groupby("fracture_energy", sort=False)):
-        for column, name, style, width in curves:
-            ax.plot(
-                group["s"],
-                group[column],
-                style,
-                color=PALETTE[i % len(PALETTE)],
-                lw=width,
-                label=rf"{name}, $\mathcal{{G}}$ = {g:.3g}",
-            )
-    ax.set(xlabel=f"sliding distance s ({length_unit})", ylabel="number of junctions")
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    return fig
+def particle_counts(
+    series: pd.DataFrame,
+    *,
+    results: Optional[Results] = None,
+    load: Optional[float] = None,
+    length_unit: str = "L",
+) -> Any:
+    """Paper appendix B: N*₊ (solid), N* (dashed) and N*₋ = N*₊ − N* (thin) against s, of one load
+    (default: the last) per fracture energy: the library's figure (the study figure
+    ``appB_particle_counts`` of one run). With ``results`` each curve is named by its d*, without
+    by its fracture energy."""
+    return _run_figure("appB", [("N*", series, results)], load, length_unit)
 
 
 def memory(
@@ -435,38 +414,15 @@ def memory(
     exponential fit N₀(0) e^(−s/ℓ). The fit is the library's: ``memory_decay_length`` and
     ``memory_fit_initial_junctions`` of ``results`` (``summary["results"]`` of :func:`wearsim.slide`,
     or the job's rows of the tidy table), which are required. ``series`` may instead be a list of
-    (label, series, results), one per surface pair of a setting (:func:`memory_of_setting`): each
-    pair is drawn with its fit, and the mean ℓ with its 95 % interval over the pairs is the title."""
-    plt = _pyplot()
+    (label, series, results), one per surface pair of a setting: each pair is drawn with its fit,
+    and the mean ℓ with its 95 % interval over the pairs heads the legend. The figure is the
+    library's (the study figure ``memory_of_initial_contact``; :func:`memory_of_setting` draws it
+    from a study folder)."""
+    what = "memory_decay_length, memory_fit_initial_junctions"
     if isinstance(series, pd.DataFrame):
-        series = [("N₀(s)", series, _required(results, "memory_decay_length, memory_fit_initial_junctions"))]
-    fig, ax = plt.subplots(figsize=(9.5, 5.0))
-    lengths = []
-    for i, (name, one, res) in enumerate(series):
-        rows = _one_load(one, load).drop_duplicates("s")
-        label = name
-        r = _result_of(res, float(rows["load"].iloc[0])) if len(rows) else None
-        if r is not None and _defined(r["memory_decay_length"]) and _defined(r["memory_fit_initial_junctions"]):
-            decay_length, initial = float(r["memory_decay_length"]), float(r["memory_fit_initial_junctions"])
-            lengths.append(decay_length)
-            s = rows["s"].to_numpy()
-            fit = initial * np.exp(-s / decay_length)
-            keep = fit >= 1.0
-            ax.plot(s[keep], fit[keep], "--", color=PALETTE[i % len(PALETTE)], lw=1)
-            label = f"{name}, fit ℓ = {decay_length:.3g} {length_unit}"
-        ax.plot(rows["s"], rows["initial_junctions"], color=PALETTE[i % len(PALETTE)], lw=2, label=label)
-    interval = _wearsim.mean_interval(lengths)
-    if interval is not None:
-        mean, low, high, n = interval
-        ax.set_title(
-            f"mean ℓ = {mean:.3g} [{low:.3g}, {high:.3g}] {length_unit} (95 %, Student t over {n} pairs); dashed: fits",
-            loc="left",
-            fontsize=9,
-        )
-    ax.set(yscale="log", xlabel=f"sliding distance s ({length_unit})", ylabel="N₀")
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    return fig
+        series = [("N₀(s)", series, _required(results, what))]
+    runs = [(label, one, _required(res, what)) for label, one, res in series]
+    return _run_figure("memory", runs, load, length_unit)
 
 
 def memory_of_setting(out: Union[str, os.PathLike], job: int) -> Any:

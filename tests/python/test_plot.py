@@ -178,27 +178,38 @@ def test_settings_of_equal_critical_diameter_by_the_library():
 
 
 def test_particle_counts_draws_three_curves_per_fracture_energy():
-    """Appendix B on one run's series: N*₊ solid and thick, N* dashed, N*₋ thin, one colour per 𝒢,
-    at the load asked for."""
-    s = np.linspace(0.0, 0.5, 11)
-    series = pd.DataFrame(
-        [
-            {"load": load, "fracture_energy": g, "s": x, "n_formed": k, "n_critical": k / 2 + 1, "n_shrunk": k / 2}
-            for load in (1e-3, 2e-3)
-            for g in (2.5e-7, 5e-7)
-            for k, x in enumerate(s)
-        ]
+    """Appendix B on one run's series, the library's figure: N*₊ solid and thick, N* dashed, N*₋
+    thin, one colour per 𝒢, at the load asked for, each curve the series' own numbers; without the
+    results each curve is named by its 𝒢, with them by its d*."""
+    top, bottom = wearsim.generate_pair(64, lambda_lower=0.125, lambda_upper=0.25, rms_height=0.005, seed=1)
+    material = wearsim.Material(
+        youngs_modulus=1.0, poisson_ratio=0.3, shear_strength=0.008, fracture_energies=[2.5e-7, 5e-7]
     )
+    with pytest.warns(wearsim.ResolutionWarning):  # a small, coarse run
+        series, summary = wearsim.slide(top, bottom, material, [1e-3, 2e-3], distance=0.25, running_in=0.125)
     fig = wearsim.plot.particle_counts(series, load=1e-3)
-    lines = fig.axes[0].lines
-    assert [line.get_label() for line in lines] == [
-        rf"{name}, $\mathcal{{G}}$ = {g:.3g}" for g in (2.5e-7, 5e-7) for name in ("N*₊", "N*", "N*₋")
-    ]
+    lines = [line for line in fig.axes[0].lines if str(line.get_gid()).startswith("series-")]
     assert [(line.get_linestyle(), line.get_linewidth()) for line in lines] == [
         ("-", 2.0),
         ("--", 2.0),
-        ("-", 0.8),
+        ("-", 1.0),
     ] * 2
     assert len({line.get_color() for line in lines[:3]}) == 1 and lines[0].get_color() != lines[3].get_color()
-    np.testing.assert_array_equal(lines[1].get_ydata(), np.arange(11) / 2 + 1)
+    for i, g in enumerate((2.5e-7, 5e-7)):
+        mine = series[(series["load"] == 1e-3) & (series["fracture_energy"] == g)]
+        for line, column in zip(lines[3 * i : 3 * i + 3], ("n_formed", "n_critical", "n_shrunk")):
+            np.testing.assert_array_equal(line.get_xdata(), mine["s"])
+            np.testing.assert_array_equal(line.get_ydata(), mine[column])
+    labels = [t.get_text() for t in fig.legends[0].get_texts()] if fig.legends else []
+    labels += [t.get_text() for ax in fig.axes if ax.get_legend() for t in ax.get_legend().get_texts()]
+    assert labels[0] == r"N*₊ (particles formed), $\mathcal{G}$ = 2.5×10⁻⁷ E L", labels
     matplotlib.pyplot.close(fig)
+    named = wearsim.plot.particle_counts(series, results=summary["results"], load=1e-3)
+    labels = [t.get_text() for ax in named.axes if ax.get_legend() for t in ax.get_legend().get_texts()]
+    labels += [t.get_text() for legend in named.legends for t in legend.get_texts()]
+    assert any("d* = " in label for label in labels), labels
+    matplotlib.pyplot.close(named)
+    with pytest.raises(ValueError, match="no load 0.005"):
+        wearsim.plot.particle_counts(series, load=5e-3)
+    with pytest.raises(ValueError, match="length_unit"):
+        wearsim.plot.particle_counts(series, length_unit="µm")

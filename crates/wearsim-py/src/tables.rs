@@ -260,8 +260,52 @@ fn table_figures<'py>(
     figures_to_py(py, &figures)
 }
 
+/// A series figure (`fig3`, `appB`, `memory`) of sliding runs outside a study
+/// (`wearsim::study::figures::run_figure`): `runs` holds (label, series columns, results columns or
+/// None) per run; `units` "reduced" or "si".
+#[pyfunction]
+#[pyo3(signature = (entry, runs, load = None, units = "reduced"))]
+fn run_figure<'py>(
+    py: Python<'py>,
+    entry: &str,
+    runs: Vec<(String, Bound<'py, PyDict>, Option<Bound<'py, PyDict>>)>,
+    load: Option<f64>,
+    units: &str,
+) -> PyResult<Bound<'py, PyAny>> {
+    let units = match units {
+        "reduced" => Units::Reduced,
+        "si" => Units::Si,
+        other => {
+            return Err(PyValueError::new_err(format!(
+                "invalid `units` {other:?}: \"reduced\" or \"si\""
+            )))
+        }
+    };
+    let tables = runs
+        .iter()
+        .map(|(label, series, results)| {
+            Ok((
+                label.as_str(),
+                table_of(series)?,
+                results.as_ref().map(table_of).transpose()?,
+            ))
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    let runs: Vec<wearsim::study::figures::RunTables> = tables
+        .iter()
+        .map(|(label, series, results)| wearsim::study::figures::RunTables {
+            label,
+            series,
+            results: results.as_ref(),
+        })
+        .collect();
+    let figure = wearsim::study::figures::run_figure(entry, &runs, load, units).map_err(crate::error::to_py)?;
+    Ok(figures_to_py(py, std::slice::from_ref(&figure))?.remove(0))
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(table_figures, m)?)?;
+    m.add_function(wrap_pyfunction!(run_figure, m)?)?;
     let registry: Vec<(&str, &str)> = wearsim::study::figures::FIGURES
         .iter()
         .map(|f| (f.name, f.about))

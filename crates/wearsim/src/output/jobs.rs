@@ -56,12 +56,7 @@ impl JobResult {
     /// N₀(s_r)/N₀(0) of result `w` of this job: as the job file has it, or, in a job file written
     /// before it was kept, counted from its steps.
     pub fn lineages_left(&self, w: &WearResult) -> Option<f64> {
-        w.initial_lineages_left.or_else(|| {
-            crate::sliding::lineages_left(
-                self.steps.iter().map(|r| (r.s, r.initial_junctions)),
-                w.fit_window_start,
-            )
-        })
+        super::series::lineages_left(&self.steps, w)
     }
 
     pub fn to_json(&self) -> String {

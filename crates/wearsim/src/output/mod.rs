@@ -30,7 +30,7 @@ pub use jobs::{
     AGGREGATE_SUFFIXES, ALONG_A_CURVE, FIT_WINDOW_COLUMNS, JOB_FORMAT, NOT_A_SETTING, STATISTICS, TOTALLED,
 };
 pub use provenance::{Provenance, DEPENDENCY_VERSIONS};
-pub use series::{job_series_rows, series_rows, SeriesRow, StepRow};
+pub use series::{job_series_rows, lineages_left, series_rows, steps_of_rows, SeriesRow, StepRow};
 pub use summary::{
     contact_summary, estimate_rows, estimate_summary, junctions_summary, series_csv, sliding_summary,
     surface_fit_summary, surface_summary, ContactRecord, EstimateRow, SlidingInputs, SurfaceStatistics,

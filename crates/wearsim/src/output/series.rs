@@ -14,7 +14,7 @@ use crate::wear::{StaticWear, StepWear};
 /// record per step (§3), then the memory of the initial contact and the static model at this step;
 /// `iterations` and `residual` are the contact solver's. A column is a field here and its unit an
 /// entry of [`SeriesRow::UNITS`] (a test fails otherwise); [`SeriesRow::of_step`] fills it.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 pub struct SeriesRow {
     /// Normal load F_N.
     pub load: f64,
@@ -205,6 +205,61 @@ pub fn job_series_rows(load: f64, results: &[WearResult], steps: &[StepRow]) -> 
         row.residual = None;
     }
     rows
+}
+
+/// N₀(s_r)/N₀(0) of result `w` of a load whose steps are `steps`: as the result has it, or, for a
+/// result written before it was kept, counted from the steps.
+pub fn lineages_left(steps: &[StepRow], w: &WearResult) -> Option<f64> {
+    w.initial_lineages_left
+        .or_else(|| crate::sliding::lineages_left(steps.iter().map(|r| (r.s, r.initial_junctions)), w.fit_window_start))
+}
+
+/// The steps of one load back from its series rows (the inverse of [`job_series_rows`]): the rows of
+/// load `load`, one step per sliding distance in their order, with the counts and the volume of
+/// each fracture energy of `energies` in its order. The error names a step that lacks one of them
+/// (a series filtered by fracture energy, or the rows of another run).
+pub fn steps_of_rows(rows: &[SeriesRow], load: f64, energies: &[f64]) -> crate::error::Result<Vec<StepRow>> {
+    let mine: Vec<&SeriesRow> = rows.iter().filter(|r| r.load == load).collect();
+    let mut distances: Vec<f64> = Vec::new();
+    for r in &mine {
+        if !distances.contains(&r.s) {
+            distances.push(r.s);
+        }
+    }
+    distances
+        .into_iter()
+        .map(|s| {
+            let at: Vec<&&SeriesRow> = mine.iter().filter(|r| r.s == s).collect();
+            let first = at[0];
+            let mut step = StepRow {
+                s,
+                junctions: first.junctions,
+                wrapping_junctions: first.wrapping_junctions,
+                contact_area: first.contact_area,
+                initial_junctions: first.initial_junctions,
+                n_critical: Vec::new(),
+                n_formed: Vec::new(),
+                volume: Vec::new(),
+                static_wear_coefficient: Vec::new(),
+            };
+            for &g in energies {
+                let r = at.iter().find(|r| r.fracture_energy == g).ok_or_else(|| {
+                    crate::error::Error::param(
+                        "series",
+                        format!(
+                            "the step at s = {s} of load {load} has no row of fracture energy {g}: pass the run's whole \
+                             series with its results"
+                        ),
+                    )
+                })?;
+                step.n_critical.push(r.n_critical);
+                step.n_formed.push(r.n_formed);
+                step.volume.push(r.volume);
+                step.static_wear_coefficient.push(r.static_wear_coefficient);
+            }
+            Ok(step)
+        })
+        .collect()
 }
 
 #[cfg(test)]

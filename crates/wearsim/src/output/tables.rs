@@ -58,6 +58,18 @@ pub struct Table {
     pub rows: Vec<Vec<Cell>>,
 }
 
+/// A cell as JSON, for [`Table::records`]: a whole float as an integer, so that a count a data frame
+/// holds as a float (a column with an empty cell) still reads as a count.
+fn cell_value(cell: &Cell) -> Value {
+    match cell {
+        Cell::Empty => Value::Null,
+        Cell::Int(i) => Value::from(*i),
+        Cell::Float(f) if f.fract() == 0.0 && f.abs() < 9e15 => Value::from(*f as i64),
+        Cell::Float(f) => Value::from(*f),
+        Cell::Text(t) => Value::from(t.as_str()),
+    }
+}
+
 /// The fields of a serialised row, in order (nested `#[serde(flatten)]` structs inline).
 fn fields<T: Serialize>(row: &T) -> Vec<(String, Value)> {
     match serde_json::to_value(row).expect("result rows serialise to JSON") {
@@ -86,6 +98,26 @@ impl Table {
     /// Index of a column.
     pub fn column(&self, name: &str) -> Option<usize> {
         self.columns.iter().position(|c| c == name)
+    }
+
+    /// Each row as a `T` (the inverse of [`Table::of`]): a column per field of `T`, by name, an
+    /// empty cell an absent value; columns `T` does not have are ignored. The error names the row
+    /// and the field that is missing or of the wrong kind, for a table a user passed as `what`.
+    pub fn records<T: serde::de::DeserializeOwned>(&self, what: &str) -> crate::error::Result<Vec<T>> {
+        self.rows
+            .iter()
+            .enumerate()
+            .map(|(i, row)| {
+                let object: serde_json::Map<String, Value> = self
+                    .columns
+                    .iter()
+                    .zip(row)
+                    .map(|(name, cell)| (name.clone(), cell_value(cell)))
+                    .collect();
+                serde_json::from_value(Value::Object(object))
+                    .map_err(|e| crate::error::Error::param(what, format!("row {i}: {e}")))
+            })
+            .collect()
     }
 
     /// A table read back from CSV text: empty cells are [`Cell::Empty`], whole numbers

@@ -10,16 +10,18 @@
 //! (drawn hollow) and whether no surface pair wore at all (no place on a log axis: marked on the
 //! axis). Colours are indices into the front end's palette, markers indices into its shapes.
 
+use std::borrow::Cow;
+
 use serde::Serialize;
 
 use crate::config::Units;
 use crate::error::{Error, Result};
 use crate::output::{
-    aggregate, curve_labels, curves, equal_critical_diameter, has_kim_materials, number, pretty, series_job,
-    severity_fits, unit_of, Cell, CurveMaterial, JobResult, MaterialSeverity, SeriesRow, Table, KIM_EXPERIMENTAL_K,
-    KIM_SEVERITY_FIT, PAPER_SEVERITY_FIT,
+    aggregate, curve_labels, curves, equal_critical_diameter, has_kim_materials, job_series_rows, lineages_left,
+    number, pretty, series_job, severity_fits, steps_of_rows, unit_of, Cell, CurveMaterial, JobResult,
+    MaterialSeverity, SeriesRow, StepRow, Table, KIM_EXPERIMENTAL_K, KIM_SEVERITY_FIT, PAPER_SEVERITY_FIT,
 };
-use crate::sliding::{RUN_IN_DECAY_LENGTHS, RUN_IN_LINEAGES_LEFT};
+use crate::sliding::{WearResult, RUN_IN_DECAY_LENGTHS, RUN_IN_LINEAGES_LEFT};
 use crate::stats::{mean_interval, PowerLawFit};
 
 use crate::study::findings::RESOLVED_PARTICLES;
@@ -742,13 +744,17 @@ fn figure(study: &Study, entry: &'static str) -> Vec<Figure> {
         "appC" => junction_counts(data, shown),
         "appB-eq5" => vec![equation_5(data, shown)],
         "appF" => contact_severity(study.tidy, shown).into_iter().collect(),
-        "fig3" => vec![series_figure(study, entry, "fig3_wear_volume", wear_volume)],
-        "appB" => vec![series_figure(study, entry, "appB_particle_counts", particle_counts)],
+        "fig3" => vec![series_figure(study, entry, "fig3_wear_volume", |r, _, shown| {
+            wear_volume(r, shown)
+        })],
+        "appB" => vec![series_figure(study, entry, "appB_particle_counts", |r, _, shown| {
+            particle_counts(r, shown)
+        })],
         "memory" => vec![series_figure(
             study,
             entry,
             "memory_of_initial_contact",
-            |job, pairs, shown| memory(pairs.unwrap_or(std::slice::from_ref(&job)), shown),
+            |_, pairs, shown| memory(pairs, shown),
         )],
         _ => Vec::new(),
     }
@@ -1111,16 +1117,52 @@ fn series_figure(
     study: &Study,
     entry: &'static str,
     name: &str,
-    draw: impl Fn(&JobResult, Option<&[&JobResult]>, Shown) -> Figure,
+    draw: impl Fn(&SeriesOf, &[SeriesOf], Shown) -> Figure,
 ) -> Figure {
     match &study.series {
         None => Figure::note(entry, name, NO_JOB_FILES),
         Some((job, _)) if job.steps.is_empty() => Figure::note(entry, name, NO_SERIES),
-        Some((job, pairs)) => Figure {
-            entry,
-            name: name.into(),
-            ..draw(job, Some(pairs.as_slice()), study.shown)
-        },
+        Some((job, pairs)) => {
+            let pairs: Vec<SeriesOf> = pairs.iter().map(|r| SeriesOf::of_job(r, study.shown)).collect();
+            Figure {
+                entry,
+                name: name.into(),
+                ..draw(&SeriesOf::of_job(job, study.shown), &pairs, study.shown)
+            }
+        }
+    }
+}
+
+/// What the series figures (fig3, appB, memory) draw of one job of a study, or of one run outside
+/// one ([`run_figure`]): its steps at one load, its results per fracture energy, and the words that
+/// name it.
+struct SeriesOf<'a> {
+    load: f64,
+    steps: Cow<'a, [StepRow]>,
+    results: Cow<'a, [WearResult]>,
+    /// Who it is, in titles: "job 3 (Si3N4), surface pair 2, τ̃ = 0.012 E, p_N = 0.001 E", or a
+    /// run's load.
+    who: String,
+    /// What the memory figure's title says it draws: "every surface pair — " and who without
+    /// the pair, or a run's load.
+    setting: String,
+    /// Its name among the memory figure's curves: "pair 2", "job 3", or a run's label.
+    name: String,
+}
+
+impl<'a> SeriesOf<'a> {
+    fn of_job(r: &'a JobResult, shown: Shown) -> Self {
+        Self {
+            load: r.load,
+            steps: Cow::Borrowed(&r.steps),
+            results: Cow::Borrowed(&r.results),
+            who: who(r, shown, true),
+            setting: format!("every surface pair — {}", who(r, shown, false)),
+            name: r
+                .inputs
+                .seed
+                .map_or(format!("job {}", r.index), |s| format!("pair {s}")),
+        }
     }
 }
 
@@ -1178,9 +1220,9 @@ fn one_panel(x: Axis, y: Axis, series: Vec<Series>) -> Vec<Panel> {
 /// [`RUN_IN_LINEAGES_LEFT`] of the junction lineages of s = 0 left where its fit window starts
 /// (where none was there to count, its fit window after [`RUN_IN_DECAY_LENGTHS`] decay lengths ℓ);
 /// the findings set a pair that is not aside.
-fn run_in_words(r: &JobResult) -> String {
+fn run_in_words(r: &SeriesOf) -> String {
     let first = r.results.first();
-    let left = first.and_then(|w| r.lineages_left(w));
+    let left = first.and_then(|w| lineages_left(&r.steps, w));
     let lengths = first.and_then(|w| w.running_in_decay_lengths);
     // The findings' rule decides; the words say what it read.
     let run_in = crate::sliding::is_run_in(left, lengths);
@@ -1213,7 +1255,7 @@ fn run_in_words(r: &JobResult) -> String {
 
 /// Fig. 3: V(s) of one job per fracture energy, with the results' line W·s + b fitted over the fit
 /// window, and the running-in shaded.
-fn wear_volume(r: &JobResult, _pairs: Option<&[&JobResult]>, shown: Shown) -> Figure {
+fn wear_volume(r: &SeriesOf, shown: Shown) -> Figure {
     let fit_start = r.results.first().map_or(0.0, |w| w.fit_window_start);
     let s_max = r.steps.last().map_or(1.0, |st| st.s);
     let mut legend = vec![LegendEntry {
@@ -1275,7 +1317,7 @@ fn wear_volume(r: &JobResult, _pairs: Option<&[&JobResult]>, shown: Shown) -> Fi
     Figure {
         entry: "",
         name: String::new(),
-        title: format!("wear volume V(s) — {}; {}", who(r, shown, true), run_in_words(r)),
+        title: format!("wear volume V(s) — {}; {}", r.who, run_in_words(r)),
         panels,
         legend_title: String::new(),
         legend,
@@ -1288,8 +1330,8 @@ type Count = (fn(&SeriesRow) -> f64, bool, u32, &'static str);
 
 /// Appendix B (Fig. B.9a): N*₊ (solid), N* (dashed) and N*₋ = N*₊ − N* (thin) of one job against s,
 /// per fracture energy, from the library's series rows.
-fn particle_counts(r: &JobResult, _pairs: Option<&[&JobResult]>, shown: Shown) -> Figure {
-    let rows: Vec<SeriesRow> = r.series_rows();
+fn particle_counts(r: &SeriesOf, shown: Shown) -> Figure {
+    let rows: Vec<SeriesRow> = job_series_rows(r.load, &r.results, &r.steps);
     let (mut series, mut legend) = (Vec::new(), Vec::new());
     for (e, w) in r.results.iter().enumerate() {
         let color = Color::Palette(e);
@@ -1297,7 +1339,11 @@ fn particle_counts(r: &JobResult, _pairs: Option<&[&JobResult]>, shown: Shown) -
             .iter()
             .filter(|row| row.fracture_energy == w.fracture_energy)
             .collect();
-        let d = format!("d* = {}", shown.length(w.critical_diameter));
+        let d = if w.critical_diameter.is_finite() {
+            format!("d* = {}", shown.length(w.critical_diameter))
+        } else {
+            format!("𝒢 = {} {}", pretty(w.fracture_energy), shown.unit("fracture_energy"))
+        };
         let counts: [Count; 3] = [
             (|r| r.n_formed as f64, false, 2, "N*₊ (particles formed)"),
             (|r| r.n_critical as f64, true, 2, "N* (junctions ≥ d* now)"),
@@ -1320,7 +1366,7 @@ fn particle_counts(r: &JobResult, _pairs: Option<&[&JobResult]>, shown: Shown) -
         name: String::new(),
         title: format!(
             "particles formed N*₊, critical junctions N*, N*₋ = N*₊ − N* — {}",
-            who(r, shown, true)
+            r.who
         ),
         panels: one_panel(
             shown.distance_axis(),
@@ -1339,17 +1385,14 @@ fn particle_counts(r: &JobResult, _pairs: Option<&[&JobResult]>, shown: Shown) -
 
 /// One surface pair of the memory figure: N₀(s), its fit while it expects a junction or more, its
 /// legend entry, and its decay length ℓ where it has a fit.
-fn memory_of_pair(i: usize, r: &JobResult, shown: Shown) -> (Vec<Series>, LegendEntry, Option<f64>) {
+fn memory_of_pair(i: usize, r: &SeriesOf, shown: Shown) -> (Vec<Series>, LegendEntry, Option<f64>) {
     let color = Color::Palette(i);
     let points = r
         .steps
         .iter()
         .map(|st| Point::at(st.s, st.initial_junctions as f64))
         .collect();
-    let pair = r
-        .inputs
-        .seed
-        .map_or(format!("job {}", r.index), |s| format!("pair {s}"));
+    let pair = &r.name;
     let mut label = format!("{pair}: N₀(s)");
     let mut series = vec![line_series(label.clone(), color, false, 2, points)];
     let first = r.results.first();
@@ -1389,7 +1432,7 @@ fn memory_of_pair(i: usize, r: &JobResult, shown: Shown) -> (Vec<Series>, Legend
 /// The memory of the initial contact (§3): N₀(s) of every surface pair of one setting, each with its
 /// fitted N₀(0) e^(−s/ℓ) (dashed, while it expects a junction or more), and the mean ℓ with its 95 %
 /// interval over the pairs as the legend's title.
-fn memory(pairs: &[&JobResult], shown: Shown) -> Figure {
+fn memory(pairs: &[SeriesOf], shown: Shown) -> Figure {
     // The fit window of every pair starts at the run's running-in distance: shaded before it.
     let fit_start = pairs
         .first()
@@ -1424,10 +1467,7 @@ fn memory(pairs: &[&JobResult], shown: Shown) -> Figure {
         None => "dashed: each pair's fit N₀(0) e^(−s/ℓ)".into(),
     };
     let title = match pairs.first() {
-        Some(r) => format!(
-            "memory of the initial contact, every surface pair — {}",
-            who(r, shown, false)
-        ),
+        Some(r) => format!("memory of the initial contact, {}", r.setting),
         None => "memory of the initial contact".into(),
     };
     Figure {
@@ -1455,6 +1495,149 @@ fn memory(pairs: &[&JobResult], shown: Shown) -> Figure {
         legend,
         note: None,
     }
+}
+
+/// One sliding run as the series figures take it outside a study ([`run_figure`]): its series (the
+/// columns of [`SeriesRow`]: `series.csv`, the data frame of Python's `slide`, a job's series) and
+/// its results (the columns of [`WearResult`] and `load`: `summary["results"]` of a run, or the
+/// job's rows of a study's tidy table), and its name in the memory figure's legend.
+pub struct RunTables<'a> {
+    pub label: &'a str,
+    pub series: &'a Table,
+    /// Required by the figures that draw a fit (fig3, memory); appB without them names each curve
+    /// by its fracture energy instead of its d*.
+    pub results: Option<&'a Table>,
+}
+
+/// A result row with its load, as a run's summary and a study's tidy table give it.
+#[derive(serde::Deserialize)]
+struct ResultOfLoad {
+    load: f64,
+    #[serde(flatten)]
+    result: WearResult,
+}
+
+/// The series of `run`, one of `runs`, at load `load` (default: its series' last) as the series
+/// figures take it; without results, an error where the figure `needs_results`.
+fn series_of_run<'a>(
+    run: &RunTables,
+    runs: usize,
+    load: Option<f64>,
+    needs_results: bool,
+    shown: Shown,
+) -> Result<SeriesOf<'a>> {
+    let rows: Vec<SeriesRow> = run.series.records("series")?;
+    let loads: Vec<f64> = rows.iter().fold(Vec::new(), |mut loads, r| {
+        if !loads.contains(&r.load) {
+            loads.push(r.load);
+        }
+        loads
+    });
+    let load = match load {
+        None => *loads.last().ok_or_else(|| Error::param("series", "it has no row"))?,
+        // Matched as Python's `np.isclose(…, rtol=1e-12)`: a load typed back from its printed form.
+        Some(asked) => *loads
+            .iter()
+            .find(|&&l| (l - asked).abs() <= 1e-12 * asked.abs())
+            .ok_or_else(|| {
+                let have: Vec<String> = loads.iter().map(|&l| number(l)).collect();
+                Error::param(
+                    "load",
+                    format!(
+                        "the series has no load {}: its loads are {}",
+                        number(asked),
+                        have.join(", ")
+                    ),
+                )
+            })?,
+    };
+    let results: Vec<WearResult> = match run.results {
+        Some(table) => table
+            .records::<ResultOfLoad>("results")?
+            .into_iter()
+            .filter(|r| r.load == load)
+            .map(|r| r.result)
+            .collect(),
+        // The fracture energies of the series, in its order, with nothing fitted (and d* unknown).
+        None if !needs_results => rows
+            .iter()
+            .filter(|r| r.load == load)
+            .fold(Vec::new(), |mut energies: Vec<f64>, r| {
+                if !energies.contains(&r.fracture_energy) {
+                    energies.push(r.fracture_energy);
+                }
+                energies
+            })
+            .into_iter()
+            .map(|g| WearResult {
+                fracture_energy: g,
+                critical_diameter: f64::NAN,
+                ..WearResult::default()
+            })
+            .collect(),
+        None => Vec::new(),
+    };
+    if results.is_empty() {
+        return Err(Error::param(
+            "results",
+            format!(
+                "{} of load {}: pass the run's results (`summary[\"results\"]` of a run, or the job's rows of the \
+                 tidy table), whose fits (W and its intercept, the fit window, ℓ) the figure draws",
+                if run.results.is_some() {
+                    "none of its rows is"
+                } else {
+                    "none given, and the figure needs those"
+                },
+                number(load)
+            ),
+        ));
+    }
+    let energies: Vec<f64> = results.iter().map(|w| w.fracture_energy).collect();
+    let steps = steps_of_rows(&rows, load, &energies)?;
+    let who = format!("F_N = {} {}", number(load), shown.unit("load"));
+    Ok(SeriesOf {
+        load,
+        steps: Cow::Owned(steps),
+        results: Cow::Owned(results),
+        setting: if runs > 1 {
+            format!("{runs} runs — {who}")
+        } else {
+            who.clone()
+        },
+        who,
+        name: run.label.to_string(),
+    })
+}
+
+/// A series figure — `fig3` (V(s) with the fitted line), `appB` (N*₊, N*, N*₋) or `memory` (N₀(s)
+/// with its fit) — of sliding runs outside a study, as Python's `wearsim.plot.wear_volume`,
+/// `particle_counts` and `memory` draw them: at load `load` (default: the last of the first run's
+/// series), per fracture energy of the results at that load; fig3 and appB draw the first run,
+/// memory every run, as a study's memory figure draws every surface pair of a setting. The lines
+/// are the results' fits (W and its intercept, the fit window, ℓ): a figure fits nothing of its own.
+pub fn run_figure(entry: &str, runs: &[RunTables], load: Option<f64>, units: Units) -> Result<Figure> {
+    let shown = Shown { system: units };
+    let series: Vec<SeriesOf> = runs
+        .iter()
+        .map(|run| series_of_run(run, runs.len(), load, entry != "appB", shown))
+        .collect::<Result<_>>()?;
+    let first = series.first().ok_or_else(|| Error::param("series", "no run given"))?;
+    let (entry, name, figure) = match entry {
+        "fig3" => ("fig3", "fig3_wear_volume", wear_volume(first, shown)),
+        "appB" => ("appB", "appB_particle_counts", particle_counts(first, shown)),
+        "memory" => ("memory", "memory_of_initial_contact", memory(&series, shown)),
+        other => {
+            return Err(Error::param(
+                "figure",
+                format!("{other:?} is not a figure of one run's series: fig3, appB or memory"),
+            ))
+        }
+    };
+    Ok(Figure {
+        entry,
+        name: name.into(),
+        ..figure
+    })
 }
 
 /// A study folder's figures, with the tidy table they were drawn from (the findings are judged on

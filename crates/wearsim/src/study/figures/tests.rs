@@ -362,3 +362,94 @@ fn the_memory_figure_shows_every_pair_of_the_setting() {
         fig3(pair_2)
     );
 }
+
+/// The series figures of one run outside a study (Python's `wear_volume`, `particle_counts`,
+/// `memory`) are the study's figures of the same series: the same plotted numbers, read back from
+/// the run's tables as a user passes them.
+#[test]
+fn a_runs_series_figures_plot_the_numbers_of_the_studys() {
+    let (results, tidy) = decaying(REDUCED);
+    let pairs = pairs_of(&results, &results[0]);
+    assert_eq!(pairs.len(), 3);
+    let job = pairs[0];
+    // A run's tables as Python hands them over: the series rows, the results with their load.
+    let tables = |r: &JobResult| {
+        let series = Table::of(&r.series_rows());
+        let mut results = Table::of(&r.results);
+        results.columns.push("load".into());
+        for row in &mut results.rows {
+            row.push(Cell::Float(r.load));
+        }
+        (series, results)
+    };
+    let of_job: Vec<(Table, Table)> = pairs.iter().map(|r| tables(r)).collect();
+    let runs: Vec<RunTables> = of_job
+        .iter()
+        .zip(&pairs)
+        .map(|((series, results), r)| RunTables {
+            label: if r.inputs.seed == Some(1) { "pair 1" } else { "another" },
+            series,
+            results: Some(results),
+        })
+        .collect();
+    for (entry, name) in [
+        ("fig3", "fig3_wear_volume"),
+        ("appB", "appB_particle_counts"),
+        ("memory", "memory_of_initial_contact"),
+    ] {
+        let study = study_figures(&tidy, &results, Some(job.index), Some(&[entry.into()])).unwrap();
+        let run = run_figure(entry, &runs, None, Units::Reduced).unwrap();
+        assert_eq!(run.name, name);
+        let points = |f: &Figure| -> Vec<Vec<(f64, f64)>> {
+            f.panels[0]
+                .series
+                .iter()
+                .map(|s| s.points.iter().map(|p| (p.x, p.y)).collect())
+                .collect()
+        };
+        assert_eq!(points(&run), points(&study[0]), "{entry}");
+        assert_eq!(run.panels[0].x_band, study[0].panels[0].x_band, "{entry}");
+        assert!(run.title.contains("F_N = "), "{}", run.title);
+    }
+    // The run's wear-volume figure says whether it is run in, as the study's does.
+    let study = study_figures(&tidy, &results, Some(job.index), Some(&["fig3".into()])).unwrap();
+    let words = |t: &str| t.split("; ").last().unwrap().to_string();
+    let run = run_figure("fig3", &runs[..1], None, Units::Reduced).unwrap();
+    assert_eq!(words(&run.title), words(&study[0].title));
+    // appB without results names its curves by 𝒢; fig3 and memory need them, and say so.
+    let bare = [RunTables {
+        label: "bare",
+        series: &of_job[0].0,
+        results: None,
+    }];
+    let counts = run_figure("appB", &bare, None, Units::Reduced).unwrap();
+    assert!(counts.legend[0].label.contains("𝒢 = "), "{:?}", counts.legend[0]);
+    for entry in ["fig3", "memory"] {
+        let err = run_figure(entry, &bare, None, Units::Reduced).unwrap_err().to_string();
+        assert!(err.contains("results") && err.contains("summary[\"results\"]"), "{err}");
+    }
+    // A load the series does not have, a figure that is not a series figure, a series cut short.
+    let err = run_figure("appB", &runs[..1], Some(0.5), Units::Reduced)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("no load 0.5") && err.contains("its loads are"), "{err}");
+    let err = run_figure("fig4", &runs[..1], None, Units::Reduced)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("fig3, appB or memory"), "{err}");
+    let mut cut = of_job[0].0.clone();
+    cut.rows.pop();
+    let err = run_figure(
+        "appB",
+        &[RunTables {
+            label: "cut",
+            series: &cut,
+            results: Some(&of_job[0].1),
+        }],
+        None,
+        Units::Reduced,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("has no row of fracture energy"), "{err}");
+}
