@@ -38,8 +38,12 @@ FIGURES: List[Tuple[str, str]] = [tuple(f) for f in _wearsim.FIGURES]  # type: i
 #: studies of Kim's ceramics.
 KIM_RANGE = tuple(_wearsim.KIM_EXPERIMENTAL_K)
 
-#: What the points and bars of the figures against load are (the legend's title).
-BARS = "mean over surface pairs; bars: 95 % confidence interval of the mean (Student t)"
+#: What the points and bars of the figures against load are (the legend's title): on a log axis
+#: the interval is drawn in log space, mean ×/÷ e^(t·se/mean), positive and symmetric about the mean.
+BARS = (
+    "mean over surface pairs; bars: 95 % confidence interval of the mean (Student t), on a log axis in log "
+    "space: mean ×/÷ e^(t·se/mean)"
+)
 
 #: Particles in the fit window of a point, summed over its surface pairs, below which its fitted
 #: rates rest on too few events to be judged: drawn hollow (the rule of the paper's findings).

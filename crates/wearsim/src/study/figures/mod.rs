@@ -282,6 +282,23 @@ fn quote(text: &str) -> String {
 /// The legend title of the figures against load: what points and bars are.
 pub const MEANS: &str = "mean over surface pairs; bars: 95 % confidence interval of the mean (Student t)";
 
+/// The same on a figure with log axes, whose bars are the interval drawn in log space.
+pub const MEANS_ON_LOG_AXES: &str = "mean over surface pairs; bars: 95 % confidence interval of the mean \
+(Student t), on a log axis in log space: mean ×/÷ e^(t·se/mean)";
+
+/// The 95 % interval of a mean `mean` whose Student-t interval reaches `high`, on a log axis: the
+/// same interval in log space (the delta method, ln m ± t·se/m), mean ×/÷ e^(t·se/mean). Always
+/// positive and symmetric about the mean on the axis, where the linear one reaches below zero
+/// (and is cut off) whenever the pairs spread more than the mean; the point is the same mean as the
+/// findings'. NaN where the mean is not positive or has no interval.
+fn log_space_interval(mean: f64, high: f64) -> (f64, f64) {
+    if !(mean > 0.0 && high.is_finite()) {
+        return (f64::NAN, f64::NAN);
+    }
+    let factor = ((high - mean) / mean).exp();
+    (mean / factor, mean * factor)
+}
+
 /// What the figures of one job's sliding series say instead when that job is a static estimate.
 const NO_SERIES: &str = "this job is a static estimate: it takes no sliding step, so it has no wear-volume curve, \
 particle counts or memory of the initial contact (those are the sliding model's; `--job` picks a sliding job)";
@@ -463,18 +480,27 @@ impl Curves {
     /// pairs with its 95 % interval, divided by the nominal area when `per_area`; hollow where
     /// `fitted` and the fit window holds fewer than [`RESOLVED_PARTICLES`] particles (summed over
     /// the pairs); marked "no wear" where no pair has a positive value.
-    fn points(&self, c: &Curve, quantity: &str, per_area: bool, fitted: bool) -> Vec<Point> {
+    fn points(&self, c: &Curve, quantity: &str, per_area: bool, fitted: bool, log: bool) -> Vec<Point> {
         c.rows
             .iter()
             .filter_map(|r| {
                 let scale = if per_area { 1.0 / self.area(r) } else { 1.0 };
                 let mean = self.get(r, &format!("{quantity}_mean"));
                 let particles = self.get(r, "particles_in_fit_total");
+                let (low, high) = (
+                    self.get(r, &format!("{quantity}_ci_low")),
+                    self.get(r, &format!("{quantity}_ci_high")),
+                );
+                let (low, high) = if log {
+                    log_space_interval(mean, high)
+                } else {
+                    (low, high)
+                };
                 mean.is_finite().then(|| Point {
                     x: self.get(r, "nominal_pressure"),
                     y: mean * scale,
-                    low: self.get(r, &format!("{quantity}_ci_low")) * scale,
-                    high: self.get(r, &format!("{quantity}_ci_high")) * scale,
+                    low: low * scale,
+                    high: high * scale,
                     hollow: fitted && c.slides && particles < RESOLVED_PARTICLES,
                     no_wear: self.get(r, &format!("{quantity}_max")) <= 0.0,
                 })
@@ -548,7 +574,7 @@ impl LoadFigure<'_> {
                         color,
                         marker,
                         style: Style::Means,
-                        points: data.points(c, spec.quantity, spec.per_area, self.fitted),
+                        points: data.points(c, spec.quantity, spec.per_area, self.fitted, spec.log),
                         reference: false,
                     }
                 })
@@ -577,7 +603,12 @@ impl LoadFigure<'_> {
             name: name.into(),
             title,
             panels,
-            legend_title: MEANS.into(),
+            legend_title: if self.panels.iter().any(|p| p.log) {
+                MEANS_ON_LOG_AXES
+            } else {
+                MEANS
+            }
+            .into(),
             legend,
             note: None,
         }

@@ -224,10 +224,18 @@ fn rates_are_per_unit_area_with_intervals_and_kims_band_only_for_kims_ceramics()
     let plain = p.y * 0.25;
     let base = plain / 1.2;
     assert!((p.y - base * 1.2 / 0.25).abs() < 1e-12 * p.y, "{p:?}");
+    // On its log axis the interval is drawn in log space: mean ×/÷ e^(t·se/mean), positive and
+    // symmetric about the mean there.
     let half = 4.302_652_7 * 0.1 / 3f64.sqrt() * base / 0.25;
-    assert!((p.high - p.y - half).abs() < 1e-6 * p.y, "{p:?}");
+    let factor = (half / p.y).exp();
+    assert!(fig4.panels[0].y.log);
+    assert!((p.high - p.y * factor).abs() < 1e-6 * p.high, "{p:?}");
+    assert!((p.low - p.y / factor).abs() < 1e-6 * p.low, "{p:?}");
     assert!(fig4.panels[0].y.label.contains("per unit nominal area"));
-    assert_eq!(fig4.legend_title, MEANS);
+    assert_eq!(fig4.legend_title, MEANS_ON_LOG_AXES);
+    // A spread wider than the mean: the linear interval reaches below zero, the drawn one does not.
+    assert_eq!(log_space_interval(1.0, 3.0), ((-2f64).exp(), 2f64.exp()));
+    assert!(log_space_interval(0.0, 1.0).0.is_nan() && log_space_interval(1.0, f64::NAN).1.is_nan());
     // 10 particles per pair at 𝒢₁ (30 summed over three pairs): resolved; Fig. 2 is not fitted.
     assert!(fig4.panels[0].series.iter().flat_map(|s| &s.points).all(|q| !q.hollow));
     assert!(named(&fig, "fig6_kim_comparison").panels[0].y_band.is_none());
