@@ -41,8 +41,8 @@ KIM_RANGE = tuple(_wearsim.KIM_EXPERIMENTAL_K)
 #: What the points and bars of the figures against load are (the legend's title): on a log axis
 #: the interval is drawn in log space, mean ×/÷ e^(t·se/mean), positive and symmetric about the mean.
 BARS = (
-    "mean over surface pairs; bars: 95 % confidence interval of the mean (Student t), on a log axis in log "
-    "space: mean ×/÷ e^(t·se/mean)"
+    "mean over surface pairs; bars: 95 % confidence interval of the mean (Student t); on a log axis drawn in "
+    "log space: mean ×/÷ e^(t·se/mean)"
 )
 
 #: Particles in the fit window of a point, summed over its surface pairs, below which its fitted
@@ -260,7 +260,8 @@ def draw(figure: Dict[str, Any]) -> Any:
         # No panel letters: the paper's letters name its rows of settings (Figs. 2, 4, 5), not quantities.
         ax.set_title(_shown(figure["title"]) if p == 0 else "", loc="left", fontsize=10)
     handles = [_handle(e) for e in figure["legend"]]
-    title = _shown(figure["legend_title"])
+    # One clause per line, as the CLI draws it.
+    title = _shown(figure["legend_title"]).replace("; ", "\n")
     fig.tight_layout(rect=(0, 0, 0.72, 1))
     # The legend in its own column right of the panels, never over the data (a figure saved with
     # ``bbox_inches="tight"`` widens to hold it).

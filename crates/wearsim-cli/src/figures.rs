@@ -48,17 +48,21 @@ pub fn save(dir: &Path, shown: &Path, name: &str, size: (u32, u32), figure: &imp
     // A first drawing, thrown away, measures the legend; the figure is then widened so that the
     // legend column fits its longest entry on one line and the panels keep at least three quarters
     // of the width (and no less than they were given).
+    // Likewise the panels are widened until the first panel's caption fits above it.
     LEGEND.with(|l| l.set((LEGEND_WIDTH, 0)));
+    CAPTION.with(|c| c.set(0.0));
     {
         let mut sink = String::new();
         let root = SVGBackend::with_string(&mut sink, size).into_drawing_area();
         figure.draw(&root)?;
     }
     let needed = LEGEND.with(|l| l.get().1);
+    let caption = CAPTION.with(|c| c.get()).max(1.0);
     let size = if needed == 0 {
         size
     } else {
-        let panels = size.0.saturating_sub(LEGEND_WIDTH).max(3 * needed);
+        let given = size.0.saturating_sub(LEGEND_WIDTH);
+        let panels = given.max(3 * needed).max((f64::from(given) * caption).ceil() as u32);
         LEGEND.with(|l| l.set((needed, 0)));
         (panels + needed, size.1)
     };
@@ -332,6 +336,12 @@ impl<'a, DB: DrawingBackend + 'a> Panel<'a, DB> {
     /// A panel on `area` with a caption, its axes, ticks and light grid drawn.
     pub fn new(area: &'a DrawingArea<DB, Shift>, caption: &str, x: Axis, y: Axis) -> Result<Self> {
         let (xr, yr) = (x.coordinate(), y.coordinate());
+        if !caption.is_empty() {
+            let font = (FONT, 15).into_font().color(&BLACK);
+            let wide = area.estimate_text_size(caption, &font).map_or(0, |(w, _)| w) + 40;
+            let given = area.dim_in_pixel().0.max(1);
+            CAPTION.with(|c| c.set(c.get().max(f64::from(wide) / f64::from(given))));
+        }
         let mut chart = ChartBuilder::on(area)
             .margin(10)
             .margin_right(18)
@@ -488,6 +498,9 @@ thread_local! {
     /// The legend column's width for the drawing under way (set by [`save`]), and the widest that a
     /// legend drawn asked for.
     static LEGEND: std::cell::Cell<(u32, u32)> = const { std::cell::Cell::new((LEGEND_WIDTH, 0)) };
+    /// How many times wider than its panel the widest caption drawn was (0 when all fit): [`save`]
+    /// widens the panels by that much, so that a caption is never cut at the panel's edges.
+    static CAPTION: std::cell::Cell<f64> = const { std::cell::Cell::new(0.0) };
 }
 
 /// Splits a figure into `n` panels side by side and a legend column on the right.
@@ -504,11 +517,13 @@ pub fn layout<DB: DrawingBackend>(
 /// Draws a legend (entries one per line, never wrapped) from the top, and records the width it needs.
 pub fn legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, title: &str, entries: &[Entry]) -> Result<()> {
     let font = (FONT, 12).into_font().color(&BLACK);
-    let mut y = 34;
-    if !title.is_empty() {
-        area.draw_text(title, &(FONT, 13).into_font().color(&BLACK), (8, y - 20))
+    // The title one clause (up to "; ") per line, so that a long one does not widen the figure.
+    let lines: Vec<&str> = title.split("; ").filter(|l| !l.is_empty()).collect();
+    for (k, line) in lines.iter().enumerate() {
+        area.draw_text(line, &(FONT, 13).into_font().color(&BLACK), (8, 14 + 17 * k as i32))
             .map_err(drawing)?;
     }
+    let mut y = 34 + 17 * (lines.len().max(1) as i32 - 1);
     let text_width = |t: &str, size: u32| {
         area.estimate_text_size(t, &(FONT, size).into_font().color(&BLACK))
             .map_or(7 * t.chars().count() as u32, |(w, _)| w)
@@ -516,7 +531,7 @@ pub fn legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, title: &str, en
     let needed = entries
         .iter()
         .map(|e| 42 + text_width(&e.label, 12) + 12)
-        .chain([8 + text_width(title, 13) + 12])
+        .chain(lines.iter().map(|l| 8 + text_width(l, 13) + 12))
         .max()
         .unwrap_or(0);
     LEGEND.with(|l| l.set((l.get().0, l.get().1.max(needed))));

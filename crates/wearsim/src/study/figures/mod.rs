@@ -284,7 +284,7 @@ pub const MEANS: &str = "mean over surface pairs; bars: 95 % confidence interval
 
 /// The same on a figure with log axes, whose bars are the interval drawn in log space.
 pub const MEANS_ON_LOG_AXES: &str = "mean over surface pairs; bars: 95 % confidence interval of the mean \
-(Student t), on a log axis in log space: mean ×/÷ e^(t·se/mean)";
+(Student t); on a log axis drawn in log space: mean ×/÷ e^(t·se/mean)";
 
 /// The 95 % interval of a mean `mean` whose Student-t interval reaches `high`, on a log axis: the
 /// same interval in log space (the delta method, ln m ± t·se/m), mean ×/÷ e^(t·se/mean). Always
@@ -1448,6 +1448,23 @@ fn memory_of_pair(i: usize, r: &SeriesOf, shown: Shown) -> (Vec<Series>, LegendE
             shown.unit("length")
         );
     }
+    // Where the pair's fit window starts: its N₀ there, the count the run-in rule reads.
+    if let Some(w) = first {
+        let at_start = r.steps.iter().find(|st| st.s >= w.fit_window_start);
+        if let Some(st) = at_start.filter(|st| st.initial_junctions > 0) {
+            series.push(Series {
+                label: format!("{pair}: N₀(s_r), where the running-in ends"),
+                color,
+                marker: 0,
+                style: Style::Markers,
+                points: vec![Point::at(st.s, st.initial_junctions as f64)],
+                reference: false,
+            });
+        }
+        if let Some(left) = lineages_left(&r.steps, w) {
+            label = format!("{label}, N₀(s_r)/N₀(0) = {:.0} %", 100.0 * left);
+        }
+    }
     let run_in = run_in_words(r);
     let verdict = run_in.split(" (").next().unwrap_or(&run_in);
     label = format!("{label} — {verdict}");
@@ -1486,16 +1503,20 @@ fn memory(pairs: &[SeriesOf], shown: Shown) -> Figure {
         legend.push(entry);
         lengths.extend(length);
     }
+    let markers = format!(
+        "; markers: each pair's N₀ where its fit window starts (run in with at most {:.0} % of N₀(0) left)",
+        100.0 * RUN_IN_LINEAGES_LEFT
+    );
     let legend_title = match mean_interval(&lengths) {
         Some(i) => format!(
-            "mean ℓ = {} [{}, {}] {} (95 % interval, Student t over {} pairs); dashed: each pair's fit",
+            "mean ℓ = {} [{}, {}] {} (95 % interval, Student t over {} pairs); dashed: each pair's fit{markers}",
             number(i.estimate),
             number(i.low),
             number(i.high),
             shown.unit("length"),
             i.n
         ),
-        None => "dashed: each pair's fit N₀(0) e^(−s/ℓ)".into(),
+        None => format!("dashed: each pair's fit N₀(0) e^(−s/ℓ){markers}"),
     };
     let title = match pairs.first() {
         Some(r) => format!("memory of the initial contact, {}", r.setting),

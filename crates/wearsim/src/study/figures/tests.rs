@@ -350,6 +350,30 @@ fn the_memory_figure_shows_every_pair_of_the_setting() {
         .collect();
     assert_eq!(verdicts, [true, false, false], "{:?}", fig[0].legend);
     assert!(fig[0].legend[2].label.ends_with("— not run in"));
+    // Each pair's N₀ where its fit window starts is marked, and its legend says how much of N₀(0)
+    // is left there.
+    let marks: Vec<&Series> = fig[0].panels[0]
+        .series
+        .iter()
+        .filter(|s| s.style == Style::Markers)
+        .collect();
+    assert_eq!(marks.len(), 3);
+    let start = results[0].results[0].fit_window_start;
+    for (mark, r) in marks.iter().zip(&results) {
+        let at = r.steps.iter().find(|st| st.s >= start).unwrap();
+        assert_eq!(
+            (mark.points[0].x, mark.points[0].y),
+            (at.s, at.initial_junctions as f64)
+        );
+    }
+    assert!(
+        fig[0].legend[1].label.contains("N₀(s_r)/N₀(0) = 1 %"),
+        "{}",
+        fig[0].legend[1].label
+    );
+    assert!(fig[0]
+        .legend_title
+        .contains("markers: each pair's N₀ where its fit window starts"));
     let band = fig[0].panels[0].x_band.clone().unwrap();
     assert_eq!((band.low, band.high), (0.0, 0.25 * 0.5));
     // Fig. 3 says it of its job.
