@@ -773,7 +773,7 @@ fn figure(study: &Study, entry: &'static str) -> Vec<Figure> {
         "fig4c" => constant_critical_diameter(data, shown),
         "fig6" => vec![kim_comparison(study)],
         "appC" => junction_counts(data, shown),
-        "appB-eq5" => vec![equation_5(data, shown)],
+        "appB-eq5" => vec![equation_5(data, study.tidy, shown)],
         "appF" => contact_severity(study.tidy, shown).into_iter().collect(),
         "fig3" => vec![series_figure(study, entry, "fig3_wear_volume", |r, _, shown| {
             wear_volume(r, shown)
@@ -950,8 +950,39 @@ fn kim_comparison(study: &Study) -> Figure {
 
 /// Fig. B.9b: Eq. 5 (ω d*³ dN*₊/ds) against the summed wear rate, one point per setting and load
 /// (means over surface pairs, aligned by row), with the line Eq. 5 = W.
-fn equation_5(data: &Curves, shown: Shown) -> Figure {
+fn equation_5(data: &Curves, tidy: &Table, shown: Shown) -> Figure {
     let unit = shown.unit("wear_rate");
+    // Eq. 5 / W against load, as the finding judges it: per setting, the mean over its run-in
+    // pairs with its Student-t interval, beside the range of "slightly underestimates".
+    let ratios = crate::study::findings::equation_5_over_w(tidy);
+    let (low, high) = crate::study::findings::EQUATION_5_OVER_W;
+    let ratio_series: Vec<Series> = data
+        .curves
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let mut points: Vec<Point> = ratios
+                .iter()
+                .filter(|(curve, _, _)| *curve == i)
+                .filter_map(|(_, pressure, interval)| {
+                    interval.map(|r| Point {
+                        low: r.low,
+                        high: r.high,
+                        ..Point::at(*pressure, r.estimate)
+                    })
+                })
+                .collect();
+            points.sort_by(|a, b| a.x.total_cmp(&b.x));
+            Series {
+                label: c.label.clone(),
+                color: Color::Palette(i),
+                marker: c.material,
+                style: Style::Means,
+                points,
+                reference: false,
+            }
+        })
+        .collect();
     let mut legend = vec![LegendEntry {
         label: "Eq. 5 = W".into(),
         color: Color::Grey,
@@ -984,24 +1015,44 @@ fn equation_5(data: &Curves, shown: Shown) -> Figure {
     Figure {
         entry: "appB-eq5",
         name: "appB_eq5_against_w".into(),
-        title: "Eq. 5 against the summed wear rate (mean over surface pairs)".into(),
-        panels: vec![Panel {
-            x: Axis {
-                label: format!("wear rate W, summed particle volumes ({unit})"),
-                log: true,
-                fallback: (1e-6, 1e-3),
+        title: "Eq. 5 against the summed wear rate (mean over surface pairs), and their ratio against load".into(),
+        panels: vec![
+            Panel {
+                x: Axis {
+                    label: format!("wear rate W, summed particle volumes ({unit})"),
+                    log: true,
+                    fallback: (1e-6, 1e-3),
+                },
+                y: Axis {
+                    label: format!("Eq. 5: ω d*³ dN*₊/ds ({unit})"),
+                    log: true,
+                    fallback: (1e-6, 1e-3),
+                },
+                x_band: None,
+                y_band: None,
+                diagonal: true,
+                series,
             },
-            y: Axis {
-                label: format!("Eq. 5: ω d*³ dN*₊/ds ({unit})"),
-                log: true,
-                fallback: (1e-6, 1e-3),
+            Panel {
+                x: shown.load_axis(),
+                y: Axis {
+                    label: "Eq. 5 / W, mean over the run-in surface pairs (over all where none is)".into(),
+                    log: false,
+                    fallback: (0.0, 1.5),
+                },
+                x_band: None,
+                y_band: Some(Band {
+                    low,
+                    high,
+                    color: Color::Band,
+                }),
+                diagonal: false,
+                series: ratio_series,
             },
-            x_band: None,
-            y_band: None,
-            diagonal: true,
-            series,
-        }],
-        legend_title: String::new(),
+        ],
+        legend_title: format!(
+            "right: {MEANS}; shaded: Eq. 5 / W in [{low}, {high}], appendix B's \"slightly underestimates\""
+        ),
         legend,
         note: None,
     }

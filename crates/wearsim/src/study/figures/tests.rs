@@ -322,6 +322,25 @@ fn equation_5_pairs_w_and_its_estimate_of_the_same_row() {
             assert!((q.y / q.x - 0.9).abs() < 1e-12, "{q:?}");
         }
     }
+    // Beside it, Eq. 5 / W against load per curve as the finding reads it (0.9 in every pair, with no
+    // spread), over the range of "slightly underestimates".
+    let ratios = &fig[0].panels[1];
+    assert!(!ratios.y.log && ratios.x.label.contains("nominal pressure"));
+    let band = ratios.y_band.clone().unwrap();
+    assert_eq!((band.low, band.high), (0.6, 1.0));
+    assert_eq!(ratios.series.len(), fig[0].panels[0].series.len());
+    for s in &ratios.series {
+        // F_N = 2.5 and 5×10⁻⁴ on a box of 0.5 × 0.5 L.
+        let x: Vec<f64> = s.points.iter().map(|q| q.x).collect();
+        assert!(
+            (x[0] - 1e-3).abs() < 1e-15 && (x[1] - 2e-3).abs() < 1e-15 && x.len() == 2,
+            "{x:?}"
+        );
+        for q in &s.points {
+            assert!((q.y - 0.9).abs() < 1e-12 && (q.low - 0.9).abs() < 1e-12, "{q:?}");
+        }
+    }
+    assert!(fig[0].legend_title.contains("slightly underestimates"));
 }
 
 #[test]

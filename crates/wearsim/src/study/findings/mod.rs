@@ -680,5 +680,29 @@ pub fn units_csv(findings: &[Finding]) -> String {
     String::from_utf8(w.into_inner().expect("writing to memory")).expect("UTF-8 text")
 }
 
+/// Appendix B's Eq. 5 / W per setting, as the finding "equation-5-slightly-below-w" reads it, for
+/// the figure that draws it against load: (curve, nominal pressure F_N/(Lx·Ly), the Student-t
+/// interval of the mean over the run-in pairs, pairs with W = 0 left out); over all pairs of a
+/// setting where none is run in, as the other figures against load (`output::run_in_rows`). None
+/// where fewer than two pairs have W > 0.
+pub(crate) fn equation_5_over_w(tidy: &Table) -> Vec<(usize, f64, Option<Interval>)> {
+    setting::settings(tidy, setting::RunInRule::LineagesLeft)
+        .iter()
+        .map(|s| {
+            let run_in = s.run_in_pairs();
+            let pairs: Vec<&setting::Pair> = if run_in.is_empty() {
+                s.pairs.iter().collect()
+            } else {
+                run_in
+            };
+            let ratios: Vec<f64> = pairs.iter().map(|p| sliding::equation_5_over_w(p)).collect();
+            (s.curve, s.pressure, crate::stats::mean_interval(&ratios))
+        })
+        .collect()
+}
+
+/// The range Eq. 5 / W lies in where Eq. 5 "slightly underestimates" W (appendix B).
+pub(crate) const EQUATION_5_OVER_W: (f64, f64) = sliding::EQUATION_5_OVER_W;
+
 #[cfg(test)]
 mod tests;

@@ -225,14 +225,21 @@ pub(super) fn decay_length_varies_with_load(all: &[Setting]) -> Finding {
     )
 }
 
+/// Where appendix B's "slightly underestimates" puts Eq. 5 / W: [0.6, 1].
+pub(crate) const EQUATION_5_OVER_W: (f64, f64) = (0.6, 1.0);
+
+/// Eq. 5 / W of one surface pair (NaN where W = 0).
+pub(super) fn equation_5_over_w(p: &Pair) -> f64 {
+    p.get("wear_rate_estimate") / p.get("wear_rate")
+}
+
 /// Appendix B (Fig. B.9b): Eq. 5 slightly underestimates W, per setting; with it, the particles'
 /// cube-mean diameter d̄ = d* (W / Eq. 5)^(1/3), d* as the typical particle size (§3.1, §6).
 pub(super) fn equation_5_slightly_below_w(all: &[Setting]) -> Finding {
     let mut tally = Tally::default();
+    let (low, high) = EQUATION_5_OVER_W;
     for s in all {
-        let outcome = on_run_in_pairs(s, "Eq. 5 / W", Region::Within(0.6, 1.0), |_, p| {
-            p.get("wear_rate_estimate") / p.get("wear_rate")
-        });
+        let outcome = on_run_in_pairs(s, "Eq. 5 / W", Region::Within(low, high), |_, p| equation_5_over_w(p));
         // The same numbers read as a size: d̄/d* = (W / Eq. 5)^(1/3).
         let size = |text: &str| -> String {
             let ratios: Vec<f64> = s
@@ -258,10 +265,11 @@ pub(super) fn equation_5_slightly_below_w(all: &[Setting]) -> Finding {
         "equation-5-slightly-below-w",
         "appendix B (Fig. B.9b): ω d*³ dN*₊/ds (Eq. 5) slightly underestimates the summed wear rate; d* is not only \
          the minimum but probably also the common particle size (§3.1, §6)",
-        "per setting: Eq. 5 / W in [0.6, 1] by its Student-t interval over the run-in pairs (pairs with W = 0 left \
-         out); the same numbers give the particles' cube-mean diameter d̄ = d* (W / Eq. 5)^(1/3), shown beside it, not \
-         counted apart"
-            .into(),
+        format!(
+            "per setting: Eq. 5 / W in [{low}, {high}] by its Student-t interval over the run-in pairs (pairs with W = 0 \
+             left out); the same numbers give the particles' cube-mean diameter d̄ = d* (W / Eq. 5)^(1/3), shown beside \
+             it, not counted apart"
+        ),
         "settings",
         tally,
     )
