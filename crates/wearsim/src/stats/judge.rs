@@ -169,6 +169,34 @@ pub fn pairs_needed_for_counts(a: u64, b: u64, pairs: usize, scale: f64, region:
     smallest(pairs, decides)
 }
 
+/// The number of surface pairs at which two ratios of particle counts, `first` = (a₀, b₀, n₀) and
+/// `second` = (a₁, b₁, n₁), counts a and b observed over n pairs and growing in proportion to the
+/// pairs, would have disjoint 95 % intervals with [`POWER`]: the log ratios' distance d against
+/// z₀.₉₇₅ (se₀ + se₁) + z_power √(se₀² + se₁²), se = √(1/a + 1/b) at the grown counts. `None` with a
+/// zero count (no log ratio to extrapolate: the caller keeps its own search), equal ratios, or
+/// beyond [`MAX_PAIRS`].
+pub fn pairs_needed_for_disjoint_ratios(first: (u64, u64, usize), second: (u64, u64, usize)) -> Option<usize> {
+    let counts = [first.0, first.1, second.0, second.1];
+    if first.2 == 0 || second.2 == 0 || counts.contains(&0) {
+        return None;
+    }
+    let ln_ratio = |(a, b, _): (u64, u64, usize)| (a as f64 / b as f64).ln();
+    let distance = (ln_ratio(second) - ln_ratio(first)).abs();
+    if distance == 0.0 || !distance.is_finite() {
+        return None;
+    }
+    let z = Normal::standard();
+    let (level, power) = (z.inverse_cdf(0.5 + LEVEL / 2.0), z.inverse_cdf(POWER));
+    let se = |(a, b, n): (u64, u64, usize), k: usize| {
+        let grow = |c: u64| (c as f64 * k as f64 / n as f64).max(1.0);
+        (1.0 / grow(a) + 1.0 / grow(b)).sqrt()
+    };
+    smallest(first.2.min(second.2), |k| {
+        let (s0, s1) = (se(first, k), se(second, k));
+        level * (s0 + s1) + power * (s0 * s0 + s1 * s1).sqrt() < distance
+    })
+}
+
 /// The smallest k ≥ `from` (up to [`MAX_PAIRS`]) for which `decides` holds, assuming it keeps
 /// holding above: doubling, then bisection. The search behind the pairs-needed functions, for rules
 /// that combine intervals of their own.
@@ -213,6 +241,19 @@ mod tests {
         assert_eq!(w.side_of(0.9, 1.1), Side::Undecided);
         assert_eq!(Region::Above(1.0).side_of(1.2, f64::INFINITY), Side::Holds);
         assert_eq!(w.describe(), "in [0.6, 1]");
+    }
+
+    #[test]
+    fn the_pairs_needed_to_part_two_count_ratios_have_80_percent_power() {
+        // 10 vs 20 and 30 vs 15 particles over 5 pairs: log ratios ∓ln 2, distance 1.386; at k pairs
+        // (1.960 (√0.75 + √0.5) + 0.842 √1.25)/√k = 4.024/√k, under 1.386 first at k = 9 (1.423 at 8).
+        assert_eq!(pairs_needed_for_disjoint_ratios((10, 20, 5), (30, 15, 5)), Some(9));
+        assert_eq!(pairs_needed_for_disjoint_ratios((30, 15, 5), (10, 20, 5)), Some(9));
+        // Fewer pairs observed at one load: its counts grow faster.
+        assert!(pairs_needed_for_disjoint_ratios((10, 20, 5), (30, 15, 3)).unwrap() < 9);
+        // A zero count has no log ratio; equal ratios never part.
+        assert_eq!(pairs_needed_for_disjoint_ratios((0, 20, 5), (30, 15, 5)), None);
+        assert_eq!(pairs_needed_for_disjoint_ratios((10, 20, 5), (15, 30, 5)), None);
     }
 
     #[test]

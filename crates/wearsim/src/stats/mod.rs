@@ -16,4 +16,7 @@ pub use interval::{
     count_ratio, mean_interval, paired_ratio, poisson_interval, ratio_of_means, t_critical, unpaired_ratio, Interval,
     Method, BOOTSTRAP_RESAMPLES, LEVEL,
 };
-pub use judge::{pairs_needed, pairs_needed_for_counts, pairs_needed_unpaired, Region, Side, MAX_PAIRS, POWER};
+pub use judge::{
+    pairs_needed, pairs_needed_for_counts, pairs_needed_for_disjoint_ratios, pairs_needed_unpaired, Region, Side,
+    MAX_PAIRS, POWER,
+};

@@ -85,8 +85,13 @@ fn onset(a: &[&Setting], b: &[&Setting]) -> Outcome {
     Outcome::Judged {
         side,
         text: format!("{label}: {}; {}", show_at(low), show_at(top)),
+        // With 80 % power from the log ratios where every count is positive; else the counts
+        // grown until their intervals part.
         needed: (side == Side::Undecided)
-            .then(|| smallest(low.2, |k| side_at(k) != Side::Undecided))
+            .then(|| {
+                crate::stats::pairs_needed_for_disjoint_ratios((low.0, low.1, low.2), (top.0, top.1, top.2))
+                    .or_else(|| smallest(low.2, |k| side_at(k) != Side::Undecided))
+            })
             .flatten(),
         // Two intervals compared with each other, not one against a threshold.
         numbers: None,
