@@ -632,49 +632,44 @@ pub fn markdown(findings: &[Finding]) -> String {
     text
 }
 
+/// One column of `findings_units.csv`: its name and its cell of a finding's unit.
+type UnitColumn = (&'static str, fn(&Finding, &Unit) -> String);
+
+fn cell(x: Option<f64>) -> String {
+    x.map_or(String::new(), |v| format!("{v}"))
+}
+
+/// The columns of `findings_units.csv`, each named once beside what fills it.
+const UNIT_COLUMNS: [UnitColumn; 15] = [
+    ("finding", |f, _| f.key.to_string()),
+    ("unit", |_, u| u.label.clone()),
+    ("outcome", |_, u| u.outcome.to_string()),
+    ("quantity", |_, u| u.quantity.clone()),
+    ("estimate", |_, u| cell(u.estimate)),
+    ("low", |_, u| cell(u.low)),
+    ("high", |_, u| cell(u.high)),
+    ("n", |_, u| u.n.map_or(String::new(), |n| n.to_string())),
+    ("method", |_, u| u.method.clone()),
+    ("rule", |_, u| u.rule.clone()),
+    ("p", |_, u| cell(u.p)),
+    ("p_holm", |_, u| cell(u.p_holm)),
+    ("margin", |_, u| cell(u.margin)),
+    ("pairs_to_decide", |_, u| {
+        u.pairs_to_decide.map_or(String::new(), |n| n.to_string())
+    }),
+    ("line", |_, u| u.text.clone()),
+];
+
 /// Every unit of every finding, one row each: `findings_units.csv`, which `wearsim study plot`
 /// writes beside findings.md (columns: finding, then [`Unit`]'s fields).
 pub fn units_csv(findings: &[Finding]) -> String {
     let mut w = csv::Writer::from_writer(Vec::new());
-    let opt = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v}"));
-    w.write_record([
-        "finding",
-        "unit",
-        "outcome",
-        "quantity",
-        "estimate",
-        "low",
-        "high",
-        "n",
-        "method",
-        "rule",
-        "p",
-        "p_holm",
-        "margin",
-        "pairs_to_decide",
-        "line",
-    ])
-    .expect("writing to memory");
+    w.write_record(UNIT_COLUMNS.iter().map(|(name, _)| *name))
+        .expect("writing to memory");
     for f in findings {
         for u in &f.units {
-            w.write_record([
-                f.key.to_string(),
-                u.label.clone(),
-                u.outcome.to_string(),
-                u.quantity.clone(),
-                opt(u.estimate),
-                opt(u.low),
-                opt(u.high),
-                u.n.map_or(String::new(), |n| n.to_string()),
-                u.method.clone(),
-                u.rule.clone(),
-                opt(u.p),
-                opt(u.p_holm),
-                opt(u.margin),
-                u.pairs_to_decide.map_or(String::new(), |n| n.to_string()),
-                u.text.clone(),
-            ])
-            .expect("writing to memory");
+            w.write_record(UNIT_COLUMNS.iter().map(|(_, value)| value(f, u)))
+                .expect("writing to memory");
         }
     }
     String::from_utf8(w.into_inner().expect("writing to memory")).expect("UTF-8 text")
