@@ -321,7 +321,9 @@ def constant_critical_diameter(tidy: pd.DataFrame) -> List[Any]:
 
 
 def equation_5(tidy: pd.DataFrame) -> Any:
-    """Paper Fig. B.9b: Eq. 5 (ω d*³ dN*₊/ds) against the summed W, means over surface pairs."""
+    """Paper Fig. B.9b: Eq. 5 (ω d*³ dN*₊/ds) against the summed W, means over surface pairs; beside
+    it Eq. 5 / W against load, the mean over the run-in pairs with its 95 % interval, over the range
+    [0.6, 1] of appendix B's "slightly underestimates"."""
     return _one(tidy, "appB-eq5")
 
 

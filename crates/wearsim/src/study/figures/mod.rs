@@ -66,7 +66,7 @@ pub const FIGURES: [FigureSpec; 11] = [
     },
     FigureSpec {
         name: "appB-eq5",
-        about: "Eq. 5, ω d*³ dN*₊/ds, against the summed W (Fig. B.9b)",
+        about: "Eq. 5, ω d*³ dN*₊/ds, against the summed W (Fig. B.9b), and Eq. 5 / W against load",
     },
     FigureSpec {
         name: "appC",
@@ -949,7 +949,8 @@ fn kim_comparison(study: &Study) -> Figure {
 }
 
 /// Fig. B.9b: Eq. 5 (ω d*³ dN*₊/ds) against the summed wear rate, one point per setting and load
-/// (means over surface pairs, aligned by row), with the line Eq. 5 = W.
+/// (means over surface pairs, aligned by row), with the line Eq. 5 = W; beside it Eq. 5 / W against
+/// load with its interval, as the finding of appendix B judges it.
 fn equation_5(data: &Curves, tidy: &Table, shown: Shown) -> Figure {
     let unit = shown.unit("wear_rate");
     // Eq. 5 / W against load, as the finding judges it: per setting, the mean over its run-in
