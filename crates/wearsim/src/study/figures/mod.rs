@@ -948,16 +948,12 @@ fn kim_comparison(study: &Study) -> Figure {
     .build(&study.data, study.shown, "fig6", "fig6_kim_comparison", title.into())
 }
 
-/// Fig. B.9b: Eq. 5 (ω d*³ dN*₊/ds) against the summed wear rate, one point per setting and load
-/// (means over surface pairs, aligned by row), with the line Eq. 5 = W; beside it Eq. 5 / W against
-/// load with its interval, as the finding of appendix B judges it.
-fn equation_5(data: &Curves, tidy: &Table, shown: Shown) -> Figure {
-    let unit = shown.unit("wear_rate");
-    // Eq. 5 / W against load, as the finding judges it: per setting, the mean over its run-in
-    // pairs with its Student-t interval, beside the range of "slightly underestimates".
+/// Eq. 5 / W against load, as the finding judges it: per curve and setting, the mean over its
+/// run-in pairs with its Student-t interval, over the range of "slightly underestimates".
+fn equation_5_over_w_panel(data: &Curves, tidy: &Table, shown: Shown) -> Panel {
     let ratios = crate::study::findings::equation_5_over_w(tidy);
     let (low, high) = crate::study::findings::EQUATION_5_OVER_W;
-    let ratio_series: Vec<Series> = data
+    let series: Vec<Series> = data
         .curves
         .iter()
         .enumerate()
@@ -984,6 +980,30 @@ fn equation_5(data: &Curves, tidy: &Table, shown: Shown) -> Figure {
             }
         })
         .collect();
+    Panel {
+        x: shown.load_axis(),
+        y: Axis {
+            label: "Eq. 5 / W, mean over the run-in surface pairs (over all where none is)".into(),
+            log: false,
+            fallback: (0.0, 1.5),
+        },
+        x_band: None,
+        y_band: Some(Band {
+            low,
+            high,
+            color: Color::Band,
+        }),
+        diagonal: false,
+        series,
+    }
+}
+
+/// Fig. B.9b: Eq. 5 (ω d*³ dN*₊/ds) against the summed wear rate, one point per setting and load
+/// (means over surface pairs, aligned by row), with the line Eq. 5 = W; beside it Eq. 5 / W against
+/// load with its interval, as the finding of appendix B judges it.
+fn equation_5(data: &Curves, tidy: &Table, shown: Shown) -> Figure {
+    let unit = shown.unit("wear_rate");
+    let (low, high) = crate::study::findings::EQUATION_5_OVER_W;
     let mut legend = vec![LegendEntry {
         label: "Eq. 5 = W".into(),
         color: Color::Grey,
@@ -1034,22 +1054,7 @@ fn equation_5(data: &Curves, tidy: &Table, shown: Shown) -> Figure {
                 diagonal: true,
                 series,
             },
-            Panel {
-                x: shown.load_axis(),
-                y: Axis {
-                    label: "Eq. 5 / W, mean over the run-in surface pairs (over all where none is)".into(),
-                    log: false,
-                    fallback: (0.0, 1.5),
-                },
-                x_band: None,
-                y_band: Some(Band {
-                    low,
-                    high,
-                    color: Color::Band,
-                }),
-                diagonal: false,
-                series: ratio_series,
-            },
+            equation_5_over_w_panel(data, tidy, shown),
         ],
         legend_title: format!(
             "right: {MEANS}; shaded: Eq. 5 / W in [{low}, {high}], appendix B's \"slightly underestimates\""
@@ -1621,28 +1626,24 @@ struct ResultOfLoad {
     result: WearResult,
 }
 
-/// The series of `run`, one of `runs`, at load `load` (default: its series' last) as the series
-/// figures take it; without results, an error where the figure `needs_results`.
-fn series_of_run<'a>(
-    run: &RunTables,
-    runs: usize,
-    load: Option<f64>,
-    needs_results: bool,
-    shown: Shown,
-) -> Result<SeriesOf<'a>> {
-    let rows: Vec<SeriesRow> = run.series.records("series")?;
+/// The load of a run's series rows that `load` names (matched as Python's `np.isclose(…,
+/// rtol=1e-12)`: a load typed back from its printed form), or the series' last.
+fn load_of_series(rows: &[SeriesRow], load: Option<f64>) -> Result<f64> {
     let loads: Vec<f64> = rows.iter().fold(Vec::new(), |mut loads, r| {
         if !loads.contains(&r.load) {
             loads.push(r.load);
         }
         loads
     });
-    let load = match load {
-        None => *loads.last().ok_or_else(|| Error::param("series", "it has no row"))?,
-        // Matched as Python's `np.isclose(…, rtol=1e-12)`: a load typed back from its printed form.
-        Some(asked) => *loads
+    match load {
+        None => loads
+            .last()
+            .copied()
+            .ok_or_else(|| Error::param("series", "it has no row")),
+        Some(asked) => loads
             .iter()
-            .find(|&&l| (l - asked).abs() <= 1e-12 * asked.abs())
+            .copied()
+            .find(|&l| (l - asked).abs() <= 1e-12 * asked.abs())
             .ok_or_else(|| {
                 let have: Vec<String> = loads.iter().map(|&l| number(l)).collect();
                 Error::param(
@@ -1653,8 +1654,14 @@ fn series_of_run<'a>(
                         have.join(", ")
                     ),
                 )
-            })?,
-    };
+            }),
+    }
+}
+
+/// The results of `run` at `load`; without results, where the figure does not `need` them, the
+/// fracture energies of the series in its order with nothing fitted (and d* unknown). An error
+/// where none is left.
+fn results_of_run(run: &RunTables, rows: &[SeriesRow], load: f64, need: bool) -> Result<Vec<WearResult>> {
     let results: Vec<WearResult> = match run.results {
         Some(table) => table
             .records::<ResultOfLoad>("results")?
@@ -1662,8 +1669,7 @@ fn series_of_run<'a>(
             .filter(|r| r.load == load)
             .map(|r| r.result)
             .collect(),
-        // The fracture energies of the series, in its order, with nothing fitted (and d* unknown).
-        None if !needs_results => rows
+        None if !need => rows
             .iter()
             .filter(|r| r.load == load)
             .fold(Vec::new(), |mut energies: Vec<f64>, r| {
@@ -1696,6 +1702,21 @@ fn series_of_run<'a>(
             ),
         ));
     }
+    Ok(results)
+}
+
+/// The series of `run`, one of `runs`, at load `load` (default: its series' last) as the series
+/// figures take it; without results, an error where the figure `needs_results`.
+fn series_of_run<'a>(
+    run: &RunTables,
+    runs: usize,
+    load: Option<f64>,
+    needs_results: bool,
+    shown: Shown,
+) -> Result<SeriesOf<'a>> {
+    let rows: Vec<SeriesRow> = run.series.records("series")?;
+    let load = load_of_series(&rows, load)?;
+    let results = results_of_run(run, &rows, load, needs_results)?;
     let energies: Vec<f64> = results.iter().map(|w| w.fracture_energy).collect();
     let steps = steps_of_rows(&rows, load, &energies)?;
     let who = format!("F_N = {} {}", number(load), shown.unit("load"));

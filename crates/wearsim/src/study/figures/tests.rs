@@ -467,6 +467,26 @@ fn a_runs_series_figures_plot_the_numbers_of_the_studys() {
     let words = |t: &str| t.split("; ").last().unwrap().to_string();
     let run = run_figure("fig3", &runs[..1], None, Units::Reduced).unwrap();
     assert_eq!(words(&run.title), words(&study[0].title));
+}
+
+/// A run's figure without results, at a load it does not have, of a figure that is not a series
+/// figure, or of a series cut short: refused, each saying why.
+#[test]
+fn a_runs_series_figures_name_what_they_lack() {
+    let (results, _) = decaying(REDUCED);
+    let job = &results[0];
+    let series = Table::of(&job.series_rows());
+    let mut with_load = Table::of(&job.results);
+    with_load.columns.push("load".into());
+    for row in &mut with_load.rows {
+        row.push(Cell::Float(job.load));
+    }
+    let of_job = [(series, with_load)];
+    let runs = [RunTables {
+        label: "pair 1",
+        series: &of_job[0].0,
+        results: Some(&of_job[0].1),
+    }];
     // appB without results names its curves by 𝒢; fig3 and memory need them, and say so.
     let bare = [RunTables {
         label: "bare",
