@@ -57,6 +57,7 @@ __all__ = [
     "preprocess_surface",
     "radial_psd",
     "read_surface",
+    "run_figure",
     "series_job",
     "severity_fits",
     "slide",
