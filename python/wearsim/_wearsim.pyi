@@ -178,7 +178,7 @@ def run_figure(
     entry: str,
     runs: List[Tuple[str, Dict[str, List[Any]], Optional[Dict[str, List[Any]]]]],
     load: Optional[float] = None,
-    units: str = "reduced",
+    length_unit: str = "L",
 ) -> Dict[str, Any]: ...
 
 @final

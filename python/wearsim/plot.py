@@ -341,18 +341,6 @@ def contact_severity(tidy: pd.DataFrame) -> Any:
 Results = Union[pd.DataFrame, Sequence[Dict[str, Any]]]
 
 
-def _units(length_unit: str) -> str:
-    """The unit system whose labels a run's figure takes: lengths in L (reduced units) or in metres."""
-    if length_unit == "L":
-        return "reduced"
-    if length_unit == "m":
-        return "si"
-    raise ValueError(
-        f"invalid `length_unit` {length_unit!r}: 'L' (reduced units, lengths in units of L) or 'm' (SI, a run "
-        'file with units = "si")'
-    )
-
-
 def _run_figure(
     entry: str,
     runs: Sequence[Tuple[str, pd.DataFrame, Optional[Results]]],
@@ -360,22 +348,14 @@ def _run_figure(
     length_unit: str,
 ) -> Any:
     """Draws the library's figure ``entry`` of one run's series (or several runs', the memory figure):
-    the figure and its numbers are the library's, as a study's series figures are."""
-    units = _units(length_unit)
+    the figure and its numbers are the library's, as a study's series figures are. The library checks
+    the arguments: a series missing a column, results missing where the figure draws their fits, a
+    load the series does not have, a ``length_unit`` other than "L" or "m" are a ``ValueError``."""
     tables = [
         (label, _columns(series), None if results is None else _columns(pd.DataFrame(results)))
         for label, series, results in runs
     ]
-    return draw(_wearsim.run_figure(entry, tables, load, units))
-
-
-def _required(results: Optional[Results], what: str) -> Results:
-    if results is None:
-        raise ValueError(
-            f"invalid `results`: pass the library's results of the run ({what}): `summary['results']` of "
-            "wearsim.slide, or the job's rows of the tidy table"
-        )
-    return results
+    return draw(_wearsim.run_figure(entry, tables, load, length_unit))
 
 
 def wear_volume(
@@ -392,7 +372,6 @@ def wear_volume(
     (``summary["results"]`` of :func:`wearsim.slide`, or the job's rows of the tidy table), which
     are required: the figure draws the library's fit, never one of its own. ``length_unit``: "L"
     (reduced units) or "m" (SI)."""
-    results = _required(results, "wear_rate, wear_volume_intercept, fit_window_start")
     return _run_figure("fig3", [("V(s)", series, results)], load, length_unit)
 
 
@@ -425,10 +404,9 @@ def memory(
     and the mean ℓ with its 95 % interval over the pairs heads the legend. The figure is the
     library's (the study figure ``memory_of_initial_contact``; :func:`memory_of_setting` draws it
     from a study folder)."""
-    what = "memory_decay_length, memory_fit_initial_junctions"
-    if isinstance(series, pd.DataFrame):
-        series = [("N₀(s)", series, _required(results, what))]
-    runs = [(label, one, _required(res, what)) for label, one, res in series]
+    runs: Sequence[Tuple[str, pd.DataFrame, Optional[Results]]] = (
+        [("N₀(s)", series, results)] if isinstance(series, pd.DataFrame) else series
+    )
     return _run_figure("memory", runs, load, length_unit)
 
 

@@ -262,25 +262,25 @@ fn table_figures<'py>(
 
 /// A series figure (`fig3`, `appB`, `memory`) of sliding runs outside a study
 /// (`wearsim::study::figures::run_figure`): `runs` holds (label, series columns, results columns or
-/// None) per run; `units` "reduced" or "si".
+/// None) per run; `length_unit` names the unit system by its length unit, "L" or "m".
 #[pyfunction]
-#[pyo3(signature = (entry, runs, load = None, units = "reduced"))]
+#[pyo3(signature = (entry, runs, load = None, length_unit = "L"))]
 fn run_figure<'py>(
     py: Python<'py>,
     entry: &str,
     runs: Vec<(String, Bound<'py, PyDict>, Option<Bound<'py, PyDict>>)>,
     load: Option<f64>,
-    units: &str,
+    length_unit: &str,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let units = match units {
-        "reduced" => Units::Reduced,
-        "si" => Units::Si,
-        other => {
-            return Err(PyValueError::new_err(format!(
-                "invalid `units` {other:?}: \"reduced\" or \"si\""
-            )))
-        }
-    };
+    let units = [Units::Reduced, Units::Si]
+        .into_iter()
+        .find(|u| u.length_unit() == length_unit)
+        .ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "invalid `length_unit` {length_unit:?}: \"L\" (reduced units, lengths in units of L) or \"m\" (SI, a run \
+                 file with units = \"si\")"
+            ))
+        })?;
     let tables = runs
         .iter()
         .map(|(label, series, results)| {

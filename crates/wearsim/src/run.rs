@@ -26,7 +26,8 @@ use crate::error::{Error, Interrupt, Result};
 use crate::estimate::{Calibration, Estimator, LoadEstimate, Sampling, MAX_SAMPLES, TARGET_SAMPLING_ERROR};
 use crate::grid::Grid;
 use crate::output::{
-    estimate_rows, estimate_summary, series_csv, series_rows, sliding_summary, SeriesRow, SlidingInputs, Table,
+    distinct, estimate_rows, estimate_summary, series_csv, series_rows, sliding_summary, SeriesRow, SlidingInputs,
+    Table,
 };
 use crate::sliding::{
     resolution_warnings, Checkpointing, LoadRun, Resumed, SlidingConfig, SlidingSetup, SlidingState, StepView,
@@ -41,17 +42,6 @@ pub struct SlidingRun<'a> {
     setup: SlidingSetup<'a>,
     warnings: Vec<String>,
     surfaces_seconds: f64,
-}
-
-/// Every distinct warning once, in the order first given.
-fn distinct(warnings: impl IntoIterator<Item = String>) -> Vec<String> {
-    let mut out: Vec<String> = Vec::new();
-    for w in warnings {
-        if !out.contains(&w) {
-            out.push(w);
-        }
-    }
-    out
 }
 
 impl<'a> SlidingRun<'a> {

@@ -20,6 +20,7 @@ mod tables;
 mod units;
 
 pub use fields::{FieldSelection, FieldsWriter};
+
 pub use figure_data::{
     curve_labels, has_kim_materials, kim_material, kim_of_row, number, pretty, severity_fits, KimMaterial,
     MaterialSeverity, KIM_1986, KIM_EXPERIMENTAL_K, KIM_SEVERITY_FIT, PAPER_SEVERITY_FIT,
@@ -30,6 +31,7 @@ pub use jobs::{
     AGGREGATE_SUFFIXES, ALONG_A_CURVE, FIT_WINDOW_COLUMNS, JOB_FORMAT, NOT_A_SETTING, STATISTICS, TOTALLED,
 };
 pub use provenance::{Provenance, DEPENDENCY_VERSIONS};
+pub(crate) use series::distinct;
 pub use series::{job_series_rows, lineages_left, series_rows, steps_of_rows, SeriesRow, StepRow};
 pub use summary::{
     contact_summary, estimate_rows, estimate_summary, junctions_summary, series_csv, sliding_summary,

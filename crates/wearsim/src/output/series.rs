@@ -214,19 +214,25 @@ pub fn lineages_left(steps: &[StepRow], w: &WearResult) -> Option<f64> {
         .or_else(|| crate::sliding::lineages_left(steps.iter().map(|r| (r.s, r.initial_junctions)), w.fit_window_start))
 }
 
+/// Every distinct item once, in the order first given (a run's warnings, a series' loads, fracture
+/// energies and sliding distances).
+pub(crate) fn distinct<T: PartialEq>(items: impl IntoIterator<Item = T>) -> Vec<T> {
+    let mut out: Vec<T> = Vec::new();
+    for item in items {
+        if !out.contains(&item) {
+            out.push(item);
+        }
+    }
+    out
+}
+
 /// The steps of one load back from its series rows (the inverse of [`job_series_rows`]): the rows of
 /// load `load`, one step per sliding distance in their order, with the counts and the volume of
 /// each fracture energy of `energies` in its order. The error names a step that lacks one of them
 /// (a series filtered by fracture energy, or the rows of another run).
 pub fn steps_of_rows(rows: &[SeriesRow], load: f64, energies: &[f64]) -> crate::error::Result<Vec<StepRow>> {
     let mine: Vec<&SeriesRow> = rows.iter().filter(|r| r.load == load).collect();
-    let mut distances: Vec<f64> = Vec::new();
-    for r in &mine {
-        if !distances.contains(&r.s) {
-            distances.push(r.s);
-        }
-    }
-    distances
+    distinct(mine.iter().map(|r| r.s))
         .into_iter()
         .map(|s| {
             let at: Vec<&&SeriesRow> = mine.iter().filter(|r| r.s == s).collect();

@@ -17,8 +17,8 @@ use serde::Serialize;
 use crate::config::Units;
 use crate::error::{Error, Result};
 use crate::output::{
-    aggregate, curve_labels, curves, equal_critical_diameter, has_kim_materials, job_series_rows, lineages_left,
-    number, pretty, series_job, severity_fits, steps_of_rows, unit_of, Cell, CurveMaterial, JobResult,
+    aggregate, curve_labels, curves, distinct, equal_critical_diameter, has_kim_materials, job_series_rows,
+    lineages_left, number, pretty, series_job, severity_fits, steps_of_rows, unit_of, Cell, CurveMaterial, JobResult,
     MaterialSeverity, SeriesRow, StepRow, Table, KIM_EXPERIMENTAL_K, KIM_SEVERITY_FIT, PAPER_SEVERITY_FIT,
 };
 use crate::sliding::{WearResult, RUN_IN_DECAY_LENGTHS, RUN_IN_LINEAGES_LEFT};
@@ -1629,12 +1629,7 @@ struct ResultOfLoad {
 /// The load of a run's series rows that `load` names (matched as Python's `np.isclose(…,
 /// rtol=1e-12)`: a load typed back from its printed form), or the series' last.
 fn load_of_series(rows: &[SeriesRow], load: Option<f64>) -> Result<f64> {
-    let loads: Vec<f64> = rows.iter().fold(Vec::new(), |mut loads, r| {
-        if !loads.contains(&r.load) {
-            loads.push(r.load);
-        }
-        loads
-    });
+    let loads = distinct(rows.iter().map(|r| r.load));
     match load {
         None => loads
             .last()
@@ -1669,15 +1664,7 @@ fn results_of_run(run: &RunTables, rows: &[SeriesRow], load: f64, need: bool) ->
             .filter(|r| r.load == load)
             .map(|r| r.result)
             .collect(),
-        None if !need => rows
-            .iter()
-            .filter(|r| r.load == load)
-            .fold(Vec::new(), |mut energies: Vec<f64>, r| {
-                if !energies.contains(&r.fracture_energy) {
-                    energies.push(r.fracture_energy);
-                }
-                energies
-            })
+        None if !need => distinct(rows.iter().filter(|r| r.load == load).map(|r| r.fracture_energy))
             .into_iter()
             .map(|g| WearResult {
                 fracture_energy: g,
