@@ -397,10 +397,11 @@ def memory(
     length_unit: str = "L",
 ) -> Any:
     """The memory of the initial contact (paper §3): junctions descending from s = 0, N₀(s), with its
-    exponential fit N₀(0) e^(−s/ℓ). The fit is the library's: ``memory_decay_length`` and
-    ``memory_fit_initial_junctions`` of ``results`` (``summary["results"]`` of :func:`wearsim.slide`,
-    or the job's rows of the tidy table), which are required. ``series`` may instead be a list of
-    (label, series, results), one per surface pair of a setting: each pair is drawn with its fit,
+    exponential fit N₀(0) e^(−s/ℓ) (ln N₀ against s weighted by N₀). The fit is the library's:
+    ``memory_decay_length`` and ``memory_fit_initial_junctions`` of ``results``
+    (``summary["results"]`` of :func:`wearsim.slide`, or the job's rows of the tidy table), which
+    are required. ``series`` may instead be a list of (label, series, results), one per surface
+    pair of a setting: each pair is drawn with its fit,
     and the mean ℓ with its 95 % interval over the pairs heads the legend. The figure is the
     library's (the study figure ``memory_of_initial_contact``; :func:`memory_of_setting` draws it
     from a study folder)."""

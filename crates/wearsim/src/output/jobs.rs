@@ -8,7 +8,7 @@ use serde_json::json;
 use crate::config::{InputRecord, Units};
 use crate::error::{Error, Result};
 use crate::estimate::{EstimateResult, WearModel};
-use crate::sliding::WearResult;
+use crate::sliding::{not_run_in, InitialContactMemory, WearResult};
 
 use super::provenance::Provenance;
 use super::series::{job_series_rows, SeriesRow, StepRow};
@@ -53,19 +53,56 @@ pub struct JobResult {
 
 impl JobResult {
     /// The job file's text.
-    /// N₀(s_r)/N₀(0) of result `w` of this job: as the job file has it, or, in a job file written
-    /// before it was kept, counted from its steps.
-    pub fn lineages_left(&self, w: &WearResult) -> Option<f64> {
-        super::series::lineages_left(&self.steps, w)
-    }
-
     pub fn to_json(&self) -> String {
         serde_json::to_string(self).expect("job results serialise")
     }
 
-    /// Parses a job file's text.
+    /// Parses a job file's text, with the memory of the initial contact fitted again from its steps
+    /// ([`JobResult::refit_memory`]).
     pub fn from_json(text: &str) -> std::result::Result<Self, serde_json::Error> {
-        serde_json::from_str(text)
+        let mut job: JobResult = serde_json::from_str(text)?;
+        job.refit_memory();
+        Ok(job)
+    }
+
+    /// The memory of the initial contact (ℓ, its R² and N₀(0), the running-in in decay lengths, the
+    /// lineages left) and the warning of a load not run in, computed again from the job's steps by
+    /// this version's fit, [`InitialContactMemory::of_steps`]: a job file written by an earlier
+    /// version (an unweighted ℓ fit) is judged as this version's run would be. The steps are what the
+    /// run measured; these are fitted from them. A job with no steps (the static estimate) is left
+    /// as it is.
+    pub fn refit_memory(&mut self) {
+        let Some(fit_start) = self.results.first().map(|w| w.fit_window_start) else {
+            return;
+        };
+        if self.steps.is_empty() {
+            return;
+        }
+        let points: Vec<(f64, usize)> = self.steps.iter().map(|r| (r.s, r.initial_junctions)).collect();
+        let memory = InitialContactMemory::of_steps(&points, fit_start);
+        for w in &mut self.results {
+            memory.apply_to(w);
+        }
+        let opening = not_run_in(self.load);
+        let warning = memory.warning(self.load, fit_start);
+        let at = self.warnings.iter().position(|m| m.starts_with(&opening));
+        match (at, warning) {
+            (Some(i), Some(m)) => self.warnings[i] = m,
+            (Some(i), None) => {
+                self.warnings.remove(i);
+            }
+            (None, Some(m)) => {
+                // Where a run puts it: before the load's other warnings.
+                let load = format!("F_N = {:.4e}", self.load);
+                let i = self
+                    .warnings
+                    .iter()
+                    .position(|m| m.starts_with(&load))
+                    .unwrap_or(self.warnings.len());
+                self.warnings.insert(i, m);
+            }
+            (None, None) => {}
+        }
     }
 }
 
@@ -129,11 +166,7 @@ impl TidyRow {
                     load: result.load,
                     nominal_pressure,
                     nominal_area: p.nominal_area(),
-                    result: WearResult {
-                        // Job files written before the count existed: from their steps.
-                        initial_lineages_left: result.lineages_left(w),
-                        ..w.clone()
-                    },
+                    result: w.clone(),
                     flow_pressure: result.flow_pressure,
                     contact_severity: p.rms_height.map(|h| nominal_pressure * h.sqrt() / toughness),
                     warnings: mine.join("; "),
@@ -654,11 +687,11 @@ mod tests {
         assert_eq!(measured[0].contact_severity, None);
     }
 
-    #[test]
-    fn a_job_file_without_the_lineages_left_has_them_counted_from_its_steps() {
+    /// Steps of one load: 40 lineages of s = 0 halving every 0.01 down to one that persists.
+    fn decaying_steps() -> Vec<StepRow> {
         let step = |s: f64, initial_junctions: usize| StepRow {
             s,
-            junctions: 7,
+            junctions: 40,
             wrapping_junctions: 0,
             contact_area: 0.1,
             initial_junctions,
@@ -667,25 +700,79 @@ mod tests {
             n_critical: vec![0],
             n_formed: vec![0],
         };
-        let result = |written: Option<f64>| JobResult {
-            results: vec![WearResult {
-                fit_window_start: 0.5,
-                initial_lineages_left: written,
-                ..WearResult::default()
-            }],
-            steps: vec![step(0.0, 20), step(0.25, 4), step(0.5, 1), step(0.75, 0)],
+        [40, 20, 10, 5, 2, 1, 1, 1, 1]
+            .iter()
+            .enumerate()
+            .map(|(i, &n)| step(0.01 * i as f64, n))
+            .collect()
+    }
+
+    #[test]
+    fn a_job_file_read_back_has_its_memory_fitted_again_from_its_steps() {
+        // At s_r = 0.02, 10 of the 40 lineages are left.
+        let steps = decaying_steps();
+        let points: Vec<(f64, usize)> = steps.iter().map(|r| (r.s, r.initial_junctions)).collect();
+        let expected = InitialContactMemory::of_steps(&points, 0.02);
+        let mut current = WearResult {
+            fit_window_start: 0.02,
+            ..WearResult::default()
+        };
+        expected.apply_to(&mut current);
+        let written = JobResult {
+            results: vec![current.clone()],
+            steps,
+            warnings: vec![
+                "d* = 3.6 px: under-resolved".into(),
+                expected.warning(0.01, 0.02).unwrap(),
+                "F_N = 1.0000e-2, 𝒢 = 3.0000e-6: few".into(),
+            ],
             ..job(0, 0.01, 0.01)
         };
-        // An earlier job file: 1 of the 20 lineages of s = 0 left at s_r = 0.5.
+        // This version's file reads back as written.
+        assert_eq!(JobResult::from_json(&written.to_json()).unwrap(), written);
+        // An earlier file: an unweighted ℓ, no count, the earlier wording of the warning (in place).
+        let earlier = JobResult {
+            results: vec![WearResult {
+                memory_decay_length: Some(0.05),
+                memory_decay_r2: Some(0.4),
+                memory_fit_initial_junctions: Some(9.0),
+                running_in_decay_lengths: Some(0.4),
+                initial_lineages_left: None,
+                ..current.clone()
+            }],
+            warnings: vec![
+                written.warnings[0].clone(),
+                "F_N = 1.0000e-2: not run in: the memory of the initial contact decays over ℓ = 5.0000e-2, with 67 \
+                 % of the junction lineages of s = 0 expected still present"
+                    .into(),
+                written.warnings[2].clone(),
+            ],
+            ..written.clone()
+        };
+        let read = JobResult::from_json(&earlier.to_json()).unwrap();
+        assert_eq!(read.results, written.results);
+        assert_eq!(read.warnings, written.warnings);
+        assert_eq!(read.results[0].initial_lineages_left, Some(0.25));
+        // A file that said nothing of run-in gets the warning before its load's others; one run in
+        // by this version's fit loses it.
+        let silent = JobResult {
+            warnings: vec![written.warnings[0].clone(), written.warnings[2].clone()],
+            ..earlier.clone()
+        };
         assert_eq!(
-            TidyRow::of_job(&result(None))[0].result.initial_lineages_left,
-            Some(0.05)
+            JobResult::from_json(&silent.to_json()).unwrap().warnings,
+            written.warnings
         );
-        // A job file that has the count keeps it.
-        assert_eq!(
-            TidyRow::of_job(&result(Some(0.0)))[0].result.initial_lineages_left,
-            Some(0.0)
-        );
+        let run_in = JobResult {
+            results: vec![WearResult {
+                fit_window_start: 0.05,
+                ..earlier.results[0].clone()
+            }],
+            ..earlier
+        };
+        let read = JobResult::from_json(&run_in.to_json()).unwrap();
+        assert_eq!(read.warnings, silent.warnings);
+        assert_eq!(read.results[0].initial_lineages_left, Some(1.0 / 40.0));
     }
 
     #[test]

@@ -4,7 +4,7 @@ use crate::junctions::particle_volume;
 use crate::material::Material;
 use crate::stats::{line_fit, mean_std, LineFit};
 
-use super::records::{finite, StepRecord, WearResult, RUN_IN_DECAY_LENGTHS, RUN_IN_LINEAGES_LEFT};
+use super::records::{finite, InitialContactMemory, StepRecord, WearResult};
 use super::schedule::SlidingSetup;
 
 /// Fewest particles after running-in for a wear rate worth a number without a warning.
@@ -35,11 +35,7 @@ struct LoadFits {
     fit_start: f64,
     junctions_mean: f64,
     box_wrapping_steps: usize,
-    memory_decay_length: Option<f64>,
-    memory_decay_r2: Option<f64>,
-    memory_fit_initial_junctions: Option<f64>,
-    running_in_decay_lengths: Option<f64>,
-    initial_lineages_left: Option<f64>,
+    memory: InitialContactMemory,
 }
 
 /// The fitted results of one load per fracture energy (paper §3 and appendices B, C), and the
@@ -73,51 +69,15 @@ pub(crate) fn results_of_load(
     (results, warnings)
 }
 
-/// The memory of the initial contact (ln N₀ against s over the steps where N₀ > 0), the start of
-/// the fit window in decay lengths, the mean number of junctions and the steps with a junction
-/// around the box, with their warnings.
+/// The memory of the initial contact ([`InitialContactMemory`]), the mean number of junctions and
+/// the steps with a junction around the box, with their warnings.
 fn load_fits(load: f64, steps: &[StepRecord], fitted: &[&StepRecord], warnings: &mut Vec<String>) -> LoadFits {
-    let decaying: Vec<&StepRecord> = steps.iter().filter(|r| r.initial_junctions > 0).collect();
-    let memory = line_fit(
-        &decaying.iter().map(|r| r.s).collect::<Vec<_>>(),
-        &decaying
-            .iter()
-            .map(|r| (r.initial_junctions as f64).ln())
-            .collect::<Vec<_>>(),
-    );
-    let (memory_decay_length, memory_decay_r2, memory_fit_initial_junctions) = match memory {
-        Some(f) if f.slope < 0.0 => {
-            let length = finite(-1.0 / f.slope);
-            (length, f.r2, length.and(finite(f.intercept.exp())))
-        }
-        _ => (None, None, None),
-    };
     let fit_start = fitted.first().map_or(0.0, |r| r.s);
-    let running_in_decay_lengths = match (memory_decay_length, memory) {
-        (Some(l), _) => finite(fit_start / l),
-        // The lineages of s = 0 do not thin out: an infinite decay length.
-        (None, Some(_)) => Some(0.0),
-        (None, None) => None,
-    };
-    let initial_lineages_left =
-        super::records::lineages_left(steps.iter().map(|r| (r.s, r.initial_junctions)), fit_start);
-    // Run in once at most RUN_IN_LINEAGES_LEFT of the lineages of s = 0 are left where the fit window
-    // starts, counted; where none was there to count, by the decay lengths.
-    let not_run_in = (!super::records::is_run_in(initial_lineages_left, running_in_decay_lengths)).then(|| {
-        let left = initial_lineages_left.unwrap_or_else(|| (-running_in_decay_lengths.unwrap_or(0.0)).exp());
-        (left, running_in_decay_lengths)
-    });
-    if let Some((left, r)) = not_run_in {
-        let decay = memory_decay_length.map_or("does not decay".to_string(), |l| format!("decays over ℓ = {l:.4e}"));
-        let lengths = r.map_or(String::new(), |r| format!(", {r:.2} decay lengths"));
-        warnings.push(format!(
-            "F_N = {load:.4e}: not run in: the memory of the initial contact {decay}, and the fit window starts at s = \
-             {fit_start:.4e}{lengths}, with {:.0} % of the junction lineages of s = 0 still present (at most {:.0} % \
-             run in); raise `running_in` (and `distance`), to at least {RUN_IN_DECAY_LENGTHS} ℓ",
-            100.0 * left,
-            100.0 * RUN_IN_LINEAGES_LEFT
-        ));
-    }
+    let memory = InitialContactMemory::of_steps(
+        &steps.iter().map(|r| (r.s, r.initial_junctions)).collect::<Vec<_>>(),
+        fit_start,
+    );
+    warnings.extend(memory.warning(load, fit_start));
     let (junctions_mean, _) = mean_std(fitted.iter().map(|r| r.junctions as f64));
     let wrapping: Vec<&StepRecord> = steps.iter().filter(|r| r.wrapping_junctions > 0).collect();
     if let Some(first) = wrapping.first() {
@@ -136,11 +96,7 @@ fn load_fits(load: f64, steps: &[StepRecord], fitted: &[&StepRecord], warnings: 
         fit_start,
         junctions_mean,
         box_wrapping_steps: wrapping.len(),
-        memory_decay_length,
-        memory_decay_r2,
-        memory_fit_initial_junctions,
-        running_in_decay_lengths,
-        initial_lineages_left,
+        memory,
     }
 }
 
@@ -236,11 +192,11 @@ fn result_of_energy(
         junctions_mean: shared.junctions_mean,
         critical_junctions_mean,
         box_wrapping_steps: shared.box_wrapping_steps,
-        memory_decay_length: shared.memory_decay_length,
-        memory_decay_r2: shared.memory_decay_r2,
-        memory_fit_initial_junctions: shared.memory_fit_initial_junctions,
-        running_in_decay_lengths: shared.running_in_decay_lengths,
-        initial_lineages_left: shared.initial_lineages_left,
+        memory_decay_length: shared.memory.decay_length,
+        memory_decay_r2: shared.memory.r2,
+        memory_fit_initial_junctions: shared.memory.fit_initial_junctions,
+        running_in_decay_lengths: shared.memory.running_in_decay_lengths,
+        initial_lineages_left: shared.memory.lineages_left,
         critical_residence: particle_rate
             .filter(|r| *r > 0.0)
             .and_then(|r| finite(critical_junctions_mean / r)),

@@ -1,6 +1,7 @@
 //! What a sliding run records: one [`StepRecord`] per step, one [`WearResult`] per load and
 //! fracture energy, and the [`LoadRun`] that holds them with the time taken.
 
+use crate::stats::weighted_line_fit;
 use crate::wear::{StaticWear, StepWear};
 
 /// One step of one load: the contact statistics and, per fracture energy, the wear record.
@@ -81,9 +82,10 @@ pub struct WearResult {
     /// Mean number of junctions at least d* across, N*, over the fit window (paper appendix C).
     pub critical_junctions_mean: f64,
     /// Decay length ℓ of the memory of the initial contact, N₀(s) ≈ N₀(0) e^(−s/ℓ) (paper §3), fitted
-    /// to ln N₀ over the steps where N₀ > 0; absent when it does not decay.
+    /// to ln N₀ over the steps where N₀ > 0, weighted by N₀ ([`InitialContactMemory::of_steps`]);
+    /// absent when it does not decay.
     pub memory_decay_length: Option<f64>,
-    /// R² of that fit (in ln N₀).
+    /// R² of that fit (in ln N₀, weighted).
     pub memory_decay_r2: Option<f64>,
     /// N₀(0) of that fit, e^b of the line ln N₀ ≈ b − s/ℓ: with ℓ, the fitted curve of the memory
     /// of the initial contact; absent with ℓ. Absent in job files written before it existed.
@@ -189,6 +191,94 @@ pub fn lineages_left(steps: impl IntoIterator<Item = (f64, usize)>, fit_start: f
     Some(at.1 as f64 / initial as f64)
 }
 
+/// The memory of the initial contact of one load (paper §3), from its steps (s, N₀): the decay
+/// length ℓ of N₀(s) ≈ N₀(0) e^(−s/ℓ), the fit's R² and N₀(0), the start of the fit window in decay
+/// lengths and the lineages of s = 0 counted there. Computed by the run, and again from the steps
+/// of a job file when it is read, so that every job file is judged by this version's fit.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct InitialContactMemory {
+    pub decay_length: Option<f64>,
+    pub r2: Option<f64>,
+    pub fit_initial_junctions: Option<f64>,
+    pub running_in_decay_lengths: Option<f64>,
+    pub lineages_left: Option<f64>,
+}
+
+impl InitialContactMemory {
+    /// ln N₀ against s over the steps where N₀ > 0, weighted by N₀ (the inverse of the Poisson
+    /// variance 1/N₀ of ln N₀): a tail of one to three persisting lineages, whose ln N₀ is noise of
+    /// order one, cannot set ℓ against the decay of tens of lineages before it. `fit_start` is the
+    /// start of the fit window.
+    pub fn of_steps(steps: &[(f64, usize)], fit_start: f64) -> Self {
+        let decaying: Vec<&(f64, usize)> = steps.iter().filter(|(_, n)| *n > 0).collect();
+        let column = |f: fn(&(f64, usize)) -> f64| decaying.iter().map(|p| f(p)).collect::<Vec<f64>>();
+        let fit = weighted_line_fit(
+            &column(|p| p.0),
+            &column(|p| (p.1 as f64).ln()),
+            &column(|p| p.1 as f64),
+        );
+        let (decay_length, r2, fit_initial_junctions) = match fit {
+            Some(f) if f.slope < 0.0 => {
+                let length = finite(-1.0 / f.slope);
+                (length, f.r2, length.and(finite(f.intercept.exp())))
+            }
+            _ => (None, None, None),
+        };
+        let running_in_decay_lengths = match (decay_length, fit) {
+            (Some(l), _) => finite(fit_start / l),
+            // The lineages of s = 0 do not thin out: an infinite decay length.
+            (None, Some(_)) => Some(0.0),
+            (None, None) => None,
+        };
+        InitialContactMemory {
+            decay_length,
+            r2,
+            fit_initial_junctions,
+            running_in_decay_lengths,
+            lineages_left: lineages_left(steps.iter().copied(), fit_start),
+        }
+    }
+
+    /// The warning of a load that is not run in by [`is_run_in`]; it opens with [`not_run_in`]'s
+    /// words for the load.
+    pub fn warning(&self, load: f64, fit_start: f64) -> Option<String> {
+        if is_run_in(self.lineages_left, self.running_in_decay_lengths) {
+            return None;
+        }
+        let left = self
+            .lineages_left
+            .unwrap_or_else(|| (-self.running_in_decay_lengths.unwrap_or(0.0)).exp());
+        let decay = self
+            .decay_length
+            .map_or("does not decay".to_string(), |l| format!("decays over ℓ = {l:.4e}"));
+        let lengths = self
+            .running_in_decay_lengths
+            .map_or(String::new(), |r| format!(", {r:.2} decay lengths"));
+        Some(format!(
+            "{}the memory of the initial contact {decay}, and the fit window starts at s = {fit_start:.4e}{lengths}, \
+             with {:.0} % of the junction lineages of s = 0 still present (at most {:.0} % run in); raise \
+             `running_in` (and `distance`), to at least {RUN_IN_DECAY_LENGTHS} ℓ",
+            not_run_in(load),
+            100.0 * left,
+            100.0 * RUN_IN_LINEAGES_LEFT
+        ))
+    }
+
+    /// `w` with this memory's fields.
+    pub fn apply_to(&self, w: &mut WearResult) {
+        w.memory_decay_length = self.decay_length;
+        w.memory_decay_r2 = self.r2;
+        w.memory_fit_initial_junctions = self.fit_initial_junctions;
+        w.running_in_decay_lengths = self.running_in_decay_lengths;
+        w.initial_lineages_left = self.lineages_left;
+    }
+}
+
+/// The words that open the warning of load `load` not run in (this version's and earlier ones').
+pub fn not_run_in(load: f64) -> String {
+    format!("F_N = {load:.4e}: not run in: ")
+}
+
 /// Time spent per part of the sliding loop, in seconds.
 #[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Timing {
@@ -227,6 +317,43 @@ mod tests {
         assert_eq!(lineages_left([(0.0, 0), (0.01, 0)], 0.01), None);
         assert_eq!(lineages_left(steps, 0.05), None);
         assert_eq!(lineages_left(std::iter::empty(), 0.0), None);
+    }
+
+    #[test]
+    fn the_memory_fit_weights_each_step_by_its_lineages() {
+        // An exact exponential, 64 e^(−s/0.01): ℓ and N₀(0) recovered whatever the weights.
+        let exact: Vec<(f64, usize)> = (0..7).map(|i| (0.01 * i as f64 * 2f64.ln(), 64 >> i)).collect();
+        let m = InitialContactMemory::of_steps(&exact, 0.03);
+        assert!((m.decay_length.unwrap() - 0.01).abs() < 1e-12, "{m:?}");
+        assert!((m.fit_initial_junctions.unwrap() - 64.0).abs() < 1e-9);
+        assert!((m.r2.unwrap() - 1.0).abs() < 1e-12);
+        assert!((m.running_in_decay_lengths.unwrap() - 3.0).abs() < 1e-9);
+        // The same decay with one lineage that persists over 10 more steps: the tail stretches the
+        // unweighted fit threefold, the weighted one (weights N₀) by less than twice. Both values as
+        // numpy.polyfit gives them (weights √N₀ on the residuals): 0.030677, 0.018876.
+        let mut tailed = exact.clone();
+        tailed.extend((7..17).map(|i| (0.01 * i as f64 * 2f64.ln(), 1)));
+        let weighted = InitialContactMemory::of_steps(&tailed, 0.03).decay_length.unwrap();
+        let (s, n): (Vec<f64>, Vec<f64>) = tailed.iter().map(|(s, n)| (*s, (*n as f64).ln())).unzip();
+        let unweighted = -1.0 / crate::stats::line_fit(&s, &n).unwrap().slope;
+        assert!((weighted - 0.018876153492838957).abs() < 1e-12, "ℓ weighted {weighted}");
+        assert!(
+            (unweighted - 0.03067669172932329).abs() < 1e-12,
+            "ℓ unweighted {unweighted}"
+        );
+        // The warning: at s_r = 0.02 (the step of s = 0.0208) 8 of 64 are left, over 5 %: not run in,
+        // said with the load; at s_r = 0.03, 2 of 64: run in, no warning.
+        let early = InitialContactMemory::of_steps(&exact, 0.02);
+        assert_eq!(early.lineages_left, Some(0.125));
+        let warning = early.warning(0.5, 0.02).unwrap();
+        assert!(
+            warning.starts_with(&not_run_in(0.5)) && warning.contains("decays over ℓ = 1.0000e-2"),
+            "{warning}"
+        );
+        assert_eq!((m.lineages_left, m.warning(0.5, 0.03)), (Some(2.0 / 64.0), None));
+        // No lineage at all: nothing fitted, nothing counted, run in.
+        let none = InitialContactMemory::of_steps(&[(0.0, 0), (0.01, 0)], 0.01);
+        assert_eq!(none, InitialContactMemory::default());
     }
 
     #[test]

@@ -42,6 +42,37 @@ pub fn line_fit(x: &[f64], y: &[f64]) -> Option<LineFit> {
     })
 }
 
+/// Weighted least-squares line through (x, y) with weights `w` (each point counts w times; the
+/// weights of ln N for counts N are N, the inverse of its Poisson variance 1/N), and the weighted R²,
+/// 1 − Σw(y − ŷ)²/Σw(y − ȳ_w)². `None` with fewer than two points of positive weight, lengths that
+/// differ, a weight negative or not finite, or x without weighted spread.
+pub fn weighted_line_fit(x: &[f64], y: &[f64], w: &[f64]) -> Option<LineFit> {
+    if x.len() != y.len() || x.len() != w.len() || w.iter().any(|v| !v.is_finite() || *v < 0.0) {
+        return None;
+    }
+    if w.iter().filter(|v| **v > 0.0).count() < 2 {
+        return None;
+    }
+    let (sx, sy, sw) = (power_of_two_scale(x), power_of_two_scale(y), power_of_two_scale(w));
+    let total: f64 = w.iter().map(|v| v / sw).sum();
+    let mean = |v: &[f64], s: f64| v.iter().zip(w).map(|(a, b)| (a / s) * (b / sw)).sum::<f64>() / total;
+    let (mx, my) = (mean(x, sx), mean(y, sy));
+    let moment = |f: &dyn Fn(usize) -> f64| (0..x.len()).map(|i| (w[i] / sw) * f(i)).sum::<f64>();
+    let sxx = moment(&|i| (x[i] / sx - mx) * (x[i] / sx - mx));
+    let sxy = moment(&|i| (x[i] / sx - mx) * (y[i] / sy - my));
+    let syy = moment(&|i| (y[i] / sy - my) * (y[i] / sy - my));
+    if sxx.is_nan() || sxx <= 0.0 {
+        return None;
+    }
+    let slope = sxy / sxx;
+    let r2 = (syy > 0.0).then(|| 1.0 - (syy - slope * sxy) / syy);
+    Some(LineFit {
+        slope: slope * (sy / sx),
+        intercept: (my - slope * mx) * sy,
+        r2,
+    })
+}
+
 /// 2^⌊log₂ max|v|⌋ (1 where every value is 0 or one is not finite): dividing by it is exact.
 fn power_of_two_scale(values: &[f64]) -> f64 {
     let largest = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
@@ -105,6 +136,28 @@ mod tests {
         assert_eq!((flat.slope, flat.r2), (0.0, None));
         assert!(line_fit(&[1.0], &[1.0]).is_none());
         assert!(line_fit(&[1.0, 1.0], &[1.0, 2.0]).is_none());
+    }
+
+    #[test]
+    fn the_weighted_line_fit_is_the_plain_one_at_equal_weights_and_follows_the_heavy_points() {
+        let x = [0.0, 0.3, 0.7, 1.1, 1.6];
+        let y = [0.2, 0.9, 1.4, 2.6, 3.1];
+        let (plain, equal) = (line_fit(&x, &y).unwrap(), weighted_line_fit(&x, &y, &[2.5; 5]).unwrap());
+        assert!((plain.slope - equal.slope).abs() < 1e-13 && (plain.intercept - equal.intercept).abs() < 1e-13);
+        assert!((plain.r2.unwrap() - equal.r2.unwrap()).abs() < 1e-13);
+        // Weight 0 leaves a point out: the line through the other two, exactly.
+        let two = weighted_line_fit(&[0.0, 1.0, 2.0], &[1.0, 3.0, 100.0], &[1.0, 1.0, 0.0]).unwrap();
+        assert!((two.slope - 2.0).abs() < 1e-14 && (two.intercept - 1.0).abs() < 1e-14);
+        // By hand: points (0, 0) w 3, (1, 1) w 1, (2, 0) w 1: x̄ = 0.6, ȳ = 0.2, Sxx = 3.2, Sxy = 0.4.
+        let f = weighted_line_fit(&[0.0, 1.0, 2.0], &[0.0, 1.0, 0.0], &[3.0, 1.0, 1.0]).unwrap();
+        assert!((f.slope - 0.125).abs() < 1e-15 && (f.intercept - 0.125).abs() < 1e-15);
+        // Σw(y − ȳ)² = 0.8, of which the line takes slope · Sxy = 0.05.
+        assert!((f.r2.unwrap() - 0.0625).abs() < 1e-15);
+        // Refused: one weighted point, a negative or NaN weight, lengths that differ.
+        assert!(weighted_line_fit(&[0.0, 1.0], &[0.0, 1.0], &[1.0, 0.0]).is_none());
+        assert!(weighted_line_fit(&[0.0, 1.0], &[0.0, 1.0], &[1.0, -1.0]).is_none());
+        assert!(weighted_line_fit(&[0.0, 1.0], &[0.0, 1.0], &[1.0, f64::NAN]).is_none());
+        assert!(weighted_line_fit(&[0.0, 1.0], &[0.0, 1.0], &[1.0]).is_none());
     }
 
     #[test]

@@ -115,7 +115,8 @@ pub(super) fn memory_decays_exponentially(all: &[Setting]) -> Finding {
         "sliding model (§3): the number of remaining contacts that were present at s = 0 decays exponentially with \
          sliding distance",
         "per contact history (one τ̃ and load: the memory does not depend on 𝒢): R² of the line fitted to ln N₀(s) of \
-         each surface pair > 0.8, by its Student-t interval over pairs"
+         each surface pair (weighted by N₀, the inverse of ln N₀'s Poisson variance) > 0.8, by its Student-t \
+         interval over pairs"
             .into(),
         "contact histories",
         tally,
