@@ -7,6 +7,7 @@ mod contact_validation;
 mod cost;
 mod estimate;
 mod every_file;
+mod evidence;
 mod fuzz_parsers;
 mod golden;
 mod module_graph;

@@ -11,6 +11,7 @@ fn shipped_study_files_expand() {
         ("quick.toml", 24),
         ("paper-window.toml", 30),
         ("paper-evidence.toml", 50),
+        ("paper-half.toml", 160),
         ("paper-reduced.toml", 320),
         ("running-in-step.toml", 18),
         ("kim1986.toml", 20),
