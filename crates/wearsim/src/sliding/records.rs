@@ -207,8 +207,10 @@ pub struct InitialContactMemory {
 impl InitialContactMemory {
     /// ln N₀ against s over the steps where N₀ > 0, weighted by N₀ (the inverse of the Poisson
     /// variance 1/N₀ of ln N₀): a tail of one to three persisting lineages, whose ln N₀ is noise of
-    /// order one, cannot set ℓ against the decay of tens of lineages before it. `fit_start` is the
-    /// start of the fit window.
+    /// order one, weighs as little as its few lineages against the decay of tens before it, and
+    /// stretches ℓ much less than in an unweighted fit (it still stretches it: a lineage that
+    /// persists is data; the run-in rule counts the lineages left instead). `fit_start` is the start
+    /// of the fit window.
     pub fn of_steps(steps: &[(f64, usize)], fit_start: f64) -> Self {
         let decaying: Vec<&(f64, usize)> = steps.iter().filter(|(_, n)| *n > 0).collect();
         let column = |f: fn(&(f64, usize)) -> f64| decaying.iter().map(|p| f(p)).collect::<Vec<f64>>();
