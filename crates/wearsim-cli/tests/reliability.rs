@@ -334,6 +334,8 @@ fn a_study_is_tied_to_its_surface_files_and_job_files_are_checked_and_repaired()
     std::fs::write(&job, &full[..full.len() / 2]).unwrap();
     let o = run(&["study", "collect", s(&out)]);
     assert!(!o.status.success() && stderr(&o).contains("job-000001.json") && stderr(&o).contains("recomputes it"));
+    // The file is named once.
+    assert_eq!(stderr(&o).matches("job-000001.json").count(), 1, "{}", stderr(&o));
     let o = study_run(&study, &out, &[]);
     assert!(
         o.status.success() && stderr(&o).contains("recomputed") && stdout(&o).contains("computed 1 jobs"),

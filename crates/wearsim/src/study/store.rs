@@ -350,10 +350,11 @@ pub fn read_result(job: &Job, dir: &Path) -> Result<JobResult> {
             job_path(dir, job.index),
             "no result yet; run the study to compute it",
         )),
-        Stored::Unreadable(message) => Err(Error::file(
-            job_path(dir, job.index),
-            format!("{message} (`wearsim study run` recomputes it)"),
-        )),
+        // The message names the file already.
+        Stored::Unreadable(message) => Err(Error::StudyFolder {
+            dir: dir.into(),
+            message: format!("{message} (`wearsim study run` recomputes it)"),
+        }),
     }
 }
 
