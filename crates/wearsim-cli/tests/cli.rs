@@ -332,3 +332,38 @@ fn animate_writes_a_gif_with_one_frame_per_step() {
         .unwrap();
     assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("load-index"));
 }
+
+#[test]
+fn bench_passes_prints_and_records_each_pass_against_the_copy_floor() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = dir.path().join("bench.json");
+    let o = wearsim()
+        .args(["bench", "--sizes", "64", "--fft-repeats", "1", "--passes", "--json"])
+        .arg(&json)
+        .output()
+        .unwrap();
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for line in [
+        "passes at N = 64: copy pass",
+        "update",
+        "displacement_and_stats",
+        "a conjugate-gradient iteration:",
+        "an iteration that changes the sets:",
+    ] {
+        assert!(out.contains(line), "{line:?} missing from:\n{out}");
+    }
+    let doc: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let passes = doc["rows"][0]["passes"].as_array().unwrap();
+    assert_eq!(passes.len(), 9);
+    assert!(
+        passes.iter().all(|p| p["seconds"].as_f64().unwrap() > 0.0),
+        "{passes:?}"
+    );
+    // Without --passes, no profile is taken.
+    let o = wearsim()
+        .args(["bench", "--sizes", "64", "--fft-repeats", "1"])
+        .output()
+        .unwrap();
+    assert!(!String::from_utf8_lossy(&o.stdout).contains("passes at N"));
+}

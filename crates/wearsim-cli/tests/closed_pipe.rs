@@ -84,7 +84,16 @@ fn every_command_finishes_and_writes_its_results_when_its_output_pipes_are_close
     );
     finishes(
         d,
-        &["bench", "--sizes", "64", "--fft-repeats", "1", "--json", "bench.json"],
+        &[
+            "bench",
+            "--sizes",
+            "64",
+            "--fft-repeats",
+            "1",
+            "--passes",
+            "--json",
+            "bench.json",
+        ],
         &["bench.json"],
     );
     finishes(

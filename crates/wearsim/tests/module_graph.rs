@@ -41,7 +41,7 @@ const LAYERS: [&str; 20] = [
 const SUBLAYERS: [(&str, &[&str]); 8] = [
     ("io", &["atomic", "npy", "zarr"]),
     ("stats", &["fit", "interval", "judge"]),
-    ("contact", &["backend", "options", "cpu", "conformance"]),
+    ("contact", &["backend", "options", "cpu", "conformance", "profile"]),
     ("topography", &["formats", "prepare", "load", "spectrum", "fit"]),
     ("sliding", &["schedule", "records", "fit", "checkpoint", "state"]),
     ("config", &["raw", "source", "record"]),

@@ -38,6 +38,11 @@ pub struct Args {
     /// (about ten seconds), cache it and print it.
     #[arg(long)]
     calibrate: bool,
+    /// After each size's warm solve, time the solver's passes one by one (median of
+    /// `--fft-repeats`) against a copy pass on the same machine: where an iteration's time goes and
+    /// how far each pass is from the memory bandwidth floor.
+    #[arg(long)]
+    passes: bool,
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -98,6 +103,66 @@ fn print_header() {
     );
 }
 
+/// With `--passes`, the pass profile at the next offset (the fields a warm step starts from).
+fn profile(args: &Args, solver: &mut ContactSolver, flow_pressure: f64) -> Result<Vec<wearsim::contact::PassTiming>> {
+    if !args.passes {
+        return Ok(Vec::new());
+    }
+    solver.compose(2)?;
+    Ok(solver.profile_passes(flow_pressure, args.fft_repeats))
+}
+
+/// The pass profile of one size: each pass's time, the Nx·Ny f64 fields it streams, its
+/// bandwidth, and its time over the floor of streaming those fields at the copy pass's bandwidth;
+/// then the iterations of a warm step built from them.
+fn print_passes(n: usize, timings: &[wearsim::contact::PassTiming]) {
+    let field_bytes = (n * n * 8) as f64;
+    let per_field = timings[0].seconds / timings[0].streams;
+    say!(
+        "\npasses at N = {n}: copy pass {:.1} GB/s (a read and a write of one field in {:.2} ms)",
+        timings[0].streams * field_bytes / timings[0].seconds / 1e9,
+        timings[0].seconds * 1e3
+    );
+    say!(
+        "{:<28} {:>9} {:>7} {:>7} {:>9} {:>7}",
+        "pass",
+        "ms",
+        "fields",
+        "GB/s",
+        "floor_ms",
+        "×floor"
+    );
+    for t in timings {
+        say!(
+            "{:<28} {:>9.2} {:>7.1} {:>7.1} {:>9.2} {:>7.1}",
+            t.name,
+            t.seconds * 1e3,
+            t.streams,
+            t.streams * field_bytes / t.seconds / 1e9,
+            t.streams * per_field * 1e3,
+            t.seconds / (t.streams * per_field)
+        );
+    }
+    for (what, pick) in [
+        (
+            "a conjugate-gradient iteration",
+            (|t: &wearsim::contact::PassTiming| t.per_cg_iteration) as fn(&_) -> f64,
+        ),
+        ("an iteration that changes the sets", |t| t.per_set_change),
+    ] {
+        let (seconds, streams) = timings.iter().fold((0.0, 0.0), |(s, f), t| {
+            (s + pick(t) * t.seconds, f + pick(t) * t.streams)
+        });
+        say!(
+            "{what}: {:.1} ms, {streams:.0} fields streamed ({:.1} ms at the copy bandwidth, ×{:.1}; {:.1} FFT round trips)",
+            seconds * 1e3,
+            streams * per_field * 1e3,
+            seconds / (streams * per_field),
+            seconds / timings[1].seconds
+        );
+    }
+}
+
 /// The median wall time of `repeats` FFT round trips (r2c + c2r with the kernel multiply fused) on
 /// the grid of `top`: the floor of one solver iteration.
 fn fft_seconds(top: &Surface, repeats: usize) -> f64 {
@@ -131,6 +196,7 @@ pub fn run(args: &Args) -> Result<()> {
     );
     print_header();
     let mut rows = Vec::new();
+    let mut profiles = Vec::new();
     let material = Material::new(1.0, 0.3, 0.010, vec![], 3.0)?;
     let e_star = material.effective_modulus(ModulusConvention::HalfSpace);
     for &n in &args.sizes {
@@ -153,6 +219,8 @@ pub fn run(args: &Args) -> Result<()> {
         let per_iter = cold_s / cold.iterations.max(1) as f64;
         let per_conv = cold_s / cold.convolutions.max(1) as f64;
         let peak = peak_memory_mib().unwrap_or(f64::NAN);
+        // After the peak is read: the profile's copy buffers are not the solver's memory.
+        let passes = profile(args, &mut solver, material.flow_pressure())?;
         say!(
             "{:>5} {:>9.2} {:>10.3} {:>6} {:>6} {:>9.2} {:>10.3} {:>6} {:>6} {:>9.2} {:>9.2} {:>9.2} {:>9.0}",
             n,
@@ -175,7 +243,15 @@ pub fn run(args: &Args) -> Result<()> {
             "warm_after_one_pixel": {"seconds": warm_s, "iterations": warm.iterations, "convolutions": warm.convolutions, "residual": warm.residual},
             "seconds_per_iteration_over_fft": per_iter / fft_s,
             "peak_memory_mib": peak,
+            "passes": passes.iter().map(|p| json!({
+                "pass": p.name, "seconds": p.seconds, "fields_streamed": p.streams,
+                "per_cg_iteration": p.per_cg_iteration, "per_set_change": p.per_set_change,
+            })).collect::<Vec<_>>(),
         }));
+        profiles.push((n, passes));
+    }
+    for (n, timings) in profiles.iter().filter(|(_, t)| !t.is_empty()) {
+        print_passes(*n, timings);
     }
     if let Some(path) = &args.json {
         let doc = json!({"provenance": wearsim::output::Provenance::current(), "threads": threads, "tolerance": wearsim::contact::DEFAULT_TOLERANCE, "rows": rows});

@@ -8,6 +8,7 @@ use std::sync::Arc;
 
 use super::backend::{ContactBackend, HeightStats, LoadSums, Stats, Update, LOAD_CHUNK};
 use crate::error::Result;
+use crate::fft::zeroed_buffer;
 use crate::grid::Grid;
 use crate::influence::{self, Boundary, Influence};
 use crate::surface::Surface;
@@ -63,13 +64,13 @@ impl CpuBackend {
         Ok(Self {
             ny,
             influence,
-            heights: vec![0.0; nx * ny],
-            pressure: vec![0.0; nx * ny],
-            u: vec![0.0; nx * ny],
-            t: vec![0.0; nx * ny],
-            r: vec![0.0; nx * ny],
-            p_old: vec![0.0; nx * ny],
-            u_alt: vec![0.0; nx * ny],
+            heights: zeroed_buffer(nx * ny),
+            pressure: zeroed_buffer(nx * ny),
+            u: zeroed_buffer(nx * ny),
+            t: zeroed_buffer(nx * ny),
+            r: zeroed_buffer(nx * ny),
+            p_old: zeroed_buffer(nx * ny),
+            u_alt: zeroed_buffer(nx * ny),
             surfaces: None,
             bits: vec![0; (nx * ny).div_ceil(64)],
             stats: vec![Stats::default(); nx],
@@ -366,7 +367,8 @@ impl ContactBackend for CpuBackend {
     /// whose t is exactly 0 is left out consistently here and in the update).
     fn response(&mut self, shift: f64) -> f64 {
         let n = self.ny;
-        let (t, scale) = (&self.t, self.response_scale);
+        // 1/scale is exact (a power of two), so the product equals the quotient bit for bit.
+        let (t, inverse_scale) = (&self.t, 1.0 / self.response_scale);
         self.influence.apply_with(
             &self.t,
             |_, row| {
@@ -381,7 +383,7 @@ impl ContactBackend for CpuBackend {
                 let mut s = 0.0;
                 for (&r, &tv) in row.iter().zip(&t[i * n..(i + 1) * n]) {
                     if tv != 0.0 {
-                        s += (r / scale) * (tv - shift);
+                        s += (r * inverse_scale) * (tv - shift);
                     }
                 }
                 s

@@ -1,0 +1,129 @@
+//! The solver's passes timed one by one against the machine's memory bandwidth (`wearsim bench
+//! --passes`): where an iteration's time goes, and how far each pass is from streaming its fields
+//! through memory once.
+//!
+//! Each pass is timed on the fields a real solve left (the bound surfaces slid one pixel after a
+//! solve), so that its branches see real contact maps. Its bytes are the Nx·Ny fields of f64 it
+//! reads and writes ("streams"; the transposed half spectrum of a real FFT counts as one field),
+//! as the CPU backend's passes are written; a copy pass over one field measures the bandwidth
+//! floor on the same machine in the same run.
+
+use std::time::Instant;
+
+use rayon::prelude::*;
+
+use super::backend::ContactBackend;
+
+/// One pass of the solver, timed.
+#[derive(Debug, Clone, Copy)]
+pub struct PassTiming {
+    /// What the pass does, as `ContactBackend` names it.
+    pub name: &'static str,
+    /// Median seconds per call over the repeats.
+    pub seconds: f64,
+    /// Nx·Ny fields of f64 read plus written (module documentation).
+    pub streams: f64,
+    /// Calls per iteration of a warm sliding step that changes no set (a conjugate-gradient step),
+    /// and per iteration that does (a second convolution, the load balance by scaling, whose sums
+    /// the update's statistics carry); 0 for the reference passes and the set-up's passes.
+    pub per_cg_iteration: f64,
+    pub per_set_change: f64,
+}
+
+/// Median of `repeats` timings of `f`, after one untimed call.
+fn median_seconds(repeats: usize, mut f: impl FnMut()) -> f64 {
+    f();
+    median(
+        (0..repeats.max(1))
+            .map(|_| {
+                let t = Instant::now();
+                f();
+                t.elapsed().as_secs_f64()
+            })
+            .collect(),
+    )
+}
+
+fn median(mut times: Vec<f64>) -> f64 {
+    times.sort_by(f64::total_cmp);
+    times[times.len() / 2]
+}
+
+/// The two reference timings: a copy of one field (the bandwidth floor) and an FFT round trip.
+fn reference_passes(b: &mut dyn ContactBackend, row: usize, repeats: usize) -> (f64, f64) {
+    let source: Vec<f64> = b.pressure().to_vec();
+    let mut sink = vec![0.0; source.len()];
+    let copy = median_seconds(repeats, || {
+        sink.par_chunks_mut(row)
+            .zip(source.par_chunks(row))
+            .for_each(|(d, s)| d.copy_from_slice(s))
+    });
+    let fft = median_seconds(repeats, || b.apply_influence(&source, &mut sink));
+    (copy, fft)
+}
+
+/// The pass profile of a solver's backend (`ContactSolver::profile_passes`), whose rows hold
+/// `row` pixels.
+pub(super) fn passes(b: &mut dyn ContactBackend, row: usize, flow_pressure: f64, repeats: usize) -> Vec<PassTiming> {
+    let pm = flow_pressure;
+    let (copy, fft) = reference_passes(b, row, repeats);
+    let stats = b.displacement_and_stats(0.0, pm);
+    let mean = stats.mean_gap(0.0);
+    let displacement = median_seconds(repeats, || {
+        std::hint::black_box(b.displacement_and_stats(mean, pm));
+    });
+    let (sum_t, sum_dt) = b.direction(mean, 0.0, pm);
+    let direction = median_seconds(repeats, || {
+        std::hint::black_box(b.direction(mean, 0.0, pm));
+    });
+    let shift = if stats.n_free > 0.0 { sum_t / stats.n_free } else { 0.0 };
+    let curvature = b.response(shift);
+    let response = median_seconds(repeats, || {
+        std::hint::black_box(b.response(shift));
+    });
+    let tau = if curvature > 0.0 && sum_dt > 0.0 {
+        sum_dt / curvature / b.response_scale()
+    } else {
+        0.0
+    };
+    // Each update (which keeps a copy of p for an undo: 5 fields read, 3 written) is undone,
+    // untimed, as the solver undoes a rejected step.
+    let update = median(
+        (0..=repeats.max(1))
+            .map(|_| {
+                let t = Instant::now();
+                std::hint::black_box(b.update(mean, tau, shift, pm));
+                let seconds = t.elapsed().as_secs_f64();
+                b.keep_displacement();
+                b.undo(tau);
+                seconds
+            })
+            .skip(1)
+            .collect(),
+    );
+    let load_sums = median_seconds(repeats, || {
+        std::hint::black_box(b.load_sums(pm));
+    });
+    let scale = median_seconds(repeats, || b.scale(1.0, pm, false));
+    let contact_map = median_seconds(repeats, || {
+        std::hint::black_box(b.contact_map());
+    });
+    let pass = |name, seconds, streams, per_cg_iteration, per_set_change| PassTiming {
+        name,
+        seconds,
+        streams,
+        per_cg_iteration,
+        per_set_change,
+    };
+    vec![
+        pass("copy (reference)", copy, 2.0, 0.0, 0.0),
+        pass("fft round trip (reference)", fft, 6.0, 0.0, 0.0),
+        pass("direction", direction, 5.0, 1.0, 1.0),
+        pass("response", response, 7.0, 1.0, 1.0),
+        pass("update", update, 8.0, 1.0, 1.0),
+        pass("displacement_and_stats", displacement, 8.0, 0.0, 1.0),
+        pass("load_sums", load_sums, 1.0, 0.0, 0.0),
+        pass("scale", scale, 2.0, 0.0, 1.0),
+        pass("contact_map", contact_map, 1.0, 0.0, 0.0),
+    ]
+}
