@@ -6,7 +6,7 @@ use rayon::prelude::*;
 
 use std::sync::Arc;
 
-use super::backend::{ContactBackend, HeightStats, LoadSums, Stats, Update, LOAD_CHUNK};
+use super::backend::{ContactBackend, HeightStats, LoadSums, Stats, Update, LOAD_CHUNK, SETTLED_CHANGE_FACTOR};
 use crate::error::Result;
 use crate::fft::zeroed_buffer;
 use crate::grid::Grid;
@@ -395,7 +395,7 @@ impl ContactBackend for CpuBackend {
 
     fn update(&mut self, mean: f64, tau: f64, shift: f64, pm: f64) -> Update {
         let n = self.ny;
-        let cg_step = shift.is_finite();
+        let step = StepParameters { mean, tau, shift, pm };
         let results = &mut self.stats;
         let mut totals = std::mem::take(&mut self.row_partials);
         let mut events = std::mem::take(&mut self.sums);
@@ -412,46 +412,10 @@ impl ContactBackend for CpuBackend {
             .zip(self.p_old.par_chunks_mut(n))
             .for_each(|((((acc, (total, event)), (p, u)), (t, (r, h))), p_old)| {
                 p_old.copy_from_slice(p);
-                let mut s = Stats::default();
-                let mut sum_p = 0.0;
-                let (mut released, mut clipped) = (0.0, 0.0);
-                for ((((p, u), &t), &r), &h) in p.iter_mut().zip(u.iter_mut()).zip(t).zip(r).zip(h) {
-                    let before = *p;
-                    let d = *u - h - mean;
-                    if *p <= 0.0 {
-                        if d < 0.0 {
-                            *p = (-tau * d).min(pm);
-                            released += 1.0;
-                        }
-                    } else if *p >= pm {
-                        if d > 0.0 {
-                            *p = (pm - tau * d).max(0.0);
-                            released += 1.0;
-                        }
-                    } else if cg_step && t != 0.0 {
-                        let q = *p - tau * (t - shift);
-                        if q <= 0.0 {
-                            *p = 0.0;
-                            clipped += 1.0;
-                        } else if q >= pm {
-                            *p = pm;
-                            clipped += 1.0;
-                        } else {
-                            *p = q;
-                        }
-                    }
-                    if cg_step {
-                        *u -= tau * r;
-                    }
-                    sum_p += *p;
-                    s.add(*p, *u, h, mean, pm);
-                    if cg_step {
-                        s.add_change(*p, *p - before, *u - h, tau * r);
-                    }
-                }
+                let (s, sum_p, moved) = update_row(&step, p, u, t, r, h);
                 *acc = s;
                 *total = sum_p;
-                *event = [released, clipped];
+                *event = moved;
             });
         let stats = Stats::combine(results);
         let total: f64 = totals.iter().sum();
@@ -488,6 +452,85 @@ impl ContactBackend for CpuBackend {
                 }
             });
     }
+}
+
+/// The scalars of one update pass ([`ContactBackend::update`]).
+struct StepParameters {
+    mean: f64,
+    tau: f64,
+    /// NaN when no conjugate-gradient step is taken.
+    shift: f64,
+    pm: f64,
+}
+
+/// The update pass over one row: p and u in place; returns the row's statistics, its Σp and
+/// the pixels [released, clipped].
+#[inline]
+fn update_row(
+    step: &StepParameters,
+    p: &mut [f64],
+    u: &mut [f64],
+    t: &[f64],
+    r: &[f64],
+    h: &[f64],
+) -> (Stats, f64, [f64; 2]) {
+    let StepParameters { mean, tau, shift, pm } = *step;
+    let cg_step = shift.is_finite();
+    let mut s = Stats::default();
+    let mut sum_p = 0.0;
+    let (mut released, mut clipped) = (0.0, 0.0);
+    // Out-of-contact pixels that stay out (most of them) only move u and take part in two
+    // minima, kept apart from `s` (a minimum is the same in any order; p = ±0 adds nothing to the
+    // sums, which start at +0).
+    let (mut min_zero, mut settle_gap) = (f64::INFINITY, f64::INFINITY);
+    for ((((p, u), &t), &r), &h) in p.iter_mut().zip(u.iter_mut()).zip(t).zip(r).zip(h) {
+        let before = *p;
+        let d = *u - h - mean;
+        if *p == 0.0 && d >= 0.0 {
+            if cg_step {
+                *u -= tau * r;
+                let g = *u - h;
+                min_zero = min_zero.min(g);
+                settle_gap = settle_gap.min(g - SETTLED_CHANGE_FACTOR * (tau * r).abs());
+            } else {
+                min_zero = min_zero.min(*u - h);
+            }
+            continue;
+        }
+        if *p <= 0.0 {
+            if d < 0.0 {
+                *p = (-tau * d).min(pm);
+                released += 1.0;
+            }
+        } else if *p >= pm {
+            if d > 0.0 {
+                *p = (pm - tau * d).max(0.0);
+                released += 1.0;
+            }
+        } else if cg_step && t != 0.0 {
+            let q = *p - tau * (t - shift);
+            if q <= 0.0 {
+                *p = 0.0;
+                clipped += 1.0;
+            } else if q >= pm {
+                *p = pm;
+                clipped += 1.0;
+            } else {
+                *p = q;
+            }
+        }
+        if cg_step {
+            *u -= tau * r;
+        }
+        sum_p += *p;
+        s.add(*p, *u, h, mean, pm);
+        if cg_step {
+            s.add_change(*p, *p - before, *u - h, tau * r);
+        }
+    }
+    s.min_zero = s.min_zero.min(min_zero);
+    s.settle_gap = s.settle_gap.min(settle_gap);
+    (s, sum_p, [released, clipped])
 }
 
 /// The partial of the height statistics over one row, about h₀: Σ(h − h₀), Σ(h − h₀)², max, all

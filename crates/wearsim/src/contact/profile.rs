@@ -21,7 +21,9 @@ pub struct PassTiming {
     pub name: &'static str,
     /// Median seconds per call over the repeats.
     pub seconds: f64,
-    /// Nx·Ny fields of f64 read plus written (module documentation).
+    /// Nx·Ny fields of f64 read plus written (module documentation), as the passes stream them
+    /// with the periodic operator (a free boundary's zero-padded transforms stream four times
+    /// as much).
     pub streams: f64,
     /// Calls per iteration of a warm sliding step that changes no set (a conjugate-gradient step),
     /// and per iteration that does (a second convolution, the load balance by scaling, whose sums
