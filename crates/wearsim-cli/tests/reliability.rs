@@ -738,6 +738,13 @@ fn small_things_that_used_to_slip_through() {
         "{}",
         stderr(&o)
     );
+    // No timing to take a median of: an error naming the option, not a panic.
+    let o = run(&["bench", "--sizes", "64", "--passes", "--fft-repeats", "0"]);
+    assert!(
+        !o.status.success() && stderr(&o).contains("--fft-repeats 0") && !stderr(&o).contains("panicked"),
+        "{}",
+        stderr(&o)
+    );
     // A Slurm array with a step: the shard is the task's position in the array.
     let study = file(dir.path(), "slurm.toml", STUDY);
     let o = wearsim()

@@ -103,6 +103,17 @@ fn print_header() {
     );
 }
 
+/// The sizes and repeats of `bench`, checked before anything is timed.
+fn check_args(args: &Args) -> Result<()> {
+    for &n in &args.sizes {
+        check_size(n).with_context(|| format!("--sizes {n}"))?;
+    }
+    if args.fft_repeats == 0 {
+        anyhow::bail!("invalid `--fft-repeats 0`: a median needs at least one timing; use 1 or more");
+    }
+    Ok(())
+}
+
 /// With `--passes`, the pass profile at the next offset (the fields a warm step starts from).
 fn profile(args: &Args, solver: &mut ContactSolver, flow_pressure: f64) -> Result<Vec<wearsim::contact::PassTiming>> {
     if !args.passes {
@@ -186,9 +197,7 @@ pub fn run(args: &Args) -> Result<()> {
     if args.calibrate {
         return super::cost::recalibrate();
     }
-    for &n in &args.sizes {
-        check_size(n).with_context(|| format!("--sizes {n}"))?;
-    }
+    check_args(args)?;
     let threads = rayon::current_num_threads();
     say!(
         "wearsim {} bench, {threads} threads; paper roughness, τ̃ = 0.010 E, F_N = 1e-3 E L²",
