@@ -45,11 +45,6 @@ pub struct Args {
     passes: bool,
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
-
 /// Peak resident memory of this process so far (VmHWM), in MiB; None where /proc is missing.
 pub fn peak_memory_mib() -> Option<f64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
@@ -181,16 +176,7 @@ fn fft_seconds(top: &Surface, repeats: usize) -> f64 {
     let mut plan = FftPlan::new(nx, ny);
     let kernel = radial_kernel(nx, ny, |qx, qy| 1.0 / (1.0 + qx * qx + qy * qy));
     let mut out = vec![0.0; nx * ny];
-    plan.convolve(top.heights(), &kernel, &mut out);
-    median(
-        (0..repeats)
-            .map(|_| {
-                let t = Instant::now();
-                plan.convolve(top.heights(), &kernel, &mut out);
-                t.elapsed().as_secs_f64()
-            })
-            .collect(),
-    )
+    wearsim::contact::median_seconds(repeats, || plan.convolve(top.heights(), &kernel, &mut out))
 }
 
 pub fn run(args: &Args) -> Result<()> {

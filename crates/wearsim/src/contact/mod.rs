@@ -66,7 +66,7 @@ pub use self::options::{
     SolveInfo, SolverOptions, Stopping, Termination, DEFAULT_MAX_ITERATIONS, DEFAULT_TOLERANCE, MIN_TOLERANCE,
     SETTLED_CHANGE_FACTOR, SETTLED_MARGIN, SETTLED_MAX_RESIDUAL, SLIDING_STOPPING,
 };
-pub use self::profile::PassTiming;
+pub use self::profile::{median_seconds, PassTiming};
 use crate::check::positive;
 use crate::error::{Error, Interrupt, Result};
 use crate::grid::Grid;

@@ -32,8 +32,9 @@ pub struct PassTiming {
     pub per_set_change: f64,
 }
 
-/// Median of `repeats` timings of `f`, after one untimed call.
-fn median_seconds(repeats: usize, mut f: impl FnMut()) -> f64 {
+/// The timing rule of the benchmarks (`wearsim bench`): the median of `repeats` (at least one)
+/// wall times of `f`, after one untimed call.
+pub fn median_seconds(repeats: usize, mut f: impl FnMut()) -> f64 {
     f();
     median(
         (0..repeats.max(1))
