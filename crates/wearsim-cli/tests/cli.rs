@@ -349,13 +349,14 @@ fn bench_passes_prints_and_records_each_pass_against_the_copy_floor() {
         "update",
         "displacement_and_stats",
         "a conjugate-gradient iteration:",
-        "an iteration that changes the sets:",
+        "curvature",
+        "an iteration that releases a pixel:",
     ] {
         assert!(out.contains(line), "{line:?} missing from:\n{out}");
     }
     let doc: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     let passes = doc["rows"][0]["passes"].as_array().unwrap();
-    assert_eq!(passes.len(), 9);
+    assert_eq!(passes.len(), 10);
     assert!(
         passes.iter().all(|p| p["seconds"].as_f64().unwrap() > 0.0),
         "{passes:?}"

@@ -124,6 +124,8 @@ pub struct FftPlan {
     col_inverse: Arc<dyn Fft<f64>>,
     /// Transposed half spectrum: `spectrum[qy * stride + qx]`, `qy ∈ 0..=Ny/2`, `qx ∈ 0..Nx`.
     spectrum: Vec<C64>,
+    /// Per-`q_y`-row partials of [`FftPlan::quadratic_form_with`], combined in row order.
+    row_sums: Vec<f64>,
 }
 
 impl FftPlan {
@@ -147,6 +149,7 @@ impl FftPlan {
             col_forward: complex.plan_fft_forward(nx),
             col_inverse: complex.plan_fft_inverse(nx),
             spectrum: zeroed_buffer(half * stride),
+            row_sums: vec![0.0; half],
         }
     }
 
@@ -253,6 +256,42 @@ impl FftPlan {
                 })
             });
         self.row_inverse(output, post, partials);
+    }
+
+    /// `factor · Σₓ input·(kernel ∗ input)`, the quadratic form of [`FftPlan::convolve`]'s
+    /// operator, from the forward transform alone (half a convolution): by Parseval's identity it
+    /// is `Σ_q (factor·kernel(q))·|FFT(input)(q)|²` over the whole spectrum, that is over the stored
+    /// half with the `q_y` rows strictly between 0 and Ny/2 counted twice (a real, even kernel and
+    /// a real input have mirror-symmetric `|FFT|²`). The factor enters every term, so that a sum
+    /// whose plain value would leave double precision (a box far from unit size) stays inside it.
+    /// `pre` modifies the copy of input row `i` first, as in [`FftPlan::convolve_with`]. Per-row
+    /// partials are combined in row order, so the result does not depend on the thread count.
+    pub fn quadratic_form_with(
+        &mut self,
+        input: &[f64],
+        pre: impl Fn(usize, &mut [f64]) + Sync,
+        kernel: &[f64],
+        factor: f64,
+    ) -> f64 {
+        let (n, half) = (self.nx, self.half());
+        assert_eq!(kernel.len(), half * n, "kernel must hold (Ny/2+1)·Nx values");
+        self.row_forward(input, pre);
+        let fwd = &self.col_forward;
+        let scratch_len = fwd.get_inplace_scratch_len();
+        self.spectrum
+            .par_chunks_mut(self.stride)
+            .zip(kernel.par_chunks(n))
+            .zip(self.row_sums.par_iter_mut())
+            .enumerate()
+            .for_each(|(qy, ((row, k), sum))| {
+                with_work(0, 0, scratch_len, |_, _, scratch| {
+                    let row = &mut row[..n];
+                    fwd.process_with_scratch(row, scratch);
+                    let s: f64 = row.iter().zip(k).map(|(c, &w)| (w * factor) * c.norm_sqr()).sum();
+                    *sum = if qy == 0 || qy == half - 1 { s } else { 2.0 * s };
+                })
+            });
+        self.row_sums.iter().sum()
     }
 
     /// Real-to-complex FFT of every row of `input`, written transposed into the spectrum buffer.
@@ -429,6 +468,30 @@ mod tests {
     }
 
     #[test]
+    fn the_quadratic_form_is_the_sum_of_input_times_its_convolution() {
+        for (nx, ny) in [(8usize, 8usize), (34, 34), (8, 20), (22, 6), (64, 48)] {
+            let a: Vec<f64> = (0..nx * ny).map(|k| ((k * 7919) % 101) as f64 / 101.0 - 0.3).collect();
+            let nn = (nx * ny) as f64;
+            let kernel = radial_kernel(nx, ny, |qx, qy| (qx * qx + 3.0 * qy * qy).sqrt() / nn);
+            let mut plan = FftPlan::new(nx, ny);
+            let mut out = vec![0.0; nx * ny];
+            // The hook's change enters both sides.
+            let pre = |i: usize, row: &mut [f64]| row[0] += i as f64;
+            let mut shifted = a.clone();
+            for i in 0..nx {
+                shifted[i * ny] += i as f64;
+            }
+            plan.convolve(&shifted, &kernel, &mut out);
+            let direct: f64 = shifted.iter().zip(&out).map(|(x, y)| x * y).sum();
+            let parseval = plan.quadratic_form_with(&a, pre, &kernel, 1.0);
+            assert!(
+                (parseval - direct).abs() < 1e-12 * direct.abs(),
+                "{nx}×{ny}: {parseval} vs {direct}"
+            );
+        }
+    }
+
+    #[test]
     fn results_do_not_depend_on_thread_count() {
         for (nx, ny) in [(64usize, 64usize), (48, 80)] {
             let a: Vec<f64> = (0..nx * ny).map(|k| ((k * 31) % 17) as f64).collect();
@@ -439,7 +502,7 @@ mod tests {
                     let mut plan = FftPlan::new(nx, ny);
                     let mut out = vec![0.0; nx * ny];
                     plan.convolve(&a, &kernel, &mut out);
-                    out
+                    (out, plan.quadratic_form_with(&a, |_, _| {}, &kernel, 0.5).to_bits())
                 })
             };
             assert_eq!(run(1), run(3));

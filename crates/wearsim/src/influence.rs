@@ -223,15 +223,7 @@ impl Influence {
                 .plan
                 .convolve_with(input, pre, &self.kernel, output, post, partials),
             Boundary::Free => {
-                self.padded_in
-                    .par_chunks_mut(2 * ny)
-                    .zip(input.par_chunks(ny))
-                    .enumerate()
-                    .for_each(|(i, (padded, row))| {
-                        let corner = &mut padded[..ny];
-                        corner.copy_from_slice(row);
-                        pre(i, corner);
-                    });
+                self.pad(input, pre);
                 self.plan.convolve(&self.padded_in, &self.kernel, &mut self.padded_out);
                 let padded = &self.padded_out;
                 let keep = |i: usize, out: &mut [f64]| {
@@ -253,6 +245,37 @@ impl Influence {
                 }
             }
         }
+    }
+
+    /// `factor · Σ t·(𝒦t)` over the grid, with `pre(i, row)` applied to the copy of row `i` of
+    /// `input` first, as in [`Influence::apply_with`]: the quadratic form from the forward
+    /// transform alone ([`FftPlan::quadratic_form_with`], half a convolution; `factor` enters each
+    /// term). With a free boundary the padded input is zero outside its corner, so the padded
+    /// grid's form is the box's.
+    pub fn quadratic_form_with(&mut self, input: &[f64], pre: impl Fn(usize, &mut [f64]) + Sync, factor: f64) -> f64 {
+        assert_eq!(input.len(), self.nx * self.ny, "fields must hold Nx·Ny values");
+        match self.boundary {
+            Boundary::Periodic => self.plan.quadratic_form_with(input, pre, &self.kernel, factor),
+            Boundary::Free => {
+                self.pad(input, pre);
+                self.plan
+                    .quadratic_form_with(&self.padded_in, |_, _| {}, &self.kernel, factor)
+            }
+        }
+    }
+
+    /// The free boundary's zero-padded input: `input` through `pre` into its Nx × Ny corner.
+    fn pad(&mut self, input: &[f64], pre: impl Fn(usize, &mut [f64]) + Sync) {
+        let ny = self.ny;
+        self.padded_in
+            .par_chunks_mut(2 * ny)
+            .zip(input.par_chunks(ny))
+            .enumerate()
+            .for_each(|(i, (padded, row))| {
+                let corner = &mut padded[..ny];
+                corner.copy_from_slice(row);
+                pre(i, corner);
+            });
     }
 }
 

@@ -315,12 +315,21 @@ pub(crate) trait ContactBackend: Send + Sync {
     /// over those pixels.
     fn response(&mut self, shift: f64) -> f64;
 
+    /// The number [`ContactBackend::response`] returns, without r: Σ t_f·𝒦t_f (over
+    /// response_scale) from the forward transform of t_f alone, by Parseval's identity (half a
+    /// convolution). For a step known to change the sets before it is taken (a pixel will be
+    /// released): its u is recomputed as 𝒦p after it, so r is never needed. Equal to `response`'s
+    /// number up to round-off.
+    fn curvature(&mut self, shift: f64) -> f64;
+
     /// The update pass (copying p first, for [`ContactBackend::undo`]): with `shift` finite, free
-    /// pixels take the CG step p −= τ(t − shift), clipped to [0, p_m], and u follows (u −= τr);
-    /// non-contact pixels that penetrate and plastic pixels whose gap opens take a gradient step
-    /// p −= τ(g − `mean`). With `shift` NaN no CG step is taken. The statistics of a CG step also
-    /// hold each pixel's move ([`Stats::add_change`]).
-    fn update(&mut self, mean: f64, tau: f64, shift: f64, pm: f64) -> Update;
+    /// pixels take the CG step p −= τ(t − shift), clipped to [0, p_m], and, when `moves_u` (r was
+    /// computed by [`ContactBackend::response`]), u follows (u −= τr); non-contact pixels that
+    /// penetrate and plastic pixels whose gap opens take a gradient step p −= τ(g − `mean`). With
+    /// `shift` NaN no CG step is taken. The statistics of a CG step that moves u also hold each
+    /// pixel's move ([`Stats::add_change`]); without `moves_u` their gaps are the old u's, and the
+    /// caller recomputes u = 𝒦p.
+    fn update(&mut self, mean: f64, tau: f64, shift: f64, pm: f64, moves_u: bool) -> Update;
 
     /// Swaps u with its spare buffer: the carried-along u is kept there (for an undo) while the
     /// next [`ContactBackend::displacement_and_stats`] writes a fresh 𝒦p into u.

@@ -268,8 +268,15 @@ impl ContactBackend for Reference {
         rows.iter().sum()
     }
 
-    fn update(&mut self, mean: f64, tau: f64, shift: f64, pm: f64) -> Update {
+    fn curvature(&mut self, shift: f64) -> f64 {
+        let shifted: Vec<f64> = self.t.iter().map(|&t| if t != 0.0 { t - shift } else { t }).collect();
+        self.influence
+            .quadratic_form_with(&shifted, |_, _| {}, 1.0 / self.response_scale)
+    }
+
+    fn update(&mut self, mean: f64, tau: f64, shift: f64, pm: f64, moves_u: bool) -> Update {
         let cg_step = shift.is_finite();
+        let moves_u = cg_step && moves_u;
         self.p_old.copy_from_slice(&self.p);
         let (mut parts, mut sums) = (Vec::new(), Vec::new());
         let (mut released, mut clipped) = (false, false);
@@ -301,12 +308,12 @@ impl ContactBackend for Reference {
                         *p = q;
                     }
                 }
-                if cg_step {
+                if moves_u {
                     self.u[k] -= tau * self.r[k];
                 }
                 sum_p += self.p[k];
                 s.add(self.p[k], self.u[k], self.h[k], mean, pm);
-                if cg_step {
+                if moves_u {
                     // Each pixel's last move, for the settled-map stop.
                     s.add_change(self.p[k], self.p[k] - before, self.u[k] - self.h[k], tau * self.r[k]);
                 }
@@ -500,23 +507,26 @@ fn conjugate_steps(backend: &mut dyn ContactBackend, reference: &mut Reference, 
         },
         "write_pressure, displacement_and_stats",
     );
-    for (beta, tau, shift, mean) in [
-        (0.0, 0.5, 0.0, 1e-3),
-        (0.3, 2.0, f64::NAN, 1e-3),
-        (0.5, 1e3, 1e-4, 1e-3),
-        (0.2, 0.5, 0.0, -1.0),
-        (0.4, 2.0, 1e-4, -5e-3),
-        (0.0, 1.0, f64::NAN, -5e-3),
+    // Without `moves_u` the step's curvature comes from `curvature`, r is left as it was, and u
+    // stays (the solver's steps that release a pixel).
+    for (beta, tau, shift, mean, moves_u) in [
+        (0.0, 0.5, 0.0, 1e-3, true),
+        (0.3, 2.0, f64::NAN, 1e-3, true),
+        (0.5, 1e3, 1e-4, 1e-3, false),
+        (0.2, 0.5, 0.0, -1.0, true),
+        (0.4, 2.0, 1e-4, -5e-3, true),
+        (0.0, 1.0, f64::NAN, -5e-3, false),
+        (0.1, 0.7, 2e-4, -5e-3, false),
     ] {
         run(
-            &mut |b| conjugate_step(b, beta, tau, shift, mean, pm),
-            "direction, response, update",
+            &mut |b| conjugate_step(b, beta, tau, shift, mean, pm, moves_u),
+            "direction, response or curvature, update",
         );
         run(
             &mut |b| {
                 b.keep_displacement();
                 let s = b.displacement_and_stats(1e-3, pm);
-                b.undo(tau);
+                b.undo(if moves_u { tau } else { 0.0 });
                 vec![s.energy, b.displacement_and_stats(2e-3, pm).energy]
             },
             "keep_displacement, undo",
@@ -547,11 +557,32 @@ fn stat_values(s: &Stats) -> Vec<f64> {
     ]
 }
 
-/// One conjugate-gradient step (`direction`, `response`, `update`) and every number it reports.
-fn conjugate_step(b: &mut dyn ContactBackend, beta: f64, tau: f64, shift: f64, mean: f64, pm: f64) -> Vec<f64> {
+/// One conjugate-gradient step (`direction`, `response` or, without `moves_u`, `curvature`,
+/// `update`) and every number it reports. `curvature` is Σ t_f·r by Parseval's identity: it equals
+/// `response`'s sum to round-off on every backend.
+fn conjugate_step(
+    b: &mut dyn ContactBackend,
+    beta: f64,
+    tau: f64,
+    shift: f64,
+    mean: f64,
+    pm: f64,
+    moves_u: bool,
+) -> Vec<f64> {
     let (st, sdt) = b.direction(mean, beta, pm);
-    let curvature = b.response(if shift.is_nan() { 0.0 } else { shift });
-    let u = b.update(mean, tau, shift, pm);
+    let shift_t = if shift.is_nan() { 0.0 } else { shift };
+    let form = b.curvature(shift_t);
+    let curvature = if moves_u {
+        let sum = b.response(shift_t);
+        assert!(
+            (form - sum).abs() <= 1e-12 * sum.abs(),
+            "curvature {form} is not response's Σ t_f·r = {sum}"
+        );
+        sum
+    } else {
+        form
+    };
+    let u = b.update(mean, tau, shift, pm, moves_u);
     let mut values = vec![
         st,
         sdt,
@@ -703,8 +734,11 @@ impl ContactBackend for Broken {
     fn response(&mut self, s: f64) -> f64 {
         self.0.response(s)
     }
-    fn update(&mut self, m: f64, t: f64, s: f64, pm: f64) -> Update {
-        self.0.update(m, t, s, pm)
+    fn curvature(&mut self, s: f64) -> f64 {
+        self.0.curvature(s)
+    }
+    fn update(&mut self, m: f64, t: f64, s: f64, pm: f64, mu: bool) -> Update {
+        self.0.update(m, t, s, pm, mu)
     }
     fn keep_displacement(&mut self) {
         self.0.keep_displacement()

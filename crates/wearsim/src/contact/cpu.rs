@@ -393,9 +393,29 @@ impl ContactBackend for CpuBackend {
         self.row_partials.iter().sum()
     }
 
-    fn update(&mut self, mean: f64, tau: f64, shift: f64, pm: f64) -> Update {
+    /// t_f as in `response`, shifted in the forward transform's row hook; 1/response_scale (exact,
+    /// a power of two) in every term.
+    fn curvature(&mut self, shift: f64) -> f64 {
+        let shifted = |_: usize, row: &mut [f64]| {
+            for v in row.iter_mut() {
+                if *v != 0.0 {
+                    *v -= shift;
+                }
+            }
+        };
+        self.influence
+            .quadratic_form_with(&self.t, shifted, 1.0 / self.response_scale)
+    }
+
+    fn update(&mut self, mean: f64, tau: f64, shift: f64, pm: f64, moves_u: bool) -> Update {
         let n = self.ny;
-        let step = StepParameters { mean, tau, shift, pm };
+        let step = StepParameters {
+            mean,
+            tau,
+            shift,
+            pm,
+            moves_u,
+        };
         let results = &mut self.stats;
         let mut totals = std::mem::take(&mut self.row_partials);
         let mut events = std::mem::take(&mut self.sums);
@@ -461,6 +481,8 @@ struct StepParameters {
     /// NaN when no conjugate-gradient step is taken.
     shift: f64,
     pm: f64,
+    /// u −= τr (r computed for this step).
+    moves_u: bool,
 }
 
 /// The update pass over one row: p and u in place; returns the row's statistics, its Σp and
@@ -474,8 +496,15 @@ fn update_row(
     r: &[f64],
     h: &[f64],
 ) -> (Stats, f64, [f64; 2]) {
-    let StepParameters { mean, tau, shift, pm } = *step;
+    let StepParameters {
+        mean,
+        tau,
+        shift,
+        pm,
+        moves_u,
+    } = *step;
     let cg_step = shift.is_finite();
+    let moves_u = cg_step && moves_u;
     let mut s = Stats::default();
     let mut sum_p = 0.0;
     let (mut released, mut clipped) = (0.0, 0.0);
@@ -487,7 +516,7 @@ fn update_row(
         let before = *p;
         let d = *u - h - mean;
         if *p == 0.0 && d >= 0.0 {
-            if cg_step {
+            if moves_u {
                 *u -= tau * r;
                 let g = *u - h;
                 min_zero = min_zero.min(g);
@@ -519,12 +548,12 @@ fn update_row(
                 *p = q;
             }
         }
-        if cg_step {
+        if moves_u {
             *u -= tau * r;
         }
         sum_p += *p;
         s.add(*p, *u, h, mean, pm);
-        if cg_step {
+        if moves_u {
             s.add_change(*p, *p - before, *u - h, tau * r);
         }
     }

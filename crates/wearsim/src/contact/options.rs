@@ -155,7 +155,9 @@ pub struct SolveInfo {
     pub termination: Termination,
     /// Conjugate-gradient iterations (one convolution 𝒦t each).
     pub iterations: usize,
-    /// Convolutions performed in all (iterations plus recomputations of 𝒦p).
+    /// Convolutions performed in all (iterations plus recomputations of 𝒦p); an iteration that
+    /// needs only its curvature (a step that releases a pixel) counts one for its forward
+    /// transform, half a convolution's work.
     pub convolutions: usize,
     /// Final residual (module documentation).
     pub residual: f64,
