@@ -294,7 +294,11 @@ fn fields_kept_in_the_solver_give_the_solution_of_fields_passed_in_bit_for_bit()
         let a = kept.solve_in_place(1e-3, pm).unwrap();
         composite_heights(&top, &bottom, offset, &mut h);
         let b = passed.solve(&h, 1e-3, pm, &mut p).unwrap();
-        assert_eq!(a, b);
+        // The kept fields save one convolution per warm step: the displacement of the last solve.
+        let saved = if offset > 0 { 1 } else { 0 };
+        assert_eq!(a.convolutions + saved, b.convolutions, "offset {offset}");
+        let but_convolutions = |i: wearsim::SolveInfo| wearsim::SolveInfo { convolutions: 0, ..i };
+        assert_eq!(but_convolutions(a), but_convolutions(b));
         assert_eq!(kept.pressure(), &p[..]);
         let map = kept.contact_map();
         assert!((0..n * n).all(|k| map.contains(k) == (p[k] > 0.0)));

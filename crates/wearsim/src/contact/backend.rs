@@ -279,8 +279,9 @@ pub(crate) trait ContactBackend: Send + Sync {
     fn height_stats(&mut self) -> HeightStats;
 
     /// The initial guess: p clipped to p_m where it is usable (finite, ≥ 0, not all zero), else
-    /// the uniform pressure `mean_pressure`.
-    fn initial_guess(&mut self, mean_pressure: f64, pm: f64);
+    /// the uniform pressure `mean_pressure`. Returns whether p was left exactly as it was (usable
+    /// and nowhere above p_m).
+    fn initial_guess(&mut self, mean_pressure: f64, pm: f64) -> bool;
 
     /// [`LoadSums`] of p, over chunks of [`LOAD_CHUNK`] pixels combined in order.
     fn load_sums(&mut self, pm: f64) -> LoadSums;
@@ -301,6 +302,11 @@ pub(crate) trait ContactBackend: Send + Sync {
 
     /// u = 𝒦p, and the [`Stats`] of g = u − h about `reference`.
     fn displacement_and_stats(&mut self, reference: f64, pm: f64) -> Stats;
+
+    /// The [`Stats`] of g = u − h about `reference` for the u held (no convolution), bit for bit
+    /// those that [`ContactBackend::displacement_and_stats`] returns when u = 𝒦p already: for a
+    /// warm start whose p is unchanged since its u was computed (only the heights moved).
+    fn stats(&mut self, reference: f64, pm: f64) -> Stats;
 
     /// t ← (g − `mean`) + β t on free pixels, 0 elsewhere; returns (Σ t, Σ (g − `mean`) t) over
     /// free pixels.

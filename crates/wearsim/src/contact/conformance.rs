@@ -132,11 +132,13 @@ impl ContactBackend for Reference {
         }
     }
 
-    fn initial_guess(&mut self, mean_pressure: f64, pm: f64) {
+    fn initial_guess(&mut self, mean_pressure: f64, pm: f64) -> bool {
         let usable = self.p.iter().all(|p| p.is_finite() && *p >= 0.0) && self.p.iter().any(|&p| p > 0.0);
+        let before = self.p.clone();
         for p in &mut self.p {
             *p = if usable { p.min(pm) } else { mean_pressure };
         }
+        usable && self.p.iter().zip(&before).all(|(a, b)| a.to_bits() == b.to_bits())
     }
 
     fn load_sums(&mut self, pm: f64) -> LoadSums {
@@ -220,6 +222,10 @@ impl ContactBackend for Reference {
 
     fn displacement_and_stats(&mut self, reference: f64, pm: f64) -> Stats {
         self.influence.apply(&self.p, &mut self.u);
+        self.stats(reference, pm)
+    }
+
+    fn stats(&mut self, reference: f64, pm: f64) -> Stats {
         let rows = self.rows(|_, range| {
             let mut s = Stats::default();
             for k in range {
@@ -446,6 +452,16 @@ fn iteration_passes(backend: &mut dyn ContactBackend, reference: &mut Reference,
     run(&mut |b| every_stat(b, pm), "displacement_and_stats");
     run(
         &mut |b| {
+            let fresh = every_stat(b, pm);
+            let held = stat_values(&b.stats(1e-3, pm));
+            let same = fresh.iter().zip(&held).all(|(x, y)| x.to_bits() == y.to_bits());
+            assert!(same, "stats of the held u {held:?} are not a fresh 𝒦p's {fresh:?}");
+            held
+        },
+        "stats",
+    );
+    run(
+        &mut |b| {
             b.scale(1.2, pm, false);
             b.spread_missing_load(target, pm, 2e-3);
             vec![]
@@ -463,19 +479,32 @@ fn iteration_passes(backend: &mut dyn ContactBackend, reference: &mut Reference,
     let mut run = |f: &mut dyn FnMut(&mut dyn ContactBackend) -> Vec<f64>, what: &str| {
         both(&mut *backend, &mut *reference, exact, f, what)
     };
+    // initial_guess reports whether p stayed as it was: at p_m it does, above it or unusable not.
+    let kept = |k: bool| f64::from(u8::from(k));
     run(
         &mut |b| {
             b.saturate_contact(pm_eff);
-            b.initial_guess(mean_pressure, pm_eff);
-            vec![b.load_sums(pm_eff).free]
+            let k = b.initial_guess(mean_pressure, pm_eff);
+            assert!(k, "a usable p at or below p_m is kept");
+            vec![kept(k), b.load_sums(pm_eff).free]
         },
         "saturate_contact, initial_guess",
     );
     run(
         &mut |b| {
+            b.write_pressure(&mut |p| p[nn / 2] = 2.0 * pm_eff.min(0.05));
+            let k = b.initial_guess(mean_pressure, pm_eff.min(0.05));
+            assert!(!k, "a p above p_m is clipped");
+            vec![kept(k), b.load_sums(pm_eff).plastic]
+        },
+        "initial_guess (above p_m)",
+    );
+    run(
+        &mut |b| {
             b.write_pressure(&mut |p| p.fill(-1.0));
-            b.initial_guess(mean_pressure, pm_eff);
-            vec![]
+            let k = b.initial_guess(mean_pressure, pm_eff);
+            assert!(!k, "an unusable p is replaced");
+            vec![kept(k)]
         },
         "initial_guess (unusable)",
     );
@@ -699,7 +728,7 @@ impl ContactBackend for Broken {
     fn height_stats(&mut self) -> HeightStats {
         self.0.height_stats()
     }
-    fn initial_guess(&mut self, m: f64, pm: f64) {
+    fn initial_guess(&mut self, m: f64, pm: f64) -> bool {
         self.0.initial_guess(m, pm)
     }
     fn load_sums(&mut self, pm: f64) -> LoadSums {
@@ -724,6 +753,9 @@ impl ContactBackend for Broken {
     }
     fn displacement_and_stats(&mut self, r: f64, pm: f64) -> Stats {
         self.0.displacement_and_stats(r, pm)
+    }
+    fn stats(&mut self, r: f64, pm: f64) -> Stats {
+        self.0.stats(r, pm)
     }
     fn direction(&mut self, m: f64, b: f64, pm: f64) -> (f64, f64) {
         self.0.direction(m, b, pm)

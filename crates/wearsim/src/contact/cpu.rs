@@ -45,8 +45,8 @@ pub(crate) struct CpuBackend {
     /// by `compose` for the heights it writes (`height_rows_ready`).
     height_rows: Vec<(f64, f64, f64, bool)>,
     height_rows_ready: bool,
-    /// Per-row partials of the initial guess's tests: all finite and ≥ 0, any > 0.
-    guess_rows: Vec<(bool, bool)>,
+    /// Per-row partials of the initial guess's tests: all finite and ≥ 0, any > 0, all ≤ p_m.
+    guess_rows: Vec<(bool, bool, bool)>,
     /// Per-chunk partials of the load sums and of the scaled load ([`LOAD_CHUNK`] pixels each).
     load_chunks: Vec<LoadSums>,
     scaled_chunks: Vec<(f64, f64)>,
@@ -78,7 +78,7 @@ impl CpuBackend {
             row_partials: vec![0.0; nx],
             height_rows: vec![(0.0, 0.0, 0.0, true); nx],
             height_rows_ready: false,
-            guess_rows: vec![(true, false); nx],
+            guess_rows: vec![(true, false, true); nx],
             load_chunks: vec![LoadSums::default(); (nx * ny).div_ceil(LOAD_CHUNK)],
             scaled_chunks: vec![(0.0, 0.0); (nx * ny).div_ceil(LOAD_CHUNK)],
             min_len: (8192 / ny).max(1),
@@ -190,19 +190,22 @@ impl ContactBackend for CpuBackend {
         }
     }
 
-    /// One pass over rows for the two tests, one to set p.
-    fn initial_guess(&mut self, mean_pressure: f64, pm: f64) {
+    /// One pass over rows for the tests, one to set p (none when p stays as it is).
+    fn initial_guess(&mut self, mean_pressure: f64, pm: f64) -> bool {
         let n = self.ny;
         self.guess_rows
             .par_iter_mut()
             .with_min_len(self.min_len)
             .zip(self.pressure.par_chunks(n))
             .for_each(|(acc, row)| {
-                *acc = row.iter().fold((true, false), |(valid, any), &p| {
-                    (valid && p.is_finite() && p >= 0.0, any || p > 0.0)
+                *acc = row.iter().fold((true, false, true), |(valid, any, below), &p| {
+                    (valid && p.is_finite() && p >= 0.0, any || p > 0.0, below && p <= pm)
                 });
             });
         let usable = self.guess_rows.iter().all(|r| r.0) && self.guess_rows.iter().any(|r| r.1);
+        if usable && self.guess_rows.iter().all(|r| r.2) {
+            return true;
+        }
         self.pressure
             .par_chunks_mut(n)
             .with_min_len(self.min_len)
@@ -211,6 +214,7 @@ impl ContactBackend for CpuBackend {
                     *p = if usable { p.min(pm) } else { mean_pressure };
                 }
             });
+        false
     }
 
     fn load_sums(&mut self, pm: f64) -> LoadSums {
@@ -320,18 +324,28 @@ impl ContactBackend for CpuBackend {
             |_, _| {},
             &mut self.u,
             |i, u| {
-                let mut s = Stats::default();
-                for ((&p, &u), &h) in pressure[i * n..(i + 1) * n]
-                    .iter()
-                    .zip(u)
-                    .zip(&heights[i * n..(i + 1) * n])
-                {
-                    s.add(p, u, h, reference, pm);
-                }
-                s
+                row_stats(
+                    &pressure[i * n..(i + 1) * n],
+                    u,
+                    &heights[i * n..(i + 1) * n],
+                    reference,
+                    pm,
+                )
             },
             Some(&mut self.stats),
         );
+        Stats::combine(&self.stats)
+    }
+
+    /// The post hook of `displacement_and_stats` as a pass of its own, row by row.
+    fn stats(&mut self, reference: f64, pm: f64) -> Stats {
+        let n = self.ny;
+        self.stats
+            .par_iter_mut()
+            .with_min_len(self.min_len)
+            .zip(self.pressure.par_chunks(n))
+            .zip(self.u.par_chunks(n).zip(self.heights.par_chunks(n)))
+            .for_each(|((acc, p), (u, h))| *acc = row_stats(p, u, h, reference, pm));
         Stats::combine(&self.stats)
     }
 
@@ -472,6 +486,15 @@ impl ContactBackend for CpuBackend {
                 }
             });
     }
+}
+
+/// The [`Stats`] of one row of g = u − h about `reference`, pixels in order.
+fn row_stats(p: &[f64], u: &[f64], h: &[f64], reference: f64, pm: f64) -> Stats {
+    let mut s = Stats::default();
+    for ((&p, &u), &h) in p.iter().zip(u).zip(h) {
+        s.add(p, u, h, reference, pm);
+    }
+    s
 }
 
 /// The scalars of one update pass ([`ContactBackend::update`]).
