@@ -57,6 +57,11 @@ impl Reference {
         }
     }
 
+    /// t_f: t − `shift` where t ≠ 0, else 0 (`response`, `curvature`).
+    fn shifted_direction(&self, shift: f64) -> Vec<f64> {
+        self.t.iter().map(|&t| if t != 0.0 { t - shift } else { t }).collect()
+    }
+
     /// Per-row partials of `f(row index, pixel range)`, combined by `combine` in row order.
     fn rows<R>(&self, mut f: impl FnMut(usize, std::ops::Range<usize>) -> R) -> Vec<R> {
         (0..self.nx).map(|i| f(i, i * self.ny..(i + 1) * self.ny)).collect()
@@ -260,7 +265,7 @@ impl ContactBackend for Reference {
     }
 
     fn response(&mut self, shift: f64) -> f64 {
-        let shifted: Vec<f64> = self.t.iter().map(|&t| if t != 0.0 { t - shift } else { t }).collect();
+        let shifted = self.shifted_direction(shift);
         self.influence.apply(&shifted, &mut self.r);
         let rows = self.rows(|_, range| {
             let mut s = 0.0;
@@ -275,7 +280,7 @@ impl ContactBackend for Reference {
     }
 
     fn curvature(&mut self, shift: f64) -> f64 {
-        let shifted: Vec<f64> = self.t.iter().map(|&t| if t != 0.0 { t - shift } else { t }).collect();
+        let shifted = self.shifted_direction(shift);
         self.influence
             .quadratic_form_with(&shifted, |_, _| {}, 1.0 / self.response_scale)
     }

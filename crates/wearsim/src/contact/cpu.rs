@@ -385,13 +385,7 @@ impl ContactBackend for CpuBackend {
         let (t, inverse_scale) = (&self.t, 1.0 / self.response_scale);
         self.influence.apply_with(
             &self.t,
-            |_, row| {
-                for v in row.iter_mut() {
-                    if *v != 0.0 {
-                        *v -= shift;
-                    }
-                }
-            },
+            |_, row| shift_free(row, shift),
             &mut self.r,
             |i, row| {
                 let mut s = 0.0;
@@ -410,15 +404,8 @@ impl ContactBackend for CpuBackend {
     /// t_f as in `response`, shifted in the forward transform's row hook; 1/response_scale (exact,
     /// a power of two) in every term.
     fn curvature(&mut self, shift: f64) -> f64 {
-        let shifted = |_: usize, row: &mut [f64]| {
-            for v in row.iter_mut() {
-                if *v != 0.0 {
-                    *v -= shift;
-                }
-            }
-        };
         self.influence
-            .quadratic_form_with(&self.t, shifted, 1.0 / self.response_scale)
+            .quadratic_form_with(&self.t, |_, row| shift_free(row, shift), 1.0 / self.response_scale)
     }
 
     fn update(&mut self, mean: f64, tau: f64, shift: f64, pm: f64, moves_u: bool) -> Update {
@@ -485,6 +472,13 @@ impl ContactBackend for CpuBackend {
                     *u = a + step * r;
                 }
             });
+    }
+}
+
+/// t_f = t − `shift` on one row's free pixels, those where t ≠ 0 (`response`, `curvature`).
+fn shift_free(row: &mut [f64], shift: f64) {
+    for v in row.iter_mut().filter(|v| **v != 0.0) {
+        *v -= shift;
     }
 }
 
