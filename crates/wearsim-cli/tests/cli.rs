@@ -350,7 +350,8 @@ fn bench_passes_prints_and_records_each_pass_against_the_copy_floor() {
         "displacement_and_stats",
         "a conjugate-gradient iteration:",
         "curvature",
-        "an iteration that releases a pixel:",
+        "advance",
+        "an iteration that changes the sets:",
     ] {
         assert!(out.contains(line), "{line:?} missing from:\n{out}");
     }

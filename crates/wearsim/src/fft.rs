@@ -126,6 +126,9 @@ pub struct FftPlan {
     spectrum: Vec<C64>,
     /// Per-`q_y`-row partials of [`FftPlan::quadratic_form_with`], combined in row order.
     row_sums: Vec<f64>,
+    /// The buffer holds the forward transform of the last [`FftPlan::quadratic_form_with`]'s
+    /// input, for [`FftPlan::convolve_kept_with`].
+    transform_kept: bool,
 }
 
 impl FftPlan {
@@ -150,6 +153,7 @@ impl FftPlan {
             col_inverse: complex.plan_fft_inverse(nx),
             spectrum: zeroed_buffer(half * stride),
             row_sums: vec![0.0; half],
+            transform_kept: false,
         }
     }
 
@@ -176,6 +180,7 @@ impl FftPlan {
 
     /// Write access to the transposed half spectrum, to be followed by [`FftPlan::inverse`].
     pub fn spectrum_mut(&mut self) -> &mut [C64] {
+        self.transform_kept = false;
         &mut self.spectrum
     }
 
@@ -187,6 +192,7 @@ impl FftPlan {
     /// Unnormalised forward transform of `input` (Nx·Ny values, row-major) into the spectrum buffer
     /// (row FFTs with the transpose fused in, then column FFTs).
     pub fn forward(&mut self, input: &[f64]) {
+        self.transform_kept = false;
         self.row_forward(input, |_, _| {});
         let fft = Arc::clone(&self.col_forward);
         self.column_pass(&*fft);
@@ -195,6 +201,7 @@ impl FftPlan {
     /// Unnormalised inverse transform of the spectrum buffer into `output` (Nx·Ny values). The buffer
     /// is consumed. Divide by Nx·Ny for the inverse of [`FftPlan::forward`].
     pub fn inverse(&mut self, output: &mut [f64]) {
+        self.transform_kept = false;
         let fft = Arc::clone(&self.col_inverse);
         self.column_pass(&*fft);
         self.row_inverse(output, |_, _| (), None);
@@ -220,7 +227,8 @@ impl FftPlan {
 
     /// [`FftPlan::convolve`] with two hooks fused into its row passes, to save whole passes over the
     /// arrays in the solver: `pre(i, row)` may modify the copy of input row `i` before it is
-    /// transformed; `post(i, row)` sees output row `i` once written and returns a value stored in
+    /// transformed; `post(i, row)` sees output row `i` once written, may rewrite it (the solver
+    /// turns a response into the displacement it moves), and returns a value stored in
     /// `partials[i]` (when given), for deterministic reductions (a sum, the solver's statistics).
     pub fn convolve_with<R: Send>(
         &mut self,
@@ -228,34 +236,58 @@ impl FftPlan {
         pre: impl Fn(usize, &mut [f64]) + Sync,
         kernel: &[f64],
         output: &mut [f64],
-        post: impl Fn(usize, &[f64]) -> R + Sync,
+        post: impl Fn(usize, &mut [f64]) -> R + Sync,
         partials: Option<&mut [R]>,
     ) {
-        assert_eq!(
-            kernel.len(),
-            self.half() * self.nx,
-            "kernel must hold (Ny/2+1)·Nx values"
-        );
+        self.transform_kept = false;
         self.row_forward(input, pre);
+        self.column_convolve(kernel, true);
+        self.row_inverse(output, post, partials);
+    }
+
+    /// [`FftPlan::convolve_with`] of the input of the last [`FftPlan::quadratic_form_with`], from
+    /// its forward transform still in the buffer (no other transform since): the other half of
+    /// the convolution, bit for bit the numbers a whole `convolve_with` of that input (with the
+    /// same `pre`) gives.
+    pub fn convolve_kept_with<R: Send>(
+        &mut self,
+        kernel: &[f64],
+        output: &mut [f64],
+        post: impl Fn(usize, &mut [f64]) -> R + Sync,
+        partials: Option<&mut [R]>,
+    ) {
+        assert!(
+            self.transform_kept,
+            "convolve_kept_with follows quadratic_form_with with no transform between"
+        );
+        self.transform_kept = false;
+        self.column_convolve(kernel, false);
+        self.row_inverse(output, post, partials);
+    }
+
+    /// Per (transposed) spectrum row: the forward column FFT (unless the buffer holds it
+    /// already), the kernel, the inverse column FFT, in one pass.
+    fn column_convolve(&mut self, kernel: &[f64], forward: bool) {
         let n = self.nx;
-        let stride = self.stride;
+        assert_eq!(kernel.len(), self.half() * n, "kernel must hold (Ny/2+1)·Nx values");
         let fwd = &self.col_forward;
         let inv = &self.col_inverse;
         let scratch_len = fwd.get_inplace_scratch_len().max(inv.get_inplace_scratch_len());
         self.spectrum
-            .par_chunks_mut(stride)
+            .par_chunks_mut(self.stride)
             .zip(kernel.par_chunks(n))
             .for_each(|(row, k)| {
                 with_work(0, 0, scratch_len, |_, _, scratch| {
                     let row = &mut row[..n];
-                    fwd.process_with_scratch(row, scratch);
+                    if forward {
+                        fwd.process_with_scratch(row, scratch);
+                    }
                     for (c, &w) in row.iter_mut().zip(k) {
                         *c *= w;
                     }
                     inv.process_with_scratch(row, scratch);
                 })
             });
-        self.row_inverse(output, post, partials);
     }
 
     /// `factor · Σₓ input·(kernel ∗ input)`, the quadratic form of [`FftPlan::convolve`]'s
@@ -275,6 +307,7 @@ impl FftPlan {
     ) -> f64 {
         let (n, half) = (self.nx, self.half());
         assert_eq!(kernel.len(), half * n, "kernel must hold (Ny/2+1)·Nx values");
+        self.transform_kept = false;
         self.row_forward(input, pre);
         let fwd = &self.col_forward;
         let scratch_len = fwd.get_inplace_scratch_len();
@@ -291,6 +324,7 @@ impl FftPlan {
                     *sum = if qy == 0 || qy == half - 1 { s } else { 2.0 * s };
                 })
             });
+        self.transform_kept = true;
         self.row_sums.iter().sum()
     }
 
@@ -330,7 +364,7 @@ impl FftPlan {
     fn row_inverse<R: Send>(
         &mut self,
         output: &mut [f64],
-        post: impl Fn(usize, &[f64]) -> R + Sync,
+        post: impl Fn(usize, &mut [f64]) -> R + Sync,
         partials: Option<&mut [R]>,
     ) {
         let n = self.ny;
@@ -488,7 +522,40 @@ mod tests {
                 (parseval - direct).abs() < 1e-12 * direct.abs(),
                 "{nx}×{ny}: {parseval} vs {direct}"
             );
+            // The transform it leaves completes the convolution, bit for bit, hooks included.
+            let mut rest = vec![0.0; nx * ny];
+            let mut rows = vec![0.0; nx];
+            plan.convolve_kept_with(
+                &kernel,
+                &mut rest,
+                |i, row| {
+                    row[1] *= 2.0;
+                    row[0] + i as f64
+                },
+                Some(&mut rows),
+            );
+            for i in 0..nx {
+                assert_eq!(rows[i].to_bits(), (out[i * ny] + i as f64).to_bits());
+                out[i * ny + 1] *= 2.0;
+            }
+            assert!(
+                rest.iter().zip(&out).all(|(x, y)| x.to_bits() == y.to_bits()),
+                "{nx}×{ny}"
+            );
         }
+    }
+
+    #[test]
+    #[should_panic(expected = "convolve_kept_with follows quadratic_form_with")]
+    fn completing_a_convolution_after_another_transform_is_refused() {
+        let (nx, ny) = (8, 8);
+        let kernel = radial_kernel(nx, ny, |qx, qy| qx + qy);
+        let mut plan = FftPlan::new(nx, ny);
+        let a = vec![1.0; nx * ny];
+        let mut out = vec![0.0; nx * ny];
+        plan.quadratic_form_with(&a, |_, _| {}, &kernel, 1.0);
+        plan.convolve(&a, &kernel, &mut out);
+        plan.convolve_kept_with(&kernel, &mut out, |_, _| (), None);
     }
 
     #[test]

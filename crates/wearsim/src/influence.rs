@@ -210,7 +210,7 @@ impl Influence {
         input: &[f64],
         pre: impl Fn(usize, &mut [f64]) + Sync,
         output: &mut [f64],
-        post: impl Fn(usize, &[f64]) -> R + Sync,
+        post: impl Fn(usize, &mut [f64]) -> R + Sync,
         partials: Option<&mut [R]>,
     ) {
         let (nx, ny) = (self.nx, self.ny);
@@ -225,24 +225,7 @@ impl Influence {
             Boundary::Free => {
                 self.pad(input, pre);
                 self.plan.convolve(&self.padded_in, &self.kernel, &mut self.padded_out);
-                let padded = &self.padded_out;
-                let keep = |i: usize, out: &mut [f64]| {
-                    out.copy_from_slice(&padded[i * 2 * ny..i * 2 * ny + ny]);
-                    post(i, out)
-                };
-                match partials {
-                    Some(partials) => {
-                        assert_eq!(partials.len(), nx, "one partial per row");
-                        output
-                            .par_chunks_mut(ny)
-                            .zip(partials.par_iter_mut())
-                            .enumerate()
-                            .for_each(|(i, (out, slot))| *slot = keep(i, out));
-                    }
-                    None => output.par_chunks_mut(ny).enumerate().for_each(|(i, out)| {
-                        keep(i, out);
-                    }),
-                }
+                self.crop_with(output, post, partials);
             }
         }
     }
@@ -265,6 +248,55 @@ impl Influence {
     }
 
     /// The free boundary's zero-padded input: `input` through `pre` into its Nx × Ny corner.
+    /// [`Influence::apply_with`] of the input of the last [`Influence::quadratic_form_with`] (with
+    /// its `pre`), from the forward transform that call left (no other use of the operator since):
+    /// the other half of the convolution, bit for bit what `apply_with` gives.
+    pub fn apply_kept_with<R: Send>(
+        &mut self,
+        output: &mut [f64],
+        post: impl Fn(usize, &mut [f64]) -> R + Sync,
+        partials: Option<&mut [R]>,
+    ) {
+        assert_eq!(output.len(), self.nx * self.ny, "fields must hold Nx·Ny values");
+        match self.boundary {
+            Boundary::Periodic => self.plan.convolve_kept_with(&self.kernel, output, post, partials),
+            Boundary::Free => {
+                self.plan
+                    .convolve_kept_with(&self.kernel, &mut self.padded_out, |_, _| (), None);
+                self.crop_with(output, post, partials);
+            }
+        }
+    }
+
+    /// Free boundary: the map's corner of the padded output into `output`, row by row, with the
+    /// `post` hook of [`Influence::apply_with`].
+    fn crop_with<R: Send>(
+        &self,
+        output: &mut [f64],
+        post: impl Fn(usize, &mut [f64]) -> R + Sync,
+        partials: Option<&mut [R]>,
+    ) {
+        let (nx, ny) = (self.nx, self.ny);
+        let padded = &self.padded_out;
+        let keep = |i: usize, out: &mut [f64]| {
+            out.copy_from_slice(&padded[i * 2 * ny..i * 2 * ny + ny]);
+            post(i, out)
+        };
+        match partials {
+            Some(partials) => {
+                assert_eq!(partials.len(), nx, "one partial per row");
+                output
+                    .par_chunks_mut(ny)
+                    .zip(partials.par_iter_mut())
+                    .enumerate()
+                    .for_each(|(i, (out, slot))| *slot = keep(i, out));
+            }
+            None => output.par_chunks_mut(ny).enumerate().for_each(|(i, out)| {
+                keep(i, out);
+            }),
+        }
+    }
+
     fn pad(&mut self, input: &[f64], pre: impl Fn(usize, &mut [f64]) + Sync) {
         let ny = self.ny;
         self.padded_in

@@ -154,7 +154,7 @@ fn print_passes(n: usize, timings: &[wearsim::contact::PassTiming]) {
             "a conjugate-gradient iteration",
             (|t: &wearsim::contact::PassTiming| t.per_cg_iteration) as fn(&_) -> f64,
         ),
-        ("an iteration that releases a pixel", |t| t.per_set_change),
+        ("an iteration that changes the sets", |t| t.per_set_change),
     ] {
         let (seconds, streams) = timings.iter().fold((0.0, 0.0), |(s, f), t| {
             (s + pick(t) * t.seconds, f + pick(t) * t.streams)

@@ -3,8 +3,9 @@
 //! `ContactSolver` writes the saturated conjugate-gradient algorithm once, in scalars: step
 //! lengths, conjugation coefficients, the load's Newton iteration, the convergence test. Everything
 //! that touches an Nx·Ny field goes through a [`ContactBackend`]: the backend owns the fields of a
-//! solve (heights h, pressure p, displacement u = 𝒦p and its spare, the conjugate direction t, its
-//! response r = 𝒦t, the previous pressure) for as long as the solver lives (a whole sliding run),
+//! solve (heights h, pressure p, displacement u = 𝒦p and its spare, the conjugate direction t and
+//! the transform of its curvature, the previous pressure) for as long as the solver lives (a whole
+//! sliding run),
 //! performs the convolutions and the fused element-wise passes, and returns only the scalars of
 //! their reductions ([`Stats`], [`LoadSums`], sums). The surfaces of a sliding run are bound once
 //! ([`ContactBackend::bind_surfaces`]) and composed where the fields live at each offset; what
@@ -228,11 +229,11 @@ pub(crate) struct HeightStats {
     pub not_finite: Option<(usize, f64)>,
 }
 
-/// What the update pass reports: the statistics of the new p (valid when nothing was clipped or
-/// released), the new total load Σp, and whether any pixel was released from or clipped to a bound.
+/// What the update pass reports: the load sums of the new p, its total Σp, and whether any pixel
+/// was released from or clipped to a bound.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Update {
-    pub stats: Stats,
+    pub load: LoadSums,
     pub total: f64,
     pub released: bool,
     pub clipped: bool,
@@ -312,35 +313,34 @@ pub(crate) trait ContactBackend: Send + Sync {
     /// free pixels.
     fn direction(&mut self, mean: f64, beta: f64, pm: f64) -> (f64, f64);
 
-    /// A power of two near 𝒦ᵢᵢ: [`ContactBackend::response`] returns its sum divided by it, since
-    /// Σ r·t_f itself scales as L³/E* and leaves double precision for boxes far from unit size
+    /// A power of two near 𝒦ᵢᵢ: [`ContactBackend::curvature`] returns its form divided by it, since
+    /// Σ t_f·𝒦t_f itself scales as L³/E* and leaves double precision for boxes far from unit size
     /// (division by a power of two is exact, so nothing else changes).
     fn response_scale(&self) -> f64;
 
-    /// r = 𝒦 t_f with t_f = t − `shift` where t ≠ 0 (else 0); returns Σ (r / response_scale)·t_f
-    /// over those pixels.
-    fn response(&mut self, shift: f64) -> f64;
-
-    /// The number [`ContactBackend::response`] returns, without r: Σ t_f·𝒦t_f (over
-    /// response_scale) from the forward transform of t_f alone, by Parseval's identity (half a
-    /// convolution). For a step known to change the sets before it is taken (a pixel will be
-    /// released): its u is recomputed as 𝒦p after it, so r is never needed. Equal to `response`'s
-    /// number up to round-off.
+    /// Σ t_f·𝒦t_f / response_scale with t_f = t − `shift` where t ≠ 0 (else 0), from the forward
+    /// transform of t_f alone, by Parseval's identity (half a convolution). The transform stays
+    /// where the fields live, for [`ContactBackend::advance`]: the other half, needed only when
+    /// the step turns out to stay on the CG line.
     fn curvature(&mut self, shift: f64) -> f64;
 
     /// The update pass (copying p first, for [`ContactBackend::undo`]): with `shift` finite, free
-    /// pixels take the CG step p −= τ(t − shift), clipped to [0, p_m], and, when `moves_u` (r was
-    /// computed by [`ContactBackend::response`]), u follows (u −= τr); non-contact pixels that
+    /// pixels take the CG step p −= τ(t − shift), clipped to [0, p_m]; non-contact pixels that
     /// penetrate and plastic pixels whose gap opens take a gradient step p −= τ(g − `mean`). With
-    /// `shift` NaN no CG step is taken. The statistics of a CG step that moves u also hold each
-    /// pixel's move ([`Stats::add_change`]); without `moves_u` their gaps are the old u's, and the
-    /// caller recomputes u = 𝒦p.
-    fn update(&mut self, mean: f64, tau: f64, shift: f64, pm: f64, moves_u: bool) -> Update;
+    /// `shift` NaN no CG step is taken. u is not moved: after a step that changed the sets the
+    /// caller recomputes u = 𝒦p, after one on the CG line it calls [`ContactBackend::advance`].
+    fn update(&mut self, mean: f64, tau: f64, shift: f64, pm: f64) -> Update;
 
-    /// Swaps u with its spare buffer: the carried-along u is kept there (for an undo) while the
-    /// next [`ContactBackend::displacement_and_stats`] writes a fresh 𝒦p into u.
+    /// After an [`ContactBackend::update`] whose CG step changed no set: r = 𝒦t_f, from the
+    /// transform the last [`ContactBackend::curvature`] left when `kept` (no convolution since),
+    /// else afresh from t; then u −= τr, and the [`Stats`] of the new p about `mean`, with each
+    /// pixel's move ([`Stats::add_change`]: Δp against the copy of p, −Δu = τr).
+    fn advance(&mut self, mean: f64, tau: f64, shift: f64, pm: f64, kept: bool) -> Stats;
+
+    /// Swaps u with its spare buffer: the u of the step's start is kept there (for an undo) while
+    /// the next [`ContactBackend::displacement_and_stats`] writes a fresh 𝒦p into u.
     fn keep_displacement(&mut self);
 
-    /// Undoes an update: p from its copy, u = (kept u) + `step`·r.
-    fn undo(&mut self, step: f64);
+    /// Undoes an update: p from its copy, u back to the kept displacement.
+    fn undo(&mut self);
 }

@@ -26,6 +26,7 @@ struct Reference {
     p: Vec<f64>,
     u: Vec<f64>,
     t: Vec<f64>,
+    /// r = 𝒦t_f of the last `advance`.
     r: Vec<f64>,
     p_old: Vec<f64>,
     u_kept: Vec<f64>,
@@ -57,7 +58,7 @@ impl Reference {
         }
     }
 
-    /// t_f: t − `shift` where t ≠ 0, else 0 (`response`, `curvature`).
+    /// t_f: t − `shift` where t ≠ 0, else 0 (`curvature`, `advance`).
     fn shifted_direction(&self, shift: f64) -> Vec<f64> {
         self.t.iter().map(|&t| if t != 0.0 { t - shift } else { t }).collect()
     }
@@ -264,38 +265,32 @@ impl ContactBackend for Reference {
         self.response_scale
     }
 
-    fn response(&mut self, shift: f64) -> f64 {
-        let shifted = self.shifted_direction(shift);
-        self.influence.apply(&shifted, &mut self.r);
-        let rows = self.rows(|_, range| {
-            let mut s = 0.0;
-            for k in range {
-                if self.t[k] != 0.0 {
-                    s += (self.r[k] / self.response_scale) * (self.t[k] - shift);
-                }
-            }
-            s
-        });
-        rows.iter().sum()
-    }
-
+    /// By Parseval's identity (the same transform as the CPU backend's, so that both agree
+    /// exactly), checked here against Σ t_f·𝒦t_f summed pixel by pixel.
     fn curvature(&mut self, shift: f64) -> f64 {
         let shifted = self.shifted_direction(shift);
-        self.influence
-            .quadratic_form_with(&shifted, |_, _| {}, 1.0 / self.response_scale)
+        let form = self
+            .influence
+            .quadratic_form_with(&shifted, |_, _| {}, 1.0 / self.response_scale);
+        let mut r = vec![0.0; shifted.len()];
+        self.influence.apply(&shifted, &mut r);
+        let sum: f64 = r.iter().zip(&shifted).map(|(r, t)| r / self.response_scale * t).sum();
+        assert!(
+            (form - sum).abs() <= 1e-12 * sum.abs().max(f64::MIN_POSITIVE),
+            "curvature {form} is not Σ t_f·𝒦t_f = {sum}"
+        );
+        form
     }
 
-    fn update(&mut self, mean: f64, tau: f64, shift: f64, pm: f64, moves_u: bool) -> Update {
+    fn update(&mut self, mean: f64, tau: f64, shift: f64, pm: f64) -> Update {
         let cg_step = shift.is_finite();
-        let moves_u = cg_step && moves_u;
         self.p_old.copy_from_slice(&self.p);
-        let (mut parts, mut sums) = (Vec::new(), Vec::new());
+        let (mut load, mut sums) = (LoadSums::default(), Vec::new());
         let (mut released, mut clipped) = (false, false);
         for i in 0..self.nx {
-            let (mut s, mut sum_p) = (Stats::default(), 0.0);
+            let (mut row_load, mut sum_p) = (LoadSums::default(), 0.0);
             for k in i * self.ny..(i + 1) * self.ny {
                 let d = self.u[k] - self.h[k] - mean;
-                let before = self.p[k];
                 let p = &mut self.p[k];
                 if *p <= 0.0 {
                     if d < 0.0 {
@@ -319,36 +314,46 @@ impl ContactBackend for Reference {
                         *p = q;
                     }
                 }
-                if moves_u {
-                    self.u[k] -= tau * self.r[k];
-                }
                 sum_p += self.p[k];
-                s.add(self.p[k], self.u[k], self.h[k], mean, pm);
-                if moves_u {
-                    // Each pixel's last move, for the settled-map stop.
-                    s.add_change(self.p[k], self.p[k] - before, self.u[k] - self.h[k], tau * self.r[k]);
-                }
+                row_load.add(self.p[k], pm);
             }
-            parts.push(s);
+            load = LoadSums::merge(load, row_load);
             sums.push(sum_p);
         }
         Update {
-            stats: Stats::combine(&parts),
+            load,
             total: sums.iter().sum(),
             released,
             clipped,
         }
     }
 
+    /// r afresh whether or not a transform was kept (the reference keeps none).
+    fn advance(&mut self, mean: f64, tau: f64, shift: f64, pm: f64, _kept: bool) -> Stats {
+        let shifted = self.shifted_direction(shift);
+        self.influence.apply(&shifted, &mut self.r);
+        let mut parts = Vec::with_capacity(self.nx);
+        for i in 0..self.nx {
+            let mut s = Stats::default();
+            for k in i * self.ny..(i + 1) * self.ny {
+                self.u[k] -= tau * self.r[k];
+                let p = self.p[k];
+                s.add(p, self.u[k], self.h[k], mean, pm);
+                // Each pixel's last move, for the settled-map stop.
+                s.add_change(p, p - self.p_old[k], self.u[k] - self.h[k], tau * self.r[k]);
+            }
+            parts.push(s);
+        }
+        Stats::combine(&parts)
+    }
+
     fn keep_displacement(&mut self) {
         std::mem::swap(&mut self.u, &mut self.u_kept);
     }
 
-    fn undo(&mut self, step: f64) {
+    fn undo(&mut self) {
         self.p.copy_from_slice(&self.p_old);
-        for k in 0..self.u.len() {
-            self.u[k] = self.u_kept[k] + step * self.r[k];
-        }
+        self.u.copy_from_slice(&self.u_kept);
     }
 }
 
@@ -541,27 +546,31 @@ fn conjugate_steps(backend: &mut dyn ContactBackend, reference: &mut Reference, 
         },
         "write_pressure, displacement_and_stats",
     );
-    // Without `moves_u` the step's curvature comes from `curvature`, r is left as it was, and u
-    // stays (the solver's steps that release a pixel).
-    for (beta, tau, shift, mean, moves_u) in [
+    // `advance` follows every CG step here (the solver calls it only after one that changed no
+    // set; its arithmetic is the same either way), from the kept transform or afresh.
+    for (beta, tau, shift, mean, kept) in [
         (0.0, 0.5, 0.0, 1e-3, true),
         (0.3, 2.0, f64::NAN, 1e-3, true),
         (0.5, 1e3, 1e-4, 1e-3, false),
         (0.2, 0.5, 0.0, -1.0, true),
-        (0.4, 2.0, 1e-4, -5e-3, true),
-        (0.0, 1.0, f64::NAN, -5e-3, false),
-        (0.1, 0.7, 2e-4, -5e-3, false),
+        (0.4, 2.0, 1e-4, -5e-3, false),
+        (0.0, 1.0, f64::NAN, -5e-3, true),
+        (0.1, 0.7, 2e-4, -5e-3, true),
     ] {
         run(
-            &mut |b| conjugate_step(b, beta, tau, shift, mean, pm, moves_u),
-            "direction, response or curvature, update",
+            &mut |b| conjugate_step(b, beta, tau, shift, mean, pm, kept),
+            "direction, curvature, update, advance",
         );
         run(
             &mut |b| {
                 b.keep_displacement();
                 let s = b.displacement_and_stats(1e-3, pm);
-                b.undo(if moves_u { tau } else { 0.0 });
-                vec![s.energy, b.displacement_and_stats(2e-3, pm).energy]
+                b.undo();
+                vec![
+                    s.energy,
+                    b.stats(2e-3, pm).energy,
+                    b.displacement_and_stats(2e-3, pm).energy,
+                ]
             },
             "keep_displacement, undo",
         );
@@ -591,9 +600,8 @@ fn stat_values(s: &Stats) -> Vec<f64> {
     ]
 }
 
-/// One conjugate-gradient step (`direction`, `response` or, without `moves_u`, `curvature`,
-/// `update`) and every number it reports. `curvature` is Σ t_f·r by Parseval's identity: it equals
-/// `response`'s sum to round-off on every backend.
+/// One conjugate-gradient step (`direction`, `curvature`, `update`, and with a CG step `advance`,
+/// from the transform `curvature` kept or afresh) and every number it reports.
 fn conjugate_step(
     b: &mut dyn ContactBackend,
     beta: f64,
@@ -601,22 +609,13 @@ fn conjugate_step(
     shift: f64,
     mean: f64,
     pm: f64,
-    moves_u: bool,
+    kept: bool,
 ) -> Vec<f64> {
     let (st, sdt) = b.direction(mean, beta, pm);
     let shift_t = if shift.is_nan() { 0.0 } else { shift };
-    let form = b.curvature(shift_t);
-    let curvature = if moves_u {
-        let sum = b.response(shift_t);
-        assert!(
-            (form - sum).abs() <= 1e-12 * sum.abs(),
-            "curvature {form} is not response's Σ t_f·r = {sum}"
-        );
-        sum
-    } else {
-        form
-    };
-    let u = b.update(mean, tau, shift, pm, moves_u);
+    let curvature = b.curvature(shift_t);
+    let u = b.update(mean, tau, shift, pm);
+    let l = u.load;
     let mut values = vec![
         st,
         sdt,
@@ -624,8 +623,14 @@ fn conjugate_step(
         u.total,
         f64::from(u8::from(u.released)),
         f64::from(u8::from(u.clipped)),
+        l.free,
+        l.plastic,
+        l.n_contact as f64,
+        l.max_free,
     ];
-    values.extend(stat_values(&u.stats));
+    if shift.is_finite() {
+        values.extend(stat_values(&b.advance(mean, tau, shift, pm, kept)));
+    }
     values
 }
 
@@ -768,19 +773,19 @@ impl ContactBackend for Broken {
     fn response_scale(&self) -> f64 {
         self.0.response_scale()
     }
-    fn response(&mut self, s: f64) -> f64 {
-        self.0.response(s)
-    }
     fn curvature(&mut self, s: f64) -> f64 {
         self.0.curvature(s)
     }
-    fn update(&mut self, m: f64, t: f64, s: f64, pm: f64, mu: bool) -> Update {
-        self.0.update(m, t, s, pm, mu)
+    fn update(&mut self, m: f64, t: f64, s: f64, pm: f64) -> Update {
+        self.0.update(m, t, s, pm)
+    }
+    fn advance(&mut self, m: f64, t: f64, s: f64, pm: f64, k: bool) -> Stats {
+        self.0.advance(m, t, s, pm, k)
     }
     fn keep_displacement(&mut self) {
         self.0.keep_displacement()
     }
-    fn undo(&mut self, s: f64) {
-        self.0.undo(s)
+    fn undo(&mut self) {
+        self.0.undo()
     }
 }

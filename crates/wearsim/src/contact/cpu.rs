@@ -13,10 +13,10 @@ use crate::grid::Grid;
 use crate::influence::{self, Boundary, Influence};
 use crate::surface::Surface;
 
-/// Arrays of Nx·Ny doubles the CPU backend holds besides its influence operator: h, p, u, t, r,
-/// the previous p and the spare u (7), and rounding for the per-row partials and FFT rows.
+/// Arrays of Nx·Ny doubles the CPU backend holds besides its influence operator: h, p, u, t, the
+/// previous p and the spare u (6), and rounding for the per-row partials and FFT rows.
 pub(crate) fn arrays(boundary: Boundary) -> f64 {
-    8.5 + influence::arrays(boundary)
+    7.5 + influence::arrays(boundary)
 }
 
 /// The fields of a solve in host memory, the influence operator and the partials of every
@@ -29,16 +29,17 @@ pub(crate) struct CpuBackend {
     pressure: Vec<f64>,
     u: Vec<f64>,
     t: Vec<f64>,
-    r: Vec<f64>,
     /// p before the last step, to undo a step that raised the objective.
     p_old: Vec<f64>,
-    /// Spare displacement buffer: receives 𝒦p after a step off the CG line.
+    /// Spare displacement buffer: keeps the u of a step's start while 𝒦p is computed after a
+    /// step off the CG line (for an undo); receives the new u in `advance`.
     u_alt: Vec<f64>,
     /// The surfaces of a sliding run, shared with the caller (no copy).
     surfaces: Option<(Arc<Surface>, Arc<Surface>)>,
     /// The contact map, one bit per pixel.
     bits: Vec<u64>,
     stats: Vec<Stats>,
+    load_rows: Vec<LoadSums>,
     sums: Vec<[f64; 2]>,
     row_partials: Vec<f64>,
     /// Per-row partials of the height statistics: Σ(h − h₀), Σ(h − h₀)², max, all finite; taken
@@ -68,12 +69,12 @@ impl CpuBackend {
             pressure: zeroed_buffer(nx * ny),
             u: zeroed_buffer(nx * ny),
             t: zeroed_buffer(nx * ny),
-            r: zeroed_buffer(nx * ny),
             p_old: zeroed_buffer(nx * ny),
             u_alt: zeroed_buffer(nx * ny),
             surfaces: None,
             bits: vec![0; (nx * ny).div_ceil(64)],
             stats: vec![Stats::default(); nx],
+            load_rows: vec![LoadSums::default(); nx],
             sums: vec![[0.0; 2]; nx],
             row_partials: vec![0.0; nx],
             height_rows: vec![(0.0, 0.0, 0.0, true); nx],
@@ -377,105 +378,98 @@ impl ContactBackend for CpuBackend {
         self.sums.iter().fold((0.0, 0.0), |(a, b), s| (a + s[0], b + s[1]))
     }
 
-    /// t is zero outside the free pixels, so `t ≠ 0` marks them without reading p (a free pixel
-    /// whose t is exactly 0 is left out consistently here and in the update).
-    fn response(&mut self, shift: f64) -> f64 {
-        let n = self.ny;
-        // 1/scale is exact (a power of two), so the product equals the quotient bit for bit.
-        let (t, inverse_scale) = (&self.t, 1.0 / self.response_scale);
-        self.influence.apply_with(
-            &self.t,
-            |_, row| shift_free(row, shift),
-            &mut self.r,
-            |i, row| {
-                let mut s = 0.0;
-                for (&r, &tv) in row.iter().zip(&t[i * n..(i + 1) * n]) {
-                    if tv != 0.0 {
-                        s += (r * inverse_scale) * (tv - shift);
-                    }
-                }
-                s
-            },
-            Some(&mut self.row_partials),
-        );
-        self.row_partials.iter().sum()
-    }
-
-    /// t_f as in `response`, shifted in the forward transform's row hook; 1/response_scale (exact,
-    /// a power of two) in every term.
+    /// t_f shifted in the forward transform's row hook; 1/response_scale (exact, a power of two)
+    /// in every term.
     fn curvature(&mut self, shift: f64) -> f64 {
         self.influence
             .quadratic_form_with(&self.t, |_, row| shift_free(row, shift), 1.0 / self.response_scale)
     }
 
-    fn update(&mut self, mean: f64, tau: f64, shift: f64, pm: f64, moves_u: bool) -> Update {
+    /// t is zero outside the free pixels, so `t ≠ 0` marks them without reading p (a free pixel
+    /// whose t is exactly 0 is left out consistently here and in `update`).
+    fn update(&mut self, mean: f64, tau: f64, shift: f64, pm: f64) -> Update {
         let n = self.ny;
-        let step = StepParameters {
-            mean,
-            tau,
-            shift,
-            pm,
-            moves_u,
-        };
-        let results = &mut self.stats;
+        let step = StepParameters { mean, tau, shift, pm };
+        let mut loads = std::mem::take(&mut self.load_rows);
         let mut totals = std::mem::take(&mut self.row_partials);
         let mut events = std::mem::take(&mut self.sums);
-        results
+        loads
             .par_iter_mut()
             .with_min_len(self.min_len)
             .zip(totals.par_iter_mut().zip(events.par_iter_mut()))
-            .zip(self.pressure.par_chunks_mut(n).zip(self.u.par_chunks_mut(n)))
+            .zip(self.pressure.par_chunks_mut(n).zip(self.p_old.par_chunks_mut(n)))
             .zip(
                 self.t
                     .par_chunks(n)
-                    .zip(self.r.par_chunks(n).zip(self.heights.par_chunks(n))),
+                    .zip(self.u.par_chunks(n).zip(self.heights.par_chunks(n))),
             )
-            .zip(self.p_old.par_chunks_mut(n))
-            .for_each(|((((acc, (total, event)), (p, u)), (t, (r, h))), p_old)| {
+            .for_each(|(((load, (total, event)), (p, p_old)), (t, (u, h)))| {
                 p_old.copy_from_slice(p);
-                let (s, sum_p, moved) = update_row(&step, p, u, t, r, h);
-                *acc = s;
-                *total = sum_p;
-                *event = moved;
+                (*load, *total, *event) = update_row(&step, p, t, u, h);
             });
-        let stats = Stats::combine(results);
+        let load = loads.iter().fold(LoadSums::default(), |a, &b| LoadSums::merge(a, b));
         let total: f64 = totals.iter().sum();
         let released = events.iter().any(|e| e[0] > 0.0);
         let clipped = events.iter().any(|e| e[1] > 0.0);
+        self.load_rows = loads;
         self.row_partials = totals;
         self.sums = events;
         Update {
-            stats,
+            load,
             total,
             released,
             clipped,
         }
     }
 
+    /// r goes into the spare buffer, whose row the post hook turns into the new u = (old u) − τr
+    /// while it gathers the statistics; the buffers are then swapped.
+    fn advance(&mut self, mean: f64, tau: f64, shift: f64, pm: f64, kept: bool) -> Stats {
+        let n = self.ny;
+        let (pressure, p_old, u, heights) = (&self.pressure, &self.p_old, &self.u, &self.heights);
+        let post = |i: usize, row: &mut [f64]| {
+            let rows = i * n..(i + 1) * n;
+            advance_row(
+                (mean, tau, pm),
+                row,
+                &u[rows.clone()],
+                &pressure[rows.clone()],
+                &p_old[rows.clone()],
+                &heights[rows],
+            )
+        };
+        if kept {
+            self.influence
+                .apply_kept_with(&mut self.u_alt, post, Some(&mut self.stats));
+        } else {
+            self.influence.apply_with(
+                &self.t,
+                |_, row| shift_free(row, shift),
+                &mut self.u_alt,
+                post,
+                Some(&mut self.stats),
+            );
+        }
+        std::mem::swap(&mut self.u, &mut self.u_alt);
+        Stats::combine(&self.stats)
+    }
+
     fn keep_displacement(&mut self) {
         std::mem::swap(&mut self.u, &mut self.u_alt);
     }
 
-    fn undo(&mut self, step: f64) {
+    fn undo(&mut self) {
         let n = self.ny;
         self.pressure
             .par_chunks_mut(n)
             .with_min_len(self.min_len)
             .zip(self.p_old.par_chunks(n))
             .for_each(|(p, o)| p.copy_from_slice(o));
-        self.u
-            .par_chunks_mut(n)
-            .with_min_len(self.min_len)
-            .zip(self.u_alt.par_chunks(n).zip(self.r.par_chunks(n)))
-            .for_each(|(u, (a, r))| {
-                for ((u, &a), &r) in u.iter_mut().zip(a).zip(r) {
-                    *u = a + step * r;
-                }
-            });
+        std::mem::swap(&mut self.u, &mut self.u_alt);
     }
 }
 
-/// t_f = t − `shift` on one row's free pixels, those where t ≠ 0 (`response`, `curvature`).
+/// t_f = t − `shift` on one row's free pixels, those where t ≠ 0 (`curvature`, `advance`).
 fn shift_free(row: &mut [f64], shift: f64) {
     for v in row.iter_mut().filter(|v| **v != 0.0) {
         *v -= shift;
@@ -498,57 +492,28 @@ struct StepParameters {
     /// NaN when no conjugate-gradient step is taken.
     shift: f64,
     pm: f64,
-    /// u −= τr (r computed for this step).
-    moves_u: bool,
 }
 
-/// The update pass over one row: p and u in place; returns the row's statistics, its Σp and
-/// the pixels [released, clipped].
+/// The update pass over one row: p in place; returns the row's load sums, its Σp and the pixels
+/// [released, clipped].
 #[inline]
-fn update_row(
-    step: &StepParameters,
-    p: &mut [f64],
-    u: &mut [f64],
-    t: &[f64],
-    r: &[f64],
-    h: &[f64],
-) -> (Stats, f64, [f64; 2]) {
-    let StepParameters {
-        mean,
-        tau,
-        shift,
-        pm,
-        moves_u,
-    } = *step;
+fn update_row(step: &StepParameters, p: &mut [f64], t: &[f64], u: &[f64], h: &[f64]) -> (LoadSums, f64, [f64; 2]) {
+    let StepParameters { mean, tau, shift, pm } = *step;
     let cg_step = shift.is_finite();
-    let moves_u = cg_step && moves_u;
-    let mut s = Stats::default();
+    let mut load = LoadSums::default();
     let mut sum_p = 0.0;
     let (mut released, mut clipped) = (0.0, 0.0);
-    // Out-of-contact pixels that stay out (most of them) only move u and take part in two
-    // minima, kept apart from `s` (a minimum is the same in any order; p = ±0 adds nothing to the
-    // sums, which start at +0).
-    let (mut min_zero, mut settle_gap) = (f64::INFINITY, f64::INFINITY);
-    for ((((p, u), &t), &r), &h) in p.iter_mut().zip(u.iter_mut()).zip(t).zip(r).zip(h) {
-        let before = *p;
-        let d = *u - h - mean;
-        if *p == 0.0 && d >= 0.0 {
-            if moves_u {
-                *u -= tau * r;
-                let g = *u - h;
-                min_zero = min_zero.min(g);
-                settle_gap = settle_gap.min(g - SETTLED_CHANGE_FACTOR * (tau * r).abs());
-            } else {
-                min_zero = min_zero.min(*u - h);
-            }
-            continue;
-        }
+    for (((p, &t), &u), &h) in p.iter_mut().zip(t).zip(u).zip(h) {
         if *p <= 0.0 {
-            if d < 0.0 {
-                *p = (-tau * d).min(pm);
-                released += 1.0;
+            let d = u - h - mean;
+            if d >= 0.0 {
+                // Out of contact and staying out (most pixels): p = ±0 adds nothing.
+                continue;
             }
+            *p = (-tau * d).min(pm);
+            released += 1.0;
         } else if *p >= pm {
+            let d = u - h - mean;
             if d > 0.0 {
                 *p = (pm - tau * d).max(0.0);
                 released += 1.0;
@@ -565,18 +530,42 @@ fn update_row(
                 *p = q;
             }
         }
-        if moves_u {
-            *u -= tau * r;
-        }
         sum_p += *p;
-        s.add(*p, *u, h, mean, pm);
-        if moves_u {
-            s.add_change(*p, *p - before, *u - h, tau * r);
+        load.add(*p, pm);
+    }
+    (load, sum_p, [released, clipped])
+}
+
+/// The post hook of `advance` over one row: `row` holds r on entry and the new u = `u` − τr on
+/// return; returns the statistics of the row about `mean` with each pixel's move. After a step
+/// on the CG line a pixel with p = 0 was out of contact and stays out: it only moves u and takes
+/// part in two minima, kept apart from the sums (a minimum is the same in any order).
+#[inline]
+fn advance_row(
+    (mean, tau, pm): (f64, f64, f64),
+    row: &mut [f64],
+    u: &[f64],
+    p: &[f64],
+    p_old: &[f64],
+    h: &[f64],
+) -> Stats {
+    let mut s = Stats::default();
+    let (mut min_zero, mut settle_gap) = (f64::INFINITY, f64::INFINITY);
+    for ((((v, &u), &p), &before), &h) in row.iter_mut().zip(u).zip(p).zip(p_old).zip(h) {
+        let r = *v;
+        *v = u - tau * r;
+        let g = *v - h;
+        if p == 0.0 {
+            min_zero = min_zero.min(g);
+            settle_gap = settle_gap.min(g - SETTLED_CHANGE_FACTOR * (tau * r).abs());
+        } else {
+            s.add(p, *v, h, mean, pm);
+            s.add_change(p, p - before, g, tau * r);
         }
     }
     s.min_zero = s.min_zero.min(min_zero);
     s.settle_gap = s.settle_gap.min(settle_gap);
-    (s, sum_p, [released, clipped])
+    s
 }
 
 /// The partial of the height statistics over one row, about h₀: Σ(h − h₀), Σ(h − h₀)², max, all

@@ -15,12 +15,13 @@
 //! (penetrating non-contact pixels, plastic pixels whose gap opens) are released with a gradient step
 //! and restart the conjugation; the load is then restored exactly by scaling.
 //!
-//! Cost: one convolution 𝒦t per iteration. The displacement u = 𝒦p is carried along as
-//! u ← u − τ𝒦t, and recomputed only after a clip, release or rescale changed p off the line, and
-//! once more before convergence is declared, so that the final residual is that of a freshly
-//! computed 𝒦p. An iteration known beforehand to release a pixel (the update's own tests, on the
-//! last statistics) is recomputed anyway, so it needs only its step's curvature Σ t·𝒦t: by
-//! Parseval's identity, from the forward transform of t alone (half a convolution). A warm start
+//! Cost: one convolution 𝒦t per iteration, in two halves. The step length needs only the
+//! curvature Σ t·𝒦t, which by Parseval's identity comes from the forward transform of t alone;
+//! the inverse half, r = 𝒦t, is completed from that transform only when the step stays on the CG
+//! line, and carries the displacement u = 𝒦p along as u ← u − τr. A step that clipped, released
+//! or rescaled p off the line recomputes u = 𝒦p instead (so it never needs r), as does the last
+//! iteration before convergence is declared, so that the final residual is that of a freshly
+//! computed 𝒦p. A warm start
 //! (a sliding step) keeps the u of the previous solve's final 𝒦p, bit for bit, when its set-up
 //! leaves p as it is (a guess that carries the load to round-off is not rescaled): only the
 //! heights moved, so its first statistics need no convolution.
@@ -583,17 +584,10 @@ impl ContactSolver {
         let n_free = state.stats.n_free;
         let shift = if n_free > 0.0 { sum_t / n_free } else { 0.0 };
 
-        // r = 𝒦 t_f with t_f = t − shift on free pixels (zero mean there), and Σ_free r·t_f (scaled).
-        // When the update will release a pixel (a non-contact pixel penetrates or a plastic pixel's
-        // gap opens: its own tests, on the current statistics), the step changes the sets and u is
-        // recomputed as 𝒦p after it, so r would never be read: Σ t_f·𝒦t_f alone, from the forward
-        // transform (half a convolution).
-        let releases = state.stats.min_zero < mean || state.stats.max_plastic > mean;
-        let curvature = if releases {
-            self.backend.curvature(shift)
-        } else {
-            self.backend.response(shift)
-        };
+        // The step's curvature Σ_free t_f·𝒦t_f (scaled), t_f = t − shift on free pixels (zero mean
+        // there), from the forward transform of t_f alone (half a convolution): r = 𝒦t_f is needed
+        // only if the step stays on the CG line, and then comes from the same transform.
+        let curvature = self.backend.curvature(shift);
         state.convolutions += 1;
         let (tau, cg_step) = if n_free > 0.0 && curvature > 0.0 && sum_dt > 0.0 {
             // Σ r·t_f = curvature × response_scale, both exact: τ = Σ (g − ḡ)t / Σ r·t_f.
@@ -602,9 +596,10 @@ impl ContactSolver {
             (1.0 / self.backend.self_influence(), false)
         };
 
-        // Step, clip to the bounds, release bound pixels whose gap points inwards; the next
-        // iteration's statistics come out of the same pass. A step that changed p off the CG
-        // line is checked on the objective and shortened until it descends (projected search).
+        // Step, clip to the bounds, release bound pixels whose gap points inwards. A step on the
+        // CG line carries u along, u −= τ𝒦t_f, with the next iteration's statistics in the same
+        // pass; a step that changed p off the line is checked on the objective and shortened until
+        // it descends (projected search).
         let energy_before = state.stats.energy;
         let slack = 1e-13 * (energy_before.abs() + total * state.h_std.max(state.h_max.abs()));
         let mut tau = tau;
@@ -612,26 +607,23 @@ impl ContactSolver {
         loop {
             let update = self
                 .backend
-                .update(mean, tau, if cg_step { shift } else { f64::NAN }, pm, !releases);
+                .update(mean, tau, if cg_step { shift } else { f64::NAN }, pm);
             let drift = (update.total - total).abs() > 1e-12 * total;
-            if !(releases || update.clipped || update.released || drift || !cg_step) {
-                state.stats = update.stats;
-                state.fresh = false;
-                state.restart = false;
-                // Each gap moved by its τr and by the change of the mean gap −c.
-                let moved = state.stats.mean_gap(mean);
-                state.moves = Some((
-                    state.stats.settle_gap - moved - SETTLED_CHANGE_FACTOR * (moved - mean).abs(),
-                    state.stats.settle_pressure,
-                ));
+            if !(update.clipped || update.released || drift || !cg_step) {
+                self.advance_on_line(state, mean, (tau, shift), backtracks == 0);
                 break;
             }
             // A step off the CG line may move pixels between the sets (clipped, released, the
             // load balanced).
             state.moves = None;
-            self.balance_load(state, mean, Some(update.stats.load));
-            // The carried-along u is kept for an undo; 𝒦p goes into u.
-            self.backend.keep_displacement();
+            // The u of the step's start is kept for an undo; 𝒦p goes into u.
+            let carried = cg_step && !update.released;
+            if !self.scale_to_load(total, pm, Some(update.load)) {
+                let kept = backtracks == 0;
+                state.convolutions += self.spread_stepped_load(state, mean, (tau, shift), carried.then_some(kept));
+            } else {
+                self.backend.keep_displacement();
+            }
             state.stats = self.backend.displacement_and_stats(mean, pm);
             state.convolutions += 1;
             state.fresh = true;
@@ -639,8 +631,8 @@ impl ContactSolver {
             if state.stats.energy <= energy_before + slack || backtracks >= 40 {
                 break;
             }
-            // Undo: p from its copy, u = (u − τr) + τr from the carried-along field.
-            self.backend.undo(if cg_step && !releases { tau } else { 0.0 });
+            // Undo: p from its copy, u as it was.
+            self.backend.undo();
             tau *= 0.25;
             backtracks += 1;
         }
@@ -681,6 +673,49 @@ impl ContactSolver {
             approach: state.h_max + mean,
             contact_pixels: state.stats.load.n_contact,
             plastic_pixels: state.stats.n_plastic as usize,
+        }
+    }
+
+    /// A step that stayed on the CG line: u follows it, u −= τ𝒦t_f, with the next statistics
+    /// and each pixel's move (for the settled-map stop). 𝒦t_f is completed from the transform the
+    /// curvature left when `kept`, else (after a backtrack, whose 𝒦p replaced it) afresh.
+    fn advance_on_line(&mut self, state: &mut SolveState, mean: f64, (tau, shift): (f64, f64), kept: bool) {
+        state.stats = self.backend.advance(mean, tau, shift, state.pm, kept);
+        state.convolutions += usize::from(!kept);
+        state.fresh = false;
+        state.restart = false;
+        // Each gap moved by its τr and by the change of the mean gap −c.
+        let moved = state.stats.mean_gap(mean);
+        state.moves = Some((
+            state.stats.settle_gap - moved - SETTLED_CHANGE_FACTOR * (moved - mean).abs(),
+            state.stats.settle_pressure,
+        ));
+    }
+
+    /// After a step whose contact cannot carry the load even at the flow pressure (early in a cold
+    /// solve; the contact was saturated): the missing load goes to the pixels that penetrate most
+    /// ([`ContactSolver::balance_load`]) once u has followed the CG step `(τ, shift)`, u −= τ𝒦t_f,
+    /// when `carried` says so (`Some(kept)`, the transform of t_f kept, [`ContactBackend::advance`]),
+    /// else by the u of the step's start. Leaves the u of the step's start in the spare buffer, as
+    /// [`ContactBackend::keep_displacement`] does; returns the convolutions made.
+    fn spread_stepped_load(
+        &mut self,
+        state: &SolveState,
+        mean: f64,
+        (tau, shift): (f64, f64),
+        carried: Option<bool>,
+    ) -> usize {
+        match carried {
+            Some(kept) => {
+                self.backend.advance(mean, tau, shift, state.pm, kept);
+                self.balance_load(state, mean, None);
+                usize::from(!kept)
+            }
+            None => {
+                self.balance_load(state, mean, None);
+                self.backend.keep_displacement();
+                0
+            }
         }
     }
 
@@ -906,18 +941,18 @@ mod tests {
         let timings = profiled.profile_passes(0.03, 3);
         let names: Vec<_> = timings.iter().map(|t| t.name).collect();
         assert_eq!(names.len(), 10, "{names:?}");
-        for name in ["update", "response", "curvature"] {
+        for name in ["update", "advance", "curvature"] {
             assert!(names.contains(&name), "{names:?}");
         }
         for t in &timings {
             assert!(t.seconds > 0.0 && t.seconds.is_finite() && t.streams >= 1.0, "{t:?}");
         }
-        // An iteration is the direction, the response and the update; a set change adds 𝒦p.
+        // An iteration is the direction, the curvature, the update and the rest of the
+        // convolution; a set change takes a fresh 𝒦p and the scaling instead of the rest.
         let per_iteration: f64 = timings.iter().map(|t| t.per_cg_iteration * t.streams).sum();
-        assert_eq!(per_iteration, 20.0);
-        // One that releases a pixel: the direction, the curvature, the update, 𝒦p and the scaling.
-        let per_release: f64 = timings.iter().map(|t| t.per_set_change * t.streams).sum();
-        assert_eq!(per_release, 27.0);
+        assert_eq!(per_iteration, 23.0);
+        let per_set_change: f64 = timings.iter().map(|t| t.per_set_change * t.streams).sum();
+        assert_eq!(per_set_change, 25.0);
         // Profiling leaves p exactly and the rest is recomputed by a solve: the next warm solve
         // equals one on a solver that was never profiled, bit for bit, once that one too is told
         // its u is not to be kept (profiling moves u by round-off).

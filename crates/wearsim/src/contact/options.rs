@@ -155,9 +155,9 @@ pub struct SolveInfo {
     pub termination: Termination,
     /// Conjugate-gradient iterations (one convolution 𝒦t each).
     pub iterations: usize,
-    /// Convolutions performed in all (iterations plus recomputations of 𝒦p); an iteration that
-    /// needs only its curvature (a step that releases a pixel) counts one for its forward
-    /// transform, half a convolution's work.
+    /// Convolutions performed in all (iterations plus recomputations of 𝒦p); an iteration counts
+    /// one whether it completes its convolution (a step on the CG line) or needs only the
+    /// forward half for its curvature (a step that changes the sets, whose 𝒦p is recomputed).
     pub convolutions: usize,
     /// Final residual (module documentation).
     pub residual: f64,
