@@ -368,4 +368,17 @@ fn bench_passes_prints_and_records_each_pass_against_the_copy_floor() {
         .output()
         .unwrap();
     assert!(!String::from_utf8_lossy(&o.stdout).contains("passes at N"));
+    // A JSON path in a folder that is not there is refused before any timing.
+    let missing = dir.path().join("no-such-folder").join("bench.json");
+    let o = wearsim()
+        .args(["bench", "--sizes", "64", "--fft-repeats", "1", "--json"])
+        .arg(&missing)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("--json") && err.contains("does not exist"),
+        "{err}"
+    );
+    assert!(String::from_utf8_lossy(&o.stdout).is_empty(), "timed before refusing");
 }
