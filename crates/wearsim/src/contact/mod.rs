@@ -955,7 +955,7 @@ mod tests {
         assert_eq!(per_set_change, 25.0);
         // Profiling leaves p exactly and the rest is recomputed by a solve: the next warm solve
         // equals one on a solver that was never profiled, bit for bit, once that one too is told
-        // its u is not to be kept (profiling moves u by round-off).
+        // its u is not to be kept (profiling moves u: the timed `advance` steps it).
         let p = plain.pressure().to_vec();
         plain.set_pressure(|q| q.copy_from_slice(&p));
         solve_alike(&mut profiled, &mut plain);
