@@ -444,7 +444,7 @@ impl ContactSolver {
     /// references: a copy pass over one field (the bandwidth floor) and an FFT round trip with the
     /// kernel multiply. The pressure is left as it was; the next solve recomputes the rest.
     pub fn profile_passes(&mut self, flow_pressure: f64, repeats: usize) -> Vec<PassTiming> {
-        // Its undone updates restore u only to round-off.
+        // Its timed `advance` steps move u.
         self.displacement_current = false;
         profile::passes(&mut *self.backend, self.grid.ny(), flow_pressure, repeats)
     }
@@ -617,12 +617,11 @@ impl ContactSolver {
             // load balanced).
             state.moves = None;
             // The u of the step's start is kept for an undo; 𝒦p goes into u.
-            let carried = cg_step && !update.released;
-            if !self.scale_to_load(total, pm, Some(update.load)) {
-                let kept = backtracks == 0;
-                state.convolutions += self.spread_stepped_load(state, mean, (tau, shift), carried.then_some(kept));
-            } else {
+            if self.scale_to_load(total, pm, Some(update.load)) {
                 self.backend.keep_displacement();
+            } else {
+                let carried = (cg_step && !update.released).then_some(backtracks == 0);
+                state.convolutions += self.spread_stepped_load(state, mean, (tau, shift), carried);
             }
             state.stats = self.backend.displacement_and_stats(mean, pm);
             state.convolutions += 1;
