@@ -10,10 +10,13 @@
 //! (hours on 2 cores; docs/paper-comparison.md gives the measured time). These tests keep the
 //! committed files the code's: the steps of the cheapest job are computed again and must equal the
 //! committed ones number for number — its first steps in every test run, the whole job (every
-//! step, result and warning) with `cargo test --release -p wearsim --test integration evidence:: -- --ignored`.
+//! step, result and warning) with `cargo test --release -p wearsim --test integration evidence:: -- --ignored`,
+//! which also slides that job with every solve to the tolerance and checks that its contact maps
+//! are the settled ones, pixel for pixel, at every step.
 
 use std::path::PathBuf;
 
+use wearsim::contact::Stopping;
 use wearsim::error::Interrupt;
 use wearsim::output::{JobResult, StepRow, Table, TidyRow};
 use wearsim::run::SlidingRun;
@@ -77,6 +80,45 @@ fn the_cheapest_job_rerun_equals_its_committed_file() {
     assert_eq!(
         timeless(&JobResult::from_json(&rerun.to_json()).unwrap()),
         timeless(&committed)
+    );
+}
+
+#[test]
+#[ignore = "slides the cheapest 1024² job twice, settled and to the tolerance: about 6 minutes on 2 cores"]
+fn the_cheapest_job_solved_to_the_tolerance_has_the_settled_contact_maps() {
+    // The settled-map stop (contact module) promises the contact map of the solve to the
+    // tolerance. Here at the paper's pixel size, 1024², over every step of a committed job: the
+    // two slides, stepped together, label the same contact pixels at every step, and the slide
+    // to the tolerance gives the committed steps (junctions, lineages, particles, volumes).
+    let study = study();
+    let (job, committed) = cheapest(&study);
+    let mut tight = job.run.clone();
+    tight.stopping = Stopping::Tolerance;
+    let (run_settled, run_tight) = (
+        SlidingRun::prepare(&job.run).unwrap(),
+        SlidingRun::prepare(&tight).unwrap(),
+    );
+    let (mut settled, mut tight) = (run_settled.start().unwrap(), run_tight.start().unwrap());
+    let (mut iterations, mut largest_residual) = ([0, 0], 0.0f64);
+    for (i, expected) in committed.steps.iter().enumerate() {
+        let a = settled.step().unwrap().expect("the job has more steps");
+        let b = tight.step().unwrap().expect("the job has more steps");
+        iterations[0] += a.record.iterations;
+        iterations[1] += b.record.iterations;
+        largest_residual = largest_residual.max(a.record.residual);
+        let (in_a, in_b) = (a.labeller.contact_pixels(), b.labeller.contact_pixels());
+        assert!(
+            in_a == in_b,
+            "job {}, step {i}: the settled map has {} contact pixels, the map at the tolerance {}, not the same",
+            job.index,
+            in_a.len(),
+            in_b.len()
+        );
+        assert_eq!(&StepRow::from(b.record), expected, "job {}, step {i}", job.index);
+    }
+    eprintln!(
+        "solver iterations: {} settled, {} to the tolerance; largest residual at a settled stop {largest_residual:.2e}",
+        iterations[0], iterations[1]
     );
 }
 
