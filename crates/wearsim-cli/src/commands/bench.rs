@@ -2,7 +2,7 @@
 //! same surfaces. Paper roughness: λ_l = 16 px, λ_u = min(256 px, N/2), h_rms = 0.005 L, H = 0.7,
 //! τ̃ = 0.010 E, F_N = 10⁻³ E L², E = 1, ν = 0.3, default tolerance.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -108,10 +108,7 @@ fn check_args(args: &Args) -> Result<()> {
     }
     // The JSON is written after minutes of timing: a folder that is not there fails now, not then.
     if let Some(path) = &args.json {
-        let folder = path
-            .parent()
-            .filter(|p| !p.as_os_str().is_empty())
-            .unwrap_or(Path::new("."));
+        let folder = wearsim::io::parent_or_dot(path);
         if !folder.is_dir() {
             anyhow::bail!(
                 "--json {}: the folder {} does not exist; create it or give another path",
