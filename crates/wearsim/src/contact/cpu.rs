@@ -404,8 +404,7 @@ impl ContactBackend for CpuBackend {
                     .zip(self.u.par_chunks(n).zip(self.heights.par_chunks(n))),
             )
             .for_each(|(((load, (total, event)), (p, p_old)), (t, (u, h)))| {
-                p_old.copy_from_slice(p);
-                (*load, *total, *event) = update_row(&step, p, t, u, h);
+                (*load, *total, *event) = update_row(&step, p, p_old, t, u, h);
             });
         let load = loads.iter().fold(LoadSums::default(), |a, &b| LoadSums::merge(a, b));
         let total: f64 = totals.iter().sum();
@@ -494,25 +493,43 @@ struct StepParameters {
     pm: f64,
 }
 
-/// The update pass over one row: p in place; returns the row's load sums, its Σp and the pixels
-/// [released, clipped].
+/// The update pass over one row: p in place, its copy `p_old` made pixel by pixel as p is read;
+/// returns the row's load sums, its Σp and the pixels [released, clipped].
 #[inline]
-fn update_row(step: &StepParameters, p: &mut [f64], t: &[f64], u: &[f64], h: &[f64]) -> (LoadSums, f64, [f64; 2]) {
+fn update_row(
+    step: &StepParameters,
+    p: &mut [f64],
+    p_old: &mut [f64],
+    t: &[f64],
+    u: &[f64],
+    h: &[f64],
+) -> (LoadSums, f64, [f64; 2]) {
     let StepParameters { mean, tau, shift, pm } = *step;
     let cg_step = shift.is_finite();
     let mut load = LoadSums::default();
     let mut sum_p = 0.0;
     let (mut released, mut clipped) = (0.0, 0.0);
-    for (((p, &t), &u), &h) in p.iter_mut().zip(t).zip(u).zip(h) {
+    for ((((p, old), &t), &u), &h) in p.iter_mut().zip(p_old).zip(t).zip(u).zip(h) {
         if *p <= 0.0 {
             let d = u - h - mean;
             if d >= 0.0 {
-                // Out of contact and staying out (most pixels): p = ±0 adds nothing.
+                // Out of contact and staying out (most pixels): p = ±0 adds nothing. Its copy
+                // mostly holds this p already (the pixel was out at the last update too) and is
+                // written only where it differs, bit for bit: a read instead of a write.
+                if old.to_bits() != p.to_bits() {
+                    *old = *p;
+                }
                 continue;
             }
+            *old = *p;
             *p = (-tau * d).min(pm);
             released += 1.0;
-        } else if *p >= pm {
+            sum_p += *p;
+            load.add(*p, pm);
+            continue;
+        }
+        *old = *p;
+        if *p >= pm {
             let d = u - h - mean;
             if d > 0.0 {
                 *p = (pm - tau * d).max(0.0);
