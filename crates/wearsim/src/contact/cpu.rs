@@ -510,26 +510,21 @@ fn update_row(
     let mut sum_p = 0.0;
     let (mut released, mut clipped) = (0.0, 0.0);
     for ((((p, old), &t), &u), &h) in p.iter_mut().zip(p_old).zip(t).zip(u).zip(h) {
-        if *p <= 0.0 {
-            let d = u - h - mean;
-            if d >= 0.0 {
-                // Out of contact and staying out (most pixels): p = ±0 adds nothing. Its copy
-                // mostly holds this p already (the pixel was out at the last update too) and is
-                // written only where it differs, bit for bit: a read instead of a write.
-                if old.to_bits() != p.to_bits() {
-                    *old = *p;
-                }
-                continue;
+        if *p <= 0.0 && u - h - mean >= 0.0 {
+            // Out of contact and staying out (most pixels): p = ±0 adds nothing. Its copy
+            // mostly holds this p already (the pixel was out at the last update too) and is
+            // written only where it differs, bit for bit: a read instead of a write.
+            if old.to_bits() != p.to_bits() {
+                *old = *p;
             }
-            *old = *p;
-            *p = (-tau * d).min(pm);
-            released += 1.0;
-            sum_p += *p;
-            load.add(*p, pm);
             continue;
         }
         *old = *p;
-        if *p >= pm {
+        if *p <= 0.0 {
+            let d = u - h - mean;
+            *p = (-tau * d).min(pm);
+            released += 1.0;
+        } else if *p >= pm {
             let d = u - h - mean;
             if d > 0.0 {
                 *p = (pm - tau * d).max(0.0);
@@ -617,8 +612,8 @@ mod tests {
                 *v = 1e-3 * ((k * 7) % 11) as f64;
             }
         });
-        // Every pixel in contact, some plastic; then half of them out of contact (an exact zero,
-        // a −0 where the first field had +0), the rest new values.
+        // Pixels in contact, some plastic, one in five at +0; then half of them out of contact
+        // (an exact zero, a −0 where the first field had +0), the rest new values.
         let first: Vec<f64> = (0..n * n)
             .map(|k| match k % 5 {
                 0 => pm,
