@@ -311,6 +311,99 @@ impl Influence {
     }
 }
 
+/// Free pixels per partial of [`PairForm::form`], combined in order.
+const PAIR_CHUNK: usize = 16;
+
+/// The periodic operator's real-space kernel, for the quadratic form Σ aᵢ(𝒦a)ᵢ of a field `a`
+/// that is zero but on a few pixels: summed over their pairs, it costs n²/2 kernel values
+/// against the forward transform of the whole grid by Parseval's identity. In the paper's setting
+/// the contact is almost all plastic and the solver's conjugate direction lives on the free
+/// pixels alone, a few per cent of the contact, so the pair sum is the cheaper of the two
+/// (docs/performance.md: 5–10 times at 1024² to 4096²).
+pub struct PairForm {
+    /// Kernel values ×`factor` at offsets (a, b), 0 ≤ a ≤ Nx/2, 0 ≤ b ≤ Ny/2 (`table[a·(Ny/2+1)
+    /// + b]`): the periodic kernel is even in each offset, so these are all of it.
+    table: Vec<f64>,
+    /// Where an offset lands in `table`: `rows[dx]` = min(dx, Nx − dx)·(Ny/2+1) for 0 ≤ dx < Nx,
+    /// `columns[dy + Ny]` = min(dy mod Ny, Ny − dy mod Ny) for −Ny < dy < Ny (no division in
+    /// the pair loop).
+    rows: Vec<usize>,
+    columns: Vec<usize>,
+    /// The most pixels for which the pair sum is taken: n(n+1)/2 ≤ Nx·Ny/4 pairs, a few times
+    /// cheaper than the transform where measured (docs/performance.md).
+    max_pixels: usize,
+}
+
+impl PairForm {
+    /// The kernel of a periodic `influence` as its response to a unit pressure on pixel (0, 0),
+    /// times `factor` (a power of two keeps the form exactly that of the transform's scaled form);
+    /// `None` for a free boundary. `scratch` and `out` are two Nx·Ny work fields, left zero.
+    pub fn new(influence: &mut Influence, factor: f64, scratch: &mut [f64], out: &mut [f64]) -> Option<Self> {
+        if influence.boundary() != Boundary::Periodic {
+            return None;
+        }
+        let (nx, ny) = (influence.nx, influence.ny);
+        let (ax, ay) = (nx / 2 + 1, ny / 2 + 1);
+        scratch.iter_mut().for_each(|v| *v = 0.0);
+        scratch[0] = 1.0;
+        influence.apply(scratch, out);
+        scratch[0] = 0.0;
+        let mut table = vec![0.0; ax * ay];
+        for (a, row) in table.chunks_mut(ay).enumerate() {
+            for (b, v) in row.iter_mut().enumerate() {
+                *v = out[a * ny + b] * factor;
+            }
+        }
+        out.iter_mut().for_each(|v| *v = 0.0);
+        let pairs = (nx * ny / 4) as f64;
+        let max_pixels = ((2.0 * pairs + 0.25).sqrt() - 0.5).floor() as usize;
+        let rows = (0..nx).map(|dx| dx.min(nx - dx) * ay).collect();
+        let columns = (0..2 * ny)
+            .map(|d| {
+                let m = d % ny;
+                m.min(ny - m)
+            })
+            .collect();
+        Some(Self {
+            table,
+            rows,
+            columns,
+            max_pixels,
+        })
+    }
+
+    /// Whether `n` pixels are few enough for [`PairForm::form`] to beat the transform.
+    pub fn worth(&self, n: usize) -> bool {
+        n <= self.max_pixels
+    }
+
+    /// `factor`·Σₖ aₖ(𝒦a)ₖ for `a` zero but at `points` (row x, column y, value), listed in
+    /// row-major order: per pixel k, aₖ(aₖ𝒦₀ + 2 Σ_{l>k} a_l 𝒦(x_l − x_k, y_l − y_k)), summed in
+    /// order over chunks of 16 pixels, the chunks' partials (in `partials`, resized)
+    /// then in order: the same number whatever the thread count.
+    pub fn form(&self, points: &[(u32, u32, f64)], partials: &mut Vec<f64>) -> f64 {
+        let (table, rows, columns) = (&self.table, &self.rows, &self.columns);
+        let ny = columns.len() / 2;
+        partials.clear();
+        partials.resize(points.len().div_ceil(PAIR_CHUNK), 0.0);
+        partials.par_iter_mut().enumerate().for_each(|(c, partial)| {
+            let mut sum = 0.0;
+            for k in c * PAIR_CHUNK..((c + 1) * PAIR_CHUNK).min(points.len()) {
+                let (xk, yk, ak) = points[k];
+                // Row-major order: x_l ≥ x_k, so the row offset needs no wrap.
+                let columns = &columns[ny - yk as usize..];
+                let mut cross = 0.0;
+                for &(xl, yl, al) in &points[k + 1..] {
+                    cross += al * table[rows[(xl - xk) as usize] + columns[yl as usize]];
+                }
+                sum += ak * (ak * table[0] + 2.0 * cross);
+            }
+            *partial = sum;
+        });
+        partials.iter().sum()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -439,5 +532,47 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("`boundary`"));
+    }
+
+    /// The pair sum of a field with few nonzero pixels is its quadratic form by the transform, on
+    /// a grid that is not square, whatever the thread count; a field with too many pixels is left to
+    /// the transform.
+    #[test]
+    fn the_pair_sum_of_a_sparse_field_is_its_quadratic_form() {
+        let grid = Grid::new(48, 20, 3.0).unwrap();
+        let nn = grid.pixels();
+        let mut influence = Influence::new(grid, 2.5, Boundary::Periodic).unwrap();
+        let (mut a, mut b) = (vec![0.0; nn], vec![0.0; nn]);
+        let form = PairForm::new(&mut influence, 0.25, &mut a, &mut b).unwrap();
+        assert!(a.iter().chain(&b).all(|&v| v == 0.0), "the work fields are left zero");
+        let mut field = vec![0.0; nn];
+        let mut points = Vec::new();
+        for k in 0..15 {
+            // Pixels in row-major order, some in one row, some a period apart.
+            let pixel = (k * 61 + k * k) % nn;
+            field[pixel] = (k as f64 * 0.7).sin() + 0.1;
+        }
+        for (pixel, &v) in field.iter().enumerate().filter(|(_, &v)| v != 0.0) {
+            points.push(((pixel / 20) as u32, (pixel % 20) as u32, v));
+        }
+        let by_transform = influence.quadratic_form_with(&field, |_, _| {}, 0.25);
+        let on = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| form.form(&points, &mut Vec::new()))
+        };
+        let by_pairs = on(1);
+        assert!(
+            (by_pairs - by_transform).abs() <= 1e-12 * by_transform.abs(),
+            "{by_pairs} against {by_transform}"
+        );
+        assert_eq!(by_pairs.to_bits(), on(2).to_bits());
+        assert!(form.worth(points.len()) && !form.worth(nn / 8));
+        assert!(PairForm::new(
+            &mut Influence::new(grid, 2.5, Boundary::Free).unwrap(),
+            1.0,
+            &mut a,
+            &mut b
+        )
+        .is_none());
     }
 }

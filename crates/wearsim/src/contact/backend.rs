@@ -324,6 +324,15 @@ pub(crate) trait ContactBackend: Send + Sync {
     /// the step turns out to stay on the CG line.
     fn curvature(&mut self, shift: f64) -> f64;
 
+    /// The same form summed over the pairs of free pixels (t ≠ 0 after the last
+    /// [`ContactBackend::direction`]) with the kernel in real space,
+    /// [`PairForm`](crate::influence::PairForm), where the backend has it and the free pixels are
+    /// few enough for it to cost less than the transform; else `None` (the caller then takes
+    /// [`ContactBackend::curvature`]). No transform is left: a step on the CG line takes
+    /// [`ContactBackend::advance`] afresh, and a step that changes the sets (most of a warm
+    /// solve's) saves half a convolution.
+    fn direct_curvature(&mut self, shift: f64) -> Option<f64>;
+
     /// The update pass (copying p first, for [`ContactBackend::undo`]): with `shift` finite, free
     /// pixels take the CG step p −= τ(t − shift), clipped to [0, p_m]; non-contact pixels that
     /// penetrate and plastic pixels whose gap opens take a gradient step p −= τ(g − `mean`). With

@@ -10,13 +10,15 @@ use super::backend::{ContactBackend, HeightStats, LoadSums, Stats, Update, LOAD_
 use crate::error::Result;
 use crate::fft::zeroed_buffer;
 use crate::grid::Grid;
-use crate::influence::{self, Boundary, Influence};
+use crate::influence::{self, Boundary, Influence, PairForm};
 use crate::surface::Surface;
 
 /// Arrays of Nx·Ny doubles the CPU backend holds besides its influence operator: h, p, u, t, the
-/// previous p and the spare u (6), and rounding for the per-row partials and FFT rows.
+/// previous p and the spare u (6), rounding for the per-row partials and FFT rows, and with a
+/// periodic operator the real-space kernel of its [`PairForm`] (a quarter of the offsets).
 pub(crate) fn arrays(boundary: Boundary) -> f64 {
-    7.5 + influence::arrays(boundary)
+    let pair_form = if boundary == Boundary::Periodic { 0.25 } else { 0.0 };
+    7.5 + influence::arrays(boundary) + pair_form
 }
 
 /// The fields of a solve in host memory, the influence operator and the partials of every
@@ -55,20 +57,30 @@ pub(crate) struct CpuBackend {
     min_len: usize,
     /// [`ContactBackend::response_scale`].
     response_scale: f64,
+    /// The kernel in real space, for [`ContactBackend::direct_curvature`] (periodic only).
+    pair_form: Option<PairForm>,
+    /// Per row, the pixels where the last `direction` left t ≠ 0 (the free pixels).
+    free_rows: Vec<u32>,
+    /// Those pixels (row, column, t_f) in row-major order, and the partials of their pair sum;
+    /// both grow to the largest free set seen, then are reused.
+    free_points: Vec<(u32, u32, f64)>,
+    pair_partials: Vec<f64>,
 }
 
 impl CpuBackend {
     pub fn new(grid: Grid, effective_modulus: f64, boundary: Boundary) -> Result<Self> {
         let (nx, ny) = (grid.nx(), grid.ny());
-        let influence = Influence::new(grid, effective_modulus, boundary)?;
+        let mut influence = Influence::new(grid, effective_modulus, boundary)?;
         let response_scale = 2f64.powi(influence.self_influence().log2().floor() as i32);
+        let (mut u, mut t) = (zeroed_buffer(nx * ny), zeroed_buffer(nx * ny));
+        let pair_form = PairForm::new(&mut influence, 1.0 / response_scale, &mut t, &mut u);
         Ok(Self {
             ny,
             influence,
             heights: zeroed_buffer(nx * ny),
             pressure: zeroed_buffer(nx * ny),
-            u: zeroed_buffer(nx * ny),
-            t: zeroed_buffer(nx * ny),
+            u,
+            t,
             p_old: zeroed_buffer(nx * ny),
             u_alt: zeroed_buffer(nx * ny),
             surfaces: None,
@@ -84,6 +96,10 @@ impl CpuBackend {
             scaled_chunks: vec![(0.0, 0.0); (nx * ny).div_ceil(LOAD_CHUNK)],
             min_len: (8192 / ny).max(1),
             response_scale,
+            pair_form,
+            free_rows: vec![0; nx],
+            free_points: Vec::new(),
+            pair_partials: Vec::new(),
         })
     }
 }
@@ -355,25 +371,28 @@ impl ContactBackend for CpuBackend {
         self.sums
             .par_iter_mut()
             .with_min_len(self.min_len)
+            .zip(self.free_rows.par_iter_mut())
             .zip(self.t.par_chunks_mut(n))
             .zip(
                 self.pressure
                     .par_chunks(n)
                     .zip(self.u.par_chunks(n).zip(self.heights.par_chunks(n))),
             )
-            .for_each(|((acc, t), (p, (u, h)))| {
-                let (mut st, mut sdt) = (0.0, 0.0);
+            .for_each(|(((acc, free), t), (p, (u, h)))| {
+                let (mut st, mut sdt, mut count) = (0.0, 0.0, 0);
                 for (((t, &p), &u), &h) in t.iter_mut().zip(p).zip(u).zip(h) {
                     if p > 0.0 && p < pm {
                         let d = u - h - mean;
                         *t = d + beta * *t;
                         st += *t;
                         sdt += d * *t;
+                        count += u32::from(*t != 0.0);
                     } else {
                         *t = 0.0;
                     }
                 }
                 *acc = [st, sdt];
+                *free = count;
             });
         self.sums.iter().fold((0.0, 0.0), |(a, b), s| (a + s[0], b + s[1]))
     }
@@ -383,6 +402,25 @@ impl ContactBackend for CpuBackend {
     fn curvature(&mut self, shift: f64) -> f64 {
         self.influence
             .quadratic_form_with(&self.t, |_, row| shift_free(row, shift), 1.0 / self.response_scale)
+    }
+
+    /// The free pixels (t ≠ 0) gathered from the rows `direction` counted them in, t_f = t −
+    /// `shift` on each, then their pair sum.
+    fn direct_curvature(&mut self, shift: f64) -> Option<f64> {
+        let pair_form = self.pair_form.as_ref()?;
+        let n_free = self.free_rows.iter().map(|&c| c as usize).sum();
+        if !pair_form.worth(n_free) {
+            return None;
+        }
+        let n = self.ny;
+        self.free_points.clear();
+        for (i, _) in self.free_rows.iter().enumerate().filter(|(_, &c)| c > 0) {
+            let row = &self.t[i * n..(i + 1) * n];
+            for (j, &t) in row.iter().enumerate().filter(|(_, &t)| t != 0.0) {
+                self.free_points.push((i as u32, j as u32, t - shift));
+            }
+        }
+        Some(pair_form.form(&self.free_points, &mut self.pair_partials))
     }
 
     /// t is zero outside the free pixels, so `t ≠ 0` marks them without reading p (a free pixel

@@ -21,10 +21,13 @@
 //! line, and carries the displacement u = 𝒦p along as u ← u − τr. A step that clipped, released
 //! or rescaled p off the line recomputes u = 𝒦p instead (so it never needs r), as does the last
 //! iteration before convergence is declared, so that the final residual is that of a freshly
-//! computed 𝒦p. A warm start
-//! (a sliding step) keeps the u of the previous solve's final 𝒦p, bit for bit, when its set-up
-//! leaves p as it is (a guess that carries the load to round-off is not rescaled): only the
-//! heights moved, so its first statistics need no convolution.
+//! computed 𝒦p. Where the conjugate direction lives on few pixels (the free pixels of a contact
+//! that is almost all plastic, as in the paper's setting), the curvature is summed over their
+//! pairs with the kernel in real space instead ([`crate::influence::PairForm`]): a step that
+//! changes the sets then makes only its 𝒦p, one that stays on the line its whole convolution 𝒦t.
+//! A warm start (a sliding step) keeps the u of the previous solve's final 𝒦p, bit for bit, when
+//! its set-up leaves p as it is (a guess that carries the load to round-off is not rescaled): only
+//! the heights moved, so its first statistics need no convolution.
 //!
 //! Residual (the convergence criterion, reported with every result): the largest pixel-wise
 //! violation of the three optimality conditions above, divided by the RMS of h about its mean:
@@ -587,10 +590,14 @@ impl ContactSolver {
         let shift = if n_free > 0.0 { sum_t / n_free } else { 0.0 };
 
         // The step's curvature Σ_free t_f·𝒦t_f (scaled), t_f = t − shift on free pixels (zero mean
-        // there), from the forward transform of t_f alone (half a convolution): r = 𝒦t_f is needed
-        // only if the step stays on the CG line, and then comes from the same transform.
-        let curvature = self.backend.curvature(shift);
-        state.convolutions += 1;
+        // there), from the pairs of the free pixels where they are few (no transform), else from the
+        // forward transform of t_f alone (half a convolution): r = 𝒦t_f is needed only if the step
+        // stays on the CG line, and then comes from the same transform when one was made.
+        let (curvature, kept) = match self.backend.direct_curvature(shift) {
+            Some(form) => (form, false),
+            None => (self.backend.curvature(shift), true),
+        };
+        state.convolutions += usize::from(kept);
         let (tau, cg_step) = if n_free > 0.0 && curvature > 0.0 && sum_dt > 0.0 {
             // Σ r·t_f = curvature × response_scale, both exact: τ = Σ (g − ḡ)t / Σ r·t_f.
             (sum_dt / curvature / self.backend.response_scale(), true)
@@ -612,7 +619,7 @@ impl ContactSolver {
                 .update(mean, tau, if cg_step { shift } else { f64::NAN }, pm);
             let drift = (update.total - total).abs() > 1e-12 * total;
             if !(update.clipped || update.released || drift || !cg_step) {
-                self.advance_on_line(state, mean, (tau, shift), backtracks == 0);
+                self.advance_on_line(state, mean, (tau, shift), kept && backtracks == 0);
                 break;
             }
             // A step off the CG line may move pixels between the sets (clipped, released, the
@@ -622,7 +629,7 @@ impl ContactSolver {
             if self.scale_to_load(total, pm, Some(update.load)) {
                 self.backend.keep_displacement();
             } else {
-                let carried = (cg_step && !update.released).then_some(backtracks == 0);
+                let carried = (cg_step && !update.released).then_some(kept && backtracks == 0);
                 state.convolutions += self.spread_stepped_load(state, mean, (tau, shift), carried);
             }
             state.stats = self.backend.displacement_and_stats(mean, pm);

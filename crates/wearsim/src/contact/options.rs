@@ -153,11 +153,12 @@ pub enum Termination {
 pub struct SolveInfo {
     /// Why the solve stopped (`ContactSolver::solve` returns only converged or settled solves).
     pub termination: Termination,
-    /// Conjugate-gradient iterations (one convolution 𝒦t each).
+    /// Conjugate-gradient iterations.
     pub iterations: usize,
-    /// Convolutions performed in all (iterations plus recomputations of 𝒦p); an iteration counts
-    /// one whether it completes its convolution (a step on the CG line) or needs only the
-    /// forward half for its curvature (a step that changes the sets, whose 𝒦p is recomputed).
+    /// Convolutions performed in all: the recomputations of 𝒦p, and per iteration one, whether it
+    /// completes its convolution 𝒦t (a step on the CG line) or needs only the forward half for its
+    /// curvature (a step that changes the sets, whose 𝒦p is recomputed); none for a step that
+    /// changes the sets and took its curvature from the pairs of few free pixels.
     pub convolutions: usize,
     /// Final residual (module documentation).
     pub residual: f64,

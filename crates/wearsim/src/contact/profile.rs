@@ -66,6 +66,21 @@ fn reference_passes(b: &mut dyn ContactBackend, row: usize, repeats: usize) -> (
     (copy, fft)
 }
 
+/// The curvature by the forward transform (its value and time) and by the pair sum, where the
+/// backend has one and the free pixels are few (its time; no transform).
+fn curvatures(b: &mut dyn ContactBackend, shift: f64, repeats: usize) -> (f64, f64, Option<f64>) {
+    let curvature = b.curvature(shift);
+    let form = median_seconds(repeats, || {
+        std::hint::black_box(b.curvature(shift));
+    });
+    let direct = b.direct_curvature(shift).map(|_| {
+        median_seconds(repeats, || {
+            std::hint::black_box(b.direct_curvature(shift));
+        })
+    });
+    (curvature, form, direct)
+}
+
 /// The pass profile of a solver's backend (`ContactSolver::profile_passes`), whose rows hold
 /// `row` pixels.
 pub(super) fn passes(b: &mut dyn ContactBackend, row: usize, flow_pressure: f64, repeats: usize) -> Vec<PassTiming> {
@@ -81,10 +96,7 @@ pub(super) fn passes(b: &mut dyn ContactBackend, row: usize, flow_pressure: f64,
         std::hint::black_box(b.direction(mean, 0.0, pm));
     });
     let shift = if stats.n_free > 0.0 { sum_t / stats.n_free } else { 0.0 };
-    let curvature = b.curvature(shift);
-    let form = median_seconds(repeats, || {
-        std::hint::black_box(b.curvature(shift));
-    });
+    let (curvature, form, direct) = curvatures(b, shift, repeats);
     let tau = if curvature > 0.0 && sum_dt > 0.0 {
         sum_dt / curvature / b.response_scale()
     } else {
@@ -132,16 +144,22 @@ pub(super) fn passes(b: &mut dyn ContactBackend, row: usize, flow_pressure: f64,
         per_cg_iteration,
         per_set_change,
     };
-    vec![
+    // With the pair sum: a CG step's whole convolution in `advance`, a set change's none.
+    let mut timings = vec![
         pass("copy (reference)", copy, 2.0, 0.0, 0.0),
         pass("fft round trip (reference)", fft, 6.0, 0.0, 0.0),
         pass("direction", direction, 5.0, 1.0, 1.0),
-        pass("curvature", form, 4.0, 1.0, 1.0),
+        pass("curvature", form, 4.0, 1.0, if direct.is_some() { 0.0 } else { 1.0 }),
         pass("update", update, 6.0, 1.0, 1.0),
         pass("advance", advance, 8.0, 1.0, 0.0),
         pass("displacement_and_stats", displacement, 8.0, 0.0, 1.0),
         pass("load_sums", load_sums, 1.0, 0.0, 0.0),
         pass("scale", scale, 2.0, 0.0, 1.0),
         pass("contact_map", contact_map, 1.0, 0.0, 0.0),
-    ]
+    ];
+    if let Some(seconds) = direct {
+        // It reads the rows of t that hold free pixels: at most one field.
+        timings.insert(4, pass("curvature by pairs", seconds, 1.0, 1.0, 1.0));
+    }
+    timings
 }
