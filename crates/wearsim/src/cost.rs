@@ -2,8 +2,9 @@
 //! that a Slurm job can be sized (`--time`, `--mem`) before it is submitted.
 //!
 //! Model. A sliding step (paper §3) costs convolutions 𝒦t over the N = Nx·Ny pixels (a pair of
-//! FFTs, ∝ N log₂ N, with the fused passes around them): one or two per solver iteration (two when
-//! the iteration moved pixels between the sets and 𝒦p is recomputed) and about
+//! FFTs, ∝ N log₂ N, with the fused passes around them): about one per solver iteration (an
+//! iteration that moved pixels between the sets recomputes 𝒦p, after half a convolution for its
+//! curvature, or none where the free pixels are few and their pairs give it) and about
 //! [`STEP_CONVOLUTIONS`] more per step (the solve's first displacement and the confirming one);
 //! labelling and bookkeeping add about 1 %. So
 //!
@@ -43,8 +44,9 @@ use crate::material::{Material, ModulusConvention};
 use crate::sliding::{LoadRun, SlidingConfig, SlidingSetup, SlidingState};
 use crate::surface::{pair_seeds, SpectrumParams, Surface};
 
-/// Bumped whenever the calibration's runs or fields change: older cached calibrations are remade.
-const CALIBRATION_FORMAT: u32 = 4;
+/// Bumped whenever the calibration's runs or fields change, or the solver's cost per iteration
+/// does: older cached calibrations are remade.
+const CALIBRATION_FORMAT: u32 = 5;
 
 /// Grid sides of the calibration runs.
 const CALIBRATION_SIZES: [usize; 3] = [128, 256, 512];

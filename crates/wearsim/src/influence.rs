@@ -319,7 +319,7 @@ const PAIR_CHUNK: usize = 16;
 /// against the forward transform of the whole grid by Parseval's identity. In the paper's setting
 /// the contact is almost all plastic and the solver's conjugate direction lives on the free
 /// pixels alone, a few per cent of the contact, so the pair sum is the cheaper of the two
-/// (docs/performance.md: 5–10 times at 1024² to 4096²).
+/// (docs/performance.md: 5–11 times at 1024² to 4096²).
 pub struct PairForm {
     /// Kernel values ×`factor` at offsets (a, b), 0 ≤ a ≤ Nx/2, 0 ≤ b ≤ Ny/2 (`table[a·(Ny/2+1)
     /// + b]`): the periodic kernel is even in each offset, so these are all of it.
@@ -539,7 +539,7 @@ mod tests {
     /// the transform.
     #[test]
     fn the_pair_sum_of_a_sparse_field_is_its_quadratic_form() {
-        let grid = Grid::new(48, 20, 3.0).unwrap();
+        let grid = Grid::new(64, 40, 3.0).unwrap();
         let nn = grid.pixels();
         let mut influence = Influence::new(grid, 2.5, Boundary::Periodic).unwrap();
         let (mut a, mut b) = (vec![0.0; nn], vec![0.0; nn]);
@@ -547,13 +547,13 @@ mod tests {
         assert!(a.iter().chain(&b).all(|&v| v == 0.0), "the work fields are left zero");
         let mut field = vec![0.0; nn];
         let mut points = Vec::new();
-        for k in 0..15 {
-            // Pixels in row-major order, some in one row, some a period apart.
-            let pixel = (k * 61 + k * k) % nn;
+        for k in 0..30 {
+            // Pixels in two chunks, some in one row, some near the wrap of a row or of the grid.
+            let pixel = (k * 83 + k * k) % nn;
             field[pixel] = (k as f64 * 0.7).sin() + 0.1;
         }
         for (pixel, &v) in field.iter().enumerate().filter(|(_, &v)| v != 0.0) {
-            points.push(((pixel / 20) as u32, (pixel % 20) as u32, v));
+            points.push(((pixel / 40) as u32, (pixel % 40) as u32, v));
         }
         let by_transform = influence.quadratic_form_with(&field, |_, _| {}, 0.25);
         let on = |threads: usize| {
@@ -565,7 +565,8 @@ mod tests {
             (by_pairs - by_transform).abs() <= 1e-12 * by_transform.abs(),
             "{by_pairs} against {by_transform}"
         );
-        assert_eq!(by_pairs.to_bits(), on(2).to_bits());
+        assert!(points.len() > 16, "more than one chunk");
+        assert_eq!(by_pairs.to_bits(), on(4).to_bits());
         assert!(form.worth(points.len()) && !form.worth(nn / 8));
         assert!(PairForm::new(
             &mut Influence::new(grid, 2.5, Boundary::Free).unwrap(),

@@ -326,9 +326,10 @@ pub(crate) trait ContactBackend: Send + Sync {
 
     /// The same form summed over the pairs of free pixels (t ≠ 0 after the last
     /// [`ContactBackend::direction`]) with the kernel in real space,
-    /// [`PairForm`](crate::influence::PairForm), where the backend has it and the free pixels are
-    /// few enough for it to cost less than the transform; else `None` (the caller then takes
-    /// [`ContactBackend::curvature`]). No transform is left: a step on the CG line takes
+    /// [`PairForm`](crate::influence::PairForm), where the operator is periodic and the free
+    /// pixels are few enough ([`PairForm::worth`](crate::influence::PairForm::worth)); else `None`
+    /// (the caller then takes [`ContactBackend::curvature`]). A backend decides as the reference
+    /// of the conformance test does, which checks the choice too. No transform is left: a step on the CG line takes
     /// [`ContactBackend::advance`] afresh, and a step that changes the sets (most of a warm
     /// solve's) saves half a convolution.
     fn direct_curvature(&mut self, shift: f64) -> Option<f64>;

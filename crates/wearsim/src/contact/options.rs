@@ -157,8 +157,9 @@ pub struct SolveInfo {
     pub iterations: usize,
     /// Convolutions performed in all: the recomputations of 𝒦p, and per iteration one, whether it
     /// completes its convolution 𝒦t (a step on the CG line) or needs only the forward half for its
-    /// curvature (a step that changes the sets, whose 𝒦p is recomputed); none for a step that
-    /// changes the sets and took its curvature from the pairs of few free pixels.
+    /// curvature (a step that changes the sets, whose 𝒦p is recomputed); none for its curvature
+    /// where it came from the pairs of few free pixels (a step on the CG line then counts its
+    /// whole convolution 𝒦t).
     pub convolutions: usize,
     /// Final residual (module documentation).
     pub residual: f64,

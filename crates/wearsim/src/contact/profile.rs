@@ -26,9 +26,11 @@ pub struct PassTiming {
     /// as much).
     pub streams: f64,
     /// Calls per iteration of a warm sliding step that changes no set (a conjugate-gradient step:
-    /// the curvature, then the rest of its convolution in `advance`), and per iteration that
-    /// changes the sets (the curvature, the update, a fresh 𝒦p, the load balance by scaling, whose
-    /// sums the update carries); 0 for the reference passes and the set-up's passes.
+    /// the curvature, then the rest of its convolution in `advance`; with the pair sum, that and
+    /// the forward half, timed as `curvature`), and per iteration that changes the sets (the
+    /// curvature, by pairs where the backend takes them, the update, a fresh 𝒦p, the load balance
+    /// by scaling, whose sums the update carries); 0 for the reference passes and the set-up's
+    /// passes.
     pub per_cg_iteration: f64,
     pub per_set_change: f64,
 }
@@ -159,7 +161,7 @@ pub(super) fn passes(b: &mut dyn ContactBackend, row: usize, flow_pressure: f64,
     ];
     if let Some(seconds) = direct {
         // It reads the rows of t that hold free pixels: at most one field.
-        timings.insert(4, pass("curvature by pairs", seconds, 1.0, 1.0, 1.0));
+        timings.insert(4, pass("direct_curvature", seconds, 1.0, 1.0, 1.0));
     }
     timings
 }
