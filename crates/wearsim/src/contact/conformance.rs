@@ -67,6 +67,18 @@ impl Reference {
         self.t.iter().map(|&t| if t != 0.0 { t - shift } else { t }).collect()
     }
 
+    /// Asserts that `form` is Σ t_f·𝒦t_f / response_scale summed pixel by pixel, to 10⁻¹².
+    fn check_form(&mut self, form: f64, shift: f64, what: &str) {
+        let shifted = self.shifted_direction(shift);
+        let mut r = vec![0.0; shifted.len()];
+        self.influence.apply(&shifted, &mut r);
+        let sum: f64 = r.iter().zip(&shifted).map(|(r, t)| r / self.response_scale * t).sum();
+        assert!(
+            (form - sum).abs() <= 1e-12 * sum.abs().max(f64::MIN_POSITIVE),
+            "{what} {form} is not Σ t_f·𝒦t_f = {sum}"
+        );
+    }
+
     /// Per-row partials of `f(row index, pixel range)`, combined by `combine` in row order.
     fn rows<R>(&self, mut f: impl FnMut(usize, std::ops::Range<usize>) -> R) -> Vec<R> {
         (0..self.nx).map(|i| f(i, i * self.ny..(i + 1) * self.ny)).collect()
@@ -276,13 +288,7 @@ impl ContactBackend for Reference {
         let form = self
             .influence
             .quadratic_form_with(&shifted, |_, _| {}, 1.0 / self.response_scale);
-        let mut r = vec![0.0; shifted.len()];
-        self.influence.apply(&shifted, &mut r);
-        let sum: f64 = r.iter().zip(&shifted).map(|(r, t)| r / self.response_scale * t).sum();
-        assert!(
-            (form - sum).abs() <= 1e-12 * sum.abs().max(f64::MIN_POSITIVE),
-            "curvature {form} is not Σ t_f·𝒦t_f = {sum}"
-        );
+        self.check_form(form, shift, "curvature");
         form
     }
 
@@ -298,14 +304,7 @@ impl ContactBackend for Reference {
             return None;
         }
         let form = pair_form.form(&points, &mut Vec::new());
-        let shifted = self.shifted_direction(shift);
-        let mut r = vec![0.0; shifted.len()];
-        self.influence.apply(&shifted, &mut r);
-        let sum: f64 = r.iter().zip(&shifted).map(|(r, t)| r / self.response_scale * t).sum();
-        assert!(
-            (form - sum).abs() <= 1e-12 * sum.abs().max(f64::MIN_POSITIVE),
-            "direct curvature {form} is not Σ t_f·𝒦t_f = {sum}"
-        );
+        self.check_form(form, shift, "direct curvature");
         Some(form)
     }
 
