@@ -329,9 +329,9 @@ pub(crate) trait ContactBackend: Send + Sync {
     /// [`PairForm`](crate::influence::PairForm), where the operator is periodic and the free
     /// pixels are few enough ([`PairForm::worth`](crate::influence::PairForm::worth)); else `None`
     /// (the caller then takes [`ContactBackend::curvature`]). A backend decides as the reference
-    /// of the conformance test does, which checks the choice too. No transform is left: a step on the CG line takes
-    /// [`ContactBackend::advance`] afresh, and a step that changes the sets (most of a warm
-    /// solve's) saves half a convolution.
+    /// of the conformance test does, which checks the choice too. No transform is left: a step
+    /// on the CG line takes [`ContactBackend::advance`] afresh, and a step that changes the sets
+    /// (most of a warm solve's) saves half a convolution.
     fn direct_curvature(&mut self, shift: f64) -> Option<f64>;
 
     /// The update pass (copying p first, for [`ContactBackend::undo`]): with `shift` finite, free
