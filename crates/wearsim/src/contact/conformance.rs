@@ -7,7 +7,7 @@
 //! constructor: exactly when it keeps the reductions' order (as the CPU backend does), else within
 //! round-off.
 
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 use super::backend::{contact_bit, ContactBackend, HeightStats, LoadSums, Stats, Update, LOAD_CHUNK};
 use super::cpu::CpuBackend;
@@ -844,5 +844,128 @@ impl ContactBackend for Broken {
     }
     fn undo(&mut self) {
         self.0.undo()
+    }
+}
+
+/// What a [`Spy`] saw of a solve, in call order.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Call {
+    /// `direction`: an iteration starts.
+    Direction,
+    /// `update`, with the plastic load Σ p (p ≥ p_m) of the new p.
+    Update { plastic: f64 },
+    /// The statistics of a new state (`displacement_and_stats`, `stats`, `advance`), with its
+    /// plastic load.
+    Stats { plastic: f64 },
+    /// `undo`.
+    Undo,
+}
+
+/// A backend that does what the one it wraps does and logs the calls that steer a solve.
+pub(crate) struct Spy {
+    pub(crate) inner: Box<dyn ContactBackend>,
+    pub(crate) calls: Arc<Mutex<Vec<Call>>>,
+}
+
+impl Spy {
+    fn log(&self, call: Call) {
+        self.calls.lock().unwrap().push(call);
+    }
+
+    fn logged(&self, stats: Stats) -> Stats {
+        self.log(Call::Stats {
+            plastic: stats.load.plastic,
+        });
+        stats
+    }
+}
+
+impl ContactBackend for Spy {
+    fn boundary(&self) -> Boundary {
+        self.inner.boundary()
+    }
+    fn self_influence(&self) -> f64 {
+        self.inner.self_influence()
+    }
+    fn apply_influence(&mut self, i: &[f64], o: &mut [f64]) {
+        self.inner.apply_influence(i, o)
+    }
+    fn write_heights(&mut self, f: &mut dyn FnMut(&mut [f64])) {
+        self.inner.write_heights(f)
+    }
+    fn bind_surfaces(&mut self, t: Arc<Surface>, b: Arc<Surface>) {
+        self.inner.bind_surfaces(t, b)
+    }
+    fn compose(&mut self, o: usize) {
+        self.inner.compose(o)
+    }
+    fn write_pressure(&mut self, f: &mut dyn FnMut(&mut [f64])) {
+        self.inner.write_pressure(f)
+    }
+    fn pressure(&mut self) -> &[f64] {
+        self.inner.pressure()
+    }
+    fn contact_map(&mut self) -> &[u64] {
+        self.inner.contact_map()
+    }
+    fn height_stats(&mut self) -> HeightStats {
+        self.inner.height_stats()
+    }
+    fn initial_guess(&mut self, m: f64, pm: f64) -> bool {
+        self.inner.initial_guess(m, pm)
+    }
+    fn load_sums(&mut self, pm: f64) -> LoadSums {
+        self.inner.load_sums(pm)
+    }
+    fn saturate_contact(&mut self, pm: f64) {
+        self.inner.saturate_contact(pm)
+    }
+    fn scaled_load(&mut self, s: f64, pm: f64, sp: bool) -> (f64, f64) {
+        self.inner.scaled_load(s, pm, sp)
+    }
+    fn scale(&mut self, s: f64, pm: f64, sp: bool) {
+        self.inner.scale(s, pm, sp)
+    }
+    fn spread_missing_load(&mut self, t: f64, pm: f64, m: f64) {
+        self.inner.spread_missing_load(t, pm, m)
+    }
+    fn displacement_and_stats(&mut self, r: f64, pm: f64) -> Stats {
+        let stats = self.inner.displacement_and_stats(r, pm);
+        self.logged(stats)
+    }
+    fn stats(&mut self, r: f64, pm: f64) -> Stats {
+        let stats = self.inner.stats(r, pm);
+        self.logged(stats)
+    }
+    fn direction(&mut self, m: f64, b: f64, pm: f64) -> (f64, f64) {
+        self.log(Call::Direction);
+        self.inner.direction(m, b, pm)
+    }
+    fn response_scale(&self) -> f64 {
+        self.inner.response_scale()
+    }
+    fn curvature(&mut self, s: f64) -> f64 {
+        self.inner.curvature(s)
+    }
+    fn direct_curvature(&mut self, s: f64) -> Option<f64> {
+        self.inner.direct_curvature(s)
+    }
+    fn update(&mut self, m: f64, t: f64, s: f64, pm: f64) -> Update {
+        let update = self.inner.update(m, t, s, pm);
+        self.log(Call::Update {
+            plastic: update.load.plastic,
+        });
+        update
+    }
+    fn advance(&mut self, m: f64, t: f64, s: f64, pm: f64, k: bool) -> Stats {
+        let stats = self.inner.advance(m, t, s, pm, k);
+        self.logged(stats)
+    }
+    fn keep_displacement(&mut self) {
+        self.inner.keep_displacement()
+    }
+    fn undo(&mut self) {
+        self.log(Call::Undo);
+        self.inner.undo()
     }
 }
