@@ -757,96 +757,6 @@ pub(crate) fn cpu(grid: Grid, effective_modulus: f64, boundary: Boundary) -> Box
     Box::new(CpuBackend::new(grid, effective_modulus, boundary).unwrap())
 }
 
-/// The CPU backend with the plastic pixels of the load sums counted as free: a backend the
-/// conformance test must fail.
-pub(crate) struct Broken(pub(crate) CpuBackend);
-
-impl ContactBackend for Broken {
-    fn boundary(&self) -> Boundary {
-        self.0.boundary()
-    }
-    fn self_influence(&self) -> f64 {
-        self.0.self_influence()
-    }
-    fn apply_influence(&mut self, i: &[f64], o: &mut [f64]) {
-        self.0.apply_influence(i, o)
-    }
-    fn write_heights(&mut self, f: &mut dyn FnMut(&mut [f64])) {
-        self.0.write_heights(f)
-    }
-    fn bind_surfaces(&mut self, t: Arc<Surface>, b: Arc<Surface>) {
-        self.0.bind_surfaces(t, b)
-    }
-    fn compose(&mut self, o: usize) {
-        self.0.compose(o)
-    }
-    fn write_pressure(&mut self, f: &mut dyn FnMut(&mut [f64])) {
-        self.0.write_pressure(f)
-    }
-    fn pressure(&mut self) -> &[f64] {
-        self.0.pressure()
-    }
-    fn contact_map(&mut self) -> &[u64] {
-        self.0.contact_map()
-    }
-    fn height_stats(&mut self) -> HeightStats {
-        self.0.height_stats()
-    }
-    fn initial_guess(&mut self, m: f64, pm: f64) -> bool {
-        self.0.initial_guess(m, pm)
-    }
-    fn load_sums(&mut self, pm: f64) -> LoadSums {
-        let s = self.0.load_sums(pm);
-        LoadSums {
-            free: s.free + s.plastic,
-            plastic: 0.0,
-            ..s
-        }
-    }
-    fn saturate_contact(&mut self, pm: f64) {
-        self.0.saturate_contact(pm)
-    }
-    fn scaled_load(&mut self, s: f64, pm: f64, sp: bool) -> (f64, f64) {
-        self.0.scaled_load(s, pm, sp)
-    }
-    fn scale(&mut self, s: f64, pm: f64, sp: bool) {
-        self.0.scale(s, pm, sp)
-    }
-    fn spread_missing_load(&mut self, t: f64, pm: f64, m: f64) {
-        self.0.spread_missing_load(t, pm, m)
-    }
-    fn displacement_and_stats(&mut self, r: f64, pm: f64) -> Stats {
-        self.0.displacement_and_stats(r, pm)
-    }
-    fn stats(&mut self, r: f64, pm: f64) -> Stats {
-        self.0.stats(r, pm)
-    }
-    fn direction(&mut self, m: f64, b: f64, pm: f64) -> (f64, f64) {
-        self.0.direction(m, b, pm)
-    }
-    fn response_scale(&self) -> f64 {
-        self.0.response_scale()
-    }
-    fn curvature(&mut self, s: f64) -> f64 {
-        self.0.curvature(s)
-    }
-    fn direct_curvature(&mut self, s: f64) -> Option<f64> {
-        self.0.direct_curvature(s)
-    }
-    fn update(&mut self, m: f64, t: f64, s: f64, pm: f64) -> Update {
-        self.0.update(m, t, s, pm)
-    }
-    fn advance(&mut self, m: f64, t: f64, s: f64, pm: f64, k: bool) -> Stats {
-        self.0.advance(m, t, s, pm, k)
-    }
-    fn keep_displacement(&mut self) {
-        self.0.keep_displacement()
-    }
-    fn undo(&mut self) {
-        self.0.undo()
-    }
-}
-
 /// What a [`Spy`] saw of a solve, in call order.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum Call {
@@ -861,13 +771,35 @@ pub(crate) enum Call {
     Undo,
 }
 
-/// A backend that does what the one it wraps does and logs the calls that steer a solve.
+/// A backend that does what the one it wraps does and logs the calls that steer a solve; or,
+/// `broken`, one that counts the plastic pixels of the load sums as free: a backend the
+/// conformance test must fail.
 pub(crate) struct Spy {
-    pub(crate) inner: Box<dyn ContactBackend>,
-    pub(crate) calls: Arc<Mutex<Vec<Call>>>,
+    inner: Box<dyn ContactBackend>,
+    calls: Arc<Mutex<Vec<Call>>>,
+    broken: bool,
 }
 
 impl Spy {
+    /// The spy on `inner` and its log.
+    pub(crate) fn new(inner: Box<dyn ContactBackend>) -> (Self, Arc<Mutex<Vec<Call>>>) {
+        let calls = Arc::new(Mutex::new(Vec::new()));
+        let spy = Self {
+            inner,
+            calls: Arc::clone(&calls),
+            broken: false,
+        };
+        (spy, calls)
+    }
+
+    /// `inner` with its load sums broken.
+    pub(crate) fn broken(inner: Box<dyn ContactBackend>) -> Self {
+        Self {
+            broken: true,
+            ..Self::new(inner).0
+        }
+    }
+
     fn log(&self, call: Call) {
         self.calls.lock().unwrap().push(call);
     }
@@ -915,7 +847,15 @@ impl ContactBackend for Spy {
         self.inner.initial_guess(m, pm)
     }
     fn load_sums(&mut self, pm: f64) -> LoadSums {
-        self.inner.load_sums(pm)
+        let s = self.inner.load_sums(pm);
+        if !self.broken {
+            return s;
+        }
+        LoadSums {
+            free: s.free + s.plastic,
+            plastic: 0.0,
+            ..s
+        }
     }
     fn saturate_contact(&mut self, pm: f64) {
         self.inner.saturate_contact(pm)

@@ -829,7 +829,7 @@ fn converged(info: SolveInfo) -> Result<SolveInfo> {
 
 #[cfg(test)]
 mod tests {
-    use super::conformance::{agree_fields, backend_passes, uniform, Broken, Call, MakeBackend, Spy, GRIDS};
+    use super::conformance::{agree_fields, backend_passes, uniform, Call, MakeBackend, Spy, GRIDS};
     use super::*;
 
     #[test]
@@ -895,7 +895,7 @@ mod tests {
     #[test]
     fn the_conformance_test_fails_a_backend_that_breaks_a_rule() {
         let make: &MakeBackend =
-            &|grid, e_star, boundary| Box::new(Broken(CpuBackend::new(grid, e_star, boundary).unwrap()));
+            &|grid, e_star, boundary| Box::new(Spy::broken(conformance::cpu(grid, e_star, boundary)));
         let failed = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| conformance(make, false))).is_err();
         assert!(failed, "a backend that counts plastic load as free passed");
     }
@@ -950,11 +950,7 @@ mod tests {
         let grid = Grid::square(64, 1.0).unwrap();
         let spectrum = crate::surface::SpectrumParams::paper_roughness(64, 1.0);
         let surface = |seed| Arc::new(Surface::generate(grid, &spectrum, seed).unwrap());
-        let calls = Arc::new(std::sync::Mutex::new(Vec::new()));
-        let spy = Spy {
-            inner: conformance::cpu(grid, 1.0 / 0.91, Boundary::Periodic),
-            calls: Arc::clone(&calls),
-        };
+        let (spy, calls) = Spy::new(conformance::cpu(grid, 1.0 / 0.91, Boundary::Periodic));
         let mut solver = ContactSolver::with_backend(grid, 1.0 / 0.91, Box::new(spy));
         solver.bind_surfaces(surface(1), surface(2)).unwrap();
         let mut plain = solved_at_offset_0_composed_at_1();
