@@ -16,6 +16,13 @@ def num(x: str) -> float:
     return float(x) if x not in ("", None) else float("nan")
 
 
+def covered(r):
+    """yes / no / no interval (outside the calibrated domain), as `estimate-check` scores it."""
+    if r.get("scored") == "withheld":
+        return "no interval"
+    return "yes" if r["wear_rate_covered"] == "true" else "**no**"
+
+
 def main() -> None:
     least = int(sys.argv[1])
     every = []
@@ -39,7 +46,7 @@ def main() -> None:
                 f"{num(r['wear_rate_high']):.2e}] | {num(r['sliding_wear_coefficient']):.3f} "
                 f"| {num(r['wear_coefficient']):.3f} "
                 f"| {num(r['sliding_particle_rate']):.1f} | {num(r['particle_rate']):.1f} | {100 * err:+.0f} % "
-                f"| {'yes' if r['wear_rate_covered'] == 'true' else '**no**'} |"
+                f"| {covered(r)} |"
             )
         every.extend(rows)
     print()
@@ -56,9 +63,13 @@ def main() -> None:
         p = [abs(num(r["particle_rate_error"])) for r in rows]
         cw = sum(r["wear_rate_covered"] == "true" for r in rows)
         cp = sum(r["particle_rate_covered"] == "true" for r in rows)
+        # Settings without an interval (outside the calibrated domain) are not in the denominator.
+        n = sum(r["wear_rate_covered"] in ("true", "false") for r in rows)
+        withheld = len(rows) - n
+        note = f" ({withheld} without interval)" if withheld else ""
         print(
             f"| {label} | {len(rows)} | {100 * statistics.median(w):.1f} % | {100 * max(w):.0f} % "
-            f"| {100 * statistics.median(p):.1f} % | {100 * max(p):.0f} % | {cw}/{len(rows)} | {cp}/{len(rows)} |"
+            f"| {100 * statistics.median(p):.1f} % | {100 * max(p):.0f} % | {cw}/{n}{note} | {cp}/{n} |"
         )
 
 

@@ -216,7 +216,9 @@ def estimate(
 
     Returns ``(results, summary)``: one row per load and fracture energy with ``wear_rate``,
     ``wear_coefficient`` and ``particle_rate`` and their ``_low``/``_high`` 95 % interval for a
-    sliding run of the same box and distance, and the static features (``critical_junctions_mean``,
+    sliding run of the same box and distance (NaN where the setting lies outside the calibrated
+    domain — measured or other surfaces, a short running-in, a contact fraction or N* per map
+    beyond the calibration's —, with ``interval_withheld`` naming why), and the static features (``critical_junctions_mean``,
     its ``critical_junctions_sampling_error``, ``mean_critical_diameter``, ``critical_coverage``,
     ``critical_residence``, ``expected_particles``); the summary equals ``wearsim estimate``'s
     ``summary.json`` and is marked ``"model": "estimate"``. ``samples`` fixes the static maps per

@@ -100,7 +100,37 @@ fn estimate_check_compares_a_studys_sliding_runs_and_fits() {
     assert!(stdout(&o).contains("with the constants in use: "), "{}", stdout(&o));
     let csv = std::fs::read_to_string(out.join("comparison.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + 4, "one row per job and 𝒢: {csv}");
-    assert!(csv.lines().next().unwrap().contains("wear_rate_error"));
+    let header = csv.lines().next().unwrap();
+    assert!(
+        header.contains("wear_rate_error") && header.contains(",scored,"),
+        "{header}"
+    );
+    // Every setting is scored, whatever its particles: the kinds add up to the rows.
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let s_ = &summary["summary_with_calibration_in_use"];
+    let n = |k: &str| s_[k].as_u64().unwrap_or_else(|| panic!("{k}: {s_}"));
+    assert_eq!(n("settings"), 4, "{s_}");
+    assert_eq!(
+        n("with_interval") + n("interval_withheld") + n("no_estimate") + n("no_sliding_rate"),
+        4,
+        "{s_}"
+    );
+    assert_eq!(n("error_settings") + n("error_left_out"), 4, "{s_}");
+    let scored: Vec<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|l| {
+            l.split(',')
+                .nth(header.split(',').position(|c| c == "scored").unwrap())
+                .unwrap()
+        })
+        .collect();
+    assert_eq!(
+        scored.iter().filter(|k| **k == "covered").count() as u64,
+        n("wear_rate_covered"),
+        "{scored:?}"
+    );
     // Too few particles on so small a box to fit: said, not a panic or a silent fit.
     let o = wearsim()
         .args([

@@ -308,24 +308,37 @@ fn range((lo, hi): (f64, f64), digits: usize) -> String {
     }
 }
 
-/// The warnings of the settings that lie outside `domain`, for the run as a whole: the surfaces
-/// (any kind but [`SurfaceKind::Generated`] with H, λ_l/Δx and λ_u/Lx in range is outside) and
-/// the running-in of `sliding` on a box of side `length` along x.
-pub fn run_reach_warnings(
+/// One way a setting lies outside the calibration's reach: what (a few words, as a result's
+/// `interval_withheld` names it), the fracture energy it concerns (index in the material's order;
+/// none: every one) and the warning that says it in full, with what to do.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OutsideReach {
+    pub what: String,
+    pub energy: Option<usize>,
+    pub warning: String,
+}
+
+/// Where the settings of the run as a whole lie outside `domain`: the surfaces (any kind but
+/// [`SurfaceKind::Generated`] with H, λ_l/Δx and λ_u/Lx in range is outside) and the running-in
+/// of `sliding` on a box of side `length` along x.
+pub fn run_reach(
     domain: &Domain,
     surfaces: &SurfaceKind,
     sliding: &crate::sliding::SlidingConfig,
     length: f64,
-) -> Vec<String> {
+) -> Vec<OutsideReach> {
     let mut out = Vec::new();
-    let mut not_calibrated = |what: String| {
-        out.push(format!(
-            "{what}: the static estimate's constants were not calibrated there, so its W, k, dN*₊/ds and their \
-             interval are an extrapolation (on pairs carrying measured spectra its median error of W was 19 % for a \
-             self-affine one and 37–82 % for two that are not, and on measured maps slid tapered it missed by factors \
-             of 3 to 13: docs/estimate.md); \
-             {REFIT_ADVICE}"
-        ))
+    let mut not_calibrated = |what: &str, text: String| {
+        out.push(OutsideReach {
+            what: what.into(),
+            energy: None,
+            warning: format!(
+                "{text}: the static estimate's constants were not calibrated there, so its W, k and dN*₊/ds are an \
+                 extrapolation and are given without an interval (on pairs carrying measured spectra its median \
+                 error of W was 19 % for a self-affine one and 37–82 % for two that are not, and on measured maps \
+                 slid tapered it missed by factors of 3 to 13: docs/estimate.md); {REFIT_ADVICE}"
+            ),
+        })
     };
     match surfaces {
         SurfaceKind::Generated {
@@ -340,20 +353,26 @@ pub fn run_reach_warnings(
                 ("λ_u/Lx", *upper_cutoff_box, domain.upper_cutoff_box, 3),
             ] {
                 if outside(value, calibrated) {
-                    not_calibrated(format!(
-                        "the surfaces' {name} is {value:.digits$}, outside the calibrated {}",
-                        range(calibrated, digits)
-                    ));
+                    not_calibrated(
+                        &format!("the surfaces' {name}"),
+                        format!(
+                            "the surfaces' {name} is {value:.digits$}, outside the calibrated {}",
+                            range(calibrated, digits)
+                        ),
+                    );
                 }
             }
         }
-        SurfaceKind::Other(what) => not_calibrated(format!(
-            "the surfaces are {what}, not the self-affine spectrum of wearsim's generator that the calibration used \
-             (H = {}, λ_l/Δx = {}, λ_u/Lx = {})",
-            range(domain.hurst, 2),
-            range(domain.lower_cutoff_pixels, 0),
-            range(domain.upper_cutoff_box, 3)
-        )),
+        SurfaceKind::Other(what) => not_calibrated(
+            "surfaces not of the calibrated spectrum",
+            format!(
+                "the surfaces are {what}, not the self-affine spectrum of wearsim's generator that the calibration \
+                 used (H = {}, λ_l/Δx = {}, λ_u/Lx = {})",
+                range(domain.hurst, 2),
+                range(domain.lower_cutoff_pixels, 0),
+                range(domain.upper_cutoff_box, 3)
+            ),
+        ),
     }
     let short_box = sliding.running_in < domain.running_in_box * (1.0 - 1e-6);
     let short_cutoffs = match surfaces {
@@ -364,37 +383,60 @@ pub fn run_reach_warnings(
         _ => None,
     };
     if short_box || short_cutoffs.is_some() {
-        out.push(format!(
-            "the run's running-in is {:.3} box lengths{}, shorter than the calibration's runs were fitted after \
-             ({} box lengths, {} λ_u): a sliding run of this schedule is fitted while the memory of the initial contact \
-             still fades, where its rates are lower than the estimate's; lengthen `[sliding] running_in` (and \
-             `distance`), or calibrate on runs of this schedule: {REFIT_ADVICE}",
-            sliding.running_in,
-            short_cutoffs.map_or(String::new(), |n| format!(" ({n:.2} λ_u)")),
-            domain.running_in_box,
-            domain.running_in_upper_cutoffs
-        ));
+        out.push(OutsideReach {
+            what: "a shorter running-in".into(),
+            energy: None,
+            warning: format!(
+                "the run's running-in is {:.3} box lengths{}, shorter than the calibration's runs were fitted after \
+                 ({} box lengths, {} λ_u): a sliding run of this schedule is fitted while the memory of the initial \
+                 contact still fades, where its rates are lower than the estimate's, so no interval is given; \
+                 lengthen `[sliding] running_in` (and `distance`), or calibrate on runs of this schedule: \
+                 {REFIT_ADVICE}",
+                sliding.running_in,
+                short_cutoffs.map_or(String::new(), |n| format!(" ({n:.2} λ_u)")),
+                domain.running_in_box,
+                domain.running_in_upper_cutoffs
+            ),
+        });
     }
     out
 }
 
-/// The warnings of one load whose static maps lie outside `domain`: their contact fraction, and N*
-/// per map of each fracture energy (below the range only from [`RESOLVED_CRITICAL_JUNCTIONS`] on,
-/// where the warning about a few junctions does not already say it).
-pub fn load_reach_warnings(domain: &Domain, samples: &[Sample], material: &Material, load: f64) -> Vec<String> {
+/// The warnings of [`run_reach`].
+pub fn run_reach_warnings(
+    domain: &Domain,
+    surfaces: &SurfaceKind,
+    sliding: &crate::sliding::SlidingConfig,
+    length: f64,
+) -> Vec<String> {
+    run_reach(domain, surfaces, sliding, length)
+        .into_iter()
+        .map(|r| r.warning)
+        .collect()
+}
+
+/// Where one load's static maps lie outside `domain`: their contact fraction, and N* per map of
+/// each fracture energy (below the range only from [`RESOLVED_CRITICAL_JUNCTIONS`] on, where the
+/// warning about a few junctions does not already say it).
+pub fn load_reach(domain: &Domain, samples: &[Sample], material: &Material, load: f64) -> Vec<OutsideReach> {
     let mut out = Vec::new();
     if samples.is_empty() {
         return out;
     }
     let contact = samples.iter().map(|s| s.contact_area).sum::<f64>() / samples.len() as f64;
     if outside(contact, domain.contact_fraction) {
-        out.push(format!(
-            "F_N = {load:.4e}: the static maps' contact fraction is {:.2} %, outside the calibrated {:.1}–{:.1} %: the \
-             junctions merge and live differently there than the constants say; {REFIT_ADVICE}",
-            100.0 * contact,
-            100.0 * domain.contact_fraction.0,
-            100.0 * domain.contact_fraction.1
-        ));
+        out.push(OutsideReach {
+            what: format!("contact fraction {:.2} %", 100.0 * contact),
+            energy: None,
+            warning: format!(
+                "F_N = {load:.4e}: the static maps' contact fraction is {:.2} %, outside the calibrated {:.1}–{:.1} %: \
+                 the junctions merge and live differently there than the constants say, so no interval is given; \
+                 {REFIT_ADVICE}",
+                100.0 * contact,
+                100.0 * domain.contact_fraction.0,
+                100.0 * domain.contact_fraction.1
+            ),
+        });
     }
     for (e, (&g, d)) in material
         .fracture_energies
@@ -406,14 +448,63 @@ pub fn load_reach_warnings(domain: &Domain, samples: &[Sample], material: &Mater
         let (lo, hi) = domain.critical_junctions;
         let low = n >= RESOLVED_CRITICAL_JUNCTIONS && n < lo;
         if low || n > hi {
-            out.push(format!(
-                "F_N = {load:.4e}, 𝒢 = {g:.4e} (d* = {d:.4e}): {n:.1} critical junctions (d_i ≥ d*) per static map, {} \
-                 the calibrated {lo:.0}–{hi:.0}; {REFIT_ADVICE}",
-                if low { "below" } else { "above" }
-            ));
+            out.push(OutsideReach {
+                what: format!("N* = {n:.1} per map"),
+                energy: Some(e),
+                warning: format!(
+                    "F_N = {load:.4e}, 𝒢 = {g:.4e} (d* = {d:.4e}): {n:.1} critical junctions (d_i ≥ d*) per static map, \
+                     {} the calibrated {lo:.0}–{hi:.0}, so no interval is given; {REFIT_ADVICE}",
+                    if low { "below" } else { "above" }
+                ),
+            });
         }
     }
     out
+}
+
+/// The warnings of [`load_reach`].
+pub fn load_reach_warnings(domain: &Domain, samples: &[Sample], material: &Material, load: f64) -> Vec<String> {
+    load_reach(domain, samples, material, load)
+        .into_iter()
+        .map(|r| r.warning)
+        .collect()
+}
+
+/// The estimate of one load as every front end gives it: [`results_of`] under `calibration`, and,
+/// with the library's constants ([`CALIBRATION`]), its reach checked: `run_reach` (the run's,
+/// [`run_reach`]) and the load's own ([`load_reach`]) are warned about, and every result they
+/// concern loses its interval ([`EstimateResult::withhold_interval`]). Outside the calibrated
+/// domain the constants have missed sliding runs by more than any interval of their spread allows
+/// (docs/estimate.md), so a 95 % interval there would promise what the rule cannot keep. With
+/// constants of one's own the intervals stand: their reach is the runs they were fitted on.
+#[allow(clippy::too_many_arguments)]
+pub fn load_estimate(
+    samples: &[Sample],
+    material: &Material,
+    load: f64,
+    box_sides: (f64, f64),
+    fit_distance: f64,
+    calibration: &Calibration,
+    run_reach: &[OutsideReach],
+) -> (Vec<EstimateResult>, Vec<String>) {
+    let (mut results, mut warnings) = results_of(samples, material, load, box_sides, fit_distance, calibration);
+    if !calibration.same_constants(&CALIBRATION) {
+        return (results, warnings);
+    }
+    let own = load_reach(&CALIBRATED_DOMAIN, samples, material, load);
+    let reach: Vec<&OutsideReach> = run_reach.iter().chain(&own).collect();
+    warnings.extend(reach.iter().map(|r| r.warning.clone()));
+    for (e, r) in results.iter_mut().enumerate() {
+        let whats: Vec<&str> = reach
+            .iter()
+            .filter(|o| o.energy.is_none_or(|i| i == e))
+            .map(|o| o.what.as_str())
+            .collect();
+        if !whats.is_empty() {
+            r.withhold_interval(format!("outside the calibrated domain: {}", whats.join("; ")));
+        }
+    }
+    (results, warnings)
 }
 
 /// One point of a calibration: the static features of a setting and what its sliding run measured.
@@ -641,9 +732,28 @@ pub struct EstimateResult {
     pub static_wear_rate_mean: f64,
     #[serde(default)]
     pub static_wear_rate_std: f64,
+    /// Why W, k and dN*₊/ds carry no interval although they are defined: the setting lies outside
+    /// the calibrated domain ([`load_estimate`]); absent where the interval is given (or W is
+    /// undefined).
+    #[serde(default)]
+    pub interval_withheld: Option<String>,
 }
 
 impl EstimateResult {
+    /// Drops the 95 % intervals of W, k and dN*₊/ds, saying why (`reason`); the point values stay.
+    pub fn withhold_interval(&mut self, reason: String) {
+        if self.wear_rate.is_none() {
+            return;
+        }
+        self.wear_rate_low = None;
+        self.wear_rate_high = None;
+        self.wear_coefficient_low = None;
+        self.wear_coefficient_high = None;
+        self.particle_rate_low = None;
+        self.particle_rate_high = None;
+        self.interval_withheld = Some(reason);
+    }
+
     /// The unit of every field: (field, reduced units, SI units), as `WearResult::UNITS`.
     pub const UNITS: &'static [(&'static str, &'static str, &'static str)] = &[
         ("fracture_energy", "E L", "J/m²"),
@@ -668,6 +778,7 @@ impl EstimateResult {
         ("static_wear_coefficient_std", "1", "1"),
         ("static_wear_rate_mean", "L²", "m²"),
         ("static_wear_rate_std", "L²", "m²"),
+        ("interval_withheld", "", ""),
     ];
 }
 
@@ -752,6 +863,8 @@ pub struct Estimator<'a> {
     diameters: Vec<f64>,
     nx: usize,
     area: f64,
+    /// Lx × Ly.
+    box_sides: (f64, f64),
     dx: f64,
     /// Per load, the maps so far.
     samples: Vec<Vec<Sample>>,
@@ -779,6 +892,7 @@ impl<'a> Estimator<'a> {
             diameters: setup.material.critical_diameters(),
             nx: grid.nx(),
             area: grid.area(),
+            box_sides: (grid.length_x(), grid.length_y()),
             dx: grid.pixel_size(),
             samples: vec![Vec::new(); setup.sliding.loads.len()],
         })
@@ -881,15 +995,19 @@ impl<'a> Estimator<'a> {
         let length = self.nx as f64 * self.dx;
         let fit_distance = fit_distance(self.setup.sliding, length);
         let own = !calibration.same_constants(&CALIBRATION);
-        let run_warnings = if own {
-            vec![format!(
+        let (run_warnings, reach) = if own {
+            let note = format!(
                 "the estimate uses the run file's `estimate_constants` (c₁ = {:.4}, c₂ = {:.4}, c_v = {:.4}), not the \
                  library's calibration: their reach is the sliding runs they were fitted on, which this estimate cannot \
                  check",
                 calibration.residence_factor, calibration.merging_factor, calibration.volume_factor
-            )]
+            );
+            (vec![note], Vec::new())
         } else {
-            run_reach_warnings(&CALIBRATED_DOMAIN, surfaces, self.setup.sliding, length)
+            (
+                Vec::new(),
+                run_reach(&CALIBRATED_DOMAIN, surfaces, self.setup.sliding, length),
+            )
         };
         self.setup
             .sliding
@@ -897,24 +1015,16 @@ impl<'a> Estimator<'a> {
             .iter()
             .zip(self.samples)
             .map(|(&load, samples)| {
-                let (results, warnings) = results_of(
+                let (results, mut warnings) = load_estimate(
                     &samples,
                     self.setup.material,
                     load,
-                    self.area,
+                    self.box_sides,
                     fit_distance,
                     calibration,
+                    &reach,
                 );
-                let mut warnings = warnings;
                 warnings.extend(run_warnings.iter().cloned());
-                if !own {
-                    warnings.extend(load_reach_warnings(
-                        &CALIBRATED_DOMAIN,
-                        &samples,
-                        self.setup.material,
-                        load,
-                    ));
-                }
                 LoadEstimate {
                     load,
                     results,
@@ -933,13 +1043,13 @@ pub fn fit_distance(sliding: &crate::sliding::SlidingConfig, length: f64) -> f64
 }
 
 /// The estimate of one load for every fracture energy of `material` from its static maps, with
-/// `calibration`'s constants, and the warnings about it: `area` is the box's Lx Ly, `fit_distance`
+/// `calibration`'s constants, and the warnings about it: `box_sides` is the box's Lx × Ly, `fit_distance`
 /// the sliding distance of the run whose interval is given ([`fit_distance`]).
 pub fn results_of(
     samples: &[Sample],
     material: &Material,
     load: f64,
-    area: f64,
+    box_sides: (f64, f64),
     fit_distance: f64,
     calibration: &Calibration,
 ) -> (Vec<EstimateResult>, Vec<String>) {
@@ -964,8 +1074,18 @@ pub fn results_of(
         .zip(material.critical_diameters())
         .enumerate()
         .map(|(e, (&g, d))| {
-            let r = estimate_of(samples, e, g, d, load, pm, area, fit_distance, calibration);
-            warnings.extend(result_warnings(&r, load, samples.len()));
+            let r = estimate_of(
+                samples,
+                e,
+                g,
+                d,
+                load,
+                pm,
+                box_sides.0 * box_sides.1,
+                fit_distance,
+                calibration,
+            );
+            warnings.extend(result_warnings(&r, load, samples.len(), box_sides.0.min(box_sides.1)));
             r
         })
         .collect();
@@ -1085,14 +1205,22 @@ pub fn zero_allowed(expected: f64) -> bool {
     (-expected).exp() >= ZERO_PROBABILITY
 }
 
-/// What a result cannot promise, said loudly.
-fn result_warnings(r: &EstimateResult, load: f64, samples: usize) -> Vec<String> {
+/// What a result cannot promise, said loudly; `box_side` is the box's shorter side, beside which
+/// d* decides whether a higher load could help.
+fn result_warnings(r: &EstimateResult, load: f64, samples: usize, box_side: f64) -> Vec<String> {
     let mut out = Vec::new();
     let what = format!(
         "F_N = {load:.4e}, 𝒢 = {:.4e} (d* = {:.4e})",
         r.fracture_energy, r.critical_diameter
     );
-    if r.wear_rate.is_none() {
+    if r.wear_rate.is_none() && r.critical_diameter >= box_side {
+        out.push(format!(
+            "{what}: no junction of the {samples} static map(s) reaches d*, so no particle is expected and W, k and \
+             dN*₊/ds are undefined; d* is {:.2} times the box's shorter side, so no junction can reach it in this box \
+             at any load: take a box of several d*",
+            r.critical_diameter / box_side
+        ));
+    } else if r.wear_rate.is_none() {
         out.push(format!(
             "{what}: no junction of the {samples} static map(s) reaches d*, so no particle is expected and W, k and \
              dN*₊/ds are undefined (the sliding model may still form a rare particle); raise the load or take a larger box"
@@ -1255,14 +1383,89 @@ mod tests {
         );
     }
 
+    /// Outside the calibrated domain the library's constants give W without an interval, and say
+    /// why; inside, and with constants of one's own, the interval stands.
+    #[test]
+    fn outside_the_calibration_the_interval_is_withheld_and_said_why() {
+        let material = Material::new(1.0, 0.3, 0.010, vec![0.25e-6, 1.0e-6], 3.0).unwrap();
+        let d = material.critical_diameters();
+        let sample2 = |contact: f64, n: [usize; 2]| Sample {
+            contact_area: contact,
+            junctions: n[0],
+            counts: (0..2)
+                .map(|e| SampleCount {
+                    critical_junctions: n[e],
+                    diameter_sum: n[e] as f64 * 1.2 * d[e],
+                    ..Default::default()
+                })
+                .collect(),
+            ..Default::default()
+        };
+        let sliding = crate::sliding::SlidingConfig::new(vec![1e-3], 0.5, 0.25, 4, 1, Some(1024)).unwrap();
+        let paper = SurfaceKind::Generated {
+            hurst: 0.7,
+            lower_cutoff_pixels: 16.0,
+            upper_cutoff_box: 0.25,
+            upper_cutoff: 0.0625,
+        };
+        let measured = SurfaceKind::Other("read from height-map files (a measured map)".into());
+        let inside = vec![sample2(0.03, [10, 4]); 4];
+        let estimate = |samples: &[Sample], kind: &SurfaceKind, c: &Calibration| {
+            let reach = run_reach(&CALIBRATED_DOMAIN, kind, &sliding, 0.25);
+            load_estimate(samples, &material, 1e-3, (0.25, 0.25), 0.0625, c, &reach)
+        };
+        let (r, w) = estimate(&inside, &paper, &CALIBRATION);
+        assert!(
+            r.iter()
+                .all(|r| r.wear_rate_low.is_some() && r.interval_withheld.is_none()),
+            "{r:?} {w:?}"
+        );
+        // Measured surfaces: every 𝒢 loses its interval, the point value stays, the warning says so.
+        let (r, w) = estimate(&inside, &measured, &CALIBRATION);
+        for r in &r {
+            assert!(r.wear_rate.is_some() && r.wear_coefficient.is_some() && r.particle_rate.is_some());
+            assert_eq!((r.wear_rate_low, r.wear_rate_high), (None, None));
+            assert_eq!((r.wear_coefficient_low, r.particle_rate_high), (None, None));
+            assert_eq!(
+                r.interval_withheld.as_deref(),
+                Some("outside the calibrated domain: surfaces not of the calibrated spectrum")
+            );
+        }
+        assert!(w.iter().any(|w| w.contains("given without an interval")), "{w:?}");
+        // N* above the range for the first 𝒢 only: that one loses its interval, the other keeps it.
+        let (r, _) = estimate(&vec![sample2(0.03, [200, 4]); 4], &paper, &CALIBRATION);
+        assert_eq!(
+            r[0].interval_withheld.as_deref(),
+            Some("outside the calibrated domain: N* = 200.0 per map")
+        );
+        assert!(r[1].interval_withheld.is_none() && r[1].wear_rate_low.is_some());
+        // A contact fraction outside the range concerns every 𝒢, with the surfaces' reason beside it.
+        let (r, _) = estimate(&vec![sample2(0.2, [10, 4]); 4], &measured, &CALIBRATION);
+        assert_eq!(
+            r[1].interval_withheld.as_deref(),
+            Some("outside the calibrated domain: surfaces not of the calibrated spectrum; contact fraction 20.00 %")
+        );
+        // Constants of one's own keep their interval: their reach is the runs they were fitted on.
+        let own = Calibration {
+            residence_factor: 2.0,
+            ..CALIBRATION
+        };
+        let (r, _) = estimate(&inside, &measured, &own);
+        assert!(r
+            .iter()
+            .all(|r| r.wear_rate_low.is_some() && r.interval_withheld.is_none()));
+        // No critical junction: nothing to withhold.
+        let (r, _) = estimate(&vec![sample2(0.03, [0, 0]); 4], &measured, &CALIBRATION);
+        assert!(r.iter().all(|r| r.wear_rate.is_none() && r.interval_withheld.is_none()));
+    }
+
     #[test]
     fn the_interval_starts_at_zero_where_a_run_likely_forms_no_particle() {
         let material = Material::new(1.0, 0.3, 0.010, vec![0.25e-6], 3.0).unwrap();
         let d = material.critical_diameters()[0];
-        let area = 0.03125f64.powi(2);
         let samples = vec![sample(0.03, 1, 1.2 * d); 4];
         // A short fit window: μ well under ln 40, so P(N = 0) > 2.5 %.
-        let (r, w) = results_of(&samples, &material, 1e-6, area, 1e-3, &CALIBRATION);
+        let (r, w) = results_of(&samples, &material, 1e-6, (0.03125, 0.03125), 1e-3, &CALIBRATION);
         let mu = r[0].expected_particles.unwrap();
         assert!(mu < 40f64.ln(), "{mu}");
         assert_eq!(r[0].wear_rate_low, Some(0.0));
@@ -1271,7 +1474,7 @@ mod tests {
         assert!(r[0].wear_rate_high.unwrap() > r[0].wear_rate.unwrap());
         assert!(w.iter().any(|w| w.contains("none at all with probability")), "{w:?}");
         // A long one: many particles, the lower end above 0.
-        let (r, _) = results_of(&samples, &material, 1e-6, area, 10.0, &CALIBRATION);
+        let (r, _) = results_of(&samples, &material, 1e-6, (0.03125, 0.03125), 10.0, &CALIBRATION);
         assert!(r[0].expected_particles.unwrap() > 40f64.ln());
         assert!(r[0].wear_rate_low.unwrap() > 0.0);
         assert!(zero_allowed(3.68) && !zero_allowed(3.70));

@@ -43,8 +43,9 @@ pub struct CheckArgs {
     /// then use the fitted constants (`summary_with_calibration_in_use` the library's).
     #[arg(long)]
     fit: bool,
-    /// Settings counted in the errors and the coverage: at least this many particles in the sliding
-    /// run's fit window.
+    /// Settings the median and worst errors are taken over: at least this many particles in the
+    /// sliding run's fit window (fewer scatter by Poisson alone). The coverage of the interval is
+    /// counted over every setting, whatever its particles.
     #[arg(long, default_value_t = 20)]
     min_particles: usize,
     /// Static maps per job (default: the study's `estimate_samples`, else chosen by the sampling
@@ -66,6 +67,13 @@ fn interval(units: Units, quantity: &str, lo: Option<f64>, hi: Option<f64>) -> S
         ),
         _ => "".into(),
     }
+}
+
+/// What a result says where it has no interval although W is defined.
+fn withheld(r: &wearsim::estimate::EstimateResult) -> String {
+    r.interval_withheld
+        .as_ref()
+        .map_or(String::new(), |why| format!(" (no 95 % interval: {why})"))
 }
 
 pub fn run(args: &Args) -> Result<()> {
@@ -101,7 +109,7 @@ pub fn run(args: &Args) -> Result<()> {
     for l in &outcome.loads {
         for r in &l.results {
             say!(
-                "F_N = {}, d* = {}: W = {} {}, k = {} {}, dN*₊/ds = {} {}; N* = {:.2} (sampling error {}), d̄ = {}",
+                "F_N = {}, d* = {}: W = {} {}, k = {} {}, dN*₊/ds = {} {}; N* = {:.2} (sampling error {}), d̄ = {}{}",
                 with_unit(units, "load", l.load),
                 with_unit(units, "critical_diameter", r.critical_diameter),
                 maybe(units, "wear_rate", r.wear_rate),
@@ -119,6 +127,7 @@ pub fn run(args: &Args) -> Result<()> {
                 r.critical_junctions_sampling_error
                     .map_or("undefined".into(), |e| format!("{:.1} %", 100.0 * e)),
                 maybe(units, "mean_critical_diameter", r.mean_critical_diameter),
+                withheld(r),
             );
         }
     }

@@ -88,8 +88,11 @@ pub const QUANTITIES: &[(&str, &str, &str)] = &[
     ("sliding_critical_junctions_mean", "", ""),
     ("wear_rate_error", "1", "1"),
     ("particle_rate_error", "1", "1"),
+    ("expected_particles", "", ""),
     ("wear_rate_covered", "", ""),
     ("particle_rate_covered", "", ""),
+    ("scored", "", ""),
+    ("interval_withheld", "", ""),
     ("warnings", "", ""),
     // Columns the aggregated table adds.
     ("curve", "", ""),

@@ -6,7 +6,10 @@
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Interrupt, Result};
-use crate::estimate::{fit_distance, results_of, Calibration, CalibrationPoint, EstimateResult, Sample, Sampling};
+use crate::estimate::{
+    fit_distance, load_estimate, run_reach, Calibration, CalibrationPoint, EstimateResult, OutsideReach, Sample,
+    Sampling, CALIBRATED_DOMAIN,
+};
 use crate::run::SlidingRun;
 use crate::study::expand::{expand, expand_stored, Study};
 use crate::study::store::{job_path, read_result, stored_study};
@@ -49,9 +52,39 @@ pub struct ComparisonRow {
     /// estimate/sliding − 1 of W (k's is the same: both are W times p_m/F_N) and of dN*₊/ds.
     pub wear_rate_error: Option<f64>,
     pub particle_rate_error: Option<f64>,
-    /// The sliding W lies in the estimate's interval.
+    /// Particles the estimate expects such a run to count in its fit window.
+    pub expected_particles: Option<f64>,
+    /// The sliding W lies in the estimate's interval (absent where it has none).
     pub wear_rate_covered: Option<bool>,
     pub particle_rate_covered: Option<bool>,
+    /// How the setting is scored ([`Scored`]).
+    pub scored: Scored,
+    /// Why the estimate gives no interval, where it gives none for a defined W.
+    pub interval_withheld: Option<String>,
+}
+
+/// How one setting counts in the coverage of [`ComparisonSummary`]: every setting is one of these,
+/// whatever the particles its sliding run formed (the interval includes the Poisson noise of that
+/// count, so a run that formed few particles where the estimate expected many is a miss, not a
+/// setting to leave out).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Scored {
+    /// The sliding W lies in the estimate's 95 % interval.
+    Covered,
+    /// It lies outside.
+    #[default]
+    NotCovered,
+    /// The estimate gives W without an interval: the setting lies outside the calibrated domain.
+    Withheld,
+    /// No static map holds a junction of d*: the estimate gives no W, and the sliding run formed no
+    /// particle either.
+    NoEstimateNoParticle,
+    /// No static map holds a junction of d*, but the sliding run formed particles: a miss the
+    /// estimate could not quantify.
+    NoEstimateParticlesFormed,
+    /// The sliding run gives no W (too few steps in its fit window).
+    NoSlidingRate,
 }
 
 impl ComparisonRow {
@@ -76,9 +109,13 @@ pub struct MappedJob {
     pub job: crate::output::JobResult,
     pub samples: Vec<Sample>,
     material: crate::material::Material,
-    area: f64,
+    /// Lx × Ly.
+    box_sides: (f64, f64),
     fit_distance: f64,
     pixel_size: f64,
+    /// Where the job as a whole lies outside the library's calibration ([`run_reach`]): its
+    /// estimates under the library's constants carry no interval there.
+    reach: Vec<OutsideReach>,
 }
 
 /// The files a command that reads study folder `dir` reads: its stored study, its hash, its job
@@ -219,13 +256,15 @@ pub fn map_jobs(
             }
         }
         let samples = outcome.loads.into_iter().next().map(|l| l.samples).unwrap_or_default();
+        let kind = job.run.surfaces.estimate_kind(grid);
         out.push(MappedJob {
             job: result,
             samples,
             material: job.run.material.clone(),
-            area: grid.area(),
+            box_sides: (grid.length_x(), grid.length_y()),
             fit_distance: fit_distance(sliding, grid.length_x()),
             pixel_size: grid.pixel_size(),
+            reach: run_reach(&CALIBRATED_DOMAIN, &kind, sliding, grid.length_x()),
         });
         on_job(i + 1, finished.len());
     }
@@ -262,11 +301,20 @@ pub fn fit_warnings(rows: &[ComparisonRow]) -> Vec<String> {
     )]
 }
 
-/// The rows of the mapped jobs under `calibration`.
+/// The rows of the mapped jobs under `calibration`, each estimate as `wearsim estimate` gives it
+/// ([`load_estimate`]: under the library's constants without an interval outside their reach).
 pub fn compare(jobs: &[MappedJob], calibration: &Calibration) -> Vec<ComparisonRow> {
     let mut rows = Vec::new();
     for m in jobs {
-        let (estimates, _) = results_of(&m.samples, &m.material, m.job.load, m.area, m.fit_distance, calibration);
+        let (estimates, _) = load_estimate(
+            &m.samples,
+            &m.material,
+            m.job.load,
+            m.box_sides,
+            m.fit_distance,
+            calibration,
+            &m.reach,
+        );
         for (w, e) in m.job.results.iter().zip(&estimates) {
             rows.push(row(m, w, e));
         }
@@ -313,50 +361,124 @@ fn row(m: &MappedJob, w: &crate::sliding::WearResult, e: &EstimateResult) -> Com
         static_maps: m.samples.len(),
         wear_rate_error: error(e.wear_rate, w.wear_rate),
         particle_rate_error: error(e.particle_rate, w.particle_rate),
+        expected_particles: e.expected_particles,
         wear_rate_covered: covered(e.wear_rate_low, e.wear_rate_high, w.wear_rate),
         particle_rate_covered: covered(e.particle_rate_low, e.particle_rate_high, w.particle_rate),
+        scored: scored(e, w),
+        interval_withheld: e.interval_withheld.clone(),
     }
 }
 
-/// The errors over the rows with at least `min_particles` particles in the sliding run.
+/// How a setting counts ([`Scored`]): `e` the estimate, `w` the sliding run's result.
+fn scored(e: &EstimateResult, w: &crate::sliding::WearResult) -> Scored {
+    let Some(slid) = w.wear_rate else {
+        return Scored::NoSlidingRate;
+    };
+    if e.wear_rate.is_none() {
+        return if w.particles_in_fit == 0 {
+            Scored::NoEstimateNoParticle
+        } else {
+            Scored::NoEstimateParticlesFormed
+        };
+    }
+    match (e.wear_rate_low, e.wear_rate_high) {
+        (Some(lo), Some(hi)) if lo <= slid && slid <= hi => Scored::Covered,
+        (Some(_), Some(_)) => Scored::NotCovered,
+        _ => Scored::Withheld,
+    }
+}
+
+/// The estimate against the sliding runs over every setting compared: the coverage of its 95 %
+/// interval counted over all of them (each setting is one [`Scored`] kind, none left out), and its
+/// errors over the settings whose sliding run formed at least `min_particles` particles (below
+/// that a single run's W scatters by more than ±1/√min_particles by Poisson alone, so its error
+/// says little of the estimate; those settings are still scored for coverage).
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
 pub struct ComparisonSummary {
     pub min_particles: usize,
-    /// Settings counted, and those left out for having fewer particles.
+    /// Every setting (job × 𝒢) compared.
     pub settings: usize,
-    pub left_out: usize,
-    /// Median and largest |estimate/sliding − 1| of W (and k) and of dN*₊/ds.
+    /// Settings the errors are summarised over (at least `min_particles` particles), and those left
+    /// out of the errors for fewer.
+    pub error_settings: usize,
+    pub error_left_out: usize,
+    /// Median and largest |estimate/sliding − 1| of W (and k) and of dN*₊/ds over `error_settings`.
     pub wear_rate_median_error: Option<f64>,
     pub wear_rate_worst_error: Option<f64>,
     pub particle_rate_median_error: Option<f64>,
     pub particle_rate_worst_error: Option<f64>,
-    /// Settings whose sliding W (dN*₊/ds) lies in the estimate's 95 % interval.
+    /// Settings whose estimate has an interval, and those whose sliding W (dN*₊/ds) lies in it.
+    pub with_interval: usize,
     pub wear_rate_covered: usize,
     pub particle_rate_covered: usize,
-    /// The settings whose W lies outside the interval (job and 𝒢 index in the job's order).
+    /// `wear_rate_covered / with_interval` (absent without an interval).
+    pub coverage: Option<f64>,
+    /// Settings whose estimate gives W without an interval (outside the calibrated domain), with
+    /// each reason and how many settings it concerns.
+    pub interval_withheld: usize,
+    pub withheld_reasons: std::collections::BTreeMap<String, usize>,
+    /// Settings where no static map holds a junction of d* (no estimate), and those of them where
+    /// the sliding run formed particles all the same.
+    pub no_estimate: usize,
+    pub no_estimate_particles_formed: usize,
+    /// Settings whose sliding run gives no W.
+    pub no_sliding_rate: usize,
+    /// The settings scored as misses: W outside the interval, or particles formed where the
+    /// estimate had none (job, seed, p_N, d*, particles formed and expected, estimate/sliding).
     pub not_covered: Vec<String>,
 }
 
 impl ComparisonSummary {
-    /// The summary in words, as `wearsim estimate-check` prints it under the heading `what`: one
-    /// line of the errors and the coverage, then one per setting not covered.
+    /// The summary in words, as `wearsim estimate-check` prints it under the heading `what`: the
+    /// coverage over every setting, what was not scored by an interval and why, the errors, then
+    /// one line per miss.
     pub fn describe(&self, what: &str) -> Vec<String> {
         let pct = |v: Option<f64>| v.map_or("undefined".into(), |v| format!("{:.1} %", 100.0 * v));
+        let mut others = Vec::new();
+        if self.interval_withheld > 0 {
+            others.push(format!(
+                "no interval in {} (outside the calibrated domain)",
+                self.interval_withheld
+            ));
+        }
+        if self.no_estimate > 0 {
+            others.push(format!(
+                "no estimate in {} (no junction of d* in any static map; the sliding run formed particles in {})",
+                self.no_estimate, self.no_estimate_particles_formed
+            ));
+        }
+        if self.no_sliding_rate > 0 {
+            others.push(format!("no sliding W in {}", self.no_sliding_rate));
+        }
         let mut lines = vec![format!(
-            "{what}: {} settings with at least {} particles ({} left out): W and k median |error| {}, worst {}; \
-             dN*₊/ds median {}, worst {}; the 95 % interval covers W in {}/{} and dN*₊/ds in {}/{}",
+            "{what}: {} settings, every one scored: the 95 % interval covers W in {}/{} with an interval{} and \
+             dN*₊/ds in {}/{}{}; W and k median |error| {}, worst {}, dN*₊/ds median {}, worst {}, over the {} with at \
+             least {} particles ({} with fewer left out of the errors only)",
             self.settings,
-            self.min_particles,
-            self.left_out,
+            self.wear_rate_covered,
+            self.with_interval,
+            self.coverage
+                .map_or(String::new(), |c| format!(" ({:.0} %)", 100.0 * c)),
+            self.particle_rate_covered,
+            self.with_interval,
+            if others.is_empty() {
+                String::new()
+            } else {
+                format!("; {}", others.join("; "))
+            },
             pct(self.wear_rate_median_error),
             pct(self.wear_rate_worst_error),
             pct(self.particle_rate_median_error),
             pct(self.particle_rate_worst_error),
-            self.wear_rate_covered,
-            self.settings,
-            self.particle_rate_covered,
-            self.settings
+            self.error_settings,
+            self.min_particles,
+            self.error_left_out,
         )];
+        lines.extend(
+            self.withheld_reasons
+                .iter()
+                .map(|(r, n)| format!("  no interval: {r} ({n} setting{})", if *n == 1 { "" } else { "s" })),
+        );
         lines.extend(self.not_covered.iter().map(|n| format!("  not covered: {n}")));
         lines
     }
@@ -438,7 +560,8 @@ fn median(mut v: Vec<f64>) -> Option<f64> {
     })
 }
 
-/// Summarises `rows` over the settings with at least `min_particles` particles.
+/// Summarises `rows`: the coverage over every one, the errors over those with at least
+/// `min_particles` particles ([`ComparisonSummary`]).
 pub fn summarize(rows: &[ComparisonRow], min_particles: usize) -> ComparisonSummary {
     let used: Vec<&ComparisonRow> = rows
         .iter()
@@ -446,29 +569,52 @@ pub fn summarize(rows: &[ComparisonRow], min_particles: usize) -> ComparisonSumm
         .collect();
     let abs = |f: fn(&ComparisonRow) -> Option<f64>| used.iter().filter_map(|r| f(r).map(f64::abs)).collect::<Vec<_>>();
     let (w, p) = (abs(|r| r.wear_rate_error), abs(|r| r.particle_rate_error));
+    let count = |k: Scored| rows.iter().filter(|r| r.scored == k).count();
+    let with_interval = count(Scored::Covered) + count(Scored::NotCovered);
+    let covered = count(Scored::Covered);
+    let mut withheld_reasons = std::collections::BTreeMap::new();
+    for reason in rows
+        .iter()
+        .filter(|r| r.scored == Scored::Withheld)
+        .filter_map(|r| r.interval_withheld.as_ref())
+    {
+        *withheld_reasons.entry(reason.clone()).or_insert(0) += 1;
+    }
     ComparisonSummary {
         min_particles,
-        settings: used.len(),
-        left_out: rows.len() - used.len(),
+        settings: rows.len(),
+        error_settings: used.len(),
+        error_left_out: rows.len() - used.len(),
         wear_rate_worst_error: w.iter().copied().reduce(f64::max),
         wear_rate_median_error: median(w),
         particle_rate_worst_error: p.iter().copied().reduce(f64::max),
         particle_rate_median_error: median(p),
-        wear_rate_covered: used.iter().filter(|r| r.wear_rate_covered == Some(true)).count(),
-        particle_rate_covered: used.iter().filter(|r| r.particle_rate_covered == Some(true)).count(),
-        not_covered: used
+        with_interval,
+        wear_rate_covered: covered,
+        particle_rate_covered: rows.iter().filter(|r| r.particle_rate_covered == Some(true)).count(),
+        coverage: (with_interval > 0).then(|| covered as f64 / with_interval as f64),
+        interval_withheld: count(Scored::Withheld),
+        withheld_reasons,
+        no_estimate: count(Scored::NoEstimateNoParticle) + count(Scored::NoEstimateParticlesFormed),
+        no_estimate_particles_formed: count(Scored::NoEstimateParticlesFormed),
+        no_sliding_rate: count(Scored::NoSlidingRate),
+        not_covered: rows
             .iter()
-            .filter(|r| r.wear_rate_covered != Some(true))
+            .filter(|r| matches!(r.scored, Scored::NotCovered | Scored::NoEstimateParticlesFormed))
             .map(|r| {
                 format!(
-                    "job {} (seed {}, p_N = {:.3e}, d* = {:.1} px, {} particles): estimate/sliding = {}",
+                    "job {} (seed {}, p_N = {:.3e}, d* = {:.1} px, {} particles formed, {} expected): {}",
                     r.job,
                     r.seed.map_or("-".into(), |s| s.to_string()),
                     r.nominal_pressure,
                     r.critical_diameter_pixels,
                     r.particles_in_fit,
-                    r.wear_rate_error
-                        .map_or("undefined".into(), |e| format!("{:.2}", 1.0 + e))
+                    r.expected_particles.map_or("none".into(), |n| format!("{n:.1}")),
+                    match r.wear_rate_error {
+                        Some(e) => format!("estimate/sliding = {:.2}", 1.0 + e),
+                        None if r.sliding_wear_rate == Some(0.0) => "the sliding run formed none".into(),
+                        None => "no estimate".into(),
+                    }
                 )
             })
             .collect(),
@@ -485,8 +631,10 @@ mod tests {
             sliding_wear_rate: Some(1.0),
             wear_rate_error: Some(error),
             particle_rate_error: Some(error),
+            expected_particles: Some(particles as f64),
             wear_rate_covered: Some(covered),
             particle_rate_covered: Some(covered),
+            scored: if covered { Scored::Covered } else { Scored::NotCovered },
             ..Default::default()
         }
     }
@@ -505,22 +653,108 @@ mod tests {
         let lines = summarize(&rows, 20).describe("with the constants in use");
         assert_eq!(
             lines[0],
-            "with the constants in use: 2 settings with at least 20 particles (0 left out): W and k median |error| \
-             20.0 %, worst 30.0 %; dN*₊/ds median 20.0 %, worst 30.0 %; the 95 % interval covers W in 1/2 and \
-             dN*₊/ds in 1/2"
+            "with the constants in use: 2 settings, every one scored: the 95 % interval covers W in 1/2 with an \
+             interval (50 %) and dN*₊/ds in 1/2; W and k median |error| 20.0 %, worst 30.0 %, dN*₊/ds median 20.0 %, \
+             worst 30.0 %, over the 2 with at least 20 particles (0 with fewer left out of the errors only)"
         );
         assert_eq!(lines.len(), 2);
         assert!(lines[1].starts_with("  not covered: job 0 "), "{lines:?}");
     }
 
     #[test]
-    fn summary_counts_the_settings_with_enough_particles() {
+    fn errors_are_over_the_settings_with_enough_particles_and_coverage_over_all() {
         let rows = [r(25, 0.1, true), r(30, -0.3, false), r(40, 0.2, true), r(5, 3.0, false)];
         let s = summarize(&rows, 20);
-        assert_eq!((s.settings, s.left_out), (3, 1));
+        assert_eq!((s.settings, s.error_settings, s.error_left_out), (4, 3, 1));
         assert_eq!(s.wear_rate_median_error, Some(0.2));
         assert_eq!(s.wear_rate_worst_error, Some(0.3));
-        assert_eq!(s.wear_rate_covered, 2);
-        assert_eq!(s.not_covered.len(), 1);
+        // The setting with 5 particles is out of the errors, not out of the coverage: its miss counts.
+        assert_eq!((s.wear_rate_covered, s.with_interval), (2, 4));
+        assert_eq!(s.coverage, Some(0.5));
+        assert_eq!(s.not_covered.len(), 2);
+        assert!(
+            s.not_covered[1].contains("5 particles formed, 5.0 expected"),
+            "{:?}",
+            s.not_covered
+        );
+    }
+
+    /// A run that formed no particle where the estimate expected many is a miss; a setting outside
+    /// the calibration is counted as without interval, with its reason; no estimate beside
+    /// particles formed is a miss the summary names.
+    #[test]
+    fn no_setting_is_left_out_of_the_score() {
+        let estimate = |lo: Option<f64>, w: Option<f64>, hi: Option<f64>, why: Option<&str>| EstimateResult {
+            wear_rate: w,
+            wear_rate_low: lo,
+            wear_rate_high: hi,
+            interval_withheld: why.map(String::from),
+            expected_particles: w.map(|_| 50.0),
+            ..Default::default()
+        };
+        let slid = |w: Option<f64>, particles: usize| crate::sliding::WearResult {
+            wear_rate: w,
+            particles_in_fit: particles,
+            ..Default::default()
+        };
+        let inside = estimate(Some(0.5), Some(1.0), Some(2.0), None);
+        assert_eq!(scored(&inside, &slid(Some(1.2), 40)), Scored::Covered);
+        // Fifty particles expected, none formed: W = 0 exactly, outside [0.5, 2].
+        assert_eq!(scored(&inside, &slid(Some(0.0), 0)), Scored::NotCovered);
+        let outside = estimate(None, Some(1.0), None, Some("outside the calibrated domain: surfaces"));
+        assert_eq!(scored(&outside, &slid(Some(0.02), 1)), Scored::Withheld);
+        let none = estimate(None, None, None, None);
+        assert_eq!(scored(&none, &slid(Some(0.0), 0)), Scored::NoEstimateNoParticle);
+        assert_eq!(scored(&none, &slid(Some(0.3), 3)), Scored::NoEstimateParticlesFormed);
+        assert_eq!(scored(&inside, &slid(None, 0)), Scored::NoSlidingRate);
+
+        let row = |e: &EstimateResult, w: &crate::sliding::WearResult| ComparisonRow {
+            particles_in_fit: w.particles_in_fit,
+            sliding_wear_rate: w.wear_rate,
+            wear_rate_error: match (e.wear_rate, w.wear_rate) {
+                (Some(a), Some(b)) if b > 0.0 => Some(a / b - 1.0),
+                _ => None,
+            },
+            expected_particles: e.expected_particles,
+            scored: scored(e, w),
+            interval_withheld: e.interval_withheld.clone(),
+            ..Default::default()
+        };
+        let rows = [
+            row(&inside, &slid(Some(1.2), 40)),
+            row(&inside, &slid(Some(0.0), 0)),
+            row(&outside, &slid(Some(0.02), 1)),
+            row(&outside, &slid(Some(0.05), 2)),
+            row(&none, &slid(Some(0.3), 3)),
+        ];
+        let s = summarize(&rows, 20);
+        assert_eq!(s.settings, 5);
+        assert_eq!((s.wear_rate_covered, s.with_interval), (1, 2));
+        assert_eq!(s.interval_withheld, 2);
+        assert_eq!(
+            s.withheld_reasons.get("outside the calibrated domain: surfaces"),
+            Some(&2)
+        );
+        assert_eq!((s.no_estimate, s.no_estimate_particles_formed), (1, 1));
+        assert_eq!(s.not_covered.len(), 2, "{:?}", s.not_covered);
+        assert!(s.not_covered[0].contains("0 particles formed, 50.0 expected): the sliding run formed none"));
+        assert!(s.not_covered[1].contains("3 particles formed, none expected): no estimate"));
+        let lines = s.describe("with the constants in use");
+        assert!(
+            lines[0].contains("covers W in 1/2 with an interval (50 %)"),
+            "{}",
+            lines[0]
+        );
+        assert!(
+            lines[0].contains("no interval in 2 (outside the calibrated domain)"),
+            "{}",
+            lines[0]
+        );
+        assert!(
+            lines
+                .iter()
+                .any(|l| l == "  no interval: outside the calibrated domain: surfaces (2 settings)"),
+            "{lines:?}"
+        );
     }
 }

@@ -217,6 +217,8 @@ fn estimate_out_of_range(r: &JobResult, energies: &[f64]) -> Option<String> {
         for (name, lo, v, hi) in triples {
             let ok = match (lo, v, hi) {
                 (None, None, None) => true,
+                // Outside the calibrated domain the estimate gives W without an interval, and says why.
+                (None, Some(v), None) => e.interval_withheld.is_some() && v.is_finite() && v >= 0.0,
                 (Some(lo), Some(v), Some(hi)) => lo.is_finite() && hi.is_finite() && 0.0 <= lo && lo <= v && v <= hi,
                 _ => false,
             };
