@@ -54,6 +54,27 @@ fn dry_runs_print_the_estimate_and_write_nothing_and_the_calibration_is_cached()
         "{}",
         stderr(&second)
     );
+    // A dry run says what the run would warn about before its first step: d* against the pixel
+    // (0.74 px here) and against the box (the second 𝒢's d* is 1.15 box lengths), no load to raise.
+    let coarse = file(
+        dir.path(),
+        "coarse.toml",
+        &format!(
+            "{}[sliding]\nloads = [1e-3]\n",
+            GENERATED.replace("fracture_energies = [0.5e-6]", "fracture_energies = [0.5e-6, 50e-6]")
+        ),
+    );
+    let third = dry(&["slide", s(&coarse), "--out", s(&out), "--dry-run"]);
+    let text = stderr(&third);
+    assert!(third.status.success(), "{text}");
+    assert!(
+        text.contains("warning: d* = 1.1538e-2 for 𝒢 = 5.0000e-7 is 0.74 pixels"),
+        "{text}"
+    );
+    assert!(
+        text.contains("is 1.15 times the box's shorter side") && text.contains("no particle forms at any load"),
+        "{text}"
+    );
     // A study's jobs.
     let study = file(
         dir.path(),

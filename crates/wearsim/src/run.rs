@@ -30,7 +30,8 @@ use crate::output::{
     Table,
 };
 use crate::sliding::{
-    resolution_warnings, Checkpointing, LoadRun, Resumed, SlidingConfig, SlidingSetup, SlidingState, StepView,
+    box_warnings, load_trend_warnings, resolution_warnings, Checkpointing, LoadRun, Resumed, SlidingConfig,
+    SlidingSetup, SlidingState, StepView,
 };
 
 /// A sliding run ready to start: its surfaces, its setup and the warnings known before it runs.
@@ -95,7 +96,8 @@ impl<'a> SlidingRun<'a> {
                 .warnings()
                 .into_iter()
                 .chain(pair.warnings.iter().cloned())
-                .chain(resolution_warnings(&config.material, grid.pixel_size())),
+                .chain(resolution_warnings(&config.material, grid.pixel_size()))
+                .chain(box_warnings(&config.material, grid.length_x(), grid.length_y())),
         );
         Ok(Self {
             config,
@@ -461,7 +463,8 @@ impl<'a> Slide<'a> {
         let warnings = distinct(
             self.warnings
                 .into_iter()
-                .chain(runs.iter().flat_map(|r| r.warnings.iter().cloned())),
+                .chain(runs.iter().flat_map(|r| r.warnings.iter().cloned()))
+                .chain(load_trend_warnings(&runs)),
         );
         Ok(SlidingOutcome {
             config: self.config,

@@ -185,6 +185,12 @@ pub fn run(args: &Args) -> Result<()> {
     // run on.
     super::cost::report_run(&prepared, args.dry_run)?;
     let Some(out) = out else {
+        // What the run would warn about before its first step (d* against the pixel and the box,
+        // the run file's, the surfaces'), said by the dry run too.
+        report_critical_diameters(&prepared);
+        for w in prepared.warnings() {
+            tell!("warning: {w}");
+        }
         return Ok(());
     };
     super::report_surfaces(prepared.surfaces(), false);

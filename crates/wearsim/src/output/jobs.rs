@@ -84,7 +84,7 @@ impl JobResult {
             memory.apply_to(w);
         }
         let opening = not_run_in(self.load);
-        let warning = memory.warning(self.load, fit_start);
+        let warning = memory.warning(self.load, fit_start, self.inputs.length);
         let at = self.warnings.iter().position(|m| m.starts_with(&opening));
         match (at, warning) {
             (Some(i), Some(m)) => self.warnings[i] = m,
@@ -723,7 +723,7 @@ mod tests {
             steps,
             warnings: vec![
                 "d* = 3.6 px: under-resolved".into(),
-                expected.warning(0.01, 0.02).unwrap(),
+                expected.warning(0.01, 0.02, 1.0).unwrap(),
                 "F_N = 1.0000e-2, 𝒢 = 3.0000e-6: few".into(),
             ],
             ..job(0, 0.01, 0.01)

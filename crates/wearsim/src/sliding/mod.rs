@@ -15,7 +15,7 @@ mod schedule;
 mod state;
 
 pub use checkpoint::{Checkpointing, Resumed, CHECKPOINT_EVERY};
-pub use fit::{resolution_warnings, FEW_PARTICLES};
+pub use fit::{box_warnings, load_trend_warnings, resolution_warnings, FEW_PARTICLES, PAPER_MAX_WEAR_COEFFICIENT};
 pub use records::{
     is_run_in, lineages_left, not_run_in, InitialContactMemory, LoadRun, StepRecord, Timing, WearResult,
     RUN_IN_DECAY_LENGTHS, RUN_IN_LINEAGES_LEFT,

@@ -156,6 +156,17 @@ impl WearResult {
 /// checks that margin on each run's own measured decay.
 pub const RUN_IN_DECAY_LENGTHS: f64 = 3.0;
 
+/// The shortest fit window, in box lengths, that the advice to lengthen the running-in leaves after
+/// it: the paper's (§3: s from L/4 to L/2).
+pub const MIN_FIT_WINDOW: f64 = 0.25;
+
+/// Whether [`RUN_IN_DECAY_LENGTHS`] decay lengths `decay_length` and a fit window of
+/// [`MIN_FIT_WINDOW`] fit in one period of a box of side `box_length` along the sliding direction
+/// (a schedule slides at most one period: `distance` ≤ 1).
+pub fn run_in_fits(decay_length: f64, box_length: f64) -> bool {
+    RUN_IN_DECAY_LENGTHS * decay_length <= (1.0 - MIN_FIT_WINDOW) * box_length
+}
+
 /// The fraction of the junction lineages of s = 0 at most left at the start of the fit window for a
 /// run to count as run in: what [`RUN_IN_DECAY_LENGTHS`] aims at (e^−3 ≈ 5 %), counted instead of
 /// extrapolated from a fitted ℓ, which a tail of a few persisting lineages can dominate.
@@ -242,8 +253,10 @@ impl InitialContactMemory {
     }
 
     /// The warning of a load that is not run in by [`is_run_in`]; it opens with [`not_run_in`]'s
-    /// words for the load.
-    pub fn warning(&self, load: f64, fit_start: f64) -> Option<String> {
+    /// words for the load. `box_length` is Lx: the advice to lengthen the running-in is given only
+    /// where [`RUN_IN_DECAY_LENGTHS`] ℓ and a fit window fit in the one period a periodic box can
+    /// be slid ([`run_in_fits`]); else the warning says that this box cannot be run in.
+    pub fn warning(&self, load: f64, fit_start: f64, box_length: f64) -> Option<String> {
         if is_run_in(self.lineages_left, self.running_in_decay_lengths) {
             return None;
         }
@@ -256,10 +269,19 @@ impl InitialContactMemory {
         let lengths = self
             .running_in_decay_lengths
             .map_or(String::new(), |r| format!(", {r:.2} decay lengths"));
+        let advice = match self.decay_length {
+            Some(l) if !run_in_fits(l, box_length) => format!(
+                "{RUN_IN_DECAY_LENGTHS} ℓ = {:.2} box lengths, and with a fit window after it more than the one \
+                 period (`distance` ≤ 1) a periodic box can be slid: this box cannot be run in at this load, so its \
+                 rates are those of a surface that still remembers its first contact; take a larger box (ℓ follows \
+                 the junctions, not the box)",
+                RUN_IN_DECAY_LENGTHS * l / box_length
+            ),
+            _ => format!("raise `running_in` (and `distance`), to at least {RUN_IN_DECAY_LENGTHS} ℓ"),
+        };
         Some(format!(
             "{}the memory of the initial contact {decay}, and the fit window starts at s = {fit_start:.4e}{lengths}, \
-             with {:.0} % of the junction lineages of s = 0 still present (at most {:.0} % run in); raise \
-             `running_in` (and `distance`), to at least {RUN_IN_DECAY_LENGTHS} ℓ",
+             with {:.0} % of the junction lineages of s = 0 still present (at most {:.0} % run in); {advice}",
             not_run_in(load),
             100.0 * left,
             100.0 * RUN_IN_LINEAGES_LEFT
@@ -347,12 +369,19 @@ mod tests {
         // said with the load; at s_r = 0.03, 2 of 64: run in, no warning.
         let early = InitialContactMemory::of_steps(&exact, 0.02);
         assert_eq!(early.lineages_left, Some(0.125));
-        let warning = early.warning(0.5, 0.02).unwrap();
+        let warning = early.warning(0.5, 0.02, 1.0).unwrap();
         assert!(
             warning.starts_with(&not_run_in(0.5)) && warning.contains("decays over ℓ = 1.0000e-2"),
             "{warning}"
         );
-        assert_eq!((m.lineages_left, m.warning(0.5, 0.03)), (Some(2.0 / 64.0), None));
+        assert!(warning.ends_with("to at least 3 ℓ"), "{warning}");
+        // In a box of 0.03: 3 ℓ and a fit window do not fit in one period; no advice to raise it.
+        let small = early.warning(0.5, 0.02, 0.03).unwrap();
+        assert!(
+            small.contains("3 ℓ = 1.00 box lengths") && small.contains("cannot be run in") && !small.contains("raise"),
+            "{small}"
+        );
+        assert_eq!((m.lineages_left, m.warning(0.5, 0.03, 1.0)), (Some(2.0 / 64.0), None));
         // No lineage at all: nothing fitted, nothing counted, run in.
         let none = InitialContactMemory::of_steps(&[(0.0, 0), (0.01, 0)], 0.01);
         assert_eq!(none, InitialContactMemory::default());

@@ -274,7 +274,8 @@ impl<'a> SlidingState<'a> {
         };
         let load = self.setup.sliding.loads[self.finished.len()];
         let pm = self.setup.material.flow_pressure();
-        let (results, warnings) = results_of_load(&self.setup, load, pm, &state.steps, self.running_in);
+        let sides = (self.grid.length_x(), self.grid.length_y());
+        let (results, warnings) = results_of_load(&self.setup, load, pm, &state.steps, self.running_in, sides);
         let steps = state.steps;
         self.finished.push(LoadRun {
             load,
