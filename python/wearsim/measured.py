@@ -1,7 +1,7 @@
 """Instrument height maps (AFM ``.di``, confocal ``.plu``, ISO 25178 ``.x3p``, Wyko ``.opd``, Digital
-Surf ``.sur``, ``.mi`` and every other format SurfaceTopography reads) turned into the map a run
-file reads: ``wearsim surface import FILE --out DIR`` runs :func:`import_topography`
-(``python -m wearsim.measured FILE DIR``).
+Surf ``.sur``, ``.mi`` and every other format SurfaceTopography reads) turned into the maps a run
+file reads: ``wearsim surface import FILE --out DIR [--bottom FILE2]`` runs :func:`import_topography`
+(``python -m wearsim.measured FILE DIR [--bottom FILE2]``).
 
 Needs the ``measured`` extra (``pip install "wearsim[measured]"``: SurfaceTopography).
 
@@ -10,17 +10,35 @@ The folder ``DIR`` gets
 - ``heights.npy``: float64 heights in metres, the (Nx, Ny) array ``h[i, j]`` with i along x, as
   wearsim reads it. SurfaceTopography's ``heights()`` has the same orientation (its first index
   runs along x, ``physical_sizes[0]``), so the array is written as it comes, never transposed;
+- ``bottom.npy``: the counter-body, on the same grid: the second instrument file ``FILE2``
+  (``bottom``), imported with the same options, or without one the map rotated by 180° about its
+  centre, ``h_b[i, j] = h[Nx−1−i, Ny−1−j]`` (:data:`ROTATED`);
 - ``import.json``: what was done (source, reader, channel, grid, size and unit, pixel sizes, the
-  conversion to metres, undefined pixels, resampling, levelling, cropping, the side in metres) and
-  ``surface_toml``, a ready ``[surface]`` block: ``top = "DIR/heights.npy"`` with ``length = Lx``
-  in a run file with ``units = "si"``.
+  conversion to metres, undefined pixels, resampling, levelling, cropping, the side in metres; the
+  same for the second map under ``bottom_map``; ``bodies``: the file of each body and the rule that
+  made the bottom one) and ``surface_toml``, a ready ``[surface]`` block: ``top = "DIR/heights.npy"``,
+  ``bottom = "DIR/bottom.npy"`` with ``length = Lx`` in a run file with ``units = "si"``.
 
 Undefined pixels are refused unless ``fill`` names how to fill them (SurfaceTopography's
 ``interpolate_undefined_data``: ``"harmonic"``); non-square pixels are refused unless ``resample``,
 which puts the map on square pixels of the smaller pixel size (bicubic interpolation for a periodic
 topography, linear otherwise, within the measured span); the tilt is removed (``detrend``, as
 :func:`wearsim.preprocess_surface` does); an odd side loses its last row or column, as a run file's
-reader does.
+reader does. A second map must end on the first one's grid and pixel size, else it is refused.
+
+The rotated copy: a run's composite surface is ``bottom + roll(top, offset)`` along x, each body's
+heights taken out of its own material towards the other, as an instrument measures them. The copy
+keeps their sign (a negated copy would make the measured valleys peaks and reverse the skewness)
+and is turned in the plane only: its heights are the measured ones, rearranged, so each body has
+the measured height distribution; a half turn maps the 2D power spectrum onto itself
+(``C(−q) = C(q)`` for real heights), so the spectrum and the lay direction, an oblique one too, are
+kept, where a mirror image would turn an oblique lay to the opposite angle. On an even grid no pixel
+of the copy lies over the same measured pixel at any offset, and for random roughness (random
+phases) the two bodies' heights are then no more correlated at any offset than two independent
+measurements' are; the same map for both bodies is perfectly correlated at offset 0. A periodic
+texture symmetric under a half turn (one sinusoid, a regular array of dimples) is its own rotated
+copy up to a shift: give such a counter-body's own map, or generate independent pairs with the
+measured spectrum (``source = "spectrum"``).
 """
 
 from __future__ import annotations
@@ -33,7 +51,7 @@ import shutil
 import socket
 import sys
 from pathlib import Path
-from typing import Any, Callable, Dict, List, Optional, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -46,6 +64,10 @@ from .surface import SQUARE_PIXELS, Detrend, heights_and_length, preprocess_surf
 FILL_METHODS = ("harmonic",)
 DETRENDS = ("none", "mean", "plane", "curvature")
 WRITER = "wearsim surface import"
+#: The file of each body in the folder: the map as the top body, the counter-body as the bottom one.
+TOP_FILE, BOTTOM_FILE = "heights.npy", "bottom.npy"
+#: The rule that makes the bottom body without a second map (``import.json``'s ``bodies``).
+ROTATED = "the map rotated by 180° about its centre"
 
 Say = Callable[[str], None]
 
@@ -67,11 +89,12 @@ def _written_by_import(path: Path) -> bool:
         return False
 
 
-def _check_out(source: Path, out: Path, overwrite: bool) -> None:
-    """Refuses an ``out`` that is or holds the source file or the current folder (whatever the
-    spelling), and, unless ``overwrite``, one that exists and is not a folder this import wrote."""
+def _check_out(sources: Sequence[Path], out: Path, overwrite: bool) -> None:
+    """Refuses an ``out`` that is or holds one of the source files or the current folder (whatever
+    the spelling), and, unless ``overwrite``, one that exists and is not a folder this import wrote."""
     real_out = out.resolve()
-    for what, real in (("the instrument file", source.resolve()), ("the current folder", Path.cwd().resolve())):
+    held = [("the instrument file", source.resolve()) for source in sources]
+    for what, real in held + [("the current folder", Path.cwd().resolve())]:
         if real == real_out or real_out in real.parents:
             raise ValueError(f"{out} is or holds {what}, which the import would replace; give another folder")
     if out.exists() or out.is_symlink():
@@ -120,37 +143,18 @@ def _resample(topo: Any, say: Say) -> Any:
     return out
 
 
-def import_topography(
-    path: Union[str, "os.PathLike[str]"],
-    out: Union[str, "os.PathLike[str]"],
+def _read_map(
+    st: Any,
+    source: Path,
     *,
-    fill: Optional[str] = None,
-    resample: bool = False,
-    detrend: Detrend = "plane",
-    channel: Optional[int] = None,
-    overwrite: bool = False,
-    say: Optional[Say] = None,
-) -> Dict[str, Any]:
-    """Reads the instrument file ``path`` with SurfaceTopography (its channel ``channel``, default
-    the reader's default channel) and writes the folder ``out`` with ``heights.npy`` (metres, i
-    along x) and ``import.json`` (module documentation); returns the content of ``import.json``.
-
-    Refuses (``ValueError``) a map with undefined pixels unless ``fill`` (``"harmonic"``), one with
-    non-square pixels unless ``resample``, a line scan, and a topography that states no unit. The
-    folder is written beside ``out`` and renamed into place: a failed import leaves nothing. An
-    existing ``out`` is replaced only when an earlier import wrote it, or with ``overwrite``; one
-    that is or holds ``path`` never. ``say`` gets one line per action (default: none)."""
-    st = _surface_topography()
-    say = say or (lambda _line: None)
-    source, out = Path(path), Path(out)
-    if detrend not in DETRENDS:
-        raise ValueError(f"invalid `detrend`: {detrend!r}; use one of {', '.join(DETRENDS)}")
-    if fill is not None and fill not in FILL_METHODS:
-        raise ValueError(f"invalid `fill`: {fill!r}; SurfaceTopography fills with {', '.join(FILL_METHODS)}")
-    if not source.is_file():
-        raise FileNotFoundError(f"{source}: no such file")
-    _check_out(source, out, overwrite)
-
+    fill: Optional[str],
+    resample: bool,
+    detrend: Detrend,
+    channel: Optional[int],
+    say: Say,
+) -> Tuple[np.ndarray, Dict[str, Any]]:
+    """The heights of the instrument file ``source`` in metres (square pixels, even sides, levelled)
+    and the record of what was done to them: the keys of one map in ``import.json``."""
     reader = st.open_topography(os.fspath(source))
     channels = reader.channels
     index = reader.default_channel.index if channel is None else int(channel)
@@ -184,12 +188,9 @@ def import_topography(
         f"pixels {pixel[0]:.6g} × {pixel[1]:.6g} {unit}"
     )
     record: Dict[str, Any] = {
-        "written_by": WRITER,
-        "wearsim": __version__,
         "source": os.fspath(source.resolve()),
         "format": fmt,
         "reader": type(reader).__name__,
-        "surface_topography": getattr(st, "__version__", None),
         "channel": index,
         "channel_name": info.name,
         "channels": len(channels),
@@ -249,20 +250,146 @@ def import_topography(
         say(f"cropped the odd side(s): {nx}×{ny} to {cx}×{cy} pixels (the FFT solver needs even sides)")
     if cx < 2 or cy < 2:
         raise ValueError(f"{source}: {cx}×{cy} pixels are too few for a height map")
-    lx, ly = cx * pitch, cy * pitch
     h = preprocess_surface(h, detrend=detrend)
     record["detrend"] = detrend
     if detrend != "none":
         say(f"levelled: detrend {detrend}")
     record["heights_grid"] = [cx, cy]
-    record["length"] = [lx, ly]
+    record["length"] = [cx * pitch, cy * pitch]
     record["pixel_size_m"] = pitch
-    record["rms_height_m"] = float(np.sqrt(np.mean((h - h.mean()) ** 2)))
+    record["rms_height_m"] = _rms(h)
+    return h, record
+
+
+def _rms(h: np.ndarray) -> float:
+    return float(np.sqrt(np.mean((h - h.mean()) ** 2)))
+
+
+def _check_same_grid(first: Dict[str, Any], second: Dict[str, Any]) -> None:
+    """Refuses a second map that does not end on the first one's grid and pixel size (a run's two
+    bodies share one grid and one side), naming both and the way to make them agree."""
+    grids = first["heights_grid"], second["heights_grid"]
+    pitches = first["pixel_size_m"], second["pixel_size_m"]
+    same_pixel = abs(pitches[0] - pitches[1]) <= SQUARE_PIXELS * max(pitches)
+    if grids[0] == grids[1] and same_pixel:
+        return
+
+    def described(r: Dict[str, Any]) -> str:
+        (nx, ny), (lx, ly), (px, py) = r["heights_grid"], r["length"], r["pixel_size"]
+        read = f"read as {r['grid'][0]}×{r['grid'][1]} pixels of {px:.6g} × {py:.6g} {r['unit']}"
+        return f"{nx}×{ny} pixels of {r['pixel_size_m']:.6g} m, {lx:.6g} m × {ly:.6g} m ({read})"
+
+    fixes = []
+    if grids[0] != grids[1]:
+        nx, ny = min(grids[0][0], grids[1][0]), min(grids[0][1], grids[1][1])
+        fixes.append(
+            f"crop both to {nx}×{ny} pixels (in Python: t = SurfaceTopography.read_topography(FILE); "
+            f"Topography(t.heights()[:{nx}, :{ny}], ({nx} * px, {ny} * py), unit=t.unit).to_netcdf(...), px and py "
+            "its pixel sizes)"
+        )
+    if not same_pixel:
+        fixes.append(
+            "resample one map onto the other's pixel size (SurfaceTopography's interpolate_bicubic or "
+            "interpolate_linear on the other's points, written back with to_netcdf)"
+        )
+    raise ValueError(
+        f"the two bodies' maps differ after the import: {first['source']} gives {described(first)}, the second map "
+        f"{second['source']} (--bottom) gives {described(second)}; a run's two bodies share one grid and one pixel "
+        f"size: {', or '.join(fixes)}, then import the two again"
+    )
+
+
+def import_topography(
+    path: Union[str, "os.PathLike[str]"],
+    out: Union[str, "os.PathLike[str]"],
+    *,
+    bottom: Union[str, "os.PathLike[str]", None] = None,
+    fill: Optional[str] = None,
+    resample: bool = False,
+    detrend: Detrend = "plane",
+    channel: Optional[int] = None,
+    overwrite: bool = False,
+    say: Optional[Say] = None,
+) -> Dict[str, Any]:
+    """Reads the instrument file ``path`` with SurfaceTopography (its channel ``channel``, default
+    the reader's default channel) and writes the folder ``out`` with ``heights.npy`` (metres, i
+    along x), ``bottom.npy`` and ``import.json`` (module documentation); returns the content of
+    ``import.json``.
+
+    ``bottom.npy`` is the counter-body: the instrument file ``bottom``, read and processed with the
+    same options, which must end on the same grid and pixel size as ``path`` (else ``ValueError``,
+    naming both); without it, the map rotated by 180° about its centre,
+    ``h_b[i, j] = h[Nx−1−i, Ny−1−j]``: the measured lay, spectrum and height distribution, and no
+    pixel facing its own copy at any sliding offset (module documentation).
+
+    Refuses (``ValueError``) a map with undefined pixels unless ``fill`` (``"harmonic"``), one with
+    non-square pixels unless ``resample``, a line scan, a topography that states no unit, and a
+    ``bottom`` that is ``path`` itself. The folder is written beside ``out`` and renamed into place:
+    a failed import leaves nothing. An existing ``out`` is replaced only when an earlier import
+    wrote it, or with ``overwrite``; one that is or holds ``path`` or ``bottom`` never. ``say`` gets
+    one line per action (default: none)."""
+    st = _surface_topography()
+    say = say or (lambda _line: None)
+    source, out = Path(path), Path(out)
+    second = None if bottom is None else Path(bottom)
+    if detrend not in DETRENDS:
+        raise ValueError(f"invalid `detrend`: {detrend!r}; use one of {', '.join(DETRENDS)}")
+    if fill is not None and fill not in FILL_METHODS:
+        raise ValueError(f"invalid `fill`: {fill!r}; SurfaceTopography fills with {', '.join(FILL_METHODS)}")
+    sources = [source] if second is None else [source, second]
+    for file in sources:
+        if not file.is_file():
+            raise FileNotFoundError(f"{file}: no such file")
+    if second is not None and second.resolve() == source.resolve():
+        raise ValueError(
+            f"the second map (--bottom) is {source} itself: the two bodies would be one map, perfectly correlated "
+            f"at offset 0; give the counter-body's own map, or leave it out for {ROTATED}"
+        )
+    _check_out(sources, out, overwrite)
+
+    options: Dict[str, Any] = {"fill": fill, "resample": resample, "detrend": detrend, "channel": channel}
+    bottom_map: Optional[Dict[str, Any]] = None
+    if second is None:
+        h, first = _read_map(st, source, say=say, **options)
+        hb = np.ascontiguousarray(h[::-1, ::-1])
+        rule, made = "rotated-180", f"{ROTATED} (h_b[i, j] = h[Nx−1−i, Ny−1−j])"
+        comment = ROTATED
+    else:
+        h, first = _read_map(st, source, say=lambda line: say(f"top: {line}"), **options)
+        hb, bottom_map = _read_map(st, second, say=lambda line: say(f"bottom: {line}"), **options)
+        _check_same_grid(first, bottom_map)
+        rule, made = "second-map", f"the second map {bottom_map['source']}"
+        comment = f"the second map {json.dumps(second.name, ensure_ascii=False)}"
+    (cx, cy), (lx, ly) = first["heights_grid"], first["length"]
+    record: Dict[str, Any] = {
+        "written_by": WRITER,
+        "wearsim": __version__,
+        "surface_topography": getattr(st, "__version__", None),
+        **first,
+        "bottom_map": bottom_map,
+        "bodies": {
+            "top": {"file": TOP_FILE, "source": first["source"], "made_from": "the map", "rms_height_m": _rms(h)},
+            "bottom": {
+                "file": BOTTOM_FILE,
+                "source": first["source"] if bottom_map is None else bottom_map["source"],
+                "rule": rule,
+                "made_from": made,
+                "rms_height_m": _rms(hb),
+            },
+        },
+    }
+    if second is None:
+        say(
+            f"bottom body: {made}: the measured lay, spectrum and height distribution, and no pixel facing its "
+            "own copy at any sliding offset (--bottom FILE2 imports the counter-body's own map)"
+        )
+    else:
+        say(f"bottom body: {made}, on the same {cx}×{cy} grid")
     record["surface_toml"] = (
         'units = "si"\n'
         "[surface]\n"
-        f"top = {json.dumps(os.fspath(out / 'heights.npy'))}\n"
-        f"bottom = {json.dumps(os.fspath(out / 'heights.npy'))}  # or the other body's map\n"
+        f"top = {json.dumps(os.fspath(out / TOP_FILE))}\n"
+        f"bottom = {json.dumps(os.fspath(out / BOTTOM_FILE))}  # {comment}\n"
         f"length = {lx!r}  # m, along x (Ly = {ly:.6g} m)\n"
     )
 
@@ -270,7 +397,8 @@ def import_topography(
     tmp, old = _sibling(out, 0), _sibling(out, 1)
     try:
         tmp.mkdir()
-        np.save(tmp / "heights.npy", np.ascontiguousarray(h, dtype=np.float64))
+        np.save(tmp / TOP_FILE, np.ascontiguousarray(h, dtype=np.float64))
+        np.save(tmp / BOTTOM_FILE, np.ascontiguousarray(hb, dtype=np.float64))
         with open(tmp / "import.json", "w", encoding="utf-8") as f:
             json.dump(record, f, indent=2, ensure_ascii=False)
             f.write("\n")
@@ -286,7 +414,10 @@ def import_topography(
         shutil.rmtree(old, ignore_errors=True)
     elif old.exists() or old.is_symlink():
         old.unlink()
-    say(f"wrote {out / 'heights.npy'} ({cx}×{cy}, metres) and {out / 'import.json'}; Lx = {lx:.6g} m, Ly = {ly:.6g} m")
+    say(
+        f"wrote {out / TOP_FILE} (top body) and {out / BOTTOM_FILE} (bottom body), {cx}×{cy} pixels in metres, "
+        f"and {out / 'import.json'}; Lx = {lx:.6g} m, Ly = {ly:.6g} m"
+    )
     say("for a run file (paths relative to the run file's folder):")
     for line in record["surface_toml"].splitlines():
         say(f"  {line}")
@@ -294,13 +425,21 @@ def import_topography(
 
 
 def main(argv: Optional[List[str]] = None) -> int:
-    """``python -m wearsim.measured FILE OUT`` (what ``wearsim surface import`` runs)."""
+    """``python -m wearsim.measured FILE OUT [--bottom FILE2]`` (what ``wearsim surface import`` runs)."""
     parser = argparse.ArgumentParser(
         prog="python -m wearsim.measured",
-        description="Turn an instrument height map (any format SurfaceTopography reads) into the map wearsim reads.",
+        description="Turn an instrument height map (any format SurfaceTopography reads) into the maps of a run's two "
+        "bodies, as wearsim reads them.",
     )
     parser.add_argument("file", type=Path, help="instrument file (.x3p, .di, .plu, .opd, .sur, .mi, ...)")
-    parser.add_argument("out", type=Path, help="folder to write: heights.npy and import.json")
+    parser.add_argument("out", type=Path, help="folder to write: heights.npy, bottom.npy and import.json")
+    parser.add_argument(
+        "--bottom",
+        type=Path,
+        metavar="FILE2",
+        help="the counter-body's instrument file, imported the same way into OUT/bottom.npy "
+        "(default: the map rotated by 180° about its centre)",
+    )
     parser.add_argument("--fill", choices=FILL_METHODS, help="fill undefined pixels (default: refuse them)")
     parser.add_argument("--resample", action="store_true", help="resample non-square pixels onto square ones")
     parser.add_argument("--detrend", choices=DETRENDS, default="plane", help="levelling (default plane)")
@@ -312,6 +451,7 @@ def main(argv: Optional[List[str]] = None) -> int:
         import_topography(
             args.file,
             args.out,
+            bottom=args.bottom,
             fill=args.fill,
             resample=args.resample,
             detrend=args.detrend,

@@ -1,5 +1,6 @@
 """`wearsim surface import` / `wearsim.measured.import_topography`: instrument files (written here by
-SurfaceTopography's own writers, NetCDF and ISO 25178 .x3p) turned into the map a run file reads."""
+SurfaceTopography's own writers, NetCDF and ISO 25178 .x3p) turned into the maps of a run's two bodies:
+the map itself, and the counter-body's own map or the map rotated by 180° about its centre."""
 
 import json
 import subprocess
@@ -11,17 +12,28 @@ import pytest
 st = pytest.importorskip("SurfaceTopography")
 
 import wearsim  # noqa: E402
+from wearsim import measured  # noqa: E402
 from wearsim.measured import import_topography  # noqa: E402
 
 Topography = st.Topography
 
 
-def self_affine(nx=64, ny=64):
+def self_affine(nx=64, ny=64, seed=3):
     """A periodic self-affine map, 0.5 µm pixels, heights ~0.1 (in the unit of the file)."""
     g = wearsim.generate_surface(
-        (nx, ny), length=0.5 * nx, hurst=0.8, lambda_lower=2.0, lambda_upper=16.0, rms_height=0.1, seed=3
+        (nx, ny), length=0.5 * nx, hurst=0.8, lambda_lower=2.0, lambda_upper=16.0, rms_height=0.1, seed=seed
     )
     return g
+
+
+def no_temporary_folders(folder):
+    return not [p for p in folder.iterdir() if p.name.endswith(".tmp")]
+
+
+def correlation(bottom, top, offset):
+    """The correlation coefficient of the bottom body's heights and the top's slid by ``offset``
+    pixels along x, the two terms of the run's composite surface ``bottom + roll(top, offset)``."""
+    return np.corrcoef(bottom.ravel(), np.roll(top, offset, axis=0).ravel())[0, 1]
 
 
 def test_units_become_metres_odd_sides_are_cropped_and_the_tilt_is_removed(tmp_path):
@@ -59,6 +71,8 @@ def test_units_become_metres_odd_sides_are_cropped_and_the_tilt_is_removed(tmp_p
         "cropped",
         "detrend",
         "length",
+        "bottom_map",
+        "bodies",
         "surface_toml",
     ):
         assert key in on_disk, key
@@ -121,8 +135,13 @@ def test_the_output_folder_is_never_one_it_did_not_write_nor_the_input(tmp_path)
     import_topography(tmp_path / "scan.nc", tmp_path / "out", detrend="mean")
     assert json.loads((tmp_path / "out" / "import.json").read_text())["detrend"] == "mean"
     import_topography(tmp_path / "scan.nc", mine, overwrite=True)
-    assert sorted(p.name for p in mine.iterdir()) == ["heights.npy", "import.json"]
-    assert not [p for p in tmp_path.iterdir() if p.name.endswith(".tmp")]
+    assert sorted(p.name for p in mine.iterdir()) == ["bottom.npy", "heights.npy", "import.json"]
+    assert no_temporary_folders(tmp_path)
+    # Nor one that is or holds the second map.
+    Topography(self_affine(seed=4), (32.0, 32.0), unit="um").to_netcdf(tmp_path / "other.nc")
+    with pytest.raises(ValueError, match="instrument file"):
+        import_topography(tmp_path / "scan.nc", tmp_path / "other.nc", bottom=tmp_path / "other.nc", overwrite=True)
+    assert (tmp_path / "other.nc").is_file()
 
 
 def test_the_cli_imports_and_the_map_reads_in_surface_fit_and_a_run_file(tmp_path, wearsim_bin):
@@ -155,6 +174,11 @@ def test_the_cli_imports_and_the_map_reads_in_surface_fit_and_a_run_file(tmp_pat
     )
     assert surfaces.returncode == 0, surfaces.stderr
     assert np.array_equal(np.load(tmp_path / "surfaces" / "top.npy"), np.load(out / "heights.npy"))
+    # The block's bottom body is the rotated map, as written.
+    assert f'bottom = "{out}/bottom.npy"' in done.stdout and "rotated by 180° about its centre" in done.stdout
+    bottom = np.load(tmp_path / "surfaces" / "bottom.npy")
+    assert np.array_equal(bottom, np.load(out / "bottom.npy"))
+    assert np.array_equal(bottom, np.load(out / "heights.npy")[::-1, ::-1])
     # A damaged instrument file: one line of error, nothing written.
     (tmp_path / "bad.x3p").write_bytes(b"PK\x03\x04 not a zip")
     bad = subprocess.run(
@@ -170,3 +194,137 @@ def test_a_file_without_size_is_refused_with_the_way_to_give_it(tmp_path):
     with pytest.raises(ValueError, match=r"no physical size.*read_topography\(path, physical_sizes"):
         import_topography(tmp_path / "plain.txt", tmp_path / "out")
     assert not (tmp_path / "out").exists()
+
+
+def test_without_a_second_map_the_bottom_body_is_the_map_rotated_by_180_degrees(tmp_path):
+    g = self_affine()
+    Topography(np.vstack([g, g[:1]]), (32.5, 32.0), unit="um").to_netcdf(tmp_path / "scan.nc")
+    lines = []
+    record = import_topography(tmp_path / "scan.nc", tmp_path / "out", say=lines.append)
+    top, bottom = np.load(tmp_path / "out" / "heights.npy"), np.load(tmp_path / "out" / "bottom.npy")
+    assert bottom.dtype == np.float64 and bottom.shape == top.shape == (64, 64)
+    # h_b[i, j] = h[Nx−1−i, Ny−1−j], exactly: the measured heights rearranged, their sign kept.
+    assert np.array_equal(bottom, top[::-1, ::-1])
+    assert np.array_equal(np.sort(bottom, axis=None), np.sort(top, axis=None))
+    # The 2D power spectrum (and so the lay direction) is the map's own: |ĥ_b(q)| = |ĥ(q)|.
+    np.testing.assert_allclose(np.abs(np.fft.fft2(bottom)), np.abs(np.fft.fft2(top)), atol=1e-12 * np.abs(top).sum())
+    # The composite surface is bottom + roll(top, s) along x. The same map for both bodies is perfectly
+    # correlated at s = 0; the rotated copy no more at any s than two independent maps of this size are.
+    assert correlation(top, top, 0) == pytest.approx(1.0)
+    rotated = max(abs(correlation(bottom, top, s)) for s in range(64))
+    h4 = wearsim.preprocess_surface(self_affine(seed=4))
+    independent = max(abs(correlation(h4, top, s)) for s in range(64))
+    assert rotated < 0.5 and independent < 0.5, (rotated, independent)
+    # The block names both files; import.json and the printed lines say which rule made the bottom body.
+    block = record["surface_toml"]
+    assert f'top = "{tmp_path}/out/heights.npy"' in block
+    assert f'bottom = "{tmp_path}/out/bottom.npy"  # the map rotated by 180° about its centre' in block
+    on_disk = json.loads((tmp_path / "out" / "import.json").read_text())
+    assert on_disk["bottom_map"] is None
+    bodies = on_disk["bodies"]
+    assert bodies["top"]["file"] == "heights.npy" and bodies["bottom"]["file"] == "bottom.npy"
+    assert bodies["bottom"]["rule"] == "rotated-180"
+    assert bodies["bottom"]["made_from"].startswith("the map rotated by 180° about its centre")
+    scan = str((tmp_path / "scan.nc").resolve())
+    assert bodies["bottom"]["source"] == bodies["top"]["source"] == on_disk["source"] == scan
+    assert bodies["bottom"]["rms_height_m"] == pytest.approx(on_disk["rms_height_m"])
+    text = "\n".join(lines)
+    assert "bottom body: the map rotated by 180° about its centre" in text and "--bottom FILE2" in text
+    assert "bottom.npy (bottom body)" in text
+
+
+def test_a_second_map_is_imported_with_the_same_options_as_the_bottom_body(tmp_path):
+    g, g4 = self_affine(), self_affine(seed=4)
+    Topography(np.vstack([g, g[:1]]), (32.5, 32.0), unit="um").to_netcdf(tmp_path / "scan.nc")
+    # The counter-body in nm (the same 0.5 µm pixels), tilted, with three unmeasured pixels.
+    tilt = 5.0 * np.arange(64)[:, None]
+    holes = np.ma.masked_array(g4 * 1e3 + tilt, mask=np.zeros((64, 64), bool))
+    holes.mask[10:13, 20] = True
+    Topography(holes, (32000.0, 32000.0), unit="nm").to_x3p(tmp_path / "other.x3p")
+    # The options apply to both maps: the second's undefined pixels are refused without --fill.
+    with pytest.raises(ValueError, match=r"other\.x3p: 3 of its 4096 pixels are undefined.*--fill harmonic"):
+        import_topography(tmp_path / "scan.nc", tmp_path / "out", bottom=tmp_path / "other.x3p")
+    assert not (tmp_path / "out").exists() and no_temporary_folders(tmp_path)
+    lines = []
+    record = import_topography(
+        tmp_path / "scan.nc", tmp_path / "out", bottom=tmp_path / "other.x3p", fill="harmonic", say=lines.append
+    )
+    top, bottom = np.load(tmp_path / "out" / "heights.npy"), np.load(tmp_path / "out" / "bottom.npy")
+    assert top.shape == bottom.shape == (64, 64)
+    np.testing.assert_allclose(top, wearsim.preprocess_surface(g * 1e-6), atol=1e-12 * np.abs(top).max())
+    # In metres, levelled, filled; away from the holes the counter-body's own heights.
+    assert np.isfinite(bottom).all() and abs(np.polyfit(np.arange(64), bottom.mean(axis=1), 1)[0]) < 1e-12
+    kept = ~holes.mask
+    expected = wearsim.preprocess_surface(g4 * 1e-6)
+    np.testing.assert_allclose(bottom[kept] - bottom[kept].mean(), expected[kept] - expected[kept].mean(), atol=2e-9)
+    scan, other = str((tmp_path / "scan.nc").resolve()), str((tmp_path / "other.x3p").resolve())
+    assert record["bottom_map"]["source"] == other
+    assert record["bottom_map"]["format"] == "x3p" and record["bottom_map"]["undefined_pixels"] == 3
+    assert record["bottom_map"]["fill"] == "harmonic"
+    assert record["bottom_map"]["heights_grid"] == record["heights_grid"] == [64, 64]
+    assert record["source"] == scan and record["cropped"] == {"from": [65, 64], "to": [64, 64]}
+    bodies = json.loads((tmp_path / "out" / "import.json").read_text())["bodies"]
+    assert bodies["bottom"]["rule"] == "second-map" and bodies["bottom"]["source"] == other
+    assert bodies["bottom"]["made_from"] == f"the second map {other}"
+    assert f'bottom = "{tmp_path}/out/bottom.npy"  # the second map "other.x3p"' in record["surface_toml"]
+    text = "\n".join(lines)
+    assert "top: read" in text and "bottom: read" in text and "bottom: filled 3 undefined pixels" in text
+    assert f"bottom body: the second map {other}" in text
+    # Without levelling, the second map's heights as they are, in metres (µm and nm, the same pixels).
+    Topography(g4 * 1e3 + tilt, (32000.0, 32000.0), unit="nm").to_netcdf(tmp_path / "whole.nc")
+    record = import_topography(tmp_path / "scan.nc", tmp_path / "raw", bottom=tmp_path / "whole.nc", detrend="none")
+    np.testing.assert_allclose(np.load(tmp_path / "raw" / "bottom.npy"), (g4 * 1e3 + tilt) * 1e-9, rtol=1e-12)
+    assert record["bottom_map"]["unit"] == "nm" and record["bottom_map"]["metres_per_unit"] == pytest.approx(1e-9)
+    assert record["bottom_map"]["detrend"] == "none"
+
+
+def test_a_second_map_on_another_grid_or_pixel_size_is_refused_naming_both(tmp_path):
+    Topography(self_affine(), (32.0, 32.0), unit="um").to_netcdf(tmp_path / "scan.nc")
+    Topography(self_affine(64, 48, seed=4), (32.0, 24.0), unit="um").to_netcdf(tmp_path / "narrow.nc")
+    Topography(self_affine(seed=4), (64.0, 64.0), unit="um").to_netcdf(tmp_path / "coarse.nc")
+    # An earlier import's folder stays as it was.
+    import_topography(tmp_path / "scan.nc", tmp_path / "out")
+    before = {p.name: p.read_bytes() for p in (tmp_path / "out").iterdir()}
+    with pytest.raises(ValueError) as refused:
+        import_topography(tmp_path / "scan.nc", tmp_path / "out", bottom=tmp_path / "narrow.nc")
+    message = str(refused.value)
+    assert "scan.nc gives 64×64 pixels of 5e-07 m" in message, message
+    assert "narrow.nc (--bottom) gives 64×48 pixels of 5e-07 m" in message, message
+    assert "crop both to 64×48 pixels" in message and "resample" not in message, message
+    with pytest.raises(ValueError) as refused:
+        import_topography(tmp_path / "scan.nc", tmp_path / "out", bottom=tmp_path / "coarse.nc")
+    message = str(refused.value)
+    assert "64×64 pixels of 5e-07 m" in message and "64×64 pixels of 1e-06 m" in message, message
+    assert "resample one map onto the other's pixel size" in message and "crop" not in message, message
+    # The same file twice, however spelt, would be the same map for both bodies.
+    (tmp_path / "sub").mkdir()
+    with pytest.raises(ValueError, match=r"perfectly correlated at offset 0.*rotated by 180°"):
+        import_topography(tmp_path / "scan.nc", tmp_path / "out", bottom=tmp_path / "sub" / ".." / "scan.nc")
+    with pytest.raises(FileNotFoundError, match="none.nc: no such file"):
+        import_topography(tmp_path / "scan.nc", tmp_path / "out", bottom=tmp_path / "none.nc")
+    assert {p.name: p.read_bytes() for p in (tmp_path / "out").iterdir()} == before
+    assert no_temporary_folders(tmp_path)
+
+
+def test_a_stop_while_the_bodies_are_written_leaves_the_earlier_folder(tmp_path, monkeypatch, capsys):
+    Topography(self_affine(), (32.0, 32.0), unit="um").to_netcdf(tmp_path / "scan.nc")
+    Topography(self_affine(seed=4), (32.0, 32.0), unit="um").to_netcdf(tmp_path / "other.nc")
+    import_topography(tmp_path / "scan.nc", tmp_path / "out")
+    before = {p.name: p.read_bytes() for p in (tmp_path / "out").iterdir()}
+    save = np.save
+
+    def stopped_at_the_bottom_body(path, array, *args, **kwargs):
+        if str(path).endswith("bottom.npy"):
+            raise KeyboardInterrupt  # what a stop signal raises (wearsim.measured's handler)
+        return save(path, array, *args, **kwargs)
+
+    monkeypatch.setattr(measured, "_stop_on_signals", lambda: None)
+    monkeypatch.setattr(np, "save", stopped_at_the_bottom_body)
+    argv = [str(tmp_path / "scan.nc"), str(tmp_path / "out"), "--bottom", str(tmp_path / "other.nc")]
+    assert measured.main(argv) == 130
+    assert "stopped by a signal; nothing was written" in capsys.readouterr().err
+    assert {p.name: p.read_bytes() for p in (tmp_path / "out").iterdir()} == before
+    assert no_temporary_folders(tmp_path)
+    monkeypatch.setattr(np, "save", save)
+    assert measured.main(argv) == 0
+    assert json.loads((tmp_path / "out" / "import.json").read_text())["bodies"]["bottom"]["rule"] == "second-map"
