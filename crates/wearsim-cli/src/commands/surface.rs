@@ -1,7 +1,8 @@
 //! `wearsim surface`: the run's surface pair and its statistics; `wearsim surface fit`: the
 //! self-affine parameters of a measured height map, as a run file's `[surface]` block;
-//! `wearsim surface import`: an instrument file (any format SurfaceTopography reads) as the map a
-//! run file reads, delegated to the Python package (`python -m wearsim.measured`).
+//! `wearsim surface import`: an instrument file (any format SurfaceTopography reads, and the
+//! counter-body's with `--bottom`) as the maps a run file reads, delegated to the Python package
+//! (`python -m wearsim.measured`).
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -41,8 +42,9 @@ enum Action {
     Fit(FitArgs),
     /// Turn an instrument height map (AFM .di, confocal .plu, ISO 25178 .x3p, Wyko .opd, Digital
     /// Surf .sur, .mi and every other format SurfaceTopography reads) into DIR/heights.npy (metres,
-    /// i along x) and DIR/import.json (what was done, and a ready `[surface]` block). Runs in
-    /// Python with SurfaceTopography (`pip install "wearsim[measured]"`).
+    /// i along x), DIR/bottom.npy (the counter-body: the map of --bottom FILE2, else the map rotated
+    /// by 180° about its centre) and DIR/import.json (what was done, and a ready `[surface]` block
+    /// with both). Runs in Python with SurfaceTopography (`pip install "wearsim[measured]"`).
     Import(ImportArgs),
 }
 
@@ -50,9 +52,16 @@ enum Action {
 struct ImportArgs {
     /// The instrument file.
     file: PathBuf,
-    /// Output folder: heights.npy and import.json (written beside and renamed into place).
+    /// Output folder: heights.npy, bottom.npy and import.json (written beside and renamed into
+    /// place).
     #[arg(long)]
     out: PathBuf,
+    /// The counter-body's instrument file, imported with the same options into DIR/bottom.npy; it
+    /// must end on the same grid and pixel size as FILE. Without it, bottom.npy is FILE's map
+    /// rotated by 180° about its centre: the measured lay, spectrum and height distribution, and no
+    /// pixel facing its own copy at any sliding offset.
+    #[arg(long, value_name = "FILE2")]
+    bottom: Option<PathBuf>,
     /// Fill undefined (unmeasured) pixels with this method of SurfaceTopography's
     /// interpolate_undefined_data (harmonic); without it a map with undefined pixels is refused.
     #[arg(long, value_parser = ["harmonic"])]
@@ -155,8 +164,10 @@ fn print_statistics(name: &str, s: &SurfaceStatistics, unit: &str) {
 
 fn run_import(args: &ImportArgs) -> Result<()> {
     super::polls_interrupt();
-    if !args.file.is_file() {
-        bail!("{}: no such file", args.file.display());
+    for file in std::iter::once(&args.file).chain(&args.bottom) {
+        if !file.is_file() {
+            bail!("{}: no such file", file.display());
+        }
     }
     // Asked before any folder is made, so that the error says what to install.
     let python = super::python_with(
@@ -181,6 +192,12 @@ fn run_import(args: &ImportArgs) -> Result<()> {
     }
     if args.overwrite {
         command.arg("--overwrite");
+    }
+    if let Some(bottom) = &args.bottom {
+        // One argument, so that a name starting with '-' is not read as an option.
+        let mut arg = std::ffi::OsString::from("--bottom=");
+        arg.push(bottom);
+        command.arg(arg);
     }
     // `--` so that a file or folder whose name starts with '-' is not read as an option.
     command.arg("--").arg(&args.file).arg(&args.out);
