@@ -33,12 +33,12 @@ and is turned in the plane only: its heights are the measured ones, rearranged, 
 the measured height distribution; a half turn maps the 2D power spectrum onto itself
 (``C(−q) = C(q)`` for real heights), so the spectrum and the lay direction, an oblique one too, are
 kept, where a mirror image would turn an oblique lay to the opposite angle. On an even grid no pixel
-of the copy lies over the same measured pixel at any offset, and for random roughness (random
-phases) the two bodies' heights are then no more correlated at any offset than two independent
-measurements' are; the same map for both bodies is perfectly correlated at offset 0. A periodic
-texture symmetric under a half turn (one sinusoid, a regular array of dimples) is its own rotated
-copy up to a shift: give such a counter-body's own map, or generate independent pairs with the
-measured spectrum (``source = "spectrum"``).
+of the copy faces its own measured value at any offset, and for random roughness (random phases)
+the two bodies' heights are then correlated at any offset only as much as two independent
+measurements of that size may be by chance; the same map for both bodies is perfectly correlated at
+offset 0. A regular texture symmetric under a half turn (one sinusoid, a regular array of dimples) is
+its own rotated copy up to a shift: give such a counter-body's own map, or generate independent pairs
+with the measured spectrum (``source = "spectrum"``).
 """
 
 from __future__ import annotations
