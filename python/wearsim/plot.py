@@ -84,11 +84,15 @@ def curves(tidy: pd.DataFrame) -> List[Tuple[str, pd.DataFrame]]:
     return out
 
 
-def per_area_label(label: str, tidy: pd.DataFrame) -> str:
-    """The axis label of a rate divided by the nominal area, as the library's figures write it."""
+def per_area_label(label: str, tidy: pd.DataFrame, quantity: str = "wear_rate") -> str:
+    """The axis label of the rate ``quantity`` divided by the nominal area, as the library's figures
+    write it: in SI a wear depth per sliding distance (m/m), or particles per m slid per m²."""
     si = "units" in tidy.columns and len(tidy) and str(tidy["units"].iloc[0]) == "si"
-    unit = "m²/m²" if si else "= a box L × L (the paper's)"
-    return f"{label} / (Lx·Ly) (per unit nominal area, {unit})"
+    if not si:
+        return f"{label} / (Lx·Ly) (per unit nominal area, = a box L × L (the paper's))"
+    if quantity == "particle_rate":
+        return f"{label} / (Lx·Ly) (per unit nominal area, particles per m slid per m², 1/m³)"
+    return f"{label} / (Lx·Ly) (per unit nominal area: wear depth per sliding distance, m/m)"
 
 
 def _shown(label: str) -> str:

@@ -335,13 +335,14 @@ impl Shown {
             format!("{} E", number(v))
         }
     }
-    /// The label of a rate divided by the nominal area Lx·Ly: in reduced units the W of a box
-    /// L × L, the paper's.
-    fn per_area(self, label: &str) -> String {
-        let unit = if self.si() {
-            "per unit nominal area, m²/m²"
-        } else {
-            "per unit nominal area, = a box L × L (the paper's)"
+    /// The label of a rate `quantity` divided by the nominal area Lx·Ly: in reduced units the rate
+    /// of a box L × L, the paper's; in SI a volume per sliding distance per area is a wear depth per
+    /// sliding distance (m/m), a particle rate per area particles per metre slid per m².
+    fn per_area(self, quantity: &str, label: &str) -> String {
+        let unit = match (self.si(), quantity) {
+            (false, _) => "per unit nominal area, = a box L × L (the paper's)",
+            (true, "particle_rate") => "per unit nominal area, particles per m slid per m², 1/m³",
+            (true, _) => "per unit nominal area: wear depth per sliding distance, m/m",
         };
         format!("{label} / (Lx·Ly) ({unit})")
     }
@@ -530,7 +531,7 @@ impl LoadPanel {
     fn per_area(quantity: &'static str, label: &str, shown: Shown) -> Self {
         Self {
             quantity,
-            label: shown.per_area(label),
+            label: shown.per_area(quantity, label),
             log: true,
             per_area: true,
         }

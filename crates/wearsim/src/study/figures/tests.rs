@@ -524,3 +524,17 @@ fn a_runs_series_figures_name_what_they_lack() {
     .to_string();
     assert!(err.contains("has no row of fracture energy"), "{err}");
 }
+
+#[test]
+fn rates_per_area_are_labelled_by_what_they_are_in_si() {
+    let si = Shown { system: Units::Si };
+    let w = si.per_area("wear_rate", "W");
+    assert!(
+        w.contains("wear depth per sliding distance, m/m") && !w.contains("m²/m²"),
+        "{w}"
+    );
+    let n = si.per_area("particle_rate", "dN*₊/ds");
+    assert!(n.contains("particles per m slid per m², 1/m³"), "{n}");
+    let reduced = Shown { system: Units::Reduced }.per_area("particle_rate", "dN*₊/ds");
+    assert!(reduced.contains("a box L × L"), "{reduced}");
+}

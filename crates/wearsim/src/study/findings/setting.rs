@@ -233,8 +233,11 @@ pub(super) fn settings(tidy: &Table, rule: RunInRule) -> Vec<Setting> {
         .collect()
 }
 
-/// An input value as given (0.008), in exponent form when small or large (2.5e-7, 3.37e9 Pa).
+/// An input value as given (0.008), in exponent form when small or large (2.5e-7, 3.37e9 Pa),
+/// rounded to six significant figures: a value derived from inputs (F_N/(Lx·Ly) of a measured map's
+/// box, 2.0000016880560666e8 Pa) is given to the precision it has, 2e8.
 pub(super) fn param(x: f64) -> String {
+    let x: f64 = format!("{x:.5e}").parse().unwrap_or(x);
     if (1e-3..1e4).contains(&x.abs()) {
         format!("{x}")
     } else {

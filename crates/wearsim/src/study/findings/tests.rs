@@ -835,3 +835,13 @@ fn a_crossing_outside_the_loads_is_said_to_lie_outside() {
     );
     assert!(!larger.observed.contains("W ratio = 1 at"), "{}", larger.observed);
 }
+
+#[test]
+fn inputs_are_printed_as_given_and_derived_values_to_their_precision() {
+    use super::setting::param;
+    assert_eq!(param(0.008), "0.008");
+    assert_eq!(param(2.5e-7), "2.5e-7");
+    assert_eq!(param(1.75e-3), "0.00175");
+    assert_eq!(param(2.0000016880560666e8), "2e8");
+    assert_eq!(param(3.37e9), "3.37e9");
+}
