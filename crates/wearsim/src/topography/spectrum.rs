@@ -15,6 +15,14 @@
 //! map's own draw (exponentially distributed about the expected PSD), carried into every seed:
 //! seeds differ in their phases, as the random-phase generation of self-affine surfaces does
 //! ([`crate::surface::Generation::RandomPhase`] has exact amplitudes too).
+//!
+//! A map resampled onto finer pixels along one axis (`wearsim surface import --resample` puts a
+//! map with non-square pixels on square pixels of the smaller size) holds interpolated pixels:
+//! beyond the Nyquist wavenumber of its native pixel along that axis, π/Δ, its spectrum is the
+//! interpolation's (images of the measured band, attenuated), not the surface's.
+//! [`MeasuredPsd::with_measured_pixel`] keeps only the measured wavevectors, |q_x| ≤ π/Δx and
+//! |q_y| ≤ π/Δy of the native pixels: the radial shells, the anisotropy and the band variance
+//! are taken over them, and generated surfaces carry nothing beyond them.
 
 use std::f64::consts::PI;
 
@@ -84,6 +92,9 @@ pub struct MeasuredPsd {
     c: Vec<f64>,
     /// RMS height of the levelled map, unwindowed.
     rms_height: f64,
+    /// The largest |mode index| along x and along y that was measured (not interpolated): Nx/2 and
+    /// Ny/2, or less for a map resampled onto finer pixels ([`MeasuredPsd::with_measured_pixel`]).
+    measured: [f64; 2],
 }
 
 /// Sum of C Δq over the carried modes of a target grid below this fraction of the map's: no mode
@@ -146,7 +157,75 @@ impl MeasuredPsd {
             window,
             c,
             rms_height,
+            measured: [(nx / 2) as f64, (ny / 2) as f64],
         })
+    }
+
+    /// The PSD with only the wavevectors that the native pixels `pixel` = [Δx, Δy] (in the map's
+    /// length unit) of a map resampled onto finer pixels measured: |q_x| ≤ π/Δx, |q_y| ≤ π/Δy.
+    /// Beyond those Nyquist wavenumbers the map's pixels are interpolated and its spectrum is the
+    /// interpolation's. A native pixel equal to the map's own (within 1e-6) changes nothing; one
+    /// smaller than the map's, or not positive, is an error (a resampled map's native pixels are
+    /// at least its own).
+    pub fn with_measured_pixel(mut self, pixel: [f64; 2]) -> Result<Self> {
+        let own = self.grid.pixel_size();
+        let (lx, ly) = (self.grid.length_x(), self.grid.length_y());
+        for (k, (p, side, n)) in [(pixel[0], lx, self.grid.nx()), (pixel[1], ly, self.grid.ny())]
+            .into_iter()
+            .enumerate()
+        {
+            let axis = ["x", "y"][k];
+            if !(p.is_finite() && p > 0.0) {
+                return Err(Error::param(
+                    "measured_pixel",
+                    format!("{p} along {axis}: a native pixel size must be a positive length"),
+                ));
+            }
+            if p < own * (1.0 - 1e-6) {
+                return Err(Error::param(
+                    "measured_pixel",
+                    format!(
+                        "{p:e} along {axis} is smaller than the map's pixel, {own:e}: a map resampled onto finer \
+                         pixels has native pixels at least as large as its own (check the unit: the map's length \
+                         unit)"
+                    ),
+                ));
+            }
+            // The measured modes: |m| ≤ L/(2Δ), at most the stored Nyquist N/2.
+            self.measured[k] = if p <= own * (1.0 + 1e-6) {
+                (n / 2) as f64
+            } else {
+                (side / (2.0 * p)).min((n / 2) as f64)
+            };
+        }
+        Ok(self)
+    }
+
+    /// The native pixel sizes the measured wavevectors end at (the map's own when nothing is
+    /// interpolated), [Δx, Δy] in the map's length unit.
+    pub fn measured_pixel(&self) -> [f64; 2] {
+        [
+            self.grid.length_x() / (2.0 * self.measured[0]),
+            self.grid.length_y() / (2.0 * self.measured[1]),
+        ]
+    }
+
+    /// Whether only part of the stored spectrum was measured ([`MeasuredPsd::with_measured_pixel`]).
+    pub fn is_resampled(&self) -> bool {
+        self.measured[0] < (self.grid.nx() / 2) as f64 || self.measured[1] < (self.grid.ny() / 2) as f64
+    }
+
+    /// Whether the mode of FFT indices (ix, iy) was measured.
+    fn is_measured(&self, ix: usize, iy: usize) -> bool {
+        let tol = 1.0 + 1e-9;
+        wavenumber(ix, self.grid.nx()).abs() <= self.measured[0] * tol
+            && wavenumber(iy, self.grid.ny()).abs() <= self.measured[1] * tol
+    }
+
+    /// The largest measured wavenumber along either axis, in units of 2π/Lx (the Nyquist
+    /// wavenumber Nx/2 of a map that is not resampled).
+    pub fn nyquist(&self) -> f64 {
+        self.measured[0].max(self.measured[1] * self.grid.aspect())
     }
 
     /// The PSD of `map` under `window`, or, without one, under the window the map needs
@@ -199,12 +278,13 @@ impl MeasuredPsd {
     /// curvature of a steep spectrum between modes, by α(α+1)/(8ρ²) at ρ modes from the origin). The
     /// mean (q = 0) takes no part: its weight goes to the other corners. Zero outside the measured
     /// band: wavelengths longer than the map's extent along their direction (ρ < 1) or shorter
-    /// than two of its pixels along either axis.
+    /// than two of its pixels along either axis (two of its native pixels, for a map resampled
+    /// onto finer ones: [`MeasuredPsd::with_measured_pixel`]).
     pub fn at(&self, qx: f64, qy: f64) -> f64 {
         let (lx, ly) = (self.grid.length_x(), self.grid.length_y());
         let (u, v) = (qx * lx / (2.0 * PI), qy * ly / (2.0 * PI));
         let tol = 1e-9;
-        let (hx, hy) = (self.grid.nx() as f64 / 2.0, self.grid.ny() as f64 / 2.0);
+        let [hx, hy] = self.measured;
         if u * u + v * v < 1.0 - tol || u.abs() > hx * (1.0 + tol) || v.abs() > hy * (1.0 + tol) {
             return 0.0;
         }
@@ -220,7 +300,8 @@ impl MeasuredPsd {
             for (dn, wy) in [(0, 1.0 - fy), (1, fy)] {
                 let w = wx * wy;
                 let (m, n) = (m0 + dm, n0 + dn);
-                if w > 0.0 && (m, n) != (0, 0) {
+                let measured = (m.abs() as f64) <= hx * (1.0 + tol) && (n.abs() as f64) <= hy * (1.0 + tol);
+                if w > 0.0 && (m, n) != (0, 0) && measured {
                     sum += w * self.node(m, n);
                     weight += w;
                 }
@@ -263,7 +344,15 @@ impl MeasuredPsd {
                  statistics with nothing longer)"
             ));
         }
-        if target.pixel_size() * tol < self.grid.pixel_size() {
+        let [px, py] = self.measured_pixel();
+        if self.is_resampled() && target.pixel_size() * tol < px.max(py) {
+            notes.push(format!(
+                "the pixel, {:e}, is smaller than the native pixels the map {map} was measured with ({px:e} × \
+                 {py:e}; it was resampled onto finer ones): the map says nothing about wavelengths shorter than two \
+                 native pixels along each axis, so the surfaces carry no power there",
+                target.pixel_size()
+            ));
+        } else if target.pixel_size() * tol < self.grid.pixel_size() {
             notes.push(format!(
                 "the pixel, {:e}, is smaller than the map's ({:e}): the map says nothing about wavelengths shorter than \
                  two of its pixels, so the surfaces carry no power there (they are smooth below the map's resolution)",
@@ -336,23 +425,11 @@ impl MeasuredPsd {
     }
 
     /// The radially averaged PSD in the convention of [`Surface::radial_psd_shells`]: shells of
-    /// integer |q| in units of 2π/Lx, mean variance per mode C Δq, modes of the full spectrum.
+    /// integer |q| in units of 2π/Lx, mean variance per mode C Δq, modes of the full spectrum (the
+    /// measured ones only, for a resampled map: [`MeasuredPsd::with_measured_pixel`]).
     pub fn radial_shells(&self) -> Vec<PsdShell> {
-        let (nx, ny) = (self.grid.nx(), self.grid.ny());
-        let r = self.grid.aspect();
-        let dq = self.dq();
-        let mut sum = vec![0.0; nx];
-        let mut count = vec![0.0; nx];
-        for ix in 0..nx {
-            for iy in 0..ny {
-                let (qx, qy) = (wavenumber(ix, nx), wavenumber(iy, ny) * r);
-                let m = (qx * qx + qy * qy).sqrt().round() as usize;
-                if m >= 1 && m < nx {
-                    sum[m] += self.c[ix * ny + iy] * dq;
-                    count[m] += 1.0;
-                }
-            }
-        }
+        let nx = self.grid.nx();
+        let (sum, count) = self.shell_sums();
         (1..nx)
             .filter(|&m| count[m] > 0.0)
             .map(|m| PsdShell {
@@ -363,11 +440,69 @@ impl MeasuredPsd {
             .collect()
     }
 
+    /// |q| of the mode of FFT indices (ix, iy), in units of 2π/Lx (the convention of
+    /// [`Surface::generate`]).
+    fn modulus(&self, ix: usize, iy: usize) -> f64 {
+        let (nx, ny) = (self.grid.nx(), self.grid.ny());
+        let (qx, qy) = (wavenumber(ix, nx), wavenumber(iy, ny) * self.grid.aspect());
+        (qx * qx + qy * qy).sqrt()
+    }
+
+    /// Per shell of integer |q| (units of 2π/Lx, shells 0 to Nx − 1): the sum of C Δq over its
+    /// measured modes and their number.
+    fn shell_sums(&self) -> (Vec<f64>, Vec<f64>) {
+        let (nx, ny) = (self.grid.nx(), self.grid.ny());
+        let dq = self.dq();
+        let mut sum = vec![0.0; nx];
+        let mut count = vec![0.0; nx];
+        for ix in 0..nx {
+            for iy in 0..ny {
+                let m = self.modulus(ix, iy).round() as usize;
+                if m >= 1 && m < nx && self.is_measured(ix, iy) {
+                    sum[m] += self.c[ix * ny + iy] * dq;
+                    count[m] += 1.0;
+                }
+            }
+        }
+        (sum, count)
+    }
+
+    /// The variance Σ C Δq held by the modes of the map's grid with q_lower ≤ |q| ≤ q_upper (units
+    /// of 2π/Lx, the band [`Surface::generate`] fills for λ_u = Lx/q_lower, λ_l = Lx/q_upper):
+    /// the variance of the map's self-affine band (paper §4.1). For a resampled map, a mode of the
+    /// band that was not measured (beyond the native Nyquist wavenumber along an axis) counts with
+    /// the mean C Δq of the measured modes of its shell, as an isotropic band would hold it.
+    pub fn band_variance(&self, q_lower: f64, q_upper: f64) -> f64 {
+        let (nx, ny) = (self.grid.nx(), self.grid.ny());
+        let (sum, count) = self.shell_sums();
+        let dq = self.dq();
+        let mut variance = 0.0;
+        for ix in 0..nx {
+            for iy in 0..ny {
+                let q = self.modulus(ix, iy);
+                if !(q > 0.0 && q >= q_lower * (1.0 - 1e-12) && q <= q_upper * (1.0 + 1e-12)) {
+                    continue;
+                }
+                if self.is_measured(ix, iy) {
+                    variance += self.c[ix * ny + iy] * dq;
+                } else {
+                    let m = q.round() as usize;
+                    if m < nx && count[m] > 0.0 {
+                        variance += sum[m] / count[m];
+                    }
+                }
+            }
+        }
+        variance
+    }
+
     /// The ratio of the power of wavevectors nearer the x axis (|qx| > |qy|) to that of wavevectors
     /// nearer the y axis, over the shells of |q| between `q_lo` and `q_hi` (units of 2π/Lx): the
     /// geometric mean of the shells' ratios of mean C, so that every shell counts alike (a sum of
     /// C would be the few longest wavelengths' alone). 1 for an isotropic spectrum; above 1 when
-    /// the heights vary faster along x (a lay along y).
+    /// the heights vary faster along x (a lay along y). Over the measured modes only, for a
+    /// resampled map ([`MeasuredPsd::with_measured_pixel`]): the interpolated ones along one axis
+    /// would make a lay of the interpolation.
     pub fn anisotropy(&self, q_lo: f64, q_hi: f64) -> f64 {
         let (nx, ny) = (self.grid.nx(), self.grid.ny());
         let r = self.grid.aspect();
@@ -377,7 +512,13 @@ impl MeasuredPsd {
             for iy in 0..ny {
                 let (qx, qy) = (wavenumber(ix, nx), wavenumber(iy, ny) * r);
                 let m = (qx * qx + qy * qy).sqrt().round() as usize;
-                if m < 1 || m >= shells || (m as f64) < q_lo || (m as f64) > q_hi || qx.abs() == qy.abs() {
+                if m < 1
+                    || m >= shells
+                    || (m as f64) < q_lo
+                    || (m as f64) > q_hi
+                    || qx.abs() == qy.abs()
+                    || !self.is_measured(ix, iy)
+                {
                     continue;
                 }
                 let k = if qx.abs() > qy.abs() { 0 } else { 2 };
@@ -546,5 +687,61 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("grid") && e.contains("flat"), "{e}");
+    }
+
+    /// A map resampled ×2 along y (each row repeated: native pixels twice as long along y) with
+    /// its native pixel given: only the wavevectors |q_y| ≤ π/Δy_native count (the shells hold
+    /// fewer modes, the band variance counts the others with their shell's mean), and surfaces
+    /// generated from it carry nothing beyond the native Nyquist wavenumber along y, where the
+    /// interpolation's images lie.
+    #[test]
+    fn a_resampled_map_keeps_only_its_measured_wavevectors() {
+        let n = 128;
+        let grid = Grid::square(n, 1.0).unwrap();
+        let original = self_affine(grid, 0.25, 5);
+        let h: Vec<f64> = (0..n * n).map(|k| original.heights()[k - k % 2]).collect();
+        let map = Surface::new("resampled", grid, h).unwrap();
+        let all = MeasuredPsd::of(&map, Window::None).unwrap();
+        // The band variance over every mode is the map's variance (periodic: Parseval).
+        let whole = all.band_variance(0.5, n as f64);
+        assert!((whole / map.rms_height().powi(2) - 1.0).abs() < 1e-9, "{whole}");
+        assert!(!all.is_resampled() && all.measured_pixel() == [1.0 / n as f64; 2]);
+        let native = [1.0 / n as f64, 2.0 / n as f64];
+        let psd = all.clone().with_measured_pixel(native).unwrap();
+        assert!(psd.is_resampled());
+        assert_eq!(psd.measured_pixel(), native);
+        assert_eq!(psd.nyquist(), n as f64 / 2.0);
+        // The interpolated modes beyond |q_y| = n/4 carry power in the map and are left out.
+        let ky = 2.0 * PI;
+        assert!(all.at(0.0, ky * 50.0) > 0.0 && psd.at(0.0, ky * 50.0) == 0.0);
+        assert_eq!(psd.at(ky * 20.0, ky * 10.0), all.at(ky * 20.0, ky * 10.0));
+        let (shells_all, shells) = (all.radial_shells(), psd.radial_shells());
+        let modes = |s: &[PsdShell], m: f64| s.iter().find(|s| s.q == m).map_or(0.0, |s| s.modes);
+        assert_eq!(modes(&shells, 20.0), modes(&shells_all, 20.0));
+        assert!(modes(&shells, 50.0) < 0.6 * modes(&shells_all, 50.0));
+        // Surfaces generated from it: nothing beyond the native Nyquist wavenumber along y.
+        let s = psd.generate(grid, 3).unwrap();
+        let generated = MeasuredPsd::of(&s, Window::None).unwrap();
+        let (mut beyond, mut within) = (0.0, 0.0);
+        for ix in 0..n {
+            for iy in 0..n {
+                let c = generated.c[ix * n + iy];
+                if wavenumber(iy, n).abs() > n as f64 / 4.0 {
+                    beyond += c;
+                } else {
+                    within += c;
+                }
+            }
+        }
+        assert!(beyond < 1e-25 * within, "{beyond} {within}");
+        // A finer target pixel is told against the native pixels.
+        let notes = psd.notes(&Grid::square(2 * n, 1.0).unwrap(), "map.npy");
+        assert!(notes.len() == 1 && notes[0].contains("native pixels"), "{notes:?}");
+        let notes = psd.notes(&grid, "map.npy");
+        assert!(notes.len() == 1 && notes[0].contains("native pixels"), "{notes:?}");
+        for bad in [[0.0, 1.0], [1.0 / n as f64, 0.5 / n as f64], [f64::NAN, 1.0]] {
+            let e = all.clone().with_measured_pixel(bad).unwrap_err().to_string();
+            assert!(e.contains("measured_pixel"), "{e}");
+        }
     }
 }
