@@ -1,5 +1,11 @@
 //! Self-affine parameters (H, λ_l, λ_u, h_rms) fitted to a surface's PSD, and the run-file block that
 //! generates periodic surfaces with them.
+//!
+//! The paper's surfaces (§4.1) are a power law C(q) ∝ q^−2(1+H) between q_u = 2π/λ_u and
+//! q_l = 2π/λ_l and nothing else, and their h_rms is that band's. A measured map also holds power
+//! outside the band (a waviness or form beyond λ_u, noise beyond λ_l), so the h_rms of the block is
+//! the band's, the map's variance held by the modes the block generates, not the whole map's: the
+//! whole map's would raise the PSD level of the generated band by the variance outside it.
 
 use std::f64::consts::PI;
 
@@ -22,7 +28,24 @@ pub struct SpectrumFit {
     /// Longest wavelength λ_u: where the PSD leaves the power law at low wavenumbers (a roll-off), or
     /// the box.
     pub lambda_upper: f64,
+    /// h_rms of the self-affine band (paper §4.1): the square root of the map's variance held by
+    /// the modes with q_u ≤ |q| ≤ q_l on its grid, with λ_l and λ_u as [`SpectrumFit::spectrum`]
+    /// writes them in the block, from the PSD as measured (Hann-windowed and normalised for a map
+    /// that is not periodic, so that it sums to the map's variance). The block's `rms_height`: the
+    /// surfaces it generates then carry the measured PSD level in the band, where the whole map's
+    /// rms would add to the band the variance that lies outside it.
     pub rms_height: f64,
+    /// RMS height of the whole map as fitted (levelled): the band's and what lies outside it.
+    pub map_rms_height: f64,
+    /// Share of the map's variance outside the band, 1 − h_rms²/(map's h_rms)² (0 where the band's
+    /// estimate holds more, as a Hann-windowed one of a map with little outside the band may):
+    /// power beyond λ_u (a waviness, a form) or beyond λ_l (noise), and the interpolated
+    /// wavevectors of a resampled map, which the block leaves out.
+    pub out_of_band_share: f64,
+    /// Native pixel sizes [Δx, Δy] of a map resampled onto finer pixels, in its length unit: the
+    /// fit used only the measured wavevectors, |q_x| ≤ π/Δx and |q_y| ≤ π/Δy. None when the whole
+    /// stored spectrum was measured.
+    pub measured_pixel: Option<[f64; 2]>,
     /// R² of the power-law fit in log–log.
     pub r2: Option<f64>,
     /// Shells of the PSD the slope was fitted on.
@@ -81,7 +104,13 @@ pub const FIT_METHOD: &str = "least-squares line through ln PSD against ln q ove
 carries the signal: shells within a factor 10 of the floor (the median PSD over the outermost half octave: round-off \
 or noise) or below 1e-12 of the peak are left out, and the band is the widest run of at least 6 shells over at least \
 an octave that stays within a factor 2 (or 3 standard deviations of its shell average) of its line, falls faster than \
-q^-1 and has no longer wavelength 10 times above it; slope −2(1+H); λ_l and λ_u where the PSD leaves the power law";
+q^-1 and has no longer wavelength 10 times above it; slope −2(1+H); λ_l and λ_u where the PSD leaves the power law; \
+h_rms the band's (the map's variance over the modes 2π/λ_u ≤ |q| ≤ 2π/λ_l); for a map resampled onto finer pixels, \
+only the measured wavevectors (|q_x| ≤ π/Δx, |q_y| ≤ π/Δy of its native pixels) are used";
+
+/// A share of the map's variance outside the fitted band above this is worth a note: the block's
+/// h_rms (the band's) is then noticeably less than the whole map's.
+pub const OUT_OF_BAND: f64 = 0.1;
 
 /// Shells below this fraction of the PSD's peak hold nothing but round-off.
 const ROUND_OFF: f64 = 1e-12;
@@ -131,18 +160,34 @@ fn no_band(all: &[PsdShell], signal: &[usize]) -> String {
 ///    cut-offs); λ_u and λ_l are where the PSD leaves the power law: in the end shell of the band and
 ///    the next one out, placed by the fraction of the power law's power the two still hold.
 ///
+/// 4. h_rms is the band's (`rms_height`): the map's variance over the modes q_u ≤ |q| ≤ q_l of the
+///    block ([`SpectrumFit::spectrum`], after its clamps), beside the whole map's
+///    (`map_rms_height`) and the share of the variance outside the band (`out_of_band_share`).
+///
 /// The PSD is that of the map as it is when it is periodic, and Hann-windowed when it is not
 /// ([`Window::for_map`]): the jump at the borders of a measured map leaks power ∝ q⁻² into every
 /// shell, which flattens the spectrum and biases H low.
 ///
 /// A surface with no such band is an error, not a number.
 pub fn fit(surface: &Surface) -> Result<SpectrumFit> {
+    fit_measured(surface, None)
+}
+
+/// [`fit`] of a map resampled onto finer pixels than it was measured with, `measured_pixel` =
+/// [Δx, Δy] its native pixel sizes in its length unit (`wearsim surface import --resample`
+/// records them): beyond the native Nyquist wavenumber π/Δ along an axis its spectrum is the
+/// interpolation's, so every step of the fit (the floor, the band, the slope, λ_l, the
+/// anisotropy, the band's h_rms) takes only the measured wavevectors, |q_x| ≤ π/Δx and
+/// |q_y| ≤ π/Δy ([`MeasuredPsd::with_measured_pixel`]). None, or the map's own pixel: the whole
+/// stored spectrum is measured, as [`fit`].
+pub fn fit_measured(surface: &Surface, measured_pixel: Option<[f64; 2]>) -> Result<SpectrumFit> {
     let window = Window::for_map(surface);
-    let psd = MeasuredPsd::of(surface, window)?;
-    let all = match window {
-        Window::None => surface.radial_psd_shells(),
-        Window::Hann => psd.radial_shells(),
-    };
+    let mut psd = MeasuredPsd::of(surface, window)?;
+    if let Some(pixel) = measured_pixel {
+        psd = psd.with_measured_pixel(pixel)?;
+    }
+    let measured_pixel = psd.is_resampled().then(|| psd.measured_pixel());
+    let all = psd.radial_shells();
     let invalid = |message: String| Error::InvalidSurface {
         name: "surface".into(),
         message,
@@ -175,9 +220,10 @@ pub fn fit(surface: &Surface) -> Result<SpectrumFit> {
     } else {
         all[first].q + 0.5 - held(first) - held(first - 1)
     };
-    // Within the square of stored modes the band ends at the Nyquist wavenumber Nx/2 at most (two
-    // pixels); only a band that runs into the corners of the spectrum reaches beyond.
-    let nyquist = surface.nx() as f64 / 2.0;
+    // Within the square (the rectangle, for a resampled map) of measured modes the band ends at
+    // the Nyquist wavenumber Nx/2 at most (two pixels); only a band that runs into the corners of
+    // the spectrum reaches beyond.
+    let nyquist = psd.nyquist();
     let q_short = if last + 1 == all.len() {
         all[last].q
     } else {
@@ -191,11 +237,14 @@ pub fn fit(surface: &Surface) -> Result<SpectrumFit> {
         .iter()
         .map(|&i| all[i].psd / power_law(all[i].q) * (-3.0 * (2.0 / all[i].modes).sqrt()).exp())
         .fold(0.0f64, f64::max);
-    Ok(SpectrumFit {
+    let mut fit = SpectrumFit {
         hurst: -line.slope / 2.0 - 1.0,
         lambda_lower: length / q_short,
         lambda_upper: length / q_long,
-        rms_height: surface.rms_height(),
+        rms_height: f64::NAN,
+        map_rms_height: surface.rms_height(),
+        out_of_band_share: f64::NAN,
+        measured_pixel,
         r2: line.r2,
         shells: b - a + 1,
         fitted_q: [k * runs.q(a), k * runs.q(b)],
@@ -205,7 +254,21 @@ pub fn fit(surface: &Surface) -> Result<SpectrumFit> {
         window,
         anisotropy: psd.anisotropy(runs.q(a), runs.q(b)),
         peak,
-    })
+    };
+    // The band as the block on the map's grid writes it.
+    let (lambda_lower, lambda_upper, _) = fit.cutoffs(&surface.grid());
+    let band = psd.band_variance(length / lambda_upper, length / lambda_lower);
+    // The map's own variance, not its windowed PSD's sum: a Hann window underestimates the power
+    // of wavelengths near the map's side (a cosine of the side's wavelength by a factor 3), which
+    // is where the variance outside the band mostly lies.
+    let map = fit.map_rms_height.powi(2);
+    fit.rms_height = band.sqrt();
+    fit.out_of_band_share = if map > 0.0 {
+        (1.0 - band / map).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    Ok(fit)
 }
 
 /// The floor of the PSD: its median over the outermost half octave of wavenumbers, q ≥ q_max/√2.
@@ -388,8 +451,45 @@ impl SpectrumFit {
     }
 
     /// Parameters to generate periodic surfaces with the fitted statistics on `grid`: λ_l raised to
-    /// two pixels and λ_u lowered to the box where the fit ran past them (a note says so).
+    /// two pixels and λ_u lowered to the box where the fit ran past them (a note says so); h_rms
+    /// the band's (`rms_height`, taken over the band these λ_l and λ_u bound on the map's grid).
     pub fn spectrum(&self, grid: &Grid) -> (SpectrumParams, Vec<String>) {
+        let (lambda_lower, lambda_upper, mut notes) = self.cutoffs(grid);
+        let params = SpectrumParams {
+            hurst: self.hurst.clamp(0.01, 1.0),
+            lambda_lower,
+            lambda_upper,
+            rms_height: self.rms_height,
+            generation: Generation::RandomPhase,
+        };
+        if params.hurst != self.hurst {
+            notes.push(format!(
+                "H = {:.3} is outside (0, 1] and is set to {:.3}",
+                self.hurst, params.hurst
+            ));
+        }
+        (params, notes)
+    }
+
+    /// The note of a fit whose band leaves out more than [`OUT_OF_BAND`] of the map's variance: what
+    /// share, and that the block carries the band's h_rms. None otherwise.
+    pub fn out_of_band_note(&self) -> Option<String> {
+        (self.out_of_band_share > OUT_OF_BAND).then(|| {
+            format!(
+                "{:.0} % of the map's variance lies outside the self-affine band λ_l … λ_u (beyond λ_u: a waviness \
+                 or form; beyond λ_l: noise): the block's rms_height = {:.4e} is the band's, not the whole map's \
+                 ({:.4e}), so that the generated surfaces carry the measured PSD level in the band (paper §4.1: \
+                 the surfaces hold the power law between λ_u and λ_l and nothing else)",
+                100.0 * self.out_of_band_share,
+                self.rms_height,
+                self.map_rms_height
+            )
+        })
+    }
+
+    /// λ_l and λ_u of the block on `grid`: λ_l raised to two pixels and λ_u lowered to the box
+    /// where the fit ran past them, with a note for each.
+    fn cutoffs(&self, grid: &Grid) -> (f64, f64, Vec<String>) {
         let mut notes = Vec::new();
         let two_pixels = 2.0 * grid.pixel_size();
         let lambda_lower = if self.lambda_lower < two_pixels {
@@ -413,20 +513,7 @@ impl SpectrumFit {
         } else {
             self.lambda_upper
         };
-        let params = SpectrumParams {
-            hurst: self.hurst.clamp(0.01, 1.0),
-            lambda_lower,
-            lambda_upper,
-            rms_height: self.rms_height,
-            generation: Generation::RandomPhase,
-        };
-        if params.hurst != self.hurst {
-            notes.push(format!(
-                "H = {:.3} is outside (0, 1] and is set to {:.3}",
-                self.hurst, params.hurst
-            ));
-        }
-        (params, notes)
+        (lambda_lower, lambda_upper, notes)
     }
 }
 
@@ -543,7 +630,12 @@ mod tests {
             assert!((f.hurst - hurst).abs() <= 0.05, "H {hurst}: {f:?}");
             assert!(within(f.lambda_lower, lower, 1.2), "λ_l {lower}: {f:?}");
             assert!(within(f.lambda_upper, upper, 1.2), "λ_u {upper}: {f:?}");
-            assert!((f.rms_height - 0.01).abs() < 1e-12);
+            // The whole map is the band: its h_rms is the band's, nothing lies outside.
+            assert!((f.map_rms_height - 0.01).abs() < 1e-12);
+            assert!((f.rms_height / 0.01 - 1.0).abs() < 0.01, "{f:?}");
+            assert!(f.out_of_band_share < 0.01, "{f:?}");
+            assert_eq!(f.spectrum(&grid).0.rms_height, f.rms_height);
+            assert_eq!(f.measured_pixel, None);
         }
     }
 
@@ -697,6 +789,170 @@ mod tests {
         assert!(
             !v.self_affine && v.reasons.iter().any(|r| r.contains("anisotropic (a lay)")),
             "{f:?} {v:?}"
+        );
+    }
+
+    /// A generated self-affine band (λ_u = 1/8, λ_l = 1/64, h_rms 0.01) with power beyond λ_u added,
+    /// as a measured map has (a waviness, a form): a cosine of the box's wavelength, or a second
+    /// self-affine band at wavelengths 1/2 to 1. The fit finds the band, and the block's h_rms is
+    /// the band's (paper §4.1: the surfaces hold the power law between λ_u and λ_l and nothing
+    /// else), not the whole map's; the whole map's and the share outside the band are reported.
+    #[test]
+    fn the_block_carries_the_rms_height_of_the_band_not_the_whole_maps() {
+        let grid = Grid::square(512, 1.0).unwrap();
+        let band = generated(grid, 0.7, 1.0 / 64.0, 1.0 / 8.0, Generation::RandomPhase, 2);
+        // 56 % of the variance beyond λ_u: the band's 1e-4 and 1.27e-4 outside it.
+        let outside: f64 = 1e-4 * 0.56 / 0.44;
+        let cosine: Vec<f64> = (0..512 * 512)
+            .map(|k| (2.0 * outside).sqrt() * (2.0 * PI * (k / 512) as f64 / 512.0).cos())
+            .collect();
+        let long = Surface::generate(
+            grid,
+            &SpectrumParams {
+                hurst: 0.7,
+                lambda_lower: 0.5,
+                lambda_upper: 1.0,
+                rms_height: outside.sqrt(),
+                generation: Generation::RandomPhase,
+            },
+            9,
+        )
+        .unwrap();
+        for (name, extra) in [
+            ("a cosine of the box's wavelength", cosine),
+            ("a band at 1/2 to 1", long.into_heights()),
+        ] {
+            let h = band.heights().iter().zip(&extra).map(|(a, b)| a + b).collect();
+            let map = Surface::new("map", grid, h).unwrap();
+            let f = fit(&map).unwrap();
+            let case = format!("{name}: {f:?}");
+            assert_eq!(f.window, Window::None, "{case}");
+            assert!((f.hurst - 0.7).abs() <= 0.05, "{case}");
+            assert!(within(f.lambda_upper, 1.0 / 8.0, 1.2), "{case}");
+            assert!((f.rms_height / 0.01 - 1.0).abs() < 0.03, "{case}");
+            assert!(
+                (f.map_rms_height / (1e-4 + outside).sqrt() - 1.0).abs() < 1e-6,
+                "{case}"
+            );
+            assert!((f.out_of_band_share - 0.56).abs() < 0.02, "{case}");
+            // The block writes the band's h_rms, and a note says why.
+            let (params, _) = f.spectrum(&grid);
+            assert_eq!(params.rms_height, f.rms_height, "{case}");
+            let note = f.out_of_band_note().unwrap();
+            assert!(
+                note.starts_with("56 % of the map's variance lies outside") && note.contains("the band's"),
+                "{note}"
+            );
+        }
+        // The band alone: no note.
+        assert_eq!(fit(&band).unwrap().out_of_band_note(), None);
+    }
+
+    /// A map that is not periodic (a self-affine band cut out of a periodic surface four times its
+    /// side, with a cosine of its side added) is fitted under a Hann window, whose power is
+    /// normalised out: the band's h_rms is that of the band component within the scatter of a
+    /// windowed variance (~8 % for one map, see the spectrum's tests), where a PSD not normalised
+    /// would give a factor 8/3 less, and the share outside the band is the cosine's within what that
+    /// scatter makes of it.
+    #[test]
+    fn the_band_rms_of_a_map_that_is_not_periodic_comes_from_its_windowed_psd() {
+        let big = generated(
+            Grid::square(1024, 4.0).unwrap(),
+            0.7,
+            4.0 / 256.0,
+            0.25,
+            Generation::RandomPhase,
+            3,
+        );
+        let cut: Vec<f64> = (0..256 * 256)
+            .map(|k| big.heights()[(k / 256) * 1024 + k % 256])
+            .collect();
+        let grid = Grid::square(256, 1.0).unwrap();
+        let band_rms = levelled(&Surface::new("band", grid, cut.clone()).unwrap()).rms_height();
+        let amplitude = 2.0 * band_rms;
+        let h = cut
+            .iter()
+            .enumerate()
+            .map(|(k, h)| h + amplitude * (2.0 * PI * (k / 256) as f64 / 256.0).cos())
+            .collect();
+        let map = levelled(&Surface::new("map", grid, h).unwrap());
+        let f = fit(&map).unwrap();
+        assert_eq!(f.window, Window::Hann);
+        assert!((f.rms_height / band_rms - 1.0).abs() < 0.15, "{band_rms}: {f:?}");
+        assert!((f.map_rms_height / map.rms_height() - 1.0).abs() < 1e-12);
+        // The cosine holds 2 of the 3 parts of the variance (its amplitude²/2 = 2 h_rms²).
+        assert!((f.out_of_band_share - 2.0 / 3.0).abs() < 0.08, "{f:?}");
+    }
+
+    /// A map resampled ×2 along y, as `wearsim surface import --resample` resamples a map with
+    /// pixels twice as long along y: every other row of a self-affine surface whose power law runs
+    /// to the pixel scale (λ_l = 2 pixels) is measured and the rows between are interpolated
+    /// (each measured row repeated, or the mean of its neighbours). Beyond the native Nyquist
+    /// wavenumber along y the spectrum is the interpolation's: fitted over it, H and the x/y power
+    /// ratio are off (H by more than 0.08 with repeated rows); given the native pixel, the fit
+    /// takes the measured wavevectors only, and H is the original map's within 0.05 and the ratio
+    /// within 15 % with repeated rows. Linear interpolation also attenuates the measured band near
+    /// the native Nyquist wavenumber (its transfer function, sinc⁴ in power, is 0.16 there), which
+    /// no choice of wavevectors undoes: its fit on the measured wavevectors is closer to the
+    /// original's than on all of them, not as close.
+    #[test]
+    fn a_resampled_map_is_fitted_on_its_measured_wavevectors() {
+        for (n, hurst, seed) in [(256, 0.7, 1), (256, 0.5, 3), (256, 0.6, 2)] {
+            let grid = Grid::square(n, 1.0).unwrap();
+            let original = generated(grid, hurst, 2.0 / n as f64, 0.25, Generation::RandomPhase, seed);
+            let h = original.heights();
+            let repeated = (0..n * n).map(|k| h[k - k % 2]).collect();
+            let linear = (0..n * n)
+                .map(|k| {
+                    let (i, j) = (k / n, k % n);
+                    if j % 2 == 0 {
+                        h[k]
+                    } else {
+                        0.5 * (h[k - 1] + h[i * n + (j + 1) % n])
+                    }
+                })
+                .collect();
+            let native = [1.0 / n as f64, 2.0 / n as f64];
+            let o = fit(&original).unwrap();
+            let ln_ratio = |f: &SpectrumFit| (f.anisotropy / o.anisotropy).ln().abs();
+            for (how, heights) in [("repeated", repeated), ("linear", linear)] {
+                let map = Surface::new("resampled", grid, heights).unwrap();
+                let all = fit(&map).unwrap();
+                let measured = fit_measured(&map, Some(native)).unwrap();
+                let case = format!("n {n} H {hurst} {how}:\n original {o:?}\n all {all:?}\n measured {measured:?}");
+                assert_eq!(all.measured_pixel, None, "{case}");
+                assert_eq!(measured.measured_pixel, Some(native), "{case}");
+                // The measured part of the spectrum ends at two native pixels along y.
+                assert!(measured.lambda_lower >= 0.95 * 2.0 * native[1], "{case}");
+                assert!((measured.rms_height / 0.01 - 1.0).abs() < 0.05, "{case}");
+                let (dh_all, dh_measured) = ((all.hurst - o.hurst).abs(), (measured.hurst - o.hurst).abs());
+                if how == "repeated" {
+                    assert!(dh_measured <= 0.05 && dh_all > 0.08, "{case}");
+                    assert!(
+                        ln_ratio(&measured) < 1.15f64.ln() && ln_ratio(&all) > 1.15f64.ln(),
+                        "{case}"
+                    );
+                } else {
+                    assert!(dh_measured < dh_all && ln_ratio(&measured) < ln_ratio(&all), "{case}");
+                }
+            }
+        }
+        // The map's own pixel changes nothing; a native pixel finer than the map's is refused.
+        let s = generated(
+            Grid::square(128, 1.0).unwrap(),
+            0.7,
+            1.0 / 32.0,
+            0.25,
+            Generation::RandomPhase,
+            1,
+        );
+        assert_eq!(fit_measured(&s, Some([1.0 / 128.0; 2])).unwrap(), fit(&s).unwrap());
+        let e = fit_measured(&s, Some([1.0 / 128.0, 0.5 / 128.0]))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("measured_pixel") && e.contains("smaller than the map's pixel"),
+            "{e}"
         );
     }
 }

@@ -20,7 +20,8 @@ mod prepare;
 mod spectrum;
 
 pub use fit::{
-    fit, poor_fit_warning, spectrum_block, surface_block, SpectrumFit, Verdict, ANISOTROPIC, FIT_METHOD, PEAK,
+    fit, fit_measured, poor_fit_warning, spectrum_block, surface_block, SpectrumFit, Verdict, ANISOTROPIC, FIT_METHOD,
+    OUT_OF_BAND, PEAK,
 };
 pub use formats::{array_shape, metres_per, read, regular_file, Measured};
 pub use load::{file_grid, file_span, load, probe_grid, FileSurface, Loaded};
