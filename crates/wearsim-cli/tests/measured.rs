@@ -340,3 +340,219 @@ fn surface_fit_leaves_out_the_floor_beyond_the_cut_off_of_generated_surfaces() {
         );
     }
 }
+
+/// `fit.json` of an output folder of `surface fit`.
+fn fit_record(dir: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("fit.json")).unwrap()).unwrap()
+}
+
+/// A value `key = v` of the block `surface fit` printed.
+fn block_value(text: &str, key: &str) -> f64 {
+    let line = text.lines().find(|l| l.starts_with(&format!("{key} = "))).unwrap();
+    line[key.len() + 3..].parse().unwrap()
+}
+
+/// A map whose variance lies 56 % beyond λ_u (a self-affine band of h_rms 0.01 between λ_l = 1/64
+/// and λ_u = 1/8, and a cosine of the box's wavelength): the block `surface fit` prints carries the
+/// band's h_rms (paper §4.1: the generated surfaces hold the power law between λ_u and λ_l and
+/// nothing else), not the whole map's, which would give them 2.3 times the measured PSD level in
+/// the band; fit.json keeps the whole map's and the share outside the band, and a note says it.
+/// A generated surface is its band: the two agree and no note is printed.
+#[test]
+fn surface_fit_writes_the_rms_height_of_the_band_and_reports_the_whole_maps() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = Grid::square(512, 1.0).unwrap();
+    let spectrum = SpectrumParams {
+        hurst: 0.7,
+        lambda_lower: 1.0 / 64.0,
+        lambda_upper: 1.0 / 8.0,
+        rms_height: 0.01,
+        generation: Generation::RandomPhase,
+    };
+    let band = Surface::generate(grid, &spectrum, 2).unwrap().into_heights();
+    let outside: f64 = 1e-4 * 0.56 / 0.44;
+    let map: Vec<f64> = band
+        .iter()
+        .enumerate()
+        .map(|(k, h)| h + (2.0 * outside).sqrt() * (2.0 * std::f64::consts::PI * (k / 512) as f64 / 512.0).cos())
+        .collect();
+    write_npy(&dir.path().join("wavy.npy"), &[512, 512], &map);
+    write_npy(&dir.path().join("band.npy"), &[512, 512], &band);
+    let fit = |name: &str| {
+        let out = dir.path().join(format!("{name}-fit"));
+        let o = run(&[
+            "surface",
+            "fit",
+            s(&dir.path().join(format!("{name}.npy"))),
+            "--length",
+            "1.0",
+            "--out",
+            s(&out),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        (o, fit_record(&out))
+    };
+    let (o, record) = fit("wavy");
+    let (text, f) = (stdout(&o), &record["fit"]);
+    let value = |key: &str| f[key].as_f64().unwrap();
+    assert!((value("hurst") - 0.7).abs() <= 0.05, "{f}");
+    assert!((value("rms_height") / 0.01 - 1.0).abs() < 0.03, "{f}");
+    // The whole map's, levelled by a plane (which takes a little of the cosine).
+    assert!(
+        (value("map_rms_height") / (1e-4 + outside).sqrt() - 1.0).abs() < 1e-3,
+        "{f}"
+    );
+    assert!((value("out_of_band_share") - 0.56).abs() < 0.02, "{f}");
+    assert!(
+        f["measured_pixel"].is_null() && record["measured_pixel_from"].is_null(),
+        "{record}"
+    );
+    // The block and the spectrum it generates carry the band's h_rms, to its four digits.
+    assert_eq!(record["spectrum"]["rms_height"], f["rms_height"]);
+    assert!(
+        (block_value(&text, "rms_height") / value("rms_height") - 1.0).abs() < 1e-4,
+        "{text}"
+    );
+    assert!(
+        text.contains(&format!("h_rms of the band {:.4e}", value("rms_height")))
+            && text.contains("56.0 % of its variance outside"),
+        "{text}"
+    );
+    let e = stderr(&o);
+    assert!(
+        e.contains("note: 56 % of the map's variance lies outside the self-affine band")
+            && e.contains("is the band's, not the whole map's"),
+        "{e}"
+    );
+    assert!(
+        record["notes"].to_string().contains("56 % of the map's variance"),
+        "{record}"
+    );
+
+    let (o, record) = fit("band");
+    let f = &record["fit"];
+    assert!((f["rms_height"].as_f64().unwrap() / 0.01 - 1.0).abs() < 0.01, "{f}");
+    assert!(f["out_of_band_share"].as_f64().unwrap() < 0.01, "{f}");
+    assert!(!stderr(&o).contains("outside the self-affine band"), "{}", stderr(&o));
+}
+
+/// A map `wearsim surface import --resample` wrote: measured with pixels twice as long along y
+/// (every other row of a 256² self-affine surface whose power law runs to the pixel scale) and
+/// put on square pixels (each measured row repeated), with its import.json. `surface fit` on
+/// DIR/heights.npy reads the native pixels there and fits the measured wavevectors only: H within
+/// 0.05 of the original map's, where the same map elsewhere (no import.json) is fitted on the
+/// interpolated part of its spectrum too and H is off by more than 0.08; `--measured-pixel` gives
+/// the same fit as the import.json.
+#[test]
+fn surface_fit_of_a_resampled_map_uses_its_measured_wavevectors() {
+    let dir = tempfile::tempdir().unwrap();
+    let n = 256;
+    let grid = Grid::square(n, 1.0).unwrap();
+    let spectrum = SpectrumParams {
+        hurst: 0.7,
+        lambda_lower: 2.0 / n as f64,
+        lambda_upper: 0.25,
+        rms_height: 0.01,
+        generation: Generation::RandomPhase,
+    };
+    let original = Surface::generate(grid, &spectrum, 1).unwrap().into_heights();
+    let resampled: Vec<f64> = (0..n * n).map(|k| original[k - k % 2]).collect();
+    write_npy(&dir.path().join("original.npy"), &[n, n], &original);
+    write_npy(&dir.path().join("copy.npy"), &[n, n], &resampled);
+    let imported = dir.path().join("imported");
+    std::fs::create_dir(&imported).unwrap();
+    write_npy(&imported.join("heights.npy"), &[n, n], &resampled);
+    // As `surface import` records it: native pixels 0.5 µm × 1 µm, resampled onto 0.5 µm.
+    let import = serde_json::json!({
+        "written_by": "wearsim surface import",
+        "grid": [n, n / 2],
+        "physical_sizes": [n as f64 * 0.5, n as f64 * 0.5],
+        "unit": "µm",
+        "pixel_size": [0.5, 1.0],
+        "resampled": {"grid": [n, n], "physical_sizes": [n as f64 * 0.5, n as f64 * 0.5], "pixel_size": 0.5, "method": "linear"},
+        "metres_per_unit": 1e-6,
+        "heights_grid": [n, n],
+        "length": [n as f64 * 0.5e-6, n as f64 * 0.5e-6],
+        "pixel_size_m": 0.5e-6,
+    });
+    std::fs::write(imported.join("import.json"), import.to_string()).unwrap();
+    let fit = |map: &Path, name: &str, extra: &[&str]| {
+        let out = dir.path().join(name);
+        let mut args = vec!["surface", "fit", s(map), "--length", "1.0", "--out", s(&out)];
+        args.extend_from_slice(extra);
+        let o = run(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        (stderr(&o), fit_record(&out))
+    };
+    let hurst = |r: &serde_json::Value| r["fit"]["hurst"].as_f64().unwrap();
+    let (_, o) = fit(&dir.path().join("original.npy"), "original", &[]);
+    let (e, from_import) = fit(&imported.join("heights.npy"), "from-import", &[]);
+    let (_, all) = fit(&dir.path().join("copy.npy"), "all", &[]);
+    let pixel = (1.0 / n as f64).to_string();
+    let twice = (2.0 / n as f64).to_string();
+    let (_, given) = fit(
+        &dir.path().join("copy.npy"),
+        "given",
+        &["--measured-pixel", &pixel, "--measured-pixel", &twice],
+    );
+    assert!(
+        e.contains("note: the map was resampled onto finer pixels") && e.contains("import.json"),
+        "{e}"
+    );
+    let native = &from_import["fit"]["measured_pixel"];
+    assert!(
+        (native[0].as_f64().unwrap() * n as f64 - 1.0).abs() < 1e-9
+            && (native[1].as_f64().unwrap() * n as f64 - 2.0).abs() < 1e-9,
+        "{from_import}"
+    );
+    assert!(from_import["measured_pixel_from"]
+        .as_str()
+        .unwrap()
+        .contains("import.json"));
+    assert!(all["fit"]["measured_pixel"].is_null());
+    assert!((hurst(&from_import) - hurst(&o)).abs() <= 0.05, "{from_import}\n{o}");
+    assert!((hurst(&all) - hurst(&o)).abs() > 0.08, "{all}\n{o}");
+    assert_eq!(given["fit"], from_import["fit"]);
+    assert_eq!(given["measured_pixel_from"], "--measured-pixel");
+
+    // Three sides, a native pixel finer than the map's, and an import.json of another map are
+    // refused by name.
+    let e = stderr(&run(&[
+        "surface",
+        "fit",
+        s(&dir.path().join("copy.npy")),
+        "--length",
+        "1.0",
+        "--measured-pixel",
+        "0.01",
+        "--measured-pixel",
+        "0.01",
+        "--measured-pixel",
+        "0.01",
+    ]));
+    assert!(e.contains("--measured-pixel given 3 times"), "{e}");
+    let e = stderr(&run(&[
+        "surface",
+        "fit",
+        s(&dir.path().join("copy.npy")),
+        "--length",
+        "1.0",
+        "--measured-pixel",
+        "0.001",
+    ]));
+    assert!(e.contains("smaller than the map's pixel"), "{e}");
+    let mut other = import.clone();
+    other["heights_grid"] = serde_json::json!([n, n / 2]);
+    std::fs::write(imported.join("import.json"), other.to_string()).unwrap();
+    let e = stderr(&run(&[
+        "surface",
+        "fit",
+        s(&imported.join("heights.npy")),
+        "--length",
+        "1.0",
+    ]));
+    assert!(
+        e.contains("import.json describes a 256 × 128 map") && e.contains("--measured-pixel"),
+        "{e}"
+    );
+}

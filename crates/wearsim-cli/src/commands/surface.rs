@@ -106,6 +106,13 @@ struct FitArgs {
     /// Fraction of each side brought smoothly to the mean before the fit (0: none).
     #[arg(long, default_value_t = 0.0)]
     taper: f64,
+    /// Native pixel size of a map resampled onto finer pixels, in the unit of --length: once for
+    /// both axes, or `--measured-pixel DX --measured-pixel DY`. The fit then uses only the measured
+    /// wavevectors, |q_x| ≤ π/DX and |q_y| ≤ π/DY (beyond them the pixels are interpolated).
+    /// Default: the native pixels recorded in import.json beside a map DIR/heights.npy that
+    /// `wearsim surface import --resample` wrote.
+    #[arg(long, num_args = 1, value_name = "PIXEL")]
+    measured_pixel: Vec<f64>,
     /// Seed written into the block (and used by --generate).
     #[arg(long, default_value_t = 0)]
     seed: u64,
@@ -240,6 +247,71 @@ fn file_surface(args: &FitArgs) -> Result<FileSurface> {
     Ok(how)
 }
 
+/// The native pixel sizes [Δx, Δy] of a map resampled onto finer pixels, in the map's length unit,
+/// with where they come from: `--measured-pixel`, or the import.json that `wearsim surface import`
+/// wrote beside the map when the map is that folder's heights.npy and it was resampled (the
+/// native pixels as a multiple of the map's own, so that the map's length unit does not matter).
+/// None when neither says so: the whole stored spectrum is measured.
+fn measured_pixel(args: &FitArgs, grid: &Grid) -> Result<Option<([f64; 2], String)>> {
+    match args.measured_pixel.as_slice() {
+        [] => {}
+        &[p] => return Ok(Some(([p, p], "--measured-pixel".into()))),
+        &[px, py] => return Ok(Some(([px, py], "--measured-pixel".into()))),
+        more => bail!(
+            "--measured-pixel given {} times: a height map has two axes; give `--measured-pixel D` for both or \
+             `--measured-pixel DX --measured-pixel DY`",
+            more.len()
+        ),
+    }
+    if args.file.file_name().is_none_or(|n| n != "heights.npy") {
+        return Ok(None);
+    }
+    let record_path = args.file.with_file_name("import.json");
+    let Ok(text) = std::fs::read_to_string(&record_path) else {
+        return Ok(None);
+    };
+    let record: serde_json::Value = match serde_json::from_str(&text) {
+        Ok(r) => r,
+        Err(_) => return Ok(None),
+    };
+    if record["written_by"] != "wearsim surface import" || record["resampled"].is_null() {
+        return Ok(None);
+    }
+    let shown = record_path.display();
+    let number = |v: &serde_json::Value, what: &str| -> Result<f64> {
+        v.as_f64()
+            .filter(|x| x.is_finite() && *x > 0.0)
+            .with_context(|| format!("{shown}: `{what}` is not a positive number; give --measured-pixel"))
+    };
+    let native = [
+        number(&record["pixel_size"][0], "pixel_size")?,
+        number(&record["pixel_size"][1], "pixel_size")?,
+    ];
+    let metres = number(&record["metres_per_unit"], "metres_per_unit")?;
+    let pixel = number(&record["pixel_size_m"], "pixel_size_m")?;
+    let heights_grid = [&record["heights_grid"][0], &record["heights_grid"][1]].map(serde_json::Value::as_u64);
+    if heights_grid != [Some(grid.nx() as u64), Some(grid.ny() as u64)] {
+        bail!(
+            "{shown} describes a {} × {} map, not this {} × {} one, so its native pixel sizes do not apply; give \
+             --measured-pixel (or move the map out of the folder that `wearsim surface import` wrote)",
+            record["heights_grid"][0],
+            record["heights_grid"][1],
+            grid.nx(),
+            grid.ny()
+        );
+    }
+    let unit = record["unit"].as_str().unwrap_or("");
+    let own = grid.pixel_size();
+    Ok(Some((
+        native.map(|p| own * p * metres / pixel),
+        format!(
+            "{shown}: `wearsim surface import --resample` put native pixels of {} × {} {unit} on square pixels of \
+             {} m",
+            native[0], native[1], pixel
+        ),
+    )))
+}
+
 /// The `[surface]` block that carries the map's spectrum as measured, for a spectrum that is not
 /// self-affine: the map as this command read it (its path made absolute, so that a run file
 /// anywhere finds it), with the units and size it was given.
@@ -265,14 +337,15 @@ fn spectrum_block(args: &FitArgs, grid: &Grid, window: topography::Window, unit:
     )
 }
 
-/// The fit in numbers: its band of wavenumbers, what it left out, the x/y power ratio and the
-/// periodicity of the prepared map.
+/// The fit in numbers: its band of wavenumbers, what it left out, the band's h_rms against the
+/// whole map's, the x/y power ratio and the periodicity of the prepared map.
 fn report_fit(fit: &topography::SpectrumFit, periodicity: &topography::Periodicity) {
     say!(
         "fitted C(q) ∝ q^−2(1+H) over q = {:.4e} … {:.4e} (2π/λ, {} shells, {} window), R² = {} (log–log PSD); \
          left out: {} shells at longer wavelengths than λ_u and {} at shorter than λ_l, down to the floor \
-         (round-off or noise) at {:.1e} of the power law at λ_l; x/y power ratio {:.2}; periodicity of the \
-         prepared map: border jumps {:.1} (x) and {:.1} (y) typical steps",
+         (round-off or noise) at {:.1e} of the power law at λ_l; h_rms of the band {:.4e}, of the whole map {:.4e} \
+         ({:.1} % of its variance outside the band); x/y power ratio {:.2}; periodicity of the prepared map: border \
+         jumps {:.1} (x) and {:.1} (y) typical steps",
         fit.fitted_q[0],
         fit.fitted_q[1],
         fit.shells,
@@ -281,6 +354,9 @@ fn report_fit(fit: &topography::SpectrumFit, periodicity: &topography::Periodici
         fit.shells_longer,
         fit.shells_shorter,
         fit.floor,
+        fit.rms_height,
+        fit.map_rms_height,
+        100.0 * fit.out_of_band_share,
         fit.anisotropy,
         periodicity.border_step_x,
         periodicity.border_step_y
@@ -312,7 +388,7 @@ fn write_pair(
 }
 
 /// The `[surface]` block of a fit, with the generation parameters it gives on the map's grid and
-/// the notes on what they leave out: the self-affine block, or for a spectrum that is not
+/// the notes on what they adjust and leave out (the variance outside the band, when it is much): the self-affine block, or for a spectrum that is not
 /// self-affine `spectrum_block` with the fit kept below as comments. The fit is reported.
 fn fitted_block(
     fit: &topography::SpectrumFit,
@@ -324,12 +400,16 @@ fn fitted_block(
     spectrum_block: &str,
 ) -> (String, SpectrumParams, Vec<String>) {
     let grid = loaded.surface.grid();
-    let (params, fit_notes) = fit.spectrum(&grid);
+    let (params, mut fit_notes) = fit.spectrum(&grid);
     for note in &fit_notes {
         tell!("warning: {note}");
     }
     let block = topography::surface_block(&grid, &params, seed, source, unit.trim_matches(['(', ')']));
     report_fit(fit, &loaded.periodicity);
+    if let Some(note) = fit.out_of_band_note() {
+        tell!("note: {note}");
+        fit_notes.push(note);
+    }
     if let Some(w) = fit.poor_fit_warning() {
         tell!("warning: {w}");
     }
@@ -386,7 +466,16 @@ fn run_fit(args: &FitArgs) -> Result<()> {
         .file
         .file_name()
         .map_or_else(|| args.file.display().to_string(), |n| n.to_string_lossy().into());
-    let fitted = topography::fit(surface);
+    let measured = measured_pixel(args, &grid)?;
+    if let Some(([px, py], from)) = &measured {
+        tell!(
+            "note: the map was resampled onto finer pixels than it was measured with ({from}): the fit uses only the \
+             measured wavevectors, |q_x| ≤ π/Δx and |q_y| ≤ π/Δy of the native pixels Δx = {px:.4e}, Δy = {py:.4e} \
+             {u} (beyond them the pixels are interpolated)",
+            u = unit.trim_matches(['(', ')'])
+        );
+    }
+    let fitted = topography::fit_measured(surface, measured.as_ref().map(|m| m.0));
     let verdict = match &fitted {
         Ok(fit) => fit.verdict(),
         Err(e) => topography::Verdict::no_band(&e.to_string()),
@@ -406,6 +495,12 @@ fn run_fit(args: &FitArgs) -> Result<()> {
     };
     if !verdict.self_affine {
         note_not_self_affine(&source, &verdict, fitted.is_ok());
+        if measured.is_some() {
+            tell!(
+                "note: the source = \"spectrum\" block carries the map's whole stored spectrum, the interpolated \
+                 wavevectors beyond the native pixels' Nyquist wavenumbers included (a run file takes no native pixel)"
+            );
+        }
     }
     if args.height_unit.is_some() {
         say!("# in a run file with units = \"si\"");
@@ -423,6 +518,7 @@ fn run_fit(args: &FitArgs) -> Result<()> {
             fitted.as_ref().ok().zip(spectrum.as_ref()),
             &verdict,
             &notes,
+            measured.as_ref().map(|m| m.1.as_str()),
         ),
     )?;
     if args.generate {

@@ -375,7 +375,10 @@ pub fn surface_summary(config: &RunConfig, top: &SurfaceStatistics, bottom: &Sur
 }
 
 /// `fit.json` of `wearsim surface fit`: the file, how it was prepared, the fitted parameters, the
-/// spectrum a run would generate from them and what was adjusted on the way (`notes`).
+/// spectrum a run would generate from them, what was adjusted on the way and what the band leaves
+/// out (`notes`), and where the native pixels of a resampled map came from (`measured_pixel_from`:
+/// `--measured-pixel` or the import.json beside the map; null when the whole stored spectrum was
+/// measured).
 pub fn surface_fit_summary(
     file: &std::path::Path,
     preprocess: &crate::topography::Preprocess,
@@ -384,6 +387,7 @@ pub fn surface_fit_summary(
     fit: Option<(&crate::topography::SpectrumFit, &crate::surface::SpectrumParams)>,
     verdict: &crate::topography::Verdict,
     notes: &[String],
+    measured_pixel_from: Option<&str>,
 ) -> Value {
     let (fit, spectrum) = fit.unzip();
     json!({
@@ -399,6 +403,7 @@ pub fn surface_fit_summary(
         "self_affine": verdict.self_affine,
         "reasons": verdict.reasons,
         "notes": notes,
+        "measured_pixel_from": measured_pixel_from,
         "method": crate::topography::FIT_METHOD,
     })
 }
