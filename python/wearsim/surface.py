@@ -303,7 +303,12 @@ def periodicity(heights: Any) -> Tuple[float, float]:
 
 
 def fit_surface(
-    heights: Any, length: Optional[float] = None, *, detrend: Detrend = "plane", taper: float = 0.0
+    heights: Any,
+    length: Optional[float] = None,
+    *,
+    detrend: Detrend = "plane",
+    taper: float = 0.0,
+    measured_pixel: Union[None, float, Tuple[float, float]] = None,
 ) -> Dict[str, Any]:
     """Self-affine parameters of a surface from its radially averaged PSD C(q) (paper §4.1:
     C(q) ∝ q^(−2(1+H)) between q = 2π/λ_u and 2π/λ_l), fitted as ``wearsim surface fit`` fits a
@@ -312,7 +317,27 @@ def fit_surface(
     The map is levelled first, as the CLI does: ``detrend`` (default ``"plane"``, the CLI's
     ``--detrend``: a tilt would put its power into the longest wavelengths and be read as the
     roughness and λ_u) and ``taper`` (default 0, its ``--taper``), as :func:`preprocess_surface`;
-    ``detrend="none"`` fits the heights as given. ``rms_height`` is that of the levelled map.
+    ``detrend="none"`` fits the heights as given.
+
+    ``rms_height`` is the h_rms of the self-affine band, not of the whole map: the square root of
+    the map's variance held by the modes 2π/λ_u ≤ |q| ≤ 2π/λ_l (λ_l and λ_u as ``spectrum`` gives
+    them), from its PSD as measured (Hann-windowed for a map that is not periodic, as below, and
+    normalised so that it sums to the map's variance). The paper's surfaces (§4.1) hold the power
+    law between λ_u and λ_l and nothing else, so that is the h_rms that gives generated surfaces
+    the measured PSD level in the band; the whole map's would add the variance outside it (a
+    waviness or form beyond λ_u, noise beyond λ_l). ``map_rms_height`` is the whole levelled map's,
+    and ``out_of_band_share`` the share of its variance outside the band,
+    1 − (rms_height/map_rms_height)² (0 at least); above 10 %, ``notes`` says so.
+
+    ``measured_pixel``: the native pixel size of a map resampled onto finer pixels than it was
+    measured with (what ``wearsim surface import --resample`` records in import.json as
+    ``pixel_size``, there in its ``unit``), one value for both axes or ``(dx, dy)``, in the unit of
+    the fit's lengths (that of ``length``: metres for a topography that states its unit). Beyond the
+    native Nyquist wavenumber π/dx along x or π/dy along y the resampled map's pixels are
+    interpolated and its spectrum is the interpolation's, so the fit (floor, band, slope, λ_l, the
+    x/y power ratio, the band's h_rms) uses only the wavevectors with |q_x| ≤ π/dx and
+    |q_y| ≤ π/dy; ``measured_pixel`` in the result says which. Default: the whole stored spectrum is
+    measured.
 
     The PSD of a map that is not periodic (border jumps above 3 typical steps, see
     :func:`periodicity`) is taken under a Hann window, after levelling by a plane: the jump at its
@@ -337,7 +362,8 @@ def fit_surface(
 
     Returns what ``wearsim surface fit`` writes in its fit.json for the same map: the fit's fields
     (its ``"fit"``) ``hurst`` H (from the slope −2(1+H)), ``lambda_lower`` and ``lambda_upper``
-    (where the PSD leaves the power law at short and long wavelengths), ``rms_height``, ``r2`` of
+    (where the PSD leaves the power law at short and long wavelengths), ``rms_height`` (the band's),
+    ``map_rms_height``, ``out_of_band_share``, ``measured_pixel`` (``[dx, dy]`` or None), ``r2`` of
     the log–log fit, the number of ``shells`` it used and their wavenumbers ``fitted_q`` (first and
     last, q = 2π/λ in radians per unit length), the shells left out at longer wavelengths than λ_u
     (``shells_longer``) and at shorter wavelengths than λ_l (``shells_shorter``), ``floor``, the
@@ -345,13 +371,22 @@ def fit_surface(
     ``anisotropy`` (the x/y power ratio over the fitted shells) and ``peak`` (how far the highest
     shell stands above the power law beyond its scatter); and beside them ``spectrum``, the
     parameters a run generates from the fit on this grid (λ_l raised to two pixels and λ_u lowered
-    to the box where the fit ran past them, as ``notes`` says), ``self_affine`` and ``reasons``.
+    to the box where the fit ran past them, as ``notes`` says, with the band's h_rms),
+    ``self_affine`` and ``reasons``.
     Lengths are in the unit of the heights (metres for a topography that states its unit). Pass
     the parameters to :func:`generate_pair` to get periodic surfaces with the measured statistics
     (the paper's model assumes periodic self-affine surfaces)."""
     h, lx = as_heights("heights", heights, length)
     h = _wearsim.preprocess_surface(h, detrend, taper)
-    fit = _wearsim.fit_surface(h, lx)
+    native: Optional[Tuple[float, float]] = None
+    if measured_pixel is not None:
+        pixel = np.atleast_1d(np.asarray(measured_pixel, dtype=np.float64))
+        if pixel.ndim != 1 or pixel.size not in (1, 2):
+            raise ValueError(
+                f"invalid `measured_pixel`: {measured_pixel!r}; give one native pixel size for both axes or (dx, dy)"
+            )
+        native = (float(pixel[0]), float(pixel[-1]))
+    fit = _wearsim.fit_surface(h, lx, native)
     poor_fit = _wearsim.poor_fit_warning(fit.get("r2"))
     if poor_fit is not None:
         warnings.warn(poor_fit, stacklevel=2)

@@ -115,6 +115,28 @@ def test_non_square_pixels_are_refused_and_resampled_on_request(tmp_path):
     np.testing.assert_allclose(a, (0.01 * xs + 0.03 * ys) * 1e-6, atol=1e-15)
 
 
+def test_surface_fit_of_a_resampled_import_takes_the_native_pixels_from_its_import_json(tmp_path, wearsim_bin):
+    # A measurement with pixels of 0.5 µm along x and 1 µm along y (every other row of a self-affine
+    # surface), resampled onto 0.5 µm: `surface fit DIR/heights.npy` reads the native pixels in
+    # DIR/import.json and fits the measured wavevectors only, as fit_surface with measured_pixel does.
+    g = wearsim.generate_surface(
+        256, length=128.0, hurst=0.8, lambda_lower=2.0, lambda_upper=16.0, rms_height=0.1, seed=3
+    )
+    Topography(g[:, ::2], (128.0, 128.0), unit="um").to_netcdf(tmp_path / "rect.nc")
+    import_topography(tmp_path / "rect.nc", tmp_path / "out", resample=True)
+    lx = json.loads((tmp_path / "out" / "import.json").read_text())["length"][0]
+    cli = ["surface", "fit", tmp_path / "out" / "heights.npy", "--length", repr(lx), "--out", tmp_path / "fit"]
+    done = subprocess.run([wearsim_bin, *cli], check=True, capture_output=True, text=True)
+    assert "resampled onto finer pixels" in done.stderr and "import.json" in done.stderr
+    record = json.loads((tmp_path / "fit" / "fit.json").read_text())
+    assert "import.json" in record["measured_pixel_from"]
+    assert record["fit"]["measured_pixel"] == pytest.approx([0.5e-6, 1e-6], rel=1e-9)
+    h = np.load(tmp_path / "out" / "heights.npy")
+    fit = wearsim.fit_surface(h, lx, measured_pixel=(0.5e-6, 1e-6))
+    assert fit["hurst"] == pytest.approx(record["fit"]["hurst"], abs=1e-12)
+    assert fit["rms_height"] == pytest.approx(record["fit"]["rms_height"], rel=1e-12)
+
+
 def test_the_output_folder_is_never_one_it_did_not_write_nor_the_input(tmp_path):
     Topography(self_affine(), (32.0, 32.0), unit="um").to_netcdf(tmp_path / "scan.nc")
     mine = tmp_path / "mine"

@@ -115,16 +115,55 @@ def test_fit_surface_levels_the_map_first_as_the_cli_does(tmp_path, wearsim_bin)
         warnings.simplefilter("ignore")
         try:
             raw = wearsim.fit_surface(tilted, 1.0, detrend="none")
-            assert raw["rms_height"] > 10 * fit["rms_height"]
+            assert raw["map_rms_height"] > 10 * fit["map_rms_height"]
         except ValueError as e:
             assert "H cannot be fitted" in str(e)
     with pytest.raises(ValueError, match="detrend"):
         wearsim.fit_surface(tilted, 1.0, detrend="tilt")
 
 
+def test_fit_surface_gives_the_rms_height_of_the_band_and_reports_the_whole_maps():
+    # A self-affine band (h_rms 0.01 between 1/64 and 1/8) and a cosine of the box's wavelength that
+    # holds 56 % of the variance: the block's h_rms is the band's (paper §4.1), not the whole map's.
+    band = wearsim.generate_surface(512, hurst=0.7, lambda_lower=1 / 64, lambda_upper=1 / 8, rms_height=0.01, seed=2)
+    outside = 1e-4 * 0.56 / 0.44
+    wavy = band + np.sqrt(2 * outside) * np.cos(2 * np.pi * np.arange(512) / 512)[:, None]
+    fit = wearsim.fit_surface(wavy, 1.0, detrend="none")
+    assert fit["rms_height"] == pytest.approx(0.01, rel=0.03)
+    assert fit["spectrum"]["rms_height"] == fit["rms_height"]
+    assert fit["map_rms_height"] == pytest.approx(np.sqrt(1e-4 + outside), rel=1e-6)
+    assert fit["out_of_band_share"] == pytest.approx(0.56, abs=0.02)
+    assert fit["measured_pixel"] is None
+    assert any("56 % of the map's variance lies outside" in n for n in fit["notes"])
+    alone = wearsim.fit_surface(band, 1.0, detrend="none")
+    assert alone["rms_height"] == pytest.approx(alone["map_rms_height"], rel=0.01)
+    assert alone["out_of_band_share"] < 0.01
+    assert not any("outside the self-affine band" in n for n in alone["notes"])
+
+
+def test_fit_surface_of_a_resampled_map_takes_its_native_pixel():
+    # Every other row of a surface whose power law runs to the pixel scale, each repeated: pixels
+    # measured twice as long along y. Given the native pixel, the fit takes the measured wavevectors
+    # (|q_y| ≤ π/Δy) only and recovers the original's H; fitted on all, H is off.
+    n = 256
+    original = wearsim.generate_surface(n, hurst=0.7, lambda_lower=2 / n, lambda_upper=0.25, rms_height=0.01, seed=1)
+    resampled = np.repeat(original[:, ::2], 2, axis=1)
+    h0 = wearsim.fit_surface(original, 1.0, detrend="none")["hurst"]
+    native = wearsim.fit_surface(resampled, 1.0, detrend="none", measured_pixel=(1 / n, 2 / n))
+    assert native["measured_pixel"] == pytest.approx([1 / n, 2 / n])
+    assert native["hurst"] == pytest.approx(h0, abs=0.05)
+    assert abs(wearsim.fit_surface(resampled, 1.0, detrend="none")["hurst"] - h0) > 0.08
+    # One value is both axes: the map's own pixel changes nothing.
+    same = wearsim.fit_surface(original, 1.0, detrend="none", measured_pixel=1 / n)
+    assert same["hurst"] == h0 and same["measured_pixel"] is None
+    for bad in [(1 / n, 2 / n, 3 / n), 0.5 / n]:
+        with pytest.raises(ValueError, match="measured_pixel"):
+            wearsim.fit_surface(resampled, 1.0, measured_pixel=bad)
+
+
 def test_a_poor_power_law_fit_warns_as_the_cli_does(monkeypatch):
     fit = wearsim.fit_surface(surface(), 1.0)
-    monkeypatch.setattr(wearsim.surface._wearsim, "fit_surface", lambda h, lx: {**fit, "r2": 0.5})
+    monkeypatch.setattr(wearsim.surface._wearsim, "fit_surface", lambda h, lx, native=None: {**fit, "r2": 0.5})
     with pytest.warns(UserWarning, match=r"R² < 0\.9"):
         wearsim.fit_surface(surface(), 1.0)
 

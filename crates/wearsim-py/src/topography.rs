@@ -72,14 +72,27 @@ fn periodicity(heights: PyReadonlyArray2<'_, f64>) -> PyResult<(f64, f64)> {
     Ok((p.border_step_x, p.border_step_y))
 }
 
-/// H, λ_l, λ_u and h_rms estimated from the radially averaged PSD, with what `wearsim surface fit`
-/// writes beside them in fit.json: the fit's fields, `spectrum` (the parameters a run generates
-/// from it on this grid), `notes` (what those adjust), `self_affine` and `reasons` (the verdict).
+/// H, λ_l, λ_u and h_rms (the band's) estimated from the radially averaged PSD, with what `wearsim
+/// surface fit` writes beside them in fit.json: the fit's fields, `spectrum` (the parameters a run
+/// generates from it on this grid), `notes` (what those adjust, and the share of the variance the
+/// band leaves out when it is much), `self_affine` and `reasons` (the verdict). `measured_pixel`:
+/// the native pixel sizes (Δx, Δy) of a map resampled onto finer pixels, whose measured
+/// wavevectors alone are fitted.
 #[pyfunction]
-fn fit_surface<'py>(py: Python<'py>, heights: PyReadonlyArray2<'py, f64>, length: f64) -> PyResult<Bound<'py, PyAny>> {
+#[pyo3(signature = (heights, length, measured_pixel = None))]
+fn fit_surface<'py>(
+    py: Python<'py>,
+    heights: PyReadonlyArray2<'py, f64>,
+    length: f64,
+    measured_pixel: Option<(f64, f64)>,
+) -> PyResult<Bound<'py, PyAny>> {
     let s = surface_from("heights", &heights, length)?;
-    let fit = py.detach(|| topography::fit(&s)).map_err(to_py)?;
-    let (spectrum, notes) = fit.spectrum(&s.grid());
+    let measured_pixel = measured_pixel.map(|(x, y)| [x, y]);
+    let fit = py
+        .detach(|| topography::fit_measured(&s, measured_pixel))
+        .map_err(to_py)?;
+    let (spectrum, mut notes) = fit.spectrum(&s.grid());
+    notes.extend(fit.out_of_band_note());
     let verdict = fit.verdict();
     let d = crate::json_to_py(py, &fit)?;
     let dict = d.cast::<PyDict>()?;
