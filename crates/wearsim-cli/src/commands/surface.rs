@@ -305,9 +305,9 @@ fn measured_pixel(args: &FitArgs, grid: &Grid) -> Result<Option<([f64; 2], Strin
     Ok(Some((
         native.map(|p| own * p * metres / pixel),
         format!(
-            "{shown}: `wearsim surface import --resample` put native pixels of {} × {} {unit} on square pixels of \
-             {} m",
-            native[0], native[1], pixel
+            "{shown}: `wearsim surface import --resample` put native pixels of {:.6e} × {:.6e} {unit} on square \
+             pixels of {pixel:.6e} m",
+            native[0], native[1]
         ),
     )))
 }
