@@ -64,7 +64,8 @@ print(f"border jump / inner step: {jump_x:.1f} along x, {jump_y:.1f} along y")
 #
 # 1. Taper the borders to the mean (`taper`, a fraction of each side) and use the measured map.
 # 2. Fit its self-affine parameters and generate periodic surfaces with the same statistics (the
-#    paper's setting). λ_l and λ_u are in metres (the fit's `length` unit), h_rms in metres.
+#    paper's setting). λ_l and λ_u are in metres (the fit's `length` unit), h_rms in metres: the
+#    fitted band's (`map_rms_height` is the whole map's), which the generated band then carries.
 
 # %%
 tapered = wearsim.preprocess_surface(heights, detrend="plane", taper=0.1)
