@@ -379,6 +379,7 @@ pub fn surface_summary(config: &RunConfig, top: &SurfaceStatistics, bottom: &Sur
 /// out (`notes`), and where the native pixels of a resampled map came from (`measured_pixel_from`:
 /// `--measured-pixel` or the import.json beside the map; null when the whole stored spectrum was
 /// measured).
+#[allow(clippy::too_many_arguments)] // the parts of fit.json, one each
 pub fn surface_fit_summary(
     file: &std::path::Path,
     preprocess: &crate::topography::Preprocess,
