@@ -424,9 +424,23 @@ fn fitted_block(
     (block, params, fit_notes)
 }
 
+/// The note of the native pixels of a resampled map (`measured`: with where they come from), in
+/// `unit`: the fit takes only the wavevectors they measured.
+fn note_measured(measured: Option<&([f64; 2], String)>, unit: &str) {
+    if let Some(([px, py], from)) = measured {
+        tell!(
+            "note: the map was resampled onto finer pixels than it was measured with ({from}): the fit uses only the \
+             measured wavevectors, |q_x| ≤ π/Δx and |q_y| ≤ π/Δy of the native pixels Δx = {px:.4e}, Δy = {py:.4e} \
+             {u} (beyond them the pixels are interpolated)",
+            u = unit.trim_matches(['(', ')'])
+        );
+    }
+}
+
 /// The note of a spectrum that is not self-affine (`verdict` says why): the block printed carries
-/// its measured PSD, with the self-affine fit as comments where there is one (`fitted`).
-fn note_not_self_affine(source: &str, verdict: &topography::Verdict, fitted: bool) {
+/// its measured PSD, with the self-affine fit as comments where there is one (`fitted`); of a
+/// `resampled` map, the whole stored spectrum (a run file takes no native pixel).
+fn note_not_self_affine(source: &str, verdict: &topography::Verdict, fitted: bool, resampled: bool) {
     tell!(
         "note: the spectrum of {source} is not self-affine ({}); the block below generates periodic surfaces that \
          carry its measured 2D PSD (source = \"spectrum\"){}",
@@ -437,6 +451,12 @@ fn note_not_self_affine(source: &str, verdict: &topography::Verdict, fitted: boo
             ""
         }
     );
+    if resampled {
+        tell!(
+            "note: the source = \"spectrum\" block carries the map's whole stored spectrum, the interpolated \
+             wavevectors beyond the native pixels' Nyquist wavenumbers included (a run file takes no native pixel)"
+        );
+    }
 }
 
 fn run_fit(args: &FitArgs) -> Result<()> {
@@ -467,14 +487,7 @@ fn run_fit(args: &FitArgs) -> Result<()> {
         .file_name()
         .map_or_else(|| args.file.display().to_string(), |n| n.to_string_lossy().into());
     let measured = measured_pixel(args, &grid)?;
-    if let Some(([px, py], from)) = &measured {
-        tell!(
-            "note: the map was resampled onto finer pixels than it was measured with ({from}): the fit uses only the \
-             measured wavevectors, |q_x| ≤ π/Δx and |q_y| ≤ π/Δy of the native pixels Δx = {px:.4e}, Δy = {py:.4e} \
-             {u} (beyond them the pixels are interpolated)",
-            u = unit.trim_matches(['(', ')'])
-        );
-    }
+    note_measured(measured.as_ref(), unit);
     let fitted = topography::fit_measured(surface, measured.as_ref().map(|m| m.0));
     let verdict = match &fitted {
         Ok(fit) => fit.verdict(),
@@ -494,13 +507,7 @@ fn run_fit(args: &FitArgs) -> Result<()> {
         Err(_) => (spectrum_block.clone(), None, Vec::new()),
     };
     if !verdict.self_affine {
-        note_not_self_affine(&source, &verdict, fitted.is_ok());
-        if measured.is_some() {
-            tell!(
-                "note: the source = \"spectrum\" block carries the map's whole stored spectrum, the interpolated \
-                 wavevectors beyond the native pixels' Nyquist wavenumbers included (a run file takes no native pixel)"
-            );
-        }
+        note_not_self_affine(&source, &verdict, fitted.is_ok(), measured.is_some());
     }
     if args.height_unit.is_some() {
         say!("# in a run file with units = \"si\"");

@@ -237,7 +237,7 @@ pub fn fit_measured(surface: &Surface, measured_pixel: Option<[f64; 2]>) -> Resu
         .iter()
         .map(|&i| all[i].psd / power_law(all[i].q) * (-3.0 * (2.0 / all[i].modes).sqrt()).exp())
         .fold(0.0f64, f64::max);
-    let mut fit = SpectrumFit {
+    let fit = SpectrumFit {
         hurst: -line.slope / 2.0 - 1.0,
         lambda_lower: length / q_short,
         lambda_upper: length / q_long,
@@ -255,20 +255,7 @@ pub fn fit_measured(surface: &Surface, measured_pixel: Option<[f64; 2]>) -> Resu
         anisotropy: psd.anisotropy(runs.q(a), runs.q(b)),
         peak,
     };
-    // The band as the block on the map's grid writes it.
-    let (lambda_lower, lambda_upper, _) = fit.cutoffs(&surface.grid());
-    let band = psd.band_variance(length / lambda_upper, length / lambda_lower);
-    // The map's own variance, not its windowed PSD's sum: a Hann window underestimates the power
-    // of wavelengths near the map's side (a cosine of the side's wavelength by a factor 3), which
-    // is where the variance outside the band mostly lies.
-    let map = fit.map_rms_height.powi(2);
-    fit.rms_height = band.sqrt();
-    fit.out_of_band_share = if map > 0.0 {
-        (1.0 - band / map).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    Ok(fit)
+    Ok(fit.with_band_rms(&psd))
 }
 
 /// The floor of the PSD: its median over the outermost half octave of wavenumbers, q ≥ q_max/√2.
@@ -403,6 +390,26 @@ impl Verdict {
 }
 
 impl SpectrumFit {
+    /// The fit with the band's h_rms (`rms_height`) and the share of the map's variance outside it,
+    /// from `psd`, the map's PSD as fitted: the band as the block on the map's grid writes it.
+    fn with_band_rms(mut self, psd: &MeasuredPsd) -> Self {
+        let grid = psd.grid();
+        let (lambda_lower, lambda_upper, _) = self.cutoffs(&grid);
+        let length = grid.length_x();
+        let band = psd.band_variance(length / lambda_upper, length / lambda_lower);
+        // The map's own variance, not its windowed PSD's sum: a Hann window underestimates the
+        // power of wavelengths near the map's side (a cosine of the side's wavelength by a factor
+        // 3), which is where the variance outside the band mostly lies.
+        let map = self.map_rms_height.powi(2);
+        self.rms_height = band.sqrt();
+        self.out_of_band_share = if map > 0.0 {
+            (1.0 - band / map).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        self
+    }
+
     /// Whether the spectrum is self-affine: isotropic within a factor [`ANISOTROPIC`], no peak
     /// above [`PEAK`], H in (0, 1], a fitted band of at least two octaves of wavenumbers and R² ≥ 0.9.
     pub fn verdict(&self) -> Verdict {
