@@ -416,8 +416,8 @@ pub fn run_reach_warnings(
 }
 
 /// Where one load's static maps lie outside `domain`: their contact fraction, and N* per map of
-/// each fracture energy (below the range only from [`RESOLVED_CRITICAL_JUNCTIONS`] on, where the
-/// warning about a few junctions does not already say it).
+/// each fracture energy (any N* > 0 outside the range: below [`RESOLVED_CRITICAL_JUNCTIONS`] the
+/// warning about a few junctions says it too).
 pub fn load_reach(domain: &Domain, samples: &[Sample], material: &Material, load: f64) -> Vec<OutsideReach> {
     let mut out = Vec::new();
     if samples.is_empty() {
@@ -446,7 +446,9 @@ pub fn load_reach(domain: &Domain, samples: &[Sample], material: &Material, load
     {
         let (n, _) = critical_stats(samples, e);
         let (lo, hi) = domain.critical_junctions;
-        let low = n >= RESOLVED_CRITICAL_JUNCTIONS && n < lo;
+        // Below the range the interval goes too (the held-out sets: with N* ≲ 1 per map the rule
+        // missed by factors of 2); the warning of a few junctions already says why under 2 per map.
+        let low = n > 0.0 && n < lo;
         if low || n > hi {
             out.push(OutsideReach {
                 what: format!("N* = {n:.1} per map"),
@@ -1229,7 +1231,7 @@ fn result_warnings(r: &EstimateResult, load: f64, samples: usize, box_side: f64)
         out.push(format!(
             "{what}: {:.2} critical junctions per static map, under {RESOLVED_CRITICAL_JUNCTIONS}: the estimate rests \
              on a few junctions, its sampling error is {:.0} % (maps are added for the {:.0} % target only from \
-             {RESOLVED_CRITICAL_JUNCTIONS} per map on) and its interval is wide; take a larger box",
+             {RESOLVED_CRITICAL_JUNCTIONS} per map on); take a larger box",
             r.critical_junctions_mean,
             100.0 * r.critical_junctions_sampling_error.unwrap_or(f64::NAN),
             100.0 * TARGET_SAMPLING_ERROR
@@ -1439,6 +1441,13 @@ mod tests {
             Some("outside the calibrated domain: N* = 200.0 per map")
         );
         assert!(r[1].interval_withheld.is_none() && r[1].wear_rate_low.is_some());
+        // Rare critical junctions, one per map (below the calibrated 3): no interval either.
+        let (r, _) = estimate(&vec![sample2(0.03, [10, 1]); 4], &paper, &CALIBRATION);
+        assert_eq!(
+            r[1].interval_withheld.as_deref(),
+            Some("outside the calibrated domain: N* = 1.0 per map")
+        );
+        assert!(r[0].interval_withheld.is_none());
         // A contact fraction outside the range concerns every 𝒢, with the surfaces' reason beside it.
         let (r, _) = estimate(&vec![sample2(0.2, [10, 4]); 4], &measured, &CALIBRATION);
         assert_eq!(

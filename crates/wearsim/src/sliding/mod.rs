@@ -17,8 +17,8 @@ mod state;
 pub use checkpoint::{Checkpointing, Resumed, CHECKPOINT_EVERY};
 pub use fit::{box_warnings, load_trend_warnings, resolution_warnings, FEW_PARTICLES, PAPER_MAX_WEAR_COEFFICIENT};
 pub use records::{
-    is_run_in, lineages_left, not_run_in, InitialContactMemory, LoadRun, StepRecord, Timing, WearResult,
-    RUN_IN_DECAY_LENGTHS, RUN_IN_LINEAGES_LEFT,
+    is_run_in, lineages_left, not_run_in, run_in_fits, InitialContactMemory, LoadRun, StepRecord, Timing, WearResult,
+    MIN_FIT_WINDOW, RUN_IN_DECAY_LENGTHS, RUN_IN_LINEAGES_LEFT,
 };
 pub use schedule::{
     schedule, SlidingConfig, SlidingSetup, DEFAULT_DISTANCE, DEFAULT_RUNNING_IN, DEFAULT_STEP, DEFAULT_STEP_RUNNING_IN,
