@@ -218,9 +218,10 @@ def estimate(
     ``wear_coefficient`` and ``particle_rate`` and their ``_low``/``_high`` 95 % interval for a
     sliding run of the same box and distance (NaN where the setting lies outside the calibrated
     domain — measured or other surfaces, a short running-in, a contact fraction or N* per map
-    beyond the calibration's —, with ``interval_withheld`` naming why), and the static features (``critical_junctions_mean``,
-    its ``critical_junctions_sampling_error``, ``mean_critical_diameter``, ``critical_coverage``,
-    ``critical_residence``, ``expected_particles``); the summary equals ``wearsim estimate``'s
+    beyond the calibration's —, with ``interval_withheld`` naming why), and the static features
+    (``critical_junctions_mean``, its ``critical_junctions_sampling_error``,
+    ``mean_critical_diameter``, ``critical_coverage``, ``critical_residence``,
+    ``expected_particles``); the summary equals ``wearsim estimate``'s
     ``summary.json`` and is marked ``"model": "estimate"``. ``samples`` fixes the static maps per
     load (1 to 16; default: from 4 until N*'s sampling error is at most 10 %). It is an estimate, not
     a sliding run: it gives no wear-volume curve, running-in or memory, and its warnings (also
