@@ -1215,17 +1215,19 @@ fn result_warnings(r: &EstimateResult, load: f64, samples: usize, box_side: f64)
         "F_N = {load:.4e}, 𝒢 = {:.4e} (d* = {:.4e})",
         r.fracture_energy, r.critical_diameter
     );
-    if r.wear_rate.is_none() && r.critical_diameter >= box_side {
+    if r.wear_rate.is_none() {
+        let advice = if r.critical_diameter >= box_side {
+            format!(
+                "; d* is {:.2} times the box's shorter side, so no junction can reach it in this box at any load: \
+                 take a box of several d*",
+                r.critical_diameter / box_side
+            )
+        } else {
+            " (the sliding model may still form a rare particle); raise the load or take a larger box".into()
+        };
         out.push(format!(
             "{what}: no junction of the {samples} static map(s) reaches d*, so no particle is expected and W, k and \
-             dN*₊/ds are undefined; d* is {:.2} times the box's shorter side, so no junction can reach it in this box \
-             at any load: take a box of several d*",
-            r.critical_diameter / box_side
-        ));
-    } else if r.wear_rate.is_none() {
-        out.push(format!(
-            "{what}: no junction of the {samples} static map(s) reaches d*, so no particle is expected and W, k and \
-             dN*₊/ds are undefined (the sliding model may still form a rare particle); raise the load or take a larger box"
+             dN*₊/ds are undefined{advice}"
         ));
     } else if r.critical_junctions_mean < RESOLVED_CRITICAL_JUNCTIONS {
         out.push(format!(

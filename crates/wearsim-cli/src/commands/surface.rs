@@ -388,8 +388,9 @@ fn write_pair(
 }
 
 /// The `[surface]` block of a fit, with the generation parameters it gives on the map's grid and
-/// the notes on what they adjust and leave out (the variance outside the band, when it is much): the self-affine block, or for a spectrum that is not
-/// self-affine `spectrum_block` with the fit kept below as comments. The fit is reported.
+/// the notes on what they adjust and leave out (the variance outside the band, when it is much):
+/// the self-affine block, or for a spectrum that is not self-affine `spectrum_block` with the fit
+/// kept below as comments. The fit is reported.
 fn fitted_block(
     fit: &topography::SpectrumFit,
     verdict: &topography::Verdict,

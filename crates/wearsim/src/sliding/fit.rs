@@ -221,16 +221,17 @@ fn fit_warnings(
     d_over_box: f64,
     warnings: &mut Vec<String>,
 ) {
-    if particles_in_fit == 0 && d_over_box >= 1.0 {
+    if particles_in_fit == 0 {
+        let why = if d_over_box >= 1.0 {
+            format!(
+                "d* is {d_over_box:.2} times the box's shorter side, so no junction can reach it in this box at any \
+                 load: take a box of several d*"
+            )
+        } else {
+            "no junction grows to d* in this box at this load".into()
+        };
         warnings.push(format!(
-            "{context}: no particle formed after running-in, so W = 0 and its fit (R²) is undefined; d* is \
-             {d_over_box:.2} times the box's shorter side, so no junction can reach it in this box at any load: take \
-             a box of several d*"
-        ));
-    } else if particles_in_fit == 0 {
-        warnings.push(format!(
-            "{context}: no particle formed after running-in, so W = 0 and its fit (R²) is undefined; no junction \
-             grows to d* in this box at this load"
+            "{context}: no particle formed after running-in, so W = 0 and its fit (R²) is undefined; {why}"
         ));
     } else if particles_in_fit < FEW_PARTICLES {
         warnings.push(format!(

@@ -328,6 +328,7 @@ fn row(m: &MappedJob, w: &crate::sliding::WearResult, e: &EstimateResult) -> Com
         (Some(a), Some(b)) if b > 0.0 => Some(a / b - 1.0),
         _ => None,
     };
+    let scored = scored(e, w);
     let covered = |lo: Option<f64>, hi: Option<f64>, slid: Option<f64>| match (lo, hi, slid) {
         (Some(lo), Some(hi), Some(v)) => Some(lo <= v && v <= hi),
         _ => None,
@@ -362,10 +363,21 @@ fn row(m: &MappedJob, w: &crate::sliding::WearResult, e: &EstimateResult) -> Com
         wear_rate_error: error(e.wear_rate, w.wear_rate),
         particle_rate_error: error(e.particle_rate, w.particle_rate),
         expected_particles: e.expected_particles,
-        wear_rate_covered: covered(e.wear_rate_low, e.wear_rate_high, w.wear_rate),
+        wear_rate_covered: scored.covered(),
         particle_rate_covered: covered(e.particle_rate_low, e.particle_rate_high, w.particle_rate),
-        scored: scored(e, w),
+        scored,
         interval_withheld: e.interval_withheld.clone(),
+    }
+}
+
+impl Scored {
+    /// Whether the sliding W lies in the interval, where the estimate gives one.
+    pub fn covered(self) -> Option<bool> {
+        match self {
+            Scored::Covered => Some(true),
+            Scored::NotCovered => Some(false),
+            _ => None,
+        }
     }
 }
 

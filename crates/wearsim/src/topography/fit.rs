@@ -718,22 +718,29 @@ mod tests {
         }
     }
 
+    /// The heights of the 256² corner (side 1) of a periodic self-affine surface four times its side
+    /// (λ_l = 4 of its pixels, λ_u a quarter of its side): a map that is not periodic, as a
+    /// measurement is.
+    fn corner_of_a_larger_surface(hurst: f64, seed: u64) -> Vec<f64> {
+        let big = generated(
+            Grid::square(1024, 4.0).unwrap(),
+            hurst,
+            4.0 / 256.0,
+            0.25,
+            Generation::RandomPhase,
+            seed,
+        );
+        (0..256 * 256)
+            .map(|k| big.heights()[(k / 256) * 1024 + k % 256])
+            .collect()
+    }
+
     /// A map cut out of a larger periodic surface (not periodic, as a measurement): the fit takes
     /// its Hann-windowed PSD and recovers H, where the leakage of the border jump flattens the
     /// plain PSD; a periodic self-affine surface is judged self-affine with no window.
     #[test]
     fn a_measured_map_is_fitted_windowed_and_self_affine_surfaces_pass_the_verdict() {
-        let big = generated(
-            Grid::square(1024, 4.0).unwrap(),
-            0.8,
-            4.0 / 256.0,
-            0.25,
-            Generation::RandomPhase,
-            2,
-        );
-        let h: Vec<f64> = (0..256 * 256)
-            .map(|k| big.heights()[(k / 256) * 1024 + k % 256])
-            .collect();
+        let h = corner_of_a_larger_surface(0.8, 2);
         let map = levelled(&Surface::new("map", Grid::square(256, 1.0).unwrap(), h).unwrap());
         let f = fit(&map).unwrap();
         assert_eq!(f.window, Window::Hann);
@@ -863,17 +870,7 @@ mod tests {
     /// scatter makes of it.
     #[test]
     fn the_band_rms_of_a_map_that_is_not_periodic_comes_from_its_windowed_psd() {
-        let big = generated(
-            Grid::square(1024, 4.0).unwrap(),
-            0.7,
-            4.0 / 256.0,
-            0.25,
-            Generation::RandomPhase,
-            3,
-        );
-        let cut: Vec<f64> = (0..256 * 256)
-            .map(|k| big.heights()[(k / 256) * 1024 + k % 256])
-            .collect();
+        let cut = corner_of_a_larger_surface(0.7, 3);
         let grid = Grid::square(256, 1.0).unwrap();
         let band_rms = levelled(&Surface::new("band", grid, cut.clone()).unwrap()).rms_height();
         let amplitude = 2.0 * band_rms;
