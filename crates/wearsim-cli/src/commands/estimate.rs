@@ -61,7 +61,7 @@ fn maybe(units: Units, quantity: &str, value: Option<f64>) -> String {
 fn interval(units: Units, quantity: &str, lo: Option<f64>, hi: Option<f64>) -> String {
     match (lo, hi) {
         (Some(lo), Some(hi)) => format!(
-            "[{}, {}]",
+            " [{}, {}]",
             with_unit(units, quantity, lo),
             with_unit(units, quantity, hi)
         ),
@@ -109,7 +109,7 @@ pub fn run(args: &Args) -> Result<()> {
     for l in &outcome.loads {
         for r in &l.results {
             say!(
-                "F_N = {}, d* = {}: W = {} {}, k = {} {}, dN*₊/ds = {} {}; N* = {:.2} (sampling error {}), d̄ = {}{}",
+                "F_N = {}, d* = {}: W = {}{}, k = {}{}, dN*₊/ds = {}{}; N* = {:.2} (sampling error {}), d̄ = {}{}",
                 with_unit(units, "load", l.load),
                 with_unit(units, "critical_diameter", r.critical_diameter),
                 maybe(units, "wear_rate", r.wear_rate),

@@ -462,17 +462,21 @@ impl ComparisonSummary {
         if self.no_sliding_rate > 0 {
             others.push(format!("no sliding W in {}", self.no_sliding_rate));
         }
+        let coverage = match self.coverage {
+            Some(c) => format!(
+                "the 95 % interval covers W in {}/{} with an interval ({:.0} %) and dN*₊/ds in {}/{}",
+                self.wear_rate_covered,
+                self.with_interval,
+                100.0 * c,
+                self.particle_rate_covered,
+                self.with_interval
+            ),
+            None => "no setting has an interval".into(),
+        };
         let mut lines = vec![format!(
-            "{what}: {} settings, every one scored: the 95 % interval covers W in {}/{} with an interval{} and \
-             dN*₊/ds in {}/{}{}; W and k median |error| {}, worst {}, dN*₊/ds median {}, worst {}, over the {} with at \
-             least {} particles ({} with fewer left out of the errors only)",
+            "{what}: {} settings, every one scored: {coverage}{}; W and k median |error| {}, worst {}, dN*₊/ds median \
+             {}, worst {}, over the {} with at least {} particles ({} with fewer left out of the errors only)",
             self.settings,
-            self.wear_rate_covered,
-            self.with_interval,
-            self.coverage
-                .map_or(String::new(), |c| format!(" ({:.0} %)", 100.0 * c)),
-            self.particle_rate_covered,
-            self.with_interval,
             if others.is_empty() {
                 String::new()
             } else {
@@ -751,6 +755,11 @@ mod tests {
         assert_eq!(s.not_covered.len(), 2, "{:?}", s.not_covered);
         assert!(s.not_covered[0].contains("0 particles formed, 50.0 expected): the sliding run formed none"));
         assert!(s.not_covered[1].contains("3 particles formed, none expected): no estimate"));
+        let none = summarize(&rows[2..4], 20).describe("in use");
+        assert!(
+            none[0].starts_with("in use: 2 settings, every one scored: no setting has an interval; no interval in 2"),
+            "{none:?}"
+        );
         let lines = s.describe("with the constants in use");
         assert!(
             lines[0].contains("covers W in 1/2 with an interval (50 %)"),
