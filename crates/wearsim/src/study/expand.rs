@@ -40,14 +40,34 @@ impl Job {
     }
 
     /// Whether a job result was computed for this job: same index, material, load and inputs
-    /// (compared as values).
+    /// (compared as values), but for where the surface files lay ([`without_file_paths`]): a job
+    /// file records them as absolute paths, and a study folder committed to a repository or moved
+    /// with its surface files is read where it is now. The files themselves are compared by their
+    /// contents, which the study's hash covers (a folder whose surface files changed is refused
+    /// when its stored study is read, before any job file is).
     pub fn is_result_of(&self, r: &JobResult) -> bool {
-        r.index == self.index && r.material == self.material && r.load == self.load() && r.inputs == self.inputs()
+        r.index == self.index
+            && r.material == self.material
+            && r.load == self.load()
+            && without_file_paths(&r.inputs) == without_file_paths(&self.inputs())
     }
 
     /// One line saying which job this is, for messages.
     pub fn describe(&self) -> String {
         format!("job {} ({}, load {:e})", self.index, self.material, self.load())
+    }
+}
+
+/// `record` without the paths of its surface files (`top`, `bottom`, a spectrum's `map`), as a job
+/// is identified ([`Job::is_result_of`]): absolute where the study ran, they say where the folder
+/// lay, not which surfaces it ran (the study's hash holds their contents).
+fn without_file_paths(record: &InputRecord) -> InputRecord {
+    let seen = |p: &Option<String>| p.as_ref().map(|_| String::new());
+    InputRecord {
+        top: seen(&record.top),
+        bottom: seen(&record.bottom),
+        map: seen(&record.map),
+        ..record.clone()
     }
 }
 
@@ -772,6 +792,45 @@ loads = [5e-4, 1e-3]
         std::fs::remove_file(dir.path().join("top.npy")).unwrap();
         assert!(expand(text, dir.path()).is_err());
         assert_eq!(expand_stored(text, dir.path()).unwrap().jobs.len(), 1);
+    }
+
+    /// A study folder committed to a repository or moved with its surface files: its job files,
+    /// which record the map where the study ran, are the jobs of the study read where it lies
+    /// now. The map is compared by its contents (the hash), not by its path.
+    #[test]
+    fn a_job_is_known_by_its_surfaces_contents_not_by_where_the_folder_lies() {
+        let (a, b) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
+        let h: Vec<f64> = (0..256).map(|k| 1e-3 * (k as f64 * 0.37).sin()).collect();
+        for dir in [&a, &b] {
+            crate::io::write_npy_f64(&dir.path().join("map.npy"), 16, 16, &h).unwrap();
+        }
+        let text = "[surface]\nsource = \"spectrum\"\nmap = \"map.npy\"\nmap_length = 1.0\ngrid = 32\nlength = 0.5\n\
+                    seed = 1\n[material]\nyoungs_modulus = 1.0\npoisson_ratio = 0.3\nshear_strength = 0.01\n\
+                    fracture_energies = [0.5e-6]\n[sliding]\nloads = [1e-3]\n";
+        let (there, here) = (expand(text, a.path()).unwrap(), expand(text, b.path()).unwrap());
+        assert_eq!(there.hash, here.hash);
+        let job = &there.jobs[0];
+        assert_ne!(job.inputs().map, here.jobs[0].inputs().map);
+        let result = JobResult {
+            format: crate::output::JOB_FORMAT,
+            provenance: crate::output::Provenance::current(),
+            index: 0,
+            material: job.material.clone(),
+            inputs: job.inputs(),
+            load: job.load(),
+            flow_pressure: 0.0,
+            effective_modulus: 0.0,
+            results: Vec::new(),
+            steps: Vec::new(),
+            total_iterations: 0,
+            seconds: 0.0,
+            warnings: Vec::new(),
+            estimates: Vec::new(),
+        };
+        assert!(here.jobs[0].is_result_of(&result));
+        // Any other input is another job.
+        let longer = expand(&text.replace("map_length = 1.0", "map_length = 2.0"), b.path()).unwrap();
+        assert!(!longer.jobs[0].is_result_of(&result));
     }
 
     #[test]
