@@ -10,6 +10,7 @@ mod every_file;
 mod evidence;
 mod fuzz_parsers;
 mod golden;
+mod measured_set;
 mod module_graph;
 mod paper_window;
 mod particle_rule;
