@@ -382,3 +382,67 @@ fn bench_passes_prints_and_records_each_pass_against_the_copy_floor() {
     );
     assert!(String::from_utf8_lossy(&o.stdout).is_empty(), "timed before refusing");
 }
+
+/// A material given as a tribologist measures it (hardness, fracture toughness) and loads as
+/// nominal pressures: the conversions are printed with their formula where the run file is read
+/// (here by `surface`, which makes the pair only; a study's dry run prints them too, see the cost
+/// tests).
+#[test]
+fn hardness_toughness_and_pressures_are_converted_aloud() {
+    let dir = tempfile::tempdir().unwrap();
+    // SiC-like, on a 64² box of 0.5 µm pixels: H = 3√3 τ̃ with τ̃ = 2.5 GPa, K_Ic = 3 MPa√m.
+    let run = common::file(
+        dir.path(),
+        "run.toml",
+        &format!(
+            "{}hardness = 12.99038105676658e9\nfracture_toughness = [3e6]\n[sliding]\npressures = [4e8]\n",
+            common::SI_SIC
+        ),
+    );
+    let o = wearsim()
+        .args(["surface", common::s(&run), "--out", common::s(&dir.path().join("out"))])
+        .output()
+        .unwrap();
+    let text = common::stderr(&o);
+    assert!(o.status.success(), "{text}");
+    assert!(
+        text.contains("hardness H = 1.2990e10 Pa: shear strength τ̃ = H/(3√3)"),
+        "{text}"
+    );
+    assert!(text.contains("τ̃ = 2.5000e9 Pa"), "{text}");
+    assert!(
+        text.contains("𝒢 = K_Ic²(1 − ν²)/E (plane strain) = 2.1600e1 J/m²"),
+        "{text}"
+    );
+    assert!(text.contains("load F_N = p_N Lx·Ly = 4.0960e-1 N"), "{text}");
+}
+
+/// `summary.json` gives the specific wear rate K = W/F_N beside W and k, with its unit.
+#[test]
+fn a_slides_summary_has_the_specific_wear_rate() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = run_file(dir.path(), &format!("{GENERATED}[sliding]\nloads = [1e-3, 2e-3]\n"));
+    let out = dir.path().join("out");
+    let o = wearsim()
+        .args(["slide", common::s(&run), "--out", common::s(&out)])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", common::stderr(&o));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["units_of_results"]["specific_wear_rate"], "1/E");
+    let results = summary["results"].as_array().unwrap();
+    assert!(results.iter().any(|r| r["wear_rate"].is_number()), "{results:?}");
+    for r in results {
+        match r["wear_rate"].as_f64() {
+            Some(w) => {
+                let expected = w / r["load"].as_f64().unwrap();
+                assert!(
+                    (r["specific_wear_rate"].as_f64().unwrap() / expected - 1.0).abs() < 1e-12,
+                    "{r}"
+                );
+            }
+            None => assert!(r["specific_wear_rate"].is_null(), "{r}"),
+        }
+    }
+}

@@ -207,7 +207,7 @@ impl PyRunFile {
                 |done, most| solves.set(done, most),
             )
         })?;
-        let rows = estimate_rows(&outcome.loads);
+        let rows = estimate_rows(&outcome.loads, config.units);
         Ok((table_to_py(py, &Table::of(&rows))?, json_to_py(py, &outcome.summary())?))
     }
 }

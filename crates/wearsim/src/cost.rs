@@ -251,6 +251,11 @@ impl Calibration {
         })
     }
 
+    /// The file in `dir` that caches the calibration of this machine, version and thread count.
+    pub fn cache_path(dir: &Path) -> PathBuf {
+        cache_file(dir)
+    }
+
     /// The cached calibration of this machine, version and thread count from `dir`: `Ok(None)` when
     /// there is none (or one of another format, wearsim, machine or thread count, remade). A cached
     /// file is trusted only when its checksum matches its contents and every number in it is within

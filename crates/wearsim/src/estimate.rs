@@ -57,8 +57,9 @@ pub enum WearModel {
 }
 
 /// The keys of a run file's `[sliding]` table.
-pub const SLIDING_KEYS: [&str; 10] = [
+pub const SLIDING_KEYS: [&str; 11] = [
     "loads",
+    "pressures",
     "distance",
     "running_in",
     "step_running_in",

@@ -40,6 +40,25 @@ impl std::str::FromStr for ModulusConvention {
     }
 }
 
+/// τ̃ from a hardness H: the model's flow pressure is p_m = 3√3 τ̃ (von Mises, paper §2), the
+/// hardness of the fully plastic contact, so τ̃ = H/(3√3).
+pub fn shear_strength_from_hardness(hardness: f64) -> f64 {
+    hardness / (3.0 * 3f64.sqrt())
+}
+
+/// τ̃ from a (tensile) yield strength σ_y: the von Mises shear yield stress τ̃ = σ_y/√3 (paper §2),
+/// which makes p_m = 3 σ_y, Tabor's hardness.
+pub fn shear_strength_from_yield_strength(yield_strength: f64) -> f64 {
+    yield_strength / 3f64.sqrt()
+}
+
+/// 𝒢 from a mode-I fracture toughness K_Ic: Irwin's critical energy release rate in plane strain,
+/// 𝒢 = K_Ic² (1 − ν²)/E (the inverse of the K_Ic = √(𝒢 E/(1 − ν²)) of the contact severity,
+/// paper appendix F).
+pub fn fracture_energy_from_toughness(toughness: f64, youngs_modulus: f64, poisson_ratio: f64) -> f64 {
+    toughness * toughness * (1.0 - poisson_ratio * poisson_ratio) / youngs_modulus
+}
+
 /// Elastic and adhesive-wear properties of the (identical) materials of both surfaces.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Material {
@@ -183,6 +202,20 @@ mod tests {
         // Si3N4 of Kim et al. (paper Table 1): d* = 7.65 µm.
         let si3n4 = Material::new(294e9, 0.27, 2.89e9, vec![91.97], 3.0).unwrap();
         assert!((si3n4.critical_diameter(91.97) * 1e6 - 7.65).abs() < 0.01);
+    }
+
+    #[test]
+    fn hardness_yield_strength_and_toughness_convert_to_the_models_inputs() {
+        // H = 3√3 τ̃ is the flow pressure; σ_y = √3 τ̃ gives p_m = 3 σ_y.
+        let m = Material::new(1.0, 0.3, shear_strength_from_hardness(0.06), vec![], 3.0).unwrap();
+        assert!((m.flow_pressure() - 0.06).abs() < 1e-15);
+        let m = Material::new(1.0, 0.3, shear_strength_from_yield_strength(0.02), vec![], 3.0).unwrap();
+        assert!((m.flow_pressure() - 0.06).abs() < 1e-15);
+        // Si3N4 of Kim et al. (paper Table 1): 𝒢 = 91.97 J/m² with E = 294 GPa, ν = 0.27 is
+        // K_Ic = √(𝒢 E/(1 − ν²)) = 5.40 MPa√m, and back.
+        let k = (91.97f64 * 294e9 / (1.0 - 0.27 * 0.27)).sqrt();
+        assert!((k / 1e6 - 5.40).abs() < 0.01, "{k}");
+        assert!((fracture_energy_from_toughness(k, 294e9, 0.27) - 91.97).abs() < 1e-9);
     }
 
     #[test]

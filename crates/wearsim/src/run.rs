@@ -91,14 +91,7 @@ impl<'a> SlidingRun<'a> {
             }
         }
         sliding.check_grid(grid.nx())?;
-        let warnings = distinct(
-            config
-                .warnings()
-                .into_iter()
-                .chain(pair.warnings.iter().cloned())
-                .chain(resolution_warnings(&config.material, grid.pixel_size()))
-                .chain(box_warnings(&config.material, grid.length_x(), grid.length_y())),
-        );
+        let warnings = warnings_before_run(config, grid, &pair.warnings);
         Ok(Self {
             config,
             sliding,
@@ -381,8 +374,22 @@ impl EstimateOutcome<'_> {
 
     /// `results.csv`: one row per load and fracture energy.
     pub fn results_csv(&self) -> String {
-        Table::of(&estimate_rows(&self.loads)).to_csv()
+        Table::of(&estimate_rows(&self.loads, self.config.units)).to_csv()
     }
+}
+
+/// What a sliding run of `config` on `grid` warns about before its first step: the run file's
+/// ([`RunConfig::warnings`]), its surfaces' (`surfaces`, known once they are made; none for a
+/// study's dry run, which makes no surfaces), d* against the pixel and against the box.
+pub fn warnings_before_run(config: &RunConfig, grid: Grid, surfaces: &[String]) -> Vec<String> {
+    distinct(
+        config
+            .warnings()
+            .into_iter()
+            .chain(surfaces.iter().cloned())
+            .chain(resolution_warnings(&config.material, grid.pixel_size()))
+            .chain(box_warnings(&config.material, grid.length_x(), grid.length_y())),
+    )
 }
 
 /// Refuses a sliding run on `grid` that needs more memory ([`crate::check::SLIDING_ARRAYS`] arrays of

@@ -147,7 +147,12 @@ pub fn check_interrupt() -> Result<()> {
 
 /// Reads and validates a run file.
 pub fn load_run(run: &Path) -> Result<RunConfig> {
-    RunConfig::from_path(run).with_context(|| format!("run file {}", run.display()))
+    let config = RunConfig::from_path(run).with_context(|| format!("run file {}", run.display()))?;
+    // Values given in another form than the model's inputs, with the formula of each conversion.
+    for note in &config.conversions {
+        tell!("{note}");
+    }
+    Ok(config)
 }
 
 /// The files a run reads, its run file and surface files: an output folder may hold none of them.

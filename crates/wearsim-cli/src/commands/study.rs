@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use crate::progress::Progress;
 use anyhow::{bail, Context, Result};
 use wearsim::study::{
-    collect as collect_study, expand, prepare_folder, run_jobs, shard, workers_for_memory, RunSummary,
+    collect as collect_study, expand, prepare_folder, run_jobs, shard, workers_for_memory, Job, RunSummary,
 };
 
 use crate::out::{say, tell};
@@ -128,8 +128,10 @@ pub fn run(args: &RunArgs) -> Result<()> {
     }
     super::cost::report_study(&jobs, workers, args.dry_run)?;
     if args.dry_run {
-        return Ok(());
+        report_conversions(&jobs);
+        return report_warnings_before_run(&jobs);
     }
+    report_conversions(&jobs);
     // The study file is an input too: a study folder holding it would overwrite or mix with it.
     wearsim::io::refuse_inputs_inside(out, &[study_path.as_path()])?;
     prepare_folder(out, &study, base)?;
@@ -167,6 +169,57 @@ pub fn run(args: &RunArgs) -> Result<()> {
     }
     report_run(out, &outcome?);
     Ok(())
+}
+
+/// The study file's values given in another form than the model's inputs (a hardness, a pressure),
+/// each conversion once with the jobs it was made for.
+fn report_conversions(jobs: &[&Job]) {
+    for (note, of) in by_jobs(jobs, |job| Ok(job.run.conversions.clone())).unwrap_or_default() {
+        tell!("{note} ({of})");
+    }
+}
+
+/// What the jobs would warn about before their first step (d* against the pixel and the box, the
+/// solver's tolerance), each warning once with the jobs it concerns: what a dry run says before
+/// the work, as `slide --dry-run` does.
+fn report_warnings_before_run(jobs: &[&Job]) -> Result<()> {
+    let warned = by_jobs(jobs, |job| {
+        let grid = job.run.grid().with_context(|| job.describe())?;
+        Ok(wearsim::run::warnings_before_run(&job.run, grid, &[]))
+    })?;
+    for (warning, of) in warned {
+        tell!("warning: {warning} ({of})");
+    }
+    Ok(())
+}
+
+/// Each distinct line that `lines` gives for the jobs, in the order first given, with "job 3" or
+/// "jobs 0, 1, 4 (3 of 12)" for the jobs that gave it.
+fn by_jobs(jobs: &[&Job], lines: impl Fn(&Job) -> Result<Vec<String>>) -> Result<Vec<(String, String)>> {
+    let mut found: Vec<(String, Vec<usize>)> = Vec::new();
+    for job in jobs {
+        for line in lines(job)? {
+            match found.iter_mut().find(|(l, _)| *l == line) {
+                Some((_, of)) => of.push(job.index),
+                None => found.push((line, vec![job.index])),
+            }
+        }
+    }
+    Ok(found
+        .into_iter()
+        .map(|(line, of)| {
+            let which = match of.as_slice() {
+                [one] => format!("job {one}"),
+                _ if of.len() == jobs.len() => format!("all {} jobs", jobs.len()),
+                _ => {
+                    let shown: Vec<String> = of.iter().take(8).map(usize::to_string).collect();
+                    let more = if of.len() > 8 { ", …" } else { "" };
+                    format!("jobs {}{more} ({} of {})", shown.join(", "), of.len(), jobs.len())
+                }
+            };
+            (line, which)
+        })
+        .collect())
 }
 
 /// What a study run did: the checkpoints' and recomputed jobs' warnings, the jobs computed and

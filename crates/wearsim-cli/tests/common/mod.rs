@@ -59,6 +59,11 @@ pub fn write_npy(path: &Path, shape: &[usize], values: &[f64]) {
 }
 
 /// A 64² generated run without a [sliding] table.
+/// An SI run's [surface] and the start of its [material]: a 64² box of 0.5 µm pixels, SiC-like
+/// moduli; the strength and fracture energies are the test's.
+pub const SI_SIC: &str = "units = \"si\"\n[surface]\ngrid = 64\nlength = 32e-6\nlambda_lower = 4e-6\n\
+    lambda_upper = 8e-6\nrms_height = 1.6e-7\nseed = 1\n[material]\nyoungs_modulus = 400e9\npoisson_ratio = 0.2\n";
+
 pub const GENERATED: &str = r#"
 [surface]
 grid = 64

@@ -62,6 +62,11 @@ pub struct RunConfig {
     /// `wearsim estimate-check --fit` on sliding runs of the user's own surfaces); absent: the
     /// library's [`crate::estimate::CALIBRATION`].
     pub estimate_constants: Option<crate::estimate::Calibration>,
+    /// The run file's values given in another form than the model's inputs, each with the formula
+    /// that turned it into one (a hardness into τ̃, a pressure into a load, the box from an imported
+    /// map's record): what the front ends print before the work and the summaries keep.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub conversions: Vec<String>,
 }
 
 /// A run being built in memory ([`RunConfig::builder`]): the one way, besides a run file, to make a
@@ -82,6 +87,7 @@ pub struct RunBuilder {
     model: WearModel,
     estimate_samples: Option<usize>,
     estimate_constants: Option<crate::estimate::Calibration>,
+    conversions: Vec<String>,
 }
 
 macro_rules! setters {
@@ -200,6 +206,7 @@ impl RunBuilder {
             model: self.model,
             estimate_samples: self.estimate_samples,
             estimate_constants,
+            conversions: self.conversions,
         })
     }
 }
@@ -232,13 +239,15 @@ impl RunConfig {
     }
 
     fn from_raw(raw: RawRun, base: &Path, files: SurfaceFiles) -> Result<Self> {
-        let surfaces = surface_source(&raw.surface, raw.units, base, files)?;
+        let mut conversions = Vec::new();
+        let surfaces = surface_source(&raw.surface, raw.units, base, files, &mut conversions)?;
         let m = raw.material;
+        let (shear_strength, fracture_energies) = material_inputs(&m, raw.units, &mut conversions)?;
         let material = Material::new(
             m.youngs_modulus,
             m.poisson_ratio,
-            m.shear_strength,
-            m.fracture_energies,
+            shear_strength,
+            fracture_energies,
             m.geometry_factor.unwrap_or(3.0),
         )?;
         let c = raw.contact;
@@ -277,9 +286,10 @@ impl RunConfig {
                 None => ParticleRuleKind::default(),
             };
             let grid = run.fixed_grid().map(|g| g.nx());
+            let loads = normal_loads(sl.loads, sl.pressures, &run.surfaces, raw.units, &mut conversions)?;
             run = run.sliding(
                 SlidingConfig::new(
-                    sl.loads,
+                    loads,
                     sl.distance.unwrap_or(DEFAULT_DISTANCE),
                     sl.running_in.unwrap_or(DEFAULT_RUNNING_IN),
                     sl.step_running_in.unwrap_or(DEFAULT_STEP_RUNNING_IN),
@@ -289,6 +299,7 @@ impl RunConfig {
                 .with_particle_rule(rule),
             );
         }
+        run.conversions = conversions;
         run.build()
     }
 
@@ -311,6 +322,7 @@ impl RunConfig {
             model: WearModel::default(),
             estimate_samples: None,
             estimate_constants: None,
+            conversions: Vec::new(),
         }
     }
 
@@ -331,6 +343,7 @@ impl RunConfig {
             model,
             estimate_samples,
             estimate_constants,
+            conversions,
         } = self.clone();
         RunBuilder {
             units,
@@ -346,6 +359,7 @@ impl RunConfig {
             model,
             estimate_samples,
             estimate_constants,
+            conversions,
         }
     }
 
@@ -392,28 +406,7 @@ impl RunConfig {
     /// How the run's surface files are read (units and preparation); an error for surfaces not read
     /// from files.
     fn file_surface(&self) -> Result<FileSurface> {
-        let SurfaceSource::Files {
-            length,
-            length_y,
-            height_unit,
-            lateral_unit,
-            preprocess,
-            ..
-        } = &self.surfaces
-        else {
-            return Err(Error::run_file("[surface] the surfaces are not read from files"));
-        };
-        let height_scale = match (self.units, height_unit) {
-            (Units::Si, Some(u)) => metres_per("height_unit", u)?,
-            _ => 1.0,
-        };
-        Ok(FileSurface {
-            height_scale,
-            lateral_scale: lateral_scale(self.units, lateral_unit, height_unit)?,
-            length_x: Some(*length),
-            length_y: *length_y,
-            preprocess: *preprocess,
-        })
+        file_surface_of(&self.surfaces, self.units)
     }
 
     /// The grid of the run: the generated one, or that of the top surface file (from its `.npy`
@@ -598,6 +591,194 @@ impl RunConfig {
     }
 }
 
+/// How the surface files of `surfaces` are read in a run of `units` (units and preparation); an
+/// error for surfaces not read from files.
+fn file_surface_of(surfaces: &SurfaceSource, units: Units) -> Result<FileSurface> {
+    let SurfaceSource::Files {
+        length,
+        length_y,
+        height_unit,
+        lateral_unit,
+        preprocess,
+        ..
+    } = surfaces
+    else {
+        return Err(Error::run_file("[surface] the surfaces are not read from files"));
+    };
+    let height_scale = match (units, height_unit) {
+        (Units::Si, Some(u)) => metres_per("height_unit", u)?,
+        _ => 1.0,
+    };
+    Ok(FileSurface {
+        height_scale,
+        lateral_scale: lateral_scale(units, lateral_unit, height_unit)?,
+        length_x: Some(*length),
+        length_y: *length_y,
+        preprocess: *preprocess,
+    })
+}
+
+/// The unit of a quantity the conversion notes name, in a run of `units` (as the outputs declare
+/// it).
+fn unit_of(units: Units, quantity: &str) -> &'static str {
+    let (reduced, si) = match quantity {
+        "load" => ("E L²", "N"),
+        "nominal_area" => ("L²", "m²"),
+        "fracture_energies" => ("E L", "J/m²"),
+        "fracture_toughness" => ("E √L", "Pa √m"),
+        // Strengths and pressures.
+        _ => ("E", "Pa"),
+    };
+    if units == Units::Si {
+        si
+    } else {
+        reduced
+    }
+}
+
+/// A value with its unit in a run of `units`, for the conversion notes.
+fn valued(units: Units, quantity: &str, value: f64) -> String {
+    format!("{value:.4e} {}", unit_of(units, quantity))
+}
+
+/// τ̃ and the fracture energies 𝒢 of `[material]`, each given as the model's input or as its
+/// alternative (a hardness or a yield strength for τ̃, fracture toughnesses for 𝒢), converted with
+/// the formula noted in `conversions`. Exactly one form of each; every alternative is checked
+/// under its own name before it is converted.
+fn material_inputs(m: &raw::RawMaterial, units: Units, conversions: &mut Vec<String>) -> Result<(f64, Vec<f64>)> {
+    let given: Vec<(&str, f64)> = [
+        ("shear_strength", m.shear_strength),
+        ("hardness", m.hardness),
+        ("yield_strength", m.yield_strength),
+    ]
+    .into_iter()
+    .filter_map(|(name, v)| v.map(|v| (name, v)))
+    .collect();
+    let shear_strength =
+        match given.as_slice() {
+            [] => return Err(Error::run_file(
+                "[material] give the junction shear strength: `shear_strength` (τ̃), or `hardness` (H, converted as \
+                 τ̃ = H/(3√3), the flow pressure p_m = 3√3 τ̃ being the hardness) or `yield_strength` (σ_y, τ̃ = σ_y/√3, \
+                 von Mises)",
+            )),
+            [("shear_strength", tau)] => *tau,
+            [(name, value)] => {
+                crate::check::scale(name, *value)?;
+                let (tau, formula) = if *name == "hardness" {
+                    (
+                        crate::material::shear_strength_from_hardness(*value),
+                        "τ̃ = H/(3√3), the flow pressure p_m = 3√3 τ̃ being H",
+                    )
+                } else {
+                    (
+                        crate::material::shear_strength_from_yield_strength(*value),
+                        "τ̃ = σ_y/√3 (von Mises), so p_m = 3 σ_y",
+                    )
+                };
+                let symbol = if *name == "hardness" { "H" } else { "σ_y" };
+                conversions.push(format!(
+                    "[material] {name} {symbol} = {}: shear strength {formula}: τ̃ = {}",
+                    valued(units, name, *value),
+                    valued(units, "shear_strength", tau)
+                ));
+                tau
+            }
+            more => {
+                let names: Vec<String> = more.iter().map(|(n, _)| format!("`{n}`")).collect();
+                return Err(Error::run_file(format!(
+                    "[material] {} each give the shear strength τ̃; keep one",
+                    names.join(" and ")
+                )));
+            }
+        };
+    let energies =
+        match (&m.fracture_energies, &m.fracture_toughness) {
+            (Some(_), Some(_)) => return Err(Error::run_file(
+                "[material] `fracture_energies` and `fracture_toughness` each give the fracture energies 𝒢; keep one",
+            )),
+            (Some(g), None) => g.clone(),
+            (None, None) => Vec::new(),
+            (None, Some(toughness)) => {
+                let mut energies = Vec::with_capacity(toughness.len());
+                for &k in toughness {
+                    crate::check::positive("fracture_toughness", k)?;
+                    let g = crate::material::fracture_energy_from_toughness(k, m.youngs_modulus, m.poisson_ratio);
+                    conversions.push(format!(
+                    "[material] fracture_toughness K_Ic = {}: fracture energy 𝒢 = K_Ic²(1 − ν²)/E (plane strain) = {}",
+                    valued(units, "fracture_toughness", k),
+                    valued(units, "fracture_energies", g)
+                ));
+                    energies.push(g);
+                }
+                energies
+            }
+        };
+    Ok((shear_strength, energies))
+}
+
+/// The normal loads F_N of `[sliding]`: `loads` as given, or `pressures` p_N times the apparent
+/// area Lx·Ly of the run's box (noted in `conversions`). Exactly one of the two.
+fn normal_loads(
+    loads: Option<Vec<f64>>,
+    pressures: Option<Vec<f64>>,
+    surfaces: &SurfaceSource,
+    units: Units,
+    conversions: &mut Vec<String>,
+) -> Result<Vec<f64>> {
+    match (loads, pressures) {
+        (Some(loads), None) => Ok(loads),
+        (Some(_), Some(_)) => Err(Error::run_file(
+            "[sliding] `loads` (normal forces F_N) and `pressures` (nominal pressures p_N = F_N/(Lx·Ly)) both give the \
+             loads; keep one",
+        )),
+        (None, None) => Err(Error::run_file(format!(
+            "[sliding] `loads` is missing: give the normal loads F_N ({}), or `pressures`, the nominal pressures p_N \
+             ({}) that F_N = p_N Lx·Ly makes loads of",
+            unit_of(units, "load"),
+            unit_of(units, "nominal_pressure")
+        ))),
+        (None, Some(pressures)) => {
+            let area = apparent_area(surfaces, units)?;
+            let mut loads = Vec::with_capacity(pressures.len());
+            for p in pressures {
+                crate::check::positive("pressures", p)?;
+                let load = p * area;
+                conversions.push(format!(
+                    "[sliding] pressure p_N = {}: load F_N = p_N Lx·Ly = {} on the box's {}",
+                    valued(units, "nominal_pressure", p),
+                    valued(units, "load", load),
+                    valued(units, "nominal_area", area)
+                ));
+                loads.push(load);
+            }
+            Ok(loads)
+        }
+    }
+}
+
+/// The apparent area Lx·Ly of the run's box: the grid's, or that of the surface files (their
+/// `length = [Lx, Ly]`, else Lx and the top file's shape); an error saying what to give where it
+/// is not known (files not at hand).
+fn apparent_area(surfaces: &SurfaceSource, units: Units) -> Result<f64> {
+    match surfaces {
+        SurfaceSource::Generated { grid, .. }
+        | SurfaceSource::Arrays { grid, .. }
+        | SurfaceSource::Spectrum { grid, .. } => Ok(grid.area()),
+        SurfaceSource::Files {
+            length,
+            length_y: Some(ly),
+            ..
+        } => Ok(length * ly),
+        SurfaceSource::Files { top, .. } if top.is_file() => {
+            Ok(crate::topography::probe_grid(top, &file_surface_of(surfaces, units)?)?.area())
+        }
+        SurfaceSource::Files { .. } => Err(Error::run_file(
+            "[sliding] `pressures` need the box's apparent area Lx·Ly, and the surface files are not at hand to give \
+             Ly: give [surface] `length = [Lx, Ly]`, or the loads F_N as `loads`",
+        )),
+    }
+}
+
 /// Refuses a surface pair on `grid` that does not fit in the memory this process may use.
 fn check_pair_memory(grid: Grid) -> Result<()> {
     crate::check::memory(
@@ -765,12 +946,22 @@ mod tests {
         // `contact.boundary` distinguishes no study jobs: a run with `[sliding]` (every study job) is
         // periodic, and a free boundary is refused there.
         let per_row = ["material.fracture_energies", "sliding.loads", "contact.boundary"];
+        // The alternatives to τ̃, 𝒢 and F_N are converted before the run and recorded as those.
+        let converted = [
+            "material.hardness",
+            "material.yield_strength",
+            "material.fracture_toughness",
+            "sliding.pressures",
+        ];
         let mut missing = Vec::new();
         for (section, keys) in &sections {
             assert!(!keys.is_empty(), "{section}");
             for key in keys {
                 let column = format!("{section}.{key}");
-                if !per_row.contains(&column.as_str()) && !columns.contains(&column.as_str()) {
+                if !per_row.contains(&column.as_str())
+                    && !converted.contains(&column.as_str())
+                    && !columns.contains(&column.as_str())
+                {
                     missing.push(column);
                 }
             }
@@ -975,5 +1166,122 @@ mod builder_tests {
             );
             assert_eq!(built.to_string(), read.to_string());
         }
+    }
+
+    #[test]
+    fn hardness_yield_strength_toughness_and_pressures_are_converted_with_their_formula() {
+        let si = "units = \"si\"\n[surface]\ngrid = 64\nlength = 1e-4\nlambda_lower = 6.25e-6\nlambda_upper = 2.5e-5\n\
+                  rms_height = 5e-7\n[material]\nyoungs_modulus = 300e9\npoisson_ratio = 0.25\n";
+        let read = |extra: &str| RunConfig::from_toml(&format!("{si}{extra}"), Path::new("."));
+        let by_tau = read("shear_strength = 3e9\nfracture_energies = [10.0]\n[sliding]\nloads = [1.0]\n").unwrap();
+        assert!(by_tau.conversions.is_empty());
+        // H = 3√3 τ̃, σ_y = √3 τ̃, K_Ic = √(𝒢 E/(1 − ν²)), F_N = p_N Lx·Ly: the same run.
+        let (h, y) = (3.0 * 3f64.sqrt() * 3e9, 3f64.sqrt() * 3e9);
+        let k = (10.0f64 * 300e9 / (1.0 - 0.25 * 0.25)).sqrt();
+        for extra in [
+            format!("hardness = {h:e}\nfracture_toughness = [{k:e}]\n[sliding]\npressures = [1e8]\n"),
+            format!("yield_strength = {y:e}\nfracture_toughness = [{k:e}]\n[sliding]\nloads = [1.0]\n"),
+        ] {
+            let c = read(&extra).unwrap();
+            let m = &c.material;
+            assert!((m.shear_strength / 3e9 - 1.0).abs() < 1e-12, "{extra}");
+            assert!((m.fracture_energies[0] / 10.0 - 1.0).abs() < 1e-12, "{extra}");
+            assert!((c.sliding.as_ref().unwrap().loads[0] - 1.0).abs() < 1e-12, "{extra}");
+            assert_eq!(c.inputs(), by_tau.inputs(), "{extra}");
+            assert_eq!(c.conversions.len(), if extra.contains("pressures") { 3 } else { 2 });
+        }
+        let c = read(&format!(
+            "hardness = {h:e}\nfracture_toughness = [{k:e}]\n[sliding]\npressures = [1e8]\n"
+        ))
+        .unwrap();
+        let notes = c.conversions.join("\n");
+        assert!(
+            notes.contains("τ̃ = H/(3√3)") && notes.contains("τ̃ = 3.0000e9 Pa"),
+            "{notes}"
+        );
+        assert!(
+            notes.contains("𝒢 = K_Ic²(1 − ν²)/E") && notes.contains("1.0000e1 J/m²"),
+            "{notes}"
+        );
+        assert!(notes.contains("F_N = p_N Lx·Ly = 1.0000e0 N"), "{notes}");
+        // Two forms of one input, none, or a bad alternative: refused by name.
+        let e = read("shear_strength = 3e9\nhardness = 1e10\n").unwrap_err().to_string();
+        assert!(
+            e.contains("`shear_strength` and `hardness`") && e.contains("keep one"),
+            "{e}"
+        );
+        let e = read("fracture_energies = [1.0]\n").unwrap_err().to_string();
+        assert!(e.contains("`hardness`") && e.contains("`yield_strength`"), "{e}");
+        let e = read("hardness = -1.0\n").unwrap_err().to_string();
+        assert!(e.contains("hardness"), "{e}");
+        let e = read("shear_strength = 3e9\nfracture_energies = [1.0]\nfracture_toughness = [1e6]\n")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("`fracture_toughness`") && e.contains("keep one"), "{e}");
+        let e = read("shear_strength = 3e9\n[sliding]\nloads = [1.0]\npressures = [1e8]\n")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("`pressures`") && e.contains("keep one"), "{e}");
+        let e = read("shear_strength = 3e9\n[sliding]\ndistance = 1.0\n")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("`loads` is missing") && e.contains("`pressures`") && e.contains("(Pa)"),
+            "{e}"
+        );
+        let e = read("shear_strength = 3e9\n[sliding]\npressures = [0.0]\n")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("pressures"), "{e}");
+    }
+
+    #[test]
+    fn an_imported_map_gives_the_box_and_the_spectrums_box_is_at_its_pixel_size() {
+        let dir = tempfile::tempdir().unwrap();
+        let (nx, ny, pixel) = (16usize, 8usize, 2e-6);
+        let heights: Vec<f64> = (0..nx * ny).map(|i| 1e-7 * ((i * 7919) % 13) as f64).collect();
+        crate::io::write_npy_f64(&dir.path().join("heights.npy"), nx, ny, &heights).unwrap();
+        crate::io::write_npy_f64(&dir.path().join("bottom.npy"), nx, ny, &heights).unwrap();
+        let record = serde_json::json!({
+            "written_by": "wearsim surface import",
+            "heights_grid": [nx, ny],
+            "length": [nx as f64 * pixel, ny as f64 * pixel],
+        });
+        std::fs::write(dir.path().join("import.json"), record.to_string()).unwrap();
+        let material = "[material]\nyoungs_modulus = 300e9\npoisson_ratio = 0.25\nshear_strength = 3e9\n";
+        let files = format!("units = \"si\"\n[surface]\ntop = \"heights.npy\"\nbottom = \"bottom.npy\"\n{material}");
+        let c = RunConfig::from_toml(&format!("{files}[sliding]\npressures = [1e8]\n"), dir.path()).unwrap();
+        let SurfaceSource::Files { length, length_y, .. } = &c.surfaces else {
+            panic!("{:?}", c.surfaces)
+        };
+        assert_eq!((*length, *length_y), (nx as f64 * pixel, Some(ny as f64 * pixel)));
+        let load = c.sliding.as_ref().unwrap().loads[0];
+        assert!((load / (1e8 * 32e-6 * 16e-6) - 1.0).abs() < 1e-12, "{load}");
+        assert!(c.conversions[0].contains("its import.json"), "{:?}", c.conversions);
+        // A record of another grid, or a run in reduced units: the length is needed.
+        let e = RunConfig::from_toml(&files.replace("\"si\"", "\"reduced\""), dir.path())
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("`length` is missing"), "{e}");
+        // The spectrum route: map_length from the record, the box of `grid` pixels at the map's size.
+        let spectrum =
+            format!("units = \"si\"\n[surface]\nsource = \"spectrum\"\nmap = \"heights.npy\"\ngrid = 32\n{material}");
+        let c = RunConfig::from_toml(&spectrum, dir.path()).unwrap();
+        let SurfaceSource::Spectrum { grid, map_length, .. } = &c.surfaces else {
+            panic!("{:?}", c.surfaces)
+        };
+        assert_eq!(*map_length, nx as f64 * pixel);
+        assert!((grid.pixel_size() / pixel - 1.0).abs() < 1e-12 && grid.nx() == 32 && grid.is_square());
+        assert!(
+            c.conversions
+                .iter()
+                .any(|n| n.contains("the box at the map's pixel size")),
+            "{:?}",
+            c.conversions
+        );
+        let record = serde_json::json!({"written_by": "wearsim surface import", "heights_grid": [nx, 2 * ny], "length": [1.0, 1.0]});
+        std::fs::write(dir.path().join("import.json"), record.to_string()).unwrap();
+        let e = RunConfig::from_toml(&files, dir.path()).unwrap_err().to_string();
+        assert!(e.contains("`length` is missing"), "{e}");
     }
 }

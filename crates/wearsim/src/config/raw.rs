@@ -81,9 +81,14 @@ pub(super) struct RawSurface {
 pub(super) struct RawMaterial {
     pub(super) youngs_modulus: f64,
     pub(super) poisson_ratio: f64,
-    pub(super) shear_strength: f64,
-    #[serde(default)]
-    pub(super) fracture_energies: Vec<f64>,
+    /// τ̃, or one of its alternatives: `hardness` H (τ̃ = H/(3√3)) or `yield_strength` σ_y
+    /// (τ̃ = σ_y/√3).
+    pub(super) shear_strength: Option<f64>,
+    pub(super) hardness: Option<f64>,
+    pub(super) yield_strength: Option<f64>,
+    /// 𝒢, or the alternative `fracture_toughness` K_Ic (𝒢 = K_Ic²(1 − ν²)/E).
+    pub(super) fracture_energies: Option<Vec<f64>>,
+    pub(super) fracture_toughness: Option<Vec<f64>>,
     pub(super) geometry_factor: Option<f64>,
 }
 
@@ -101,7 +106,9 @@ pub(super) struct RawContact {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct RawSliding {
-    pub(super) loads: Vec<f64>,
+    /// The normal loads F_N, or the alternative `pressures`, nominal pressures p_N = F_N/(Lx·Ly).
+    pub(super) loads: Option<Vec<f64>>,
+    pub(super) pressures: Option<Vec<f64>>,
     pub(super) distance: Option<f64>,
     pub(super) running_in: Option<f64>,
     pub(super) step_running_in: Option<usize>,

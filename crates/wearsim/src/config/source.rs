@@ -275,6 +275,7 @@ pub(super) fn files_source(
     top: PathBuf,
     bottom: PathBuf,
     files: SurfaceFiles,
+    notes: &mut Vec<String>,
 ) -> Result<SurfaceSource> {
     for (field, value) in [
         ("grid", s.grid.is_some()),
@@ -321,20 +322,7 @@ pub(super) fn files_source(
             ));
         }
     }
-    let (length, length_y) = match s.length {
-        Some(PerSide::Both(l)) => (l, None),
-        Some(PerSide::Each([lx, ly])) => {
-            positive("length", ly)?;
-            (lx, Some(ly))
-        }
-        // A column file states its size in its coordinates (a stored run whose files are gone
-        // cannot be asked).
-        None if top.is_file() => match crate::topography::file_span(&top)? {
-            Some((x, _)) => (x * lateral_scale(units, &s.lateral_unit, &s.height_unit)?, None),
-            None => return Err(missing_length()),
-        },
-        None => return Err(missing_length()),
-    };
+    let (length, length_y) = files_length(s, units, &top, notes)?;
     positive("length", length)?;
     Ok(SurfaceSource::Files {
         top,
@@ -350,14 +338,20 @@ pub(super) fn files_source(
 /// The source of a run's surfaces from its `[surface]` table: files (both `top` and `bottom`,
 /// resolved against `base`) or generated (neither), with the keys that do not belong to that choice
 /// refused by name.
-pub(super) fn surface_source(s: &RawSurface, units: Units, base: &Path, files: SurfaceFiles) -> Result<SurfaceSource> {
+pub(super) fn surface_source(
+    s: &RawSurface,
+    units: Units,
+    base: &Path,
+    files: SurfaceFiles,
+    notes: &mut Vec<String>,
+) -> Result<SurfaceSource> {
     let by_keys = if s.top.is_some() || s.bottom.is_some() {
         "files"
     } else {
         "generated"
     };
     match s.source.as_deref() {
-        Some("spectrum") => return spectrum_source(s, units, base, files),
+        Some("spectrum") => return spectrum_source(s, units, base, files, notes),
         None => {}
         Some(named) if named == by_keys => {}
         Some(named @ ("files" | "generated")) => {
@@ -390,7 +384,7 @@ pub(super) fn surface_source(s: &RawSurface, units: Units, base: &Path, files: S
         }
     }
     match (&s.top, &s.bottom) {
-        (Some(top), Some(bottom)) => files_source(s, units, base.join(top), base.join(bottom), files),
+        (Some(top), Some(bottom)) => files_source(s, units, base.join(top), base.join(bottom), files, notes),
         (None, None) => generated_source(s),
         _ => Err(Error::run_file(
             "[surface] give both `top` and `bottom` files, or neither (to generate the surfaces)",
@@ -475,7 +469,13 @@ fn spectrum_keys(s: &RawSurface, units: Units) -> Result<()> {
 /// The source of surfaces generated from the measured PSD of a map (`source = "spectrum"`): the
 /// map's path resolved against `base`, its units checked as a file's, its size given or read from
 /// its coordinates; the keys of the other sources refused by name.
-fn spectrum_source(s: &RawSurface, units: Units, base: &Path, files: SurfaceFiles) -> Result<SurfaceSource> {
+fn spectrum_source(
+    s: &RawSurface,
+    units: Units,
+    base: &Path,
+    files: SurfaceFiles,
+    notes: &mut Vec<String>,
+) -> Result<SurfaceSource> {
     spectrum_keys(s, units)?;
     let map = s.map.as_ref().ok_or_else(|| {
         missing(
@@ -494,40 +494,16 @@ fn spectrum_source(s: &RawSurface, units: Units, base: &Path, files: SurfaceFile
             "[surface] `map`: height map not found (paths are relative to the run file)",
         ));
     }
-    let map_length = match s.map_length {
-        Some(l) => l,
-        None if map.is_file() => match crate::topography::file_span(&map)? {
-            Some((x, _)) => x * lateral_scale(units, &s.lateral_unit, &s.height_unit)?,
-            None => {
-                return Err(missing(
-                    "map_length",
-                    "give the map's side along its first axis in the run's length unit (only x y z column files \
-                     state it themselves)",
-                ))
-            }
-        },
-        None => {
-            return Err(missing(
-                "map_length",
-                "give the map's side along its first axis in the run's length unit",
-            ))
-        }
-    };
+    let map_length = spectrum_map_length(s, units, &map, notes)?;
     positive("map_length", map_length)?;
-    let grid = generated_grid(
-        s.grid.ok_or_else(|| {
-            missing(
-                "grid",
-                "give the number of pixels per side of the generated surfaces, e.g. 256",
-            )
-        })?,
-        s.length.ok_or_else(|| {
-            missing(
-                "length",
-                "give the side of the generated surfaces' box, e.g. the map's side (`map_length`)",
-            )
-        })?,
-    )?;
+    let cells = s.grid.ok_or_else(|| {
+        missing(
+            "grid",
+            "give the number of pixels per side of the generated surfaces, e.g. 256",
+        )
+    })?;
+    let length = spectrum_box(s.length, cells, map_length, units, &map, notes)?;
+    let grid = generated_grid(cells, length)?;
     Ok(SurfaceSource::Spectrum {
         grid,
         map,
@@ -536,5 +512,130 @@ fn spectrum_source(s: &RawSurface, units: Units, base: &Path, files: SurfaceFile
         lateral_unit: s.lateral_unit.clone(),
         window: s.window,
         seed: s.seed.unwrap_or(0),
+    })
+}
+
+/// The sides of an imported map from its import record ([`crate::topography::imported_length`]),
+/// in metres: only for a run in SI units, whose length unit they are.
+fn imported_sides(path: &Path, units: Units) -> Result<Option<[f64; 2]>> {
+    if units != Units::Si {
+        return Ok(None);
+    }
+    crate::topography::imported_length(path)
+}
+
+/// The number of pixels along x (the first axis) of a map as given, before any cropping.
+fn map_columns(map: &Path) -> Result<usize> {
+    match crate::topography::array_shape(map)? {
+        Some((rows, _)) => Ok(rows),
+        None => Ok(crate::topography::read(map)?.rows),
+    }
+}
+
+/// The sides of surfaces read from files: `length` as given, else the import record of a map that
+/// `wearsim surface import` wrote (in SI runs), else the span of a column file's coordinates.
+fn files_length(s: &RawSurface, units: Units, top: &Path, notes: &mut Vec<String>) -> Result<(f64, Option<f64>)> {
+    Ok(match s.length {
+        Some(PerSide::Both(l)) => (l, None),
+        Some(PerSide::Each([lx, ly])) => {
+            positive("length", ly)?;
+            (lx, Some(ly))
+        }
+        // A map that `wearsim surface import` wrote has its size in the import's record, in
+        // metres; a column file states its size in its coordinates (a stored run whose files are
+        // gone cannot be asked).
+        None if top.is_file() => match imported_sides(top, units)? {
+            Some([lx, ly]) => {
+                notes.push(format!(
+                    "[surface] length = [{lx:.6e}, {ly:.6e}] m, the box of the imported map {} (its import.json)",
+                    top.display()
+                ));
+                (lx, Some(ly))
+            }
+            None => match crate::topography::file_span(top)? {
+                Some((x, _)) => (x * lateral_scale(units, &s.lateral_unit, &s.height_unit)?, None),
+                None => return Err(missing_length()),
+            },
+        },
+        None => return Err(missing_length()),
+    })
+}
+
+/// The side along x of a spectrum's map: `map_length` as given, else the import record of a map
+/// that `wearsim surface import` wrote (in SI runs), else the span of a column file's coordinates.
+fn spectrum_map_length(s: &RawSurface, units: Units, map: &Path, notes: &mut Vec<String>) -> Result<f64> {
+    Ok(match s.map_length {
+        Some(l) => l,
+        None if map.is_file() => match imported_sides(map, units)? {
+            Some([lx, _]) => {
+                notes.push(format!(
+                    "[surface] map_length = {lx:.6e} m, the side of the imported map {} (its import.json)",
+                    map.display()
+                ));
+                lx
+            }
+            None => match crate::topography::file_span(map)? {
+                Some((x, _)) => x * lateral_scale(units, &s.lateral_unit, &s.height_unit)?,
+                None => {
+                    return Err(missing(
+                        "map_length",
+                        "give the map's side along its first axis in the run's length unit (only x y z column files \
+                         and the maps `wearsim surface import` writes, in a run of units = \"si\", state it themselves)",
+                    ))
+                }
+            },
+        },
+        None => {
+            return Err(missing(
+                "map_length",
+                "give the map's side along its first axis in the run's length unit",
+            ))
+        }
+    })
+}
+
+/// The box of surfaces generated from a map's spectrum: `length` as given, else `cells` pixels of
+/// the map's own size, Δ = map_length/Nx of the map.
+fn spectrum_box(
+    length: Option<PerSide<f64>>,
+    cells: PerSide<usize>,
+    map_length: f64,
+    units: Units,
+    map: &Path,
+    notes: &mut Vec<String>,
+) -> Result<PerSide<f64>> {
+    Ok(match length {
+        Some(length) => length,
+        // The box at the map's pixel size, Δ = map_length/Nx of the map.
+        None if map.is_file() => {
+            let pixel = map_length / map_columns(map)? as f64;
+            let (sides, length) = match cells {
+                PerSide::Both(n) => (
+                    format!("{n} × Δ = {:.6e}", n as f64 * pixel),
+                    PerSide::Both(n as f64 * pixel),
+                ),
+                PerSide::Each([nx, ny]) => (
+                    format!(
+                        "[{nx}, {ny}] × Δ = [{:.6e}, {:.6e}]",
+                        nx as f64 * pixel,
+                        ny as f64 * pixel
+                    ),
+                    PerSide::Each([nx as f64 * pixel, ny as f64 * pixel]),
+                ),
+            };
+            notes.push(format!(
+                "[surface] length = {sides} {}: the box at the map's pixel size Δ = map_length/Nx = {pixel:.6e} {}",
+                units.length_unit(),
+                units.length_unit()
+            ));
+            length
+        }
+        None => {
+            return Err(missing(
+                "length",
+                "give the side of the generated surfaces' box, e.g. the map's side (`map_length`); left out, the box \
+                 is `grid` pixels of the map's size, which needs the map at hand",
+            ))
+        }
     })
 }

@@ -131,6 +131,9 @@ pub struct TidyRow {
     #[serde(flatten)]
     pub result: WearResult,
     pub flow_pressure: f64,
+    /// The specific wear rate K = W/F_N ([`crate::output::specific_wear_rate`]: mm³/(N·m) in SI);
+    /// empty with W.
+    pub specific_wear_rate: Option<f64>,
     /// The contact severity S_c = p_N √h_rms / K_Ic of appendix F, with the mode-I fracture
     /// toughness K_Ic = √(𝒢 E/(1 − ν²)) of this row's 𝒢; the abscissa of the fit W = α S_cⁿ.
     /// Empty on measured surfaces (no h_rms among the inputs).
@@ -168,6 +171,9 @@ impl TidyRow {
                     nominal_area: p.nominal_area(),
                     result: w.clone(),
                     flow_pressure: result.flow_pressure,
+                    specific_wear_rate: w
+                        .wear_rate
+                        .map(|rate| super::units::specific_wear_rate(p.units, rate, result.load)),
                     contact_severity: p.rms_height.map(|h| nominal_pressure * h.sqrt() / toughness),
                     warnings: mine.join("; "),
                 }
@@ -184,6 +190,7 @@ fn result_columns() -> Vec<String> {
         .filter(|c| c != "fracture_energy")
         .collect();
     c.push("flow_pressure".into());
+    c.push("specific_wear_rate".into());
     c
 }
 
@@ -585,6 +592,7 @@ mod tests {
                 ..WearResult::default()
             },
             flow_pressure: 0.05,
+            specific_wear_rate: wear_rate.map(|w| w / 1e-3),
             warnings: if wear_rate.is_none() {
                 "no particle".into()
             } else {

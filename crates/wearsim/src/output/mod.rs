@@ -39,4 +39,4 @@ pub use summary::{
     ESTIMATE_NOTICE, PSD_CONVENTION, RESIDUAL_DEFINITION,
 };
 pub use tables::{columns, Cell, Table};
-pub use units::{declared_unit, unit_of, units_map, QUANTITIES};
+pub use units::{declared_unit, specific_wear_rate, unit_of, units_map, QUANTITIES};

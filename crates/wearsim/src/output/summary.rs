@@ -36,6 +36,9 @@ pub struct SlidingInputs<'a> {
     /// Where the contact solver computed.
     pub device: Device,
     pub sliding: &'a SlidingConfig,
+    /// The run file's values given in another form than the model's inputs, each with its
+    /// conversion ([`RunConfig::conversions`]).
+    pub conversions: &'a [String],
 }
 
 impl<'a> SlidingInputs<'a> {
@@ -50,17 +53,22 @@ impl<'a> SlidingInputs<'a> {
             connectivity: config.connectivity,
             device: config.device,
             sliding,
+            conversions: &config.conversions,
         }
     }
 
     /// The `inputs` block of the run's outputs (summary.json, the fields store).
     pub fn to_json(&self) -> Value {
-        json!({
+        let mut inputs = json!({
             "surfaces": self.surfaces,
             "material": self.material,
             "contact": contact_inputs(self.modulus, self.solver, self.connectivity, self.device),
             "sliding": self.sliding,
-        })
+        });
+        if !self.conversions.is_empty() {
+            inputs["conversions"] = json!(self.conversions);
+        }
+        inputs
     }
 }
 
@@ -123,9 +131,14 @@ pub fn sliding_summary(
         .flat_map(|r| {
             r.results.iter().map(move |w| {
                 let mut v = serde_json::to_value(w).expect("plain numbers serialise");
-                v.as_object_mut()
-                    .expect("a struct serialises to an object")
-                    .insert("load".into(), json!(r.load));
+                let object = v.as_object_mut().expect("a struct serialises to an object");
+                object.insert("load".into(), json!(r.load));
+                object.insert(
+                    "specific_wear_rate".into(),
+                    json!(w
+                        .wear_rate
+                        .map(|rate| super::units::specific_wear_rate(inputs.units, rate, r.load))),
+                );
                 v
             })
         })
@@ -152,7 +165,7 @@ pub fn sliding_summary(
         "wear_rate_estimate_convention": "ω d*³ dN*₊/ds with ω = π/6",
         "memory_convention": "initial_junctions: junctions descending by step-to-step pixel overlap from a junction present at s = 0; memory_decay_length ℓ from a least-squares fit of ln N₀ = ln N₀(0) − s/ℓ; running_in_decay_lengths = s_r/ℓ at the start s_r of the fit window; initial_lineages_left = N₀(s_r)/N₀(0), counted; a run counts as run in with at most 5 % of the lineages left (where N₀(0) = 0, from s_r/ℓ ≥ 3)",
         "results": results,
-        "units_of_results": units_map(inputs.units, columns::<WearResult>().iter().map(String::as_str).chain(["load", "flow_pressure", "effective_modulus"])),
+        "units_of_results": units_map(inputs.units, columns::<WearResult>().iter().map(String::as_str).chain(["load", "specific_wear_rate", "flow_pressure", "effective_modulus"])),
         "units_of_series": units_map(inputs.units, columns::<SeriesRow>().iter().map(String::as_str)),
         "warnings": warnings,
         "seconds": seconds,
@@ -166,16 +179,21 @@ pub struct EstimateRow {
     pub load: f64,
     #[serde(flatten)]
     pub result: EstimateResult,
+    /// The specific wear rate K = W/F_N of the estimate's W ([`crate::output::specific_wear_rate`]).
+    pub specific_wear_rate: Option<f64>,
 }
 
-/// The rows of an estimate's `results.csv`, load by load.
-pub fn estimate_rows(loads: &[LoadEstimate]) -> Vec<EstimateRow> {
+/// The rows of an estimate's `results.csv`, load by load, in a run of `units`.
+pub fn estimate_rows(loads: &[LoadEstimate], units: Units) -> Vec<EstimateRow> {
     loads
         .iter()
         .flat_map(|l| {
-            l.results.iter().map(|r| EstimateRow {
+            l.results.iter().map(move |r| EstimateRow {
                 load: l.load,
                 result: r.clone(),
+                specific_wear_rate: r
+                    .wear_rate
+                    .map(|rate| super::units::specific_wear_rate(units, rate, l.load)),
             })
         })
         .collect()
@@ -195,7 +213,7 @@ pub fn estimate_summary(
     warnings: &[String],
     seconds: f64,
 ) -> Value {
-    let results: Vec<Value> = estimate_rows(loads)
+    let results: Vec<Value> = estimate_rows(loads, inputs.units)
         .iter()
         .map(|r| serde_json::to_value(r).expect("plain numbers serialise"))
         .collect();

@@ -27,6 +27,10 @@ pub const QUANTITIES: &[(&str, &str, &str)] = &[
     ("effective_modulus", "E", "Pa"),
     ("youngs_modulus", "E", "Pa"),
     ("shear_strength", "E", "Pa"),
+    // The run file's alternatives to τ̃ and 𝒢 (converted before the run).
+    ("hardness", "E", "Pa"),
+    ("yield_strength", "E", "Pa"),
+    ("fracture_toughness", "E √L", "Pa √m"),
     ("mean_pressure", "E", "Pa"),
     ("pressure", "E", "Pa"),
     // Lengths.
@@ -84,6 +88,8 @@ pub const QUANTITIES: &[(&str, &str, &str)] = &[
     ("critical_diameter_pixels", "px", "px"),
     ("sliding_wear_rate", "L²", "m²"),
     ("sliding_wear_coefficient", "1", "1"),
+    // The specific wear rate W/F_N, in the unit tribologists report it in.
+    ("specific_wear_rate", "1/E", "mm³/(N·m)"),
     ("sliding_particle_rate", "1/L", "1/m"),
     ("sliding_critical_junctions_mean", "", ""),
     ("wear_rate_error", "1", "1"),
@@ -100,6 +106,17 @@ pub const QUANTITIES: &[(&str, &str, &str)] = &[
     ("pairs_with_warnings", "", ""),
     ("interval_method", "", ""),
 ];
+
+/// The specific wear rate K = W/F_N that tribologists report: the wear volume per sliding
+/// distance and normal force, Archard's k over the hardness (K = k/p_m, paper Eq. 2). In a run of
+/// SI units in mm³/(N·m) (W in m³/m over F_N in N, times 10⁹ mm³/m³), in reduced units in 1/E.
+pub fn specific_wear_rate(units: Units, wear_rate: f64, load: f64) -> f64 {
+    let per_force = wear_rate / load;
+    match units {
+        Units::Si => per_force * 1e9,
+        Units::Reduced => per_force,
+    }
+}
 
 /// Statistics over surface pairs that keep the unit of their column.
 const STATISTICS: [&str; 7] = ["_mean", "_std", "_min", "_max", "_total", "_ci_low", "_ci_high"];

@@ -199,7 +199,7 @@ fn materials(table: &Table) -> Result<Vec<MaterialChoice>> {
                         )))
                     }
                 };
-                for (m, v) in product(&t, "material", &["fracture_energies"])? {
+                for (m, v) in product(&t, "material", &["fracture_energies", "fracture_toughness"])? {
                     materials.push((name.clone(), m, v, overrides.clone()));
                 }
             }
@@ -221,7 +221,7 @@ fn materials(table: &Table) -> Result<Vec<MaterialChoice>> {
                 }
             };
             crate::check::name("[material] `name`", &name).map_err(Error::run_file)?;
-            for (m, v) in product(&t, "material", &["fracture_energies"])? {
+            for (m, v) in product(&t, "material", &["fracture_energies", "fracture_toughness"])? {
                 materials.push((name.clone(), m, v, Table::new()));
             }
         }
@@ -284,18 +284,26 @@ fn expand_with(text: &str, base: &Path, files: SurfaceFiles) -> Result<Study> {
     let base_surface = section(&table, "surface")?;
     let contacts = product(&section(&table, "contact")?, "contact", &[])?;
     let sliding = section(&table, "sliding")?;
-    let loads = match sliding.get("loads") {
-        Some(Value::Array(l)) if !l.is_empty() => l.clone(),
-        _ => {
-            return Err(Error::param(
+    // The loads, as normal forces F_N (`loads`) or nominal pressures p_N (`pressures`, turned into
+    // loads by each job's run).
+    let (load_key, loads) =
+        match (sliding.get("loads"), sliding.get("pressures")) {
+            (Some(_), Some(_)) => return Err(Error::param(
                 "loads",
-                "a study needs a non-empty [sliding] `loads` list",
-            ))
-        }
-    };
-    // Schedule settings may be lists too (e.g. `step_running_in`); `loads` are the innermost axis.
-    let (schedules, warnings) = per_model(&sliding, product(&sliding, "sliding", &["loads"])?)?;
-    axis_is_unambiguous("sliding", "loads", &loads)?;
+                "[sliding] `loads` (normal forces F_N) and `pressures` (nominal pressures p_N) both give the loads; \
+                 keep one",
+            )),
+            (Some(Value::Array(l)), None) if !l.is_empty() => ("loads", l.clone()),
+            (None, Some(Value::Array(p))) if !p.is_empty() => ("pressures", p.clone()),
+            _ => return Err(Error::param(
+                "loads",
+                "a study needs a non-empty [sliding] `loads` list (normal forces F_N) or `pressures` list (nominal \
+                 pressures p_N = F_N/(Lx·Ly))",
+            )),
+        };
+    // Schedule settings may be lists too (e.g. `step_running_in`); the loads are the innermost axis.
+    let (schedules, warnings) = per_model(&sliding, product(&sliding, "sliding", &["loads", "pressures"])?)?;
+    axis_is_unambiguous("sliding", load_key, &loads)?;
     let mut jobs = Vec::new();
     for (name, material, mv, overrides) in &materials {
         let mut surface_table = base_surface.clone();
@@ -312,7 +320,7 @@ fn expand_with(text: &str, base: &Path, files: SurfaceFiles) -> Result<Study> {
                     run.insert("material".into(), Value::Table(material.clone()));
                     run.insert("contact".into(), Value::Table(contact.clone()));
                     let mut sl = schedule.clone();
-                    sl.insert("loads".into(), Value::Array(vec![load.clone()]));
+                    sl.insert(load_key.into(), Value::Array(vec![load.clone()]));
                     run.insert("sliding".into(), Value::Table(sl));
                     let index = jobs.len();
                     let config = RunConfig::from_table(run, base, files)

@@ -185,6 +185,31 @@ pub fn file_span(path: &Path) -> Result<Option<(f64, f64)>> {
     Ok(read(path)?.lengths)
 }
 
+/// The sides [Lx, Ly] in metres that `wearsim surface import` recorded for the map `path`: when
+/// `path` is a `.npy` in a folder that the import wrote (its `import.json`, `written_by` "wearsim
+/// surface import") and the record's grid is the array's shape. `None` otherwise, or when the
+/// record cannot be read as one (the run file's `length` is then needed, as for any array).
+pub fn imported_length(path: &Path) -> Result<Option<[f64; 2]>> {
+    if super::formats::extension(path) != "npy" {
+        return Ok(None);
+    }
+    let Ok(text) = std::fs::read_to_string(path.with_file_name("import.json")) else {
+        return Ok(None);
+    };
+    let Ok(record) = serde_json::from_str::<serde_json::Value>(&text) else {
+        return Ok(None);
+    };
+    if record["written_by"] != "wearsim surface import" {
+        return Ok(None);
+    }
+    let side = |i: usize| record["length"][i].as_f64().filter(|l| l.is_finite() && *l > 0.0);
+    let grid = |i: usize| record["heights_grid"][i].as_u64().and_then(|n| usize::try_from(n).ok());
+    let (Some(lx), Some(ly), Some(nx), Some(ny)) = (side(0), side(1), grid(0), grid(1)) else {
+        return Ok(None);
+    };
+    Ok((array_shape(path)? == Some((nx, ny))).then_some([lx, ly]))
+}
+
 /// The grid a surface file gives under `how` ([`file_grid`]), from a `.npy` header alone or by
 /// reading the file.
 pub fn probe_grid(path: &Path, how: &FileSurface) -> Result<Grid> {

@@ -24,6 +24,6 @@ pub use fit::{
     OUT_OF_BAND, PEAK,
 };
 pub use formats::{array_shape, metres_per, read, regular_file, Measured};
-pub use load::{file_grid, file_span, load, probe_grid, FileSurface, Loaded};
+pub use load::{file_grid, file_span, imported_length, load, probe_grid, FileSurface, Loaded};
 pub use prepare::{periodicity, preprocess, Detrend, Periodicity, Preprocess, NOT_PERIODIC};
 pub use spectrum::{MeasuredPsd, Window};

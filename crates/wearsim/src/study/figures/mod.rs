@@ -821,10 +821,22 @@ fn against_load(data: &Curves, shown: Shown, entry: &'static str) -> Figure {
             "static model, mean over every offset (the paper's Fig. 2 rows: 𝒢 varied, τ̃ varied)".to_string(),
         ),
         "fig4" => (
-            vec![
-                LoadPanel::per_area("wear_rate", "sliding wear rate W = dV/ds", shown),
-                LoadPanel::new("wear_coefficient", "wear coefficient k = W p_m / F_N", true),
-            ],
+            {
+                let mut panels = vec![
+                    LoadPanel::per_area("wear_rate", "sliding wear rate W = dV/ds", shown),
+                    LoadPanel::new("wear_coefficient", "wear coefficient k = W p_m / F_N", true),
+                ];
+                // In SI, the specific wear rate K = W/F_N in the unit tribologists report it in (in
+                // reduced units it is k/p_m, the panel above).
+                if shown.si() {
+                    panels.push(LoadPanel::new(
+                        "specific_wear_rate",
+                        &format!("specific wear rate K = W / F_N ({})", shown.unit("specific_wear_rate")),
+                        true,
+                    ));
+                }
+                panels
+            },
             true,
             "fig4_sliding_wear",
             fig4_title(data),

@@ -233,6 +233,21 @@ fn rates_are_per_unit_area_with_intervals_and_kims_band_only_for_kims_ceramics()
     assert!((p.low - p.y / factor).abs() < 1e-6 * p.low, "{p:?}");
     assert!(fig4.panels[0].y.label.contains("per unit nominal area"));
     assert_eq!(fig4.legend_title, MEANS_ON_LOG_AXES);
+    // The specific wear rate K = W/F_N is a panel in SI only: W/(Lx·Ly) over p_N, in mm³/(N·m).
+    assert_eq!(fig4.panels.len(), 2);
+    let kim = figures(KIM, &["fig4"]);
+    let si4 = named(&kim, "fig4_sliding_wear");
+    assert_eq!(si4.panels.len(), 3);
+    assert!(
+        si4.panels[2].y.label.contains("K = W / F_N (mm³/(N·m))"),
+        "{}",
+        si4.panels[2].y.label
+    );
+    for (w, k) in si4.panels[0].series.iter().zip(&si4.panels[2].series) {
+        for (pw, pk) in w.points.iter().zip(&k.points) {
+            assert!((pk.y / (pw.y / pw.x * 1e9) - 1.0).abs() < 1e-9, "{pw:?} {pk:?}");
+        }
+    }
     // A spread wider than the mean: the linear interval reaches below zero, the drawn one does not.
     assert_eq!(log_space_interval(1.0, 3.0), ((-2f64).exp(), 2f64.exp()));
     assert!(log_space_interval(0.0, 1.0).0.is_nan() && log_space_interval(1.0, f64::NAN).1.is_nan());
