@@ -22,8 +22,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 # The commands the tests run skip the cost estimate printed before `slide` and `study run` (its
 # calibration, about 10 s per thread count on a first run, would be repeated by every fresh test
-# machine); the estimate's own tests (crates/wearsim/tests/cost.rs, the CLI's tests/cost.rs)
-# calibrate and check it.
+# machine); the estimate's own tests calibrate and check it (the CLI's tests/cost.rs; the timing
+# of crates/wearsim/tests/cost.rs is run on request, with --ignored).
 export WEARSIM_NO_ESTIMATE=1
 root="$PWD"
 # The venvs are installed without bytecode (uv; pip --no-compile): the Python processes of the tests

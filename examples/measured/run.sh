@@ -9,18 +9,22 @@
 #   5. what the other route, the map itself slid over its own copy with a taper, does at its borders
 #      (taper_border_contact.py).
 #
-#   examples/measured/run.sh OUT        (about a minute on 2 cores)
+#   examples/measured/run.sh OUT [STUDY]        (about a minute on 2 cores)
+#
+# STUDY: another study file in place of study.toml (its map is the imported di-3/heights.npy beside
+# it too), e.g. fewer surface pairs or loads for a quicker run.
 #
 # WEARSIM names the wearsim program (default: wearsim on the PATH); `surface import` runs the
 # Python of $WEARSIM_PYTHON (default python3) with `pip install "wearsim[measured]"`, which also
 # draws step 5 (with matplotlib).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-out=${1:?usage: examples/measured/run.sh OUT}
+out=${1:?usage: examples/measured/run.sh OUT [STUDY]}
+study=${2:-$here/study.toml}
 wearsim=${WEARSIM:-wearsim}
 mkdir -p "$out"
 # The study reads the imported map as di-3/heights.npy beside itself.
-cp "$here/study.toml" "$out/study.toml"
+cp "$study" "$out/study.toml"
 
 "$wearsim" surface import "$here/di-3.di" --out "$out/di-3" --overwrite
 "$wearsim" surface fit "$out/di-3/heights.npy" --length 1e-5 --out "$out/fit" --overwrite

@@ -19,10 +19,22 @@ fn dry_runs_print_the_estimate_and_write_nothing_and_the_calibration_is_cached()
             .output()
             .unwrap()
     };
+    // A cache that is no calibration (damaged, edited by hand) is set aside with a note and the
+    // machine calibrated: never an estimate from it (the library's tests edit one number too). The
+    // file is the one this test's thread count gives, as the program's does.
+    let cached_path = wearsim::cost::Calibration::cache_path(&cache.join("wearsim"));
+    std::fs::create_dir_all(cached_path.parent().unwrap()).unwrap();
+    std::fs::write(&cached_path, "{\"format\": 1, \"seconds_per_iteration\": \"edited\"}").unwrap();
     let first = dry(&["slide", s(&run), "--out", s(&out), "--dry-run"]);
     let text = stderr(&first);
     assert!(first.status.success(), "{text}");
-    assert!(text.contains("calibrating this machine"), "{text}");
+    assert!(
+        text.contains("the cached cost calibration is not used: it is not a calibration this wearsim reads")
+            && text.contains("set aside")
+            && text.contains("calibrating this machine"),
+        "{text}"
+    );
+    assert!(cached_path.with_extension("json.set-aside").is_file() && cached_path.is_file());
     // 64²: 4 running-in steps of 4 px and 16 of 1 px per load, two loads.
     assert!(
         text.contains("estimate: 40 steps at 64×64") && text.contains("peak memory"),
@@ -45,8 +57,12 @@ fn dry_runs_print_the_estimate_and_write_nothing_and_the_calibration_is_cached()
         .unwrap();
     assert!(quiet.status.success(), "{}", stderr(&quiet));
     assert!(!stderr(&quiet).contains("estimate:"), "{}", stderr(&quiet));
-    let cached: Vec<_> = std::fs::read_dir(cache.join("wearsim")).unwrap().collect();
-    assert_eq!(cached.len(), 1, "{cached:?}");
+    let cached: Vec<_> = std::fs::read_dir(cache.join("wearsim"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+        .collect();
+    assert_eq!(cached, std::slice::from_ref(&cached_path));
     // The second estimate reads the cache.
     let second = dry(&["slide", s(&run), "--out", s(&out), "--dry-run"]);
     assert!(
@@ -98,29 +114,37 @@ fn dry_runs_print_the_estimate_and_write_nothing_and_the_calibration_is_cached()
     let text = stderr(&o);
     assert!(o.status.success(), "{text}");
     assert!(
-        text.contains("estimate: 4 jobs") && text.contains("CPU hours"),
+        text.contains("estimate: 4 jobs") && text.contains("CPU hours") && !text.contains("calibrating"),
         "{text}"
     );
     assert!(!folder.exists(), "a dry run made the study folder");
-    // A cache edited by hand (one exponent) is set aside with a note and the machine calibrated
-    // again: never an estimate from the edited numbers.
-    let cached = cached[0].as_ref().unwrap().path();
-    let text = std::fs::read_to_string(&cached).unwrap();
-    let json: serde_json::Value = serde_json::from_str(&text).unwrap();
-    let a = serde_json::to_string(&json["seconds_per_iteration"]["settled-map"]).unwrap();
-    assert!(a.contains("e-"), "{a}");
-    let edited = text.replacen(&a, &a.replace("e-", "e-1"), 1);
-    assert_ne!(edited, text);
-    std::fs::write(&cached, edited).unwrap();
-    let o = dry(&["slide", s(&run), "--out", s(&out), "--dry-run"]);
+    // A study's dry run prints its conversions (hardness, pressures) and what its jobs would warn
+    // about before their first step, each line once with its jobs: the harder material's d* is
+    // under a pixel in both of its jobs, the softer one's (5.2 px) warns in none.
+    let study = file(
+        dir.path(),
+        "si-study.toml",
+        &format!(
+            "{}hardness = [5e9, 40e9]\nfracture_toughness = [1e6]\n[sliding]\npressures = [2e8, 4e8]\n",
+            common::SI_SIC
+        ),
+    );
+    let o = dry(&["study", "run", s(&study), "--out", s(&folder), "--dry-run"]);
     let text = stderr(&o);
-    assert!(o.status.success(), "{text}");
+    assert!(o.status.success() && !text.contains("calibrating"), "{text}");
     assert!(
-        text.contains("the cached cost calibration is not used: its checksum does not match")
-            && text.contains("set aside")
-            && text.contains("calibrating this machine")
-            && text.contains("estimate: 40 steps"),
+        text.contains("hardness H = 5.0000e9 Pa") && text.contains("(jobs 0, 1 (2 of 4))"),
         "{text}"
     );
-    assert!(cached.with_extension("json.set-aside").is_file() && cached.is_file());
+    assert!(
+        text.contains("pressure p_N = 2.0000e8 Pa") && text.contains("(jobs 0, 2 (2 of 4))"),
+        "{text}"
+    );
+    let warned: Vec<&str> = text.lines().filter(|l| l.starts_with("warning: d* = ")).collect();
+    assert_eq!(warned.len(), 1, "{text}");
+    assert!(
+        warned[0].contains("pixels") && warned[0].ends_with("(jobs 2, 3 (2 of 4))"),
+        "{text}"
+    );
+    assert!(!folder.exists(), "a dry run made the study folder");
 }
