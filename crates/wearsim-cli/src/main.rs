@@ -52,6 +52,11 @@ enum Command {
     /// Compare the static estimate with the finished sliding jobs of a study folder (errors,
     /// coverage of the intervals); with --fit, fit its constants on them.
     EstimateCheck(estimate::CheckArgs),
+    /// Draw the figures of one `slide` run folder into DIR/figures (PNG, SVG and their numbers as
+    /// CSV), per load: the wear volume V(s) with its fitted line (the paper's Fig. 3), the particle
+    /// counts N*₊, N*, N*₋ (appendix B) and the memory of the initial contact N₀(s). A study folder
+    /// is drawn by `wearsim study plot`.
+    Plot(plot::SlideArgs),
     /// Animate the sliding run of one load as a GIF: contact maps coloured by junction state.
     Animate(animate::Args),
     /// Label the junctions of a contact map (.npy, bool or numbers > 0); write labels.npy and
@@ -120,6 +125,7 @@ fn main() {
         Command::Slide(args) => slide::run(&args),
         Command::Estimate(args) => estimate::run(&args),
         Command::EstimateCheck(args) => estimate::check(&args),
+        Command::Plot(args) => plot::run_slide(&args),
         Command::Animate(args) => animate::run(&args),
         Command::Junctions(args) => junctions::run(&args),
         Command::Fields(FieldsCommand::ToNetcdf(args)) => fields::to_netcdf(&args),

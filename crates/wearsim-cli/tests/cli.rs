@@ -417,9 +417,10 @@ fn hardness_toughness_and_pressures_are_converted_aloud() {
     assert!(text.contains("load F_N = p_N Lx·Ly = 4.0960e-1 N"), "{text}");
 }
 
-/// `summary.json` gives the specific wear rate K = W/F_N beside W and k, with its unit.
+/// `summary.json` gives the specific wear rate K = W/F_N beside W and k, with its unit, and
+/// `wearsim plot` draws the folder's series figures for each load.
 #[test]
-fn a_slides_summary_has_the_specific_wear_rate() {
+fn a_slides_summary_has_the_specific_wear_rate_and_its_folder_is_plotted() {
     let dir = tempfile::tempdir().unwrap();
     let run = run_file(dir.path(), &format!("{GENERATED}[sliding]\nloads = [1e-3, 2e-3]\n"));
     let out = dir.path().join("out");
@@ -445,4 +446,34 @@ fn a_slides_summary_has_the_specific_wear_rate() {
             None => assert!(r["specific_wear_rate"].is_null(), "{r}"),
         }
     }
+    let o = wearsim().args(["plot", common::s(&out)]).output().unwrap();
+    assert!(o.status.success(), "{}", common::stderr(&o));
+    for load in [1, 2] {
+        for name in ["fig3_wear_volume", "appB_particle_counts", "memory_of_initial_contact"] {
+            for ext in ["png", "svg", "csv"] {
+                let file = out.join("figures").join(format!("{name}_load{load}.{ext}"));
+                assert!(file.is_file(), "{}", file.display());
+            }
+        }
+    }
+    // The fitted line of Fig. 3 is the summary's W, at the second load.
+    let csv = std::fs::read_to_string(out.join("figures/fig3_wear_volume_load2.csv")).unwrap();
+    assert!(csv.contains("fit: W = "), "{csv}");
+    // Drawn again, the figures are replaced; a study folder is sent to `study plot`.
+    assert!(wearsim()
+        .args(["plot", common::s(&out)])
+        .output()
+        .unwrap()
+        .status
+        .success());
+    std::fs::create_dir_all(dir.path().join("study/jobs")).unwrap();
+    let o = wearsim()
+        .args(["plot", common::s(&dir.path().join("study"))])
+        .output()
+        .unwrap();
+    assert!(
+        !o.status.success() && common::stderr(&o).contains("wearsim study plot"),
+        "{}",
+        common::stderr(&o)
+    );
 }

@@ -131,7 +131,7 @@ pub struct TidyRow {
     #[serde(flatten)]
     pub result: WearResult,
     pub flow_pressure: f64,
-    /// The specific wear rate K = W/F_N ([`crate::output::specific_wear_rate`]: mm³/(N·m) in SI);
+    /// The specific wear rate K = W/F_N (mm³/(N·m) in SI, 1/E in reduced units);
     /// empty with W.
     pub specific_wear_rate: Option<f64>,
     /// The contact severity S_c = p_N √h_rms / K_Ic of appendix F, with the mode-I fracture

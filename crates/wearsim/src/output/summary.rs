@@ -179,7 +179,7 @@ pub struct EstimateRow {
     pub load: f64,
     #[serde(flatten)]
     pub result: EstimateResult,
-    /// The specific wear rate K = W/F_N of the estimate's W ([`crate::output::specific_wear_rate`]).
+    /// The specific wear rate K = W/F_N of the estimate's W.
     pub specific_wear_rate: Option<f64>,
 }
 

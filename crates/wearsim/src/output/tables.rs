@@ -16,7 +16,8 @@ pub enum Cell {
 }
 
 impl Cell {
-    fn of(value: &Value) -> Cell {
+    /// The cell of a JSON value (null: empty; a number: an integer or a float; the rest as text).
+    pub fn of(value: &Value) -> Cell {
         match value {
             Value::Null => Cell::Empty,
             Value::Bool(b) => Cell::Text(b.to_string()),

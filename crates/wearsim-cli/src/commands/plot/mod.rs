@@ -32,6 +32,33 @@ pub struct Args {
     figures: Option<Vec<String>>,
 }
 
+#[derive(clap::Args)]
+pub struct SlideArgs {
+    /// Folder of a `wearsim slide` run (its summary.json and series.csv).
+    dir: PathBuf,
+}
+
+/// `wearsim plot DIR`: the series figures of one `slide` folder, every load, into DIR/figures
+/// (the library's `slide_folder_figures`; a figure with nothing to draw says why). A study folder
+/// is refused with the command that draws it.
+pub fn run_slide(args: &SlideArgs) -> Result<()> {
+    let dir = &args.dir;
+    if dir.join("jobs").is_dir() {
+        anyhow::bail!(
+            "{} is a study folder (it has jobs/): draw it with `wearsim study plot {}`",
+            dir.display(),
+            dir.display()
+        );
+    }
+    let figures = wearsim::study::figures::slide_folder_figures(dir)?;
+    let folder = wearsim::io::OutputDir::begin(&dir.join("figures"), "plot", false, &[])?;
+    let (out, shown) = (folder.join(""), dir.join("figures"));
+    draw(&figures, &out, &shown)?;
+    folder.commit()?;
+    say!("wrote {} figures to {}", figures.len(), shown.display());
+    Ok(())
+}
+
 /// The values `--figures` takes: the names of the library's registry, each with what it shows.
 fn figure_names() -> clap::builder::PossibleValuesParser {
     clap::builder::PossibleValuesParser::new(

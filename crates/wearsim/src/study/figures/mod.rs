@@ -1765,6 +1765,81 @@ pub fn run_figure(entry: &str, runs: &[RunTables], load: Option<f64>, units: Uni
     })
 }
 
+/// The series figures (fig3, appB, memory: [`run_figure`]) of one `slide` run folder, from its
+/// `series.csv` and the results of its `summary.json`, for every load of the run (names suffixed
+/// `_load1`, `_load2`, … in the run's order where it has several), in the run's units. An error
+/// names the file that is missing or not a sliding run's (an estimate's folder has no series).
+pub fn slide_folder_figures(dir: &std::path::Path) -> Result<Vec<Figure>> {
+    let summary_path = dir.join("summary.json");
+    let summary: serde_json::Value = serde_json::from_str(&crate::io::read_text(&summary_path)?)
+        .map_err(|e| Error::file(&summary_path, format!("not a run's summary ({e})")))?;
+    if summary
+        .get("model")
+        .and_then(|m| m.as_str())
+        .is_some_and(|m| m != "sliding")
+    {
+        return Err(Error::file(
+            &summary_path,
+            "the summary of a static estimate, which has no series to draw (`wearsim plot` draws a `slide` folder; \
+             a study's estimates are drawn by `wearsim study plot`)",
+        ));
+    }
+    let units: Units = serde_json::from_value(summary["units"].clone())
+        .map_err(|e| Error::file(&summary_path, format!("no `units` of a run ({e})")))?;
+    let records = summary["results"].as_array().ok_or_else(|| {
+        Error::file(
+            &summary_path,
+            "no `results` of a sliding run: it is not the summary.json of `wearsim slide` (a study folder is drawn by \
+             `wearsim study plot`)",
+        )
+    })?;
+    let mut columns: Vec<String> = Vec::new();
+    for r in records {
+        for key in r.as_object().into_iter().flat_map(|o| o.keys()) {
+            if !columns.contains(key) {
+                columns.push(key.clone());
+            }
+        }
+    }
+    let results = Table {
+        rows: records
+            .iter()
+            .map(|r| columns.iter().map(|c| Cell::of(&r[c])).collect())
+            .collect(),
+        columns,
+    };
+    let series_path = dir.join("series.csv");
+    let series = Table::from_csv(&crate::io::read_text(&series_path)?)
+        .map_err(|e| Error::file(&series_path, format!("not a run's series ({e})")))?;
+    let loads = distinct(
+        series
+            .column("load")
+            .map_or(Vec::new(), |c| series.rows.iter().map(|r| r[c].number()).collect()),
+    );
+    if loads.is_empty() {
+        return Err(Error::file(
+            &series_path,
+            "no step of any load: the run has no series to draw",
+        ));
+    }
+    let run = RunTables {
+        label: "this run",
+        series: &series,
+        results: Some(&results),
+    };
+    let mut figures = Vec::new();
+    for (i, &load) in loads.iter().enumerate() {
+        for entry in ["fig3", "appB", "memory"] {
+            let mut figure = run_figure(entry, std::slice::from_ref(&run), Some(load), units)?;
+            if loads.len() > 1 {
+                figure.name = format!("{}_load{}", figure.name, i + 1);
+            }
+            figures.push(figure);
+        }
+    }
+    Ok(figures)
+}
+
 /// A study folder's figures, with the tidy table they were drawn from (the findings are judged on
 /// the same) and the job whose series they show.
 pub struct StudyFigures {
