@@ -459,13 +459,20 @@ fn a_slides_summary_has_the_specific_wear_rate_and_its_folder_is_plotted() {
     // The fitted line of Fig. 3 is the summary's W, at the second load.
     let csv = std::fs::read_to_string(out.join("figures/fig3_wear_volume_load2.csv")).unwrap();
     assert!(csv.contains("fit: W = "), "{csv}");
-    // Drawn again, the figures are replaced; a study folder is sent to `study plot`.
+    // Drawn again, the figures are replaced; the run into the same folder again replaces them with
+    // the rest (no figure of the earlier run stays); a study folder is sent to `study plot`.
     assert!(wearsim()
         .args(["plot", common::s(&out)])
         .output()
         .unwrap()
         .status
         .success());
+    let again = wearsim()
+        .args(["slide", common::s(&run), "--out", common::s(&out)])
+        .output()
+        .unwrap();
+    assert!(again.status.success(), "{}", common::stderr(&again));
+    assert!(!out.join("figures").exists());
     std::fs::create_dir_all(dir.path().join("study/jobs")).unwrap();
     let o = wearsim()
         .args(["plot", common::s(&dir.path().join("study"))])

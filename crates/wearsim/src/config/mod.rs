@@ -737,6 +737,10 @@ fn normal_loads(
             unit_of(units, "load"),
             unit_of(units, "nominal_pressure")
         ))),
+        (None, Some(pressures)) if pressures.is_empty() => Err(Error::param(
+            "pressures",
+            "the list is empty; give at least one nominal pressure p_N, e.g. pressures = [1e8] (Pa in SI)",
+        )),
         (None, Some(pressures)) => {
             let area = apparent_area(surfaces, units)?;
             let mut loads = Vec::with_capacity(pressures.len());
@@ -1246,8 +1250,15 @@ mod builder_tests {
             "written_by": "wearsim surface import",
             "heights_grid": [nx, ny],
             "length": [nx as f64 * pixel, ny as f64 * pixel],
+            "bodies": {"top": {"file": "heights.npy"}, "bottom": {"file": "bottom.npy"}},
         });
+        // Another array of the same shape in the folder is not the imported map.
+        crate::io::write_npy_f64(&dir.path().join("filtered.npy"), nx, ny, &heights).unwrap();
+        let other = "units = \"si\"\n[surface]\ntop = \"filtered.npy\"\nbottom = \"bottom.npy\"\n[material]\n\
+                     youngs_modulus = 300e9\npoisson_ratio = 0.25\nshear_strength = 3e9\n";
         std::fs::write(dir.path().join("import.json"), record.to_string()).unwrap();
+        let e = RunConfig::from_toml(other, dir.path()).unwrap_err().to_string();
+        assert!(e.contains("`length` is missing"), "{e}");
         let material = "[material]\nyoungs_modulus = 300e9\npoisson_ratio = 0.25\nshear_strength = 3e9\n";
         let files = format!("units = \"si\"\n[surface]\ntop = \"heights.npy\"\nbottom = \"bottom.npy\"\n{material}");
         let c = RunConfig::from_toml(&format!("{files}[sliding]\npressures = [1e8]\n"), dir.path()).unwrap();

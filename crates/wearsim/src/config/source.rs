@@ -234,7 +234,8 @@ fn missing_length() -> Error {
     missing(
         "length",
         "give the physical size of the height maps, length = Lx or [Lx, Ly] along their first and second axes (only \
-         x y z column files state it themselves)",
+         x y z column files state it themselves, and the maps `wearsim surface import` writes, in a run of units = \
+         \"si\", while they are at hand)",
     )
 }
 

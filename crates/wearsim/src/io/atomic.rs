@@ -597,10 +597,16 @@ pub fn folder_owner(dir: &Path) -> Result<FolderOwner> {
         .as_ref()
         .and_then(|v| v.get("files"))
         .and_then(|f| serde_json::from_value(f.clone()).ok());
+    // The figures that `wearsim plot` drew of a run into its folder are the run's own: a run into
+    // the folder again replaces them with the rest (figures of an earlier run are never kept).
+    let drawn = |e: &str| {
+        matches!(folder_owner(&dir.join(e)), Ok(FolderOwner::Wearsim { command, foreign })
+            if command == "plot" && foreign.is_empty())
+    };
     let foreign = match listed {
         Some(files) => entries
             .into_iter()
-            .filter(|e| e != MARKER && !files.contains(e))
+            .filter(|e| e != MARKER && !files.contains(e) && !drawn(e))
             .collect(),
         None => Vec::new(),
     };

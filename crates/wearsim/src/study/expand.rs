@@ -40,11 +40,11 @@ impl Job {
     }
 
     /// Whether a job result was computed for this job: same index, material, load and inputs
-    /// (compared as values), but for where the surface files lay ([`without_file_paths`]): a job
-    /// file records them as absolute paths, and a study folder committed to a repository or moved
-    /// with its surface files is read where it is now. The files themselves are compared by their
-    /// contents, which the study's hash covers (a folder whose surface files changed is refused
-    /// when its stored study is read, before any job file is).
+    /// (compared as values), but for where the surface files lay: a job file records them as
+    /// absolute paths, and a study folder committed to a repository or moved with its surface files
+    /// is read where it is now. The files themselves are compared by their contents, which the
+    /// study's hash covers (a folder whose surface files changed is refused when its stored study
+    /// is read, before any job file is).
     pub fn is_result_of(&self, r: &JobResult) -> bool {
         r.index == self.index
             && r.material == self.material

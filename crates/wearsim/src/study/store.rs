@@ -593,12 +593,15 @@ pub fn stored_study(dir: &Path) -> Result<(String, PathBuf)> {
             &file,
             format!(
                 "the copy of the study file that `wearsim study run` stored in its study folder cannot be read as a \
-                 study: {e}; it was edited or damaged since: {restore}"
+                 study: {e}; where that is a size or a load the study takes from its surface files (a map's import \
+                 record, a column file's span, `pressures` on files), put those files back where the study ran; \
+                 else the copy was edited or damaged since: {restore}"
             ),
         )
     })?;
     // The recorded hash covers the surface files too: checked when they can all be read (a folder
-    // whose surfaces moved is still read, without them).
+    // whose surfaces moved is still read without them, unless the study takes a size or a load
+    // from them).
     let recorded = std::fs::read_to_string(dir.join("study.hash")).unwrap_or_default();
     if let Ok(hash) = crate::study::expand::hash_with_surfaces(&study) {
         if !recorded.trim().is_empty() && recorded.trim() != hash {

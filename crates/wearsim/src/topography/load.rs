@@ -186,7 +186,7 @@ pub fn file_span(path: &Path) -> Result<Option<(f64, f64)>> {
 }
 
 /// The sides [Lx, Ly] in metres that `wearsim surface import` recorded for the map `path`: when
-/// `path` is a `.npy` in a folder that the import wrote (its `import.json`, `written_by` "wearsim
+/// `path` is a `.npy` body that the import wrote (named in its `import.json`, `written_by` "wearsim
 /// surface import") and the record's grid is the array's shape. `None` otherwise, or when the
 /// record cannot be read as one (the run file's `length` is then needed, as for any array).
 pub fn imported_length(path: &Path) -> Result<Option<[f64; 2]>> {
@@ -200,6 +200,18 @@ pub fn imported_length(path: &Path) -> Result<Option<[f64; 2]>> {
         return Ok(None);
     };
     if record["written_by"] != "wearsim surface import" {
+        return Ok(None);
+    }
+    // Only the bodies the import wrote (`bodies`; before it recorded them, heights.npy alone): another
+    // array of the same shape in the folder is not the measured map.
+    let name = path.file_name().and_then(|n| n.to_str()).unwrap_or_default();
+    let bodies = &record["bodies"];
+    let written = if bodies.is_object() {
+        ["top", "bottom"].iter().any(|b| bodies[b]["file"] == name)
+    } else {
+        name == "heights.npy"
+    };
+    if !written {
         return Ok(None);
     }
     let side = |i: usize| record["length"][i].as_f64().filter(|l| l.is_finite() && *l > 0.0);

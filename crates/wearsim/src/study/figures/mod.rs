@@ -827,7 +827,7 @@ fn against_load(data: &Curves, shown: Shown, entry: &'static str) -> Figure {
                     LoadPanel::new("wear_coefficient", "wear coefficient k = W p_m / F_N", true),
                 ];
                 // In SI, the specific wear rate K = W/F_N in the unit tribologists report it in (in
-                // reduced units it is k/p_m, the panel above).
+                // reduced units it is k/p_m, the panel above over the one flow pressure of a setting).
                 if shown.si() {
                     panels.push(LoadPanel::new(
                         "specific_wear_rate",

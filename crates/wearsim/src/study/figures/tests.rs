@@ -243,7 +243,10 @@ fn rates_are_per_unit_area_with_intervals_and_kims_band_only_for_kims_ceramics()
         "{}",
         si4.panels[2].y.label
     );
+    assert_eq!(si4.panels[0].series.len(), si4.panels[2].series.len());
+    assert!(si4.panels[2].series.iter().all(|s| !s.points.is_empty()));
     for (w, k) in si4.panels[0].series.iter().zip(&si4.panels[2].series) {
+        assert_eq!(w.points.len(), k.points.len());
         for (pw, pk) in w.points.iter().zip(&k.points) {
             assert!((pk.y / (pw.y / pw.x * 1e9) - 1.0).abs() < 1e-9, "{pw:?} {pk:?}");
         }
