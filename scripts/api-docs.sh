@@ -4,8 +4,8 @@
 #   Python: target/api-python/wearsim.html   (pdoc, from the installed package's docstrings)
 #   scripts/api-docs.sh [rust|python|all] [PYTHON]
 # PYTHON: an interpreter with wearsim and pdoc installed (default .venv/bin/python).
-# WEARSIM_CARGO_PROFILE: the Cargo profile whose checked dependencies cargo doc reuses (default dev;
-# scripts/test.sh sets ci, the profile of its clippy run).
+# WEARSIM_CARGO_PROFILE: the Cargo profile cargo doc builds under (default dev; scripts/test.sh sets
+# ci, the profile of its build).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 which="${1:-all}"

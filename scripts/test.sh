@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # All of wearsim's tests, each phase announced with the seconds elapsed since the start:
-#   formatting and lints (cargo fmt, clippy, ruff);
+#   formatting (cargo fmt) and lints (clippy's, in the build; ruff);
 #   one Cargo build (the `ci` profile of Cargo.toml, linked for glibc 2.17 by scripts/build-env.sh)
 #   that gives the Rust unit, validation and CLI tests, the `wearsim` program the other phases drive,
 #   and, with the Python extension added, the wheel;
@@ -123,10 +123,13 @@ source scripts/build-env.sh
 run build_env_install
 build_env_export
 echo "linker: $CARGO_TARGET_X86_64_UNKNOWN_LINUX_GNU_LINKER"
-# The test harnesses compile unoptimised (scripts/rustc-test-harness.sh says why). Set for every
-# Cargo command of the build (the wrapper is part of what Cargo compares before reusing a build),
-# except clippy, which puts its own driver there.
+# The workspace's crates compile through clippy-driver, which lints them as `cargo clippy
+# --all-targets -- -D warnings` does while the build compiles them, and the test harnesses compile
+# unoptimised (scripts/rustc-test-harness.sh says why). Set for every Cargo command of the build
+# (the wrapper and its lint options are part of what Cargo compares before reusing a build).
 export RUSTC_WORKSPACE_WRAPPER="$root/scripts/rustc-test-harness.sh"
+export WEARSIM_LINT=1
+export CLIPPY_ARGS="-D__CLIPPY_HACKERY__warnings__CLIPPY_HACKERY__"
 
 phase "In the background: .venv with the pinned test dependencies, the floors venv"
 setup_venv() {
@@ -140,10 +143,7 @@ phase "Formatting: cargo fmt --check"
 finish cargo-fetch
 run cargo fmt --all --check
 
-phase "Lints: cargo clippy --profile ci --workspace --all-targets -- -D warnings"
-run env -u RUSTC_WORKSPACE_WRAPPER cargo clippy --profile ci --workspace --all-targets --locked -q -- -D warnings
-
-phase "Rust build: the tests and the wearsim program (profile ci, linked for glibc 2.17)"
+phase "Rust build and lints: the tests and the wearsim program (profile ci, linked for glibc 2.17), clippy's lints with -D warnings"
 run cargo test --profile ci --workspace --locked --no-run -q
 
 phase "Rust API reference: cargo doc --no-deps, warnings are errors"
