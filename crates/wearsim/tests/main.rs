@@ -17,6 +17,7 @@ mod particle_rule;
 mod rectangular;
 mod scales;
 mod sliding;
+mod spectrum_fit;
 mod stopping;
 mod studies;
 mod units;
