@@ -133,7 +133,7 @@ fn dry_runs_print_the_estimate_and_write_nothing_and_the_calibration_is_cached()
     let text = stderr(&o);
     assert!(o.status.success() && !text.contains("calibrating"), "{text}");
     assert!(
-        text.contains("hardness H = 5.0000e9 Pa") && text.contains("(jobs 0, 1 (2 of 4))"),
+        text.contains("hardness H = 5.0000e9 Pa") && text.contains("(jobs 0–1 (2 of 4))"),
         "{text}"
     );
     assert!(
@@ -143,7 +143,7 @@ fn dry_runs_print_the_estimate_and_write_nothing_and_the_calibration_is_cached()
     let warned: Vec<&str> = text.lines().filter(|l| l.starts_with("warning: d* = ")).collect();
     assert_eq!(warned.len(), 1, "{text}");
     assert!(
-        warned[0].contains("pixels") && warned[0].ends_with("(jobs 2, 3 (2 of 4))"),
+        warned[0].contains("pixels") && warned[0].ends_with("(jobs 2–3 (2 of 4))"),
         "{text}"
     );
     assert!(!folder.exists(), "a dry run made the study folder");

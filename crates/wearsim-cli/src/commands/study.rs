@@ -194,7 +194,7 @@ fn report_warnings_before_run(jobs: &[&Job]) -> Result<()> {
 }
 
 /// Each distinct line that `lines` gives for the jobs, in the order first given, with "job 3" or
-/// "jobs 0, 1, 4 (3 of 12)" for the jobs that gave it.
+/// "jobs 0–1, 4 (3 of 12)" for the jobs that gave it.
 fn by_jobs(jobs: &[&Job], lines: impl Fn(&Job) -> Result<Vec<String>>) -> Result<Vec<(String, String)>> {
     let mut found: Vec<(String, Vec<usize>)> = Vec::new();
     for job in jobs {
@@ -208,14 +208,16 @@ fn by_jobs(jobs: &[&Job], lines: impl Fn(&Job) -> Result<Vec<String>>) -> Result
     Ok(found
         .into_iter()
         .map(|(line, of)| {
+            // As estimate-check writes its warnings' jobs: as ranges (the jobs are in index order).
             let which = match of.as_slice() {
                 [one] => format!("job {one}"),
                 _ if of.len() == jobs.len() => format!("all {} jobs", jobs.len()),
-                _ => {
-                    let shown: Vec<String> = of.iter().take(8).map(usize::to_string).collect();
-                    let more = if of.len() > 8 { ", …" } else { "" };
-                    format!("jobs {}{more} ({} of {})", shown.join(", "), of.len(), jobs.len())
-                }
+                _ => format!(
+                    "jobs {} ({} of {})",
+                    wearsim::study::compare::job_ranges(&of),
+                    of.len(),
+                    jobs.len()
+                ),
             };
             (line, which)
         })

@@ -176,17 +176,7 @@ impl RunBuilder {
         }
         // The apparent area, where the run fixes it (a file's y side may come from its shape,
         // checked when the run starts).
-        let area = match &self.surfaces {
-            SurfaceSource::Generated { grid, .. }
-            | SurfaceSource::Arrays { grid, .. }
-            | SurfaceSource::Spectrum { grid, .. } => Some(grid.area()),
-            SurfaceSource::Files {
-                length,
-                length_y: Some(ly),
-                ..
-            } => Some(length * ly),
-            SurfaceSource::Files { .. } => None,
-        };
+        let area = fixed_area(&self.surfaces);
         if let (Some(sl), Some(area)) = (&self.sliding, area) {
             for &load in &sl.loads {
                 crate::check::load(load, area, self.material.flow_pressure())?;
@@ -760,23 +750,34 @@ fn normal_loads(
     }
 }
 
-/// The apparent area Lx·Ly of the run's box: the grid's, or that of the surface files (their
-/// `length = [Lx, Ly]`, else Lx and the top file's shape); an error saying what to give where it
-/// is not known (files not at hand).
-fn apparent_area(surfaces: &SurfaceSource, units: Units) -> Result<f64> {
+/// The apparent area Lx·Ly where the run fixes it without reading a file: the grid's, or the
+/// surface files' `length = [Lx, Ly]`; `None` for files whose Ly comes from their shape.
+fn fixed_area(surfaces: &SurfaceSource) -> Option<f64> {
     match surfaces {
         SurfaceSource::Generated { grid, .. }
         | SurfaceSource::Arrays { grid, .. }
-        | SurfaceSource::Spectrum { grid, .. } => Ok(grid.area()),
+        | SurfaceSource::Spectrum { grid, .. } => Some(grid.area()),
         SurfaceSource::Files {
             length,
             length_y: Some(ly),
             ..
-        } => Ok(length * ly),
+        } => Some(length * ly),
+        SurfaceSource::Files { .. } => None,
+    }
+}
+
+/// The apparent area Lx·Ly of the run's box: the grid's, or that of the surface files (their
+/// `length = [Lx, Ly]`, else Lx and the top file's shape); an error saying what to give where it
+/// is not known (files not at hand).
+fn apparent_area(surfaces: &SurfaceSource, units: Units) -> Result<f64> {
+    if let Some(area) = fixed_area(surfaces) {
+        return Ok(area);
+    }
+    match surfaces {
         SurfaceSource::Files { top, .. } if top.is_file() => {
             Ok(crate::topography::probe_grid(top, &file_surface_of(surfaces, units)?)?.area())
         }
-        SurfaceSource::Files { .. } => Err(Error::run_file(
+        _ => Err(Error::run_file(
             "[sliding] `pressures` need the box's apparent area Lx·Ly, and the surface files are not at hand to give \
              Ly: give [surface] `length = [Lx, Ly]`, or the loads F_N as `loads`",
         )),
