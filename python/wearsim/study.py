@@ -239,15 +239,18 @@ def findings(tidy: pd.DataFrame) -> Tuple[pd.DataFrame, str]:
     ``figures/findings.md``): one row per finding (key, paper, rule, observed, verdict, counts as
     (holds, contrary, inconclusive, not run in), pairs_to_decide, kind: what kind of result it is,
     verdict_under_holm: the verdict once the units' p-values are Holm-adjusted within the finding,
-    verdict_under_decay_lengths: the verdict were a surface pair run in by s_r ≥ 3 ℓ instead of at
-    most 5 % of the lineages of s = 0 left, each where it differs), and the Markdown of findings.md."""
+    where it differs; verdicts_by_rule: for a "rule-dependent" verdict, the verdicts with a pair run in
+    by the lineages of s = 0 left, by s_r ≥ 3 ℓ and with every pair kept; same_data_as and reading: for
+    a finding whose every unit reads a statistic a finding above it counts, that finding and the
+    verdict its own units give; claim: the claim in a few words; notes: what else qualifies it),
+    and the Markdown of findings.md."""
     rows, markdown, _ = _wearsim.findings({str(c): tidy[c].tolist() for c in tidy.columns})
     return pd.DataFrame(rows), markdown
 
 
 def findings_units_csv(tidy: pd.DataFrame) -> str:
     """Every unit of every finding (one row each: finding, unit, outcome, quantity, estimate, low,
-    high, n, method, rule, p, p_holm, margin, pairs_to_decide, line) as the CSV text that
+    high, n, method, rule, p, p_holm, margin, pairs_to_decide, part, same_data_as, line) as the CSV text that
     ``wearsim study plot`` writes to ``figures/findings_units.csv``."""
     return _wearsim.findings({str(c): tidy[c].tolist() for c in tidy.columns})[2]
 

@@ -200,7 +200,7 @@ fn severity_fits<'py>(
 
 /// The paper's findings judged on a tidy table: one dict per finding (key, paper, rule, observed,
 /// verdict, counts (holds, contrary, inconclusive, not run in), pairs_to_decide, kind,
-/// verdict_under_holm, verdict_under_decay_lengths), the Markdown of `figures/findings.md` and the text of
+/// verdict_under_holm, verdicts_by_rule, same_data_as, reading, claim, notes), the Markdown of `figures/findings.md` and the text of
 /// `figures/findings_units.csv`.
 #[pyfunction]
 fn findings<'py>(py: Python<'py>, columns: &Bound<'py, PyDict>) -> PyResult<(Vec<Bound<'py, PyDict>>, String, String)> {
@@ -214,9 +214,21 @@ fn findings<'py>(py: Python<'py>, columns: &Bound<'py, PyDict>) -> PyResult<(Vec
             d.set_item("kind", f.kind())?;
             d.set_item("verdict_under_holm", f.verdict_under_holm.map(|v| v.name()))?;
             d.set_item(
-                "verdict_under_decay_lengths",
-                f.verdict_under_decay_lengths.map(|v| v.name()),
+                "verdicts_by_rule",
+                f.verdicts_by_rule.map(|[l, dl, a]| {
+                    [
+                        ("lineages_left", l.name()),
+                        ("decay_lengths", dl.name()),
+                        ("every_pair", a.name()),
+                    ]
+                    .into_iter()
+                    .collect::<std::collections::BTreeMap<_, _>>()
+                }),
             )?;
+            d.set_item("same_data_as", f.same_data_as)?;
+            d.set_item("reading", f.reading.map(|v| v.name()))?;
+            d.set_item("claim", f.claim)?;
+            d.set_item("notes", f.notes.clone())?;
             d.set_item("key", f.key)?;
             d.set_item("paper", f.paper)?;
             d.set_item("rule", f.rule)?;

@@ -12,6 +12,7 @@ mod fuzz_parsers;
 mod golden;
 mod measured_set;
 mod module_graph;
+mod paper_comparison;
 mod paper_window;
 mod particle_rule;
 mod rectangular;

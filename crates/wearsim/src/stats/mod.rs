@@ -11,7 +11,7 @@ pub mod fit;
 pub mod interval;
 pub mod judge;
 
-pub use fit::{line_fit, mean_std, power_law_fit, weighted_line_fit, LineFit, PowerLawFit};
+pub use fit::{line_fit, mean_std, poisson_linear_r2, power_law_fit, weighted_line_fit, LineFit, PowerLawFit};
 pub use interval::{
     count_ratio, mean_interval, paired_ratio, poisson_interval, ratio_of_means, t_critical, unpaired_ratio, Interval,
     Method, BOOTSTRAP_RESAMPLES, LEVEL,

@@ -3,7 +3,7 @@
 
 use crate::stats::{count_ratio, judge::smallest, Interval, Region, Side};
 
-use super::rules::{all_of, compare, curve_label, show, Compared, Outcome};
+use super::rules::{compare, curve_label, key_of, show, Compared, Outcome};
 use super::setting::{at_highest_load, curves, curves_differing_in_g, fmt, param, pressures, Pair, Setting};
 use super::{finding, Finding, Tally, Unit, Verdict};
 
@@ -35,32 +35,51 @@ pub(super) fn delayed_onset_for_large_g(all: &[Setting]) -> Finding {
         "per pair of curves at equal τ̃ differing in 𝒢: the ratio of the particles formed in the fit window, N*₊(larger \
          𝒢)/N*₊(smaller 𝒢) summed over the shared run-in pairs, is smaller at the lowest load than at the highest: \
          holds when the two ratios' exact intervals (two Poisson counts) are disjoint in that order, contrary when \
-         disjoint the other way"
+         disjoint the other way; the highest load is the highest where both curves have two shared run-in pairs"
             .into(),
         "pairs of curves",
         tally,
     )
 }
 
-/// One pair of curves of the onset finding: `a` the larger 𝒢.
+/// One pair of curves of the onset finding: `a` the larger 𝒢. It reads the particle counts of the
+/// two curves at their lowest load and at the highest where both have two shared run-in pairs.
 fn onset(a: &[&Setting], b: &[&Setting]) -> Outcome {
     let label = format!("{} vs {}", curve_label(a), curve_label(b));
-    let at = |i: usize| -> Option<(u64, u64, usize, &Setting)> {
+    let at = |i: usize| -> Option<(u64, u64, usize, &Setting, &Setting)> {
         let sa = a.get(i)?;
         let sb = b.iter().find(|s| s.pressure == sa.pressure)?;
         let (na, nb, n) = shared_counts(sa, sb);
-        Some((na, nb, n, sa))
+        Some((na, nb, n, *sa, *sb))
     };
-    let (Some(low), Some(top)) = (at(0), at(a.len() - 1)) else {
+    let top_index = (1..a.len()).rev().find(|&i| at(i).is_some_and(|x| x.2 >= 2));
+    let (Some(low), Some(top)) = (at(0), at(top_index.unwrap_or(a.len() - 1))) else {
         return Outcome::undecided(format!("{label}: the curves share no load"));
     };
-    if low.2 < 2 || top.2 < 2 {
-        return Outcome::NotRunIn(format!(
-            "{label}: {} and {} shared run-in pairs at the lowest and highest load",
-            low.2, top.2
-        ));
+    let reads = |o: Outcome| {
+        o.reads(key_of("rates", low.3.id, low.4.id))
+            .reads(key_of("rates", top.3.id, top.4.id))
+    };
+    if a[0].curve_particles == 0 || b[0].curve_particles == 0 {
+        // A curve below the onset of wear at every load of the study says nothing of where its
+        // onset lies.
+        return reads(Outcome::undecided(format!(
+            "{label}: d* = {:.0} px forms no particle at any load of the study: below the onset of wear, no \
+             evidence either way",
+            if a[0].curve_particles == 0 {
+                a[0].d_star_px()
+            } else {
+                b[0].d_star_px()
+            }
+        )));
     }
-    let ratio = |(na, nb, ..): (u64, u64, usize, &Setting), k: usize, pairs: usize| -> Option<Interval> {
+    if low.2 < 2 || top.2 < 2 {
+        return reads(Outcome::not_run_in(format!(
+            "{label}: {} and {} shared run-in pairs at the lowest load and the highest with run-in pairs",
+            low.2, top.2
+        )));
+    }
+    let ratio = |(na, nb, ..): (u64, u64, usize, &Setting, &Setting), k: usize, pairs: usize| -> Option<Interval> {
         let grow = |c: u64| (c as f64 * k as f64 / pairs as f64).round() as u64;
         count_ratio(grow(na), grow(nb))
     };
@@ -72,7 +91,7 @@ fn onset(a: &[&Setting], b: &[&Setting]) -> Outcome {
         }
     };
     let side = side_at(low.2);
-    let show_at = |x: (u64, u64, usize, &Setting)| match ratio(x, x.2, x.2) {
+    let show_at = |x: (u64, u64, usize, &Setting, &Setting)| match ratio(x, x.2, x.2) {
         Some(i) => format!(
             "at F_N/(Lx·Ly) = {}: {} vs {} particles, ratio {}",
             param(x.3.pressure),
@@ -82,20 +101,20 @@ fn onset(a: &[&Setting], b: &[&Setting]) -> Outcome {
         ),
         None => format!("at F_N/(Lx·Ly) = {}: no particle in either", param(x.3.pressure)),
     };
-    Outcome::Judged {
+    reads(Outcome::judged(
         side,
-        text: format!("{label}: {}; {}", show_at(low), show_at(top)),
+        format!("{label}: {}; {}", show_at(low), show_at(top)),
         // With 80 % power from the log ratios where every count is positive; else the counts
         // grown until their intervals part.
-        needed: (side == Side::Undecided)
+        (side == Side::Undecided)
             .then(|| {
                 crate::stats::pairs_needed_for_disjoint_ratios((low.0, low.1, low.2), (top.0, top.1, top.2))
                     .or_else(|| smallest(low.2, |k| side_at(k) != Side::Undecided))
             })
             .flatten(),
         // Two intervals compared with each other, not one against a threshold.
-        numbers: None,
-    }
+        None,
+    ))
 }
 
 /// The settings at one load of one family, with the hardest-and-least-tough one (largest τ̃ and
@@ -141,19 +160,20 @@ fn at_loads(all: &[Setting]) -> Vec<AtLoad<'_>> {
 /// particles (much smaller ones). Both halves, against every other setting of the load.
 pub(super) fn hardest_least_tough_emits_most_wears_least(all: &[Setting]) -> Finding {
     let mut tally = Tally::default();
+    let mut wear = Tally::default();
     for at in at_loads(all) {
         let Some(x) = at.hardest_least_tough else { continue };
         for y in at.settings.iter().filter(|y| !std::ptr::eq(**y, x)) {
-            let mut parts = vec![compare(
+            tally.file(compare(
                 x,
                 y,
                 "emits more",
                 Compared::ParticleRate,
                 Region::Above(1.0),
                 true,
-            )];
+            ));
             if at_highest_load(all, x) {
-                parts.push(compare(
+                wear.file(compare(
                     x,
                     y,
                     "wears less",
@@ -162,22 +182,39 @@ pub(super) fn hardest_least_tough_emits_most_wears_least(all: &[Setting]) -> Fin
                     true,
                 ));
             }
-            tally.file(all_of(&format!("at F_N/(Lx·Ly) = {}", param(x.pressure)), parts));
         }
     }
-    finding(
+    for u in &mut tally.units {
+        u.part = Some("emission half");
+    }
+    for mut u in wear.units {
+        u.part = Some("wear half");
+        tally.units.push(u);
+    }
+    let mut f = finding(
         "hardest-least-tough-emits-most-wears-least",
         "§4.1, Fig. 5: the hardest material and the material with the lowest fracture toughness wear the least, but \
          emit the most wear particles (much smaller ones)",
-        "per load and other setting of it: the setting of the largest τ̃ and smallest 𝒢 of the load against it, both \
-         halves paired over the shared run-in pairs (count test where a pair has no particle): dN*₊/ds ratio > 1 at \
-         every load, and W ratio < 1 at the study's highest load (below it the paper's Fig. 4a has the smaller 𝒢 \
-         wearing more at low loads, so that half is judged at the top of the range only); holds when every judged half holds. With one \
-         τ̃ the hardness half is untested"
+        "two parts, each per load and other setting of it: the setting of the largest τ̃ and smallest 𝒢 of the load \
+         against it, paired over the shared run-in pairs (count test where a pair has no particle); the emission \
+         half, dN*₊/ds ratio > 1 at every load; the wear half, W ratio < 1 at the highest load with run-in pairs \
+         (below it the paper's Fig. 4a has the smaller 𝒢 wearing more at low loads, so that half is judged at the top \
+         of the range only). Reproduced only when both halves are; with one τ̃ the hardness reading is untested"
             .into(),
         "comparisons",
         tally,
-    )
+    );
+    let taus = {
+        let mut t: Vec<String> = all.iter().map(|s| format!("{:e}", s.shear_strength)).collect();
+        t.sort();
+        t.dedup();
+        t.len()
+    };
+    if taus == 1 && !f.units.is_empty() {
+        f.notes
+            .push("one τ̃: the hardness reading of the sentence is untested, only the toughness one".into());
+    }
+    f
 }
 
 /// §4.1: to minimise the emission of fine particles, a soft but tough material.
@@ -284,7 +321,12 @@ pub(super) fn severe_wear_from_large_particles(all: &[Setting]) -> Finding {
         pairs_to_decide: None,
         units,
         verdict_under_holm: None,
-        verdict_under_decay_lengths: None,
+        claim: super::claim("severe-wear-from-large-particles"),
+        unit_name: "pairs of settings",
+        same_data_as: None,
+        reading: None,
+        verdicts_by_rule: None,
+        notes: Vec::new(),
         cites: Some(
             "Eq. 5 fixes the particle-volume ratio at (d*₁/d*₂)³; which setting wears more is judged once, by \
              the crossover finding (larger d* wears more at high load) and Fig. 5's wear half",

@@ -9,110 +9,102 @@ use crate::stats::{
 use super::setting::{fmt, Pair, Setting};
 use super::{Numbers, Tally, Unit};
 
-/// How one unit of a finding came out.
+/// How one unit of a finding came out: judged by an interval (holds, contrary or undecided, then
+/// with the surface pairs that would decide it at the observed effect and spread, when any number
+/// would), or not run in (fewer than two of its surface pairs are run in). `numbers` are the
+/// interval that decided it and the rule's region, when the unit has one; `data` names the
+/// statistics it reads, so that a statistic another finding already counts is not counted again.
 #[derive(Debug, Clone, PartialEq)]
-pub(super) enum Outcome {
-    /// Judged by an interval: holds, contrary or undecided (then with the surface pairs that would
-    /// decide it at the observed effect and spread, when any number would). `numbers` are the
-    /// interval that decided it and the rule's region, when the unit has one.
-    Judged {
-        side: Side,
-        text: String,
-        needed: Option<usize>,
-        numbers: Option<Numbers>,
-    },
-    /// Fewer than two of its surface pairs are run in.
-    NotRunIn(String),
+pub(super) struct Outcome {
+    /// `None`: not run in.
+    pub side: Option<Side>,
+    pub text: String,
+    pub needed: Option<usize>,
+    pub numbers: Option<Numbers>,
+    pub data: Vec<String>,
 }
 
 impl Outcome {
-    pub fn side(&self) -> Option<Side> {
-        match self {
-            Outcome::Judged { side, .. } => Some(*side),
-            Outcome::NotRunIn(_) => None,
+    pub fn judged(side: Side, text: String, needed: Option<usize>, numbers: Option<Numbers>) -> Outcome {
+        Outcome {
+            side: Some(side),
+            text,
+            needed,
+            numbers,
+            data: Vec::new(),
         }
     }
 
-    pub fn text(&self) -> &str {
-        match self {
-            Outcome::Judged { text, .. } | Outcome::NotRunIn(text) => text,
+    /// Fewer than two of its surface pairs are run in: `text` says which.
+    pub fn not_run_in(text: String) -> Outcome {
+        Outcome {
+            side: None,
+            text,
+            needed: None,
+            numbers: None,
+            data: Vec::new(),
         }
+    }
+
+    pub fn side(&self) -> Option<Side> {
+        self.side
+    }
+
+    pub fn text(&self) -> &str {
+        &self.text
     }
 
     /// A unit that no interval decides (no spread, no shared load, no particle): `text` says why.
     pub fn undecided(text: String) -> Outcome {
-        Outcome::Judged {
-            side: Side::Undecided,
-            text,
-            needed: None,
-            numbers: None,
-        }
+        Outcome::judged(Side::Undecided, text, None, None)
     }
 
     /// A unit judged by the interval `i` of `quantity` against `region`.
     pub fn by_interval(i: Interval, quantity: &str, region: Region, text: String, needed: Option<usize>) -> Outcome {
-        Outcome::Judged {
-            side: region.side(&i),
+        let side = region.side(&i);
+        Outcome::judged(
+            side,
             text,
             needed,
-            numbers: Some(Numbers {
+            Some(Numbers {
                 quantity: quantity.to_string(),
                 interval: i,
                 region,
             }),
-        }
+        )
     }
 
     /// The interval that decided the unit, when it has one.
     pub fn numbers(&self) -> Option<&Numbers> {
-        match self {
-            Outcome::Judged { numbers, .. } => numbers.as_ref(),
-            Outcome::NotRunIn(_) => None,
-        }
+        self.numbers.as_ref()
     }
 
     /// The same outcome with its text rewritten (a note added).
-    pub fn map_text(self, f: impl FnOnce(String) -> String) -> Outcome {
-        match self {
-            Outcome::Judged {
-                side,
-                text,
-                needed,
-                numbers,
-            } => Outcome::Judged {
-                side,
-                text: f(text),
-                needed,
-                numbers,
-            },
-            Outcome::NotRunIn(text) => Outcome::NotRunIn(f(text)),
-        }
+    pub fn map_text(mut self, f: impl FnOnce(String) -> String) -> Outcome {
+        self.text = f(self.text);
+        self
     }
+
+    /// The same outcome reading the statistic `key` as well.
+    pub fn reads(mut self, key: String) -> Outcome {
+        if !self.data.contains(&key) {
+            self.data.push(key);
+        }
+        self
+    }
+}
+
+/// The key of a statistic read on settings `a` and `b` together (their order does not matter):
+/// "rates 3|7" for the particle rates or wear rates of two settings (W = ω d*³ dN*₊/ds, Eq. 5, so
+/// their ratios are one statistic), "slopes W 1|2" for two curves' exponents of W.
+pub(super) fn key_of(what: &str, a: usize, b: usize) -> String {
+    format!("{what} {}|{}", a.min(b), a.max(b))
 }
 
 impl Tally {
     /// Files one unit under its outcome.
     pub(super) fn file(&mut self, outcome: Outcome) {
         self.units.push(Unit::of(&outcome));
-        match outcome {
-            Outcome::Judged {
-                side: Side::Holds,
-                text,
-                ..
-            } => self.holds.push(text),
-            Outcome::Judged {
-                side: Side::Contrary,
-                text,
-                ..
-            } => self.contrary.push(text),
-            Outcome::Judged {
-                side: Side::Undecided,
-                text,
-                needed,
-                ..
-            } => self.inconclusive.push((text, needed)),
-            Outcome::NotRunIn(text) => self.not_run_in.push(text),
-        }
     }
 }
 
@@ -191,10 +183,11 @@ pub(super) fn on_run_in_pairs(
             "{}: {what} = {} (one surface pair: no interval)",
             s.label(),
             fmt(v)
-        ));
+        ))
+        .reads(key_of(what, s.id, s.id));
     }
     if run.len() < 2 {
-        return Outcome::NotRunIn(format!("{}: {}", s.label(), s.run_in_note()));
+        return Outcome::not_run_in(format!("{}: {}", s.label(), s.run_in_note())).reads(key_of(what, s.id, s.id));
     }
     let values: Vec<f64> = run.iter().map(|p| value(s, p)).filter(|v| v.is_finite()).collect();
     let note = if run.len() < s.pairs.len() {
@@ -202,7 +195,7 @@ pub(super) fn on_run_in_pairs(
     } else {
         String::new()
     };
-    judge_values(&s.label(), what, &values, region, &note, s.pairs.len())
+    judge_values(&s.label(), what, &values, region, &note, s.pairs.len()).reads(key_of(what, s.id, s.id))
 }
 
 /// What two settings compare: a column of the tidy table, and whether it is a particle rate (W or
@@ -226,6 +219,15 @@ impl Compared {
             Compared::ParticleRate => p.get("particle_rate"),
             Compared::Column(c, _) => p.get(c),
             Compared::Derived(f, _) => f(p),
+        }
+    }
+
+    /// The statistic two settings compare: W and dN*₊/ds are one (W = ω d*³ dN*₊/ds, Eq. 5; the
+    /// count test reads the same particles for both).
+    fn statistic(self) -> &'static str {
+        match self {
+            Compared::WearRate | Compared::ParticleRate => "rates",
+            Compared::Column(_, name) | Compared::Derived(_, name) => name,
         }
     }
 
@@ -254,13 +256,18 @@ fn shared<'s>(a: &'s Setting, b: &'s Setting, run_in: bool) -> Vec<(&'s Pair, &'
 /// (d*_a/d*_b)³, Eq. 5); for other columns with a zero, paired differences a − b against 0.
 /// Sliding quantities compare on the pairs run in in both settings.
 pub(super) fn compare(a: &Setting, b: &Setting, what: &str, q: Compared, region: Region, run_in: bool) -> Outcome {
+    compare_pairs(a, b, what, q, region, run_in).reads(key_of(q.statistic(), a.id, b.id))
+}
+
+/// [`compare`] without the key of the statistic it reads.
+fn compare_pairs(a: &Setting, b: &Setting, what: &str, q: Compared, region: Region, run_in: bool) -> Outcome {
     let label = format!("{} vs {} ({what})", a.label(), b.label());
     let pairs = shared(a, b, run_in);
     // One shared pair (a study of one surface pair) has no spread to measure; the count test of
     // particle rates still applies to it.
     let one_pair = pairs.len() == 1 && shared(a, b, false).len() == 1;
     if pairs.is_empty() || pairs.len() < 2 && !one_pair {
-        return Outcome::NotRunIn(format!("{label}: {}; {}", a.run_in_note(), b.run_in_note()));
+        return Outcome::not_run_in(format!("{label}: {}; {}", a.run_in_note(), b.run_in_note()));
     }
     // Pairs where the quantity is undefined in either setting (a particle volume without particles)
     // are left out.
@@ -318,6 +325,9 @@ fn compare_counts(
     } else {
         format!(" × (d*_a/d*_b)³ = {}", fmt(scale))
     };
+    if let Some(text) = below_onset(a, b, na, nb) {
+        return Outcome::undecided(format!("{label}: {text}"));
+    }
     match count_ratio(na, nb) {
         Some(i) => {
             let i = i.map(|x| x * scale);
@@ -385,14 +395,13 @@ pub(super) fn exponents_by_seed(
 pub(super) fn curve_label(curve: &[&Setting]) -> String {
     let s = curve[0];
     format!(
-        "{}τ̃ = {}, 𝒢 = {} (d* = {:.0} px), {} loads",
-        if s.material == "material" {
+        "{}{}d* = {:.0} px, {} loads",
+        if s.material == "material" || !s.varies[0] {
             String::new()
         } else {
             format!("{} ", s.material)
         },
-        super::setting::param(s.shear_strength),
-        super::setting::param(s.fracture_energy),
+        s.strength_and_energy(),
         s.d_star_px(),
         curve.len()
     )
@@ -420,42 +429,52 @@ pub(super) fn all_of(label: &str, parts: Vec<Outcome>) -> Outcome {
         }
         on.first().map(|n| (*n).clone())
     };
+    let data: Vec<String> = parts.iter().flat_map(|p| p.data.iter().cloned()).collect();
+    let with_data = |mut o: Outcome| {
+        for k in &data {
+            o = o.reads(k.clone());
+        }
+        o
+    };
     if sides.contains(&Some(Side::Contrary)) {
-        return Outcome::Judged {
-            side: Side::Contrary,
-            text,
-            needed: None,
-            numbers: decisive(Side::Contrary),
-        };
+        return with_data(Outcome::judged(Side::Contrary, text, None, decisive(Side::Contrary)));
     }
     if sides.contains(&None) {
-        return Outcome::NotRunIn(text);
+        return with_data(Outcome::not_run_in(text));
     }
     if sides.iter().all(|s| *s == Some(Side::Holds)) {
-        return Outcome::Judged {
-            side: Side::Holds,
-            text,
-            needed: None,
-            numbers: decisive(Side::Holds),
-        };
+        return with_data(Outcome::judged(Side::Holds, text, None, decisive(Side::Holds)));
     }
     let needed: Option<Vec<usize>> = parts
         .iter()
-        .filter_map(|p| match p {
-            Outcome::Judged {
-                side: Side::Undecided,
-                needed,
-                ..
-            } => Some(*needed),
-            _ => None,
-        })
+        .filter(|p| p.side == Some(Side::Undecided))
+        .map(|p| p.needed)
         .collect();
-    Outcome::Judged {
-        side: Side::Undecided,
+    with_data(Outcome::judged(
+        Side::Undecided,
         text,
-        needed: needed.and_then(|n| n.into_iter().max()),
-        numbers: decisive(Side::Undecided),
-    }
+        needed.and_then(|n| n.into_iter().max()),
+        decisive(Side::Undecided),
+    ))
+}
+
+/// Why a count of 0 against n decides nothing: a setting that forms no particle at any load of the
+/// study is below the onset of wear there, which says nothing of how many fine particles it would
+/// emit once it wears. `None` where both form particles somewhere.
+fn below_onset(a: &Setting, b: &Setting, na: u64, nb: u64) -> Option<String> {
+    let none = |s: &Setting, n: u64| n == 0 && s.curve_particles == 0;
+    let which: Vec<String> = [(a, na), (b, nb)]
+        .into_iter()
+        .filter(|(s, n)| none(s, *n))
+        .map(|(s, _)| format!("d* = {:.0} px", s.d_star_px()))
+        .collect();
+    (!which.is_empty() && na + nb > 0).then(|| {
+        format!(
+            "{na} vs {nb} particles, and {} forms no particle at any load of the study: below the onset of wear, \
+             no evidence either way",
+            which.join(" and ")
+        )
+    })
 }
 
 /// Two settings on different surfaces (another box or grid: their pairs are independent): the
@@ -463,10 +482,15 @@ pub(super) fn all_of(label: &str, parts: Vec<Outcome>) -> Outcome {
 /// where a pair has no particle, the count test on the particles summed over each one's run-in
 /// pairs, rates per sliding distance of the fit windows (for W times (d*_a/d*_b)³, Eq. 5).
 pub(super) fn compare_unpaired(a: &Setting, b: &Setting, what: &str, q: Compared, region: Region) -> Outcome {
+    unpaired(a, b, what, q, region).reads(key_of(q.statistic(), a.id, b.id))
+}
+
+/// [`compare_unpaired`] without the key of the statistic it reads.
+fn unpaired(a: &Setting, b: &Setting, what: &str, q: Compared, region: Region) -> Outcome {
     let label = format!("{} vs {} ({what})", a.label(), b.label());
     let (ra, rb) = (a.run_in_pairs(), b.run_in_pairs());
     if ra.len() < 2 || rb.len() < 2 {
-        return Outcome::NotRunIn(format!("{label}: {}; {}", a.run_in_note(), b.run_in_note()));
+        return Outcome::not_run_in(format!("{label}: {}; {}", a.run_in_note(), b.run_in_note()));
     }
     let values = |r: &[&Pair]| -> Vec<f64> { r.iter().map(|p| q.value(p)).filter(|v| v.is_finite()).collect() };
     let (va, vb) = (values(&ra), values(&rb));
@@ -497,6 +521,9 @@ pub(super) fn compare_unpaired(a: &Setting, b: &Setting, what: &str, q: Compared
     let mut scale = exposure(b, rb.len()) / exposure(a, ra.len());
     if let Compared::WearRate = q {
         scale *= (a.critical_diameter / b.critical_diameter).powi(3);
+    }
+    if let Some(text) = below_onset(a, b, na, nb) {
+        return Outcome::undecided(format!("{label}: {text}"));
     }
     match (q, count_ratio(na, nb)) {
         (Compared::WearRate | Compared::ParticleRate, Some(i)) => {

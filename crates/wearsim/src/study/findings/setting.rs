@@ -17,6 +17,8 @@ pub enum RunInRule {
     /// the same 5 % extrapolated from ℓ, which a tail of a few persisting lineages can dominate (the
     /// other defensible rule, whose verdicts findings.md gives where they differ).
     DecayLengths,
+    /// Every pair counts as run in: no exclusion (the third rule a verdict is read under).
+    All,
 }
 
 /// One surface pair of a setting: its seed and every numeric column of its row of the tidy table.
@@ -50,10 +52,16 @@ impl Pair {
     /// or the fit window at least [`RUN_IN_DECAY_LENGTHS`](crate::sliding::RUN_IN_DECAY_LENGTHS) of the pair's own decay lengths after
     /// s = 0. A pair whose memory is gone by the first step (no decay fitted, empty cell) is run in.
     pub fn run_in(&self) -> bool {
+        self.run_in_by(self.rule)
+    }
+
+    /// Run in under `rule`.
+    pub fn run_in_by(&self, rule: RunInRule) -> bool {
         let r = Some(self.decay_lengths());
-        match self.rule {
+        match rule {
             RunInRule::LineagesLeft => crate::sliding::is_run_in(Some(self.lineages_left()), r),
             RunInRule::DecayLengths => crate::sliding::is_run_in(None, r),
+            RunInRule::All => true,
         }
     }
 
@@ -71,8 +79,16 @@ impl Pair {
 /// One setting of the study (every input but the surface pair) with its pairs.
 #[derive(Debug, Clone)]
 pub(super) struct Setting {
+    /// Its place among the study's settings: the statistics it enters are keyed by it.
+    pub id: usize,
     /// Its curve against load (the aggregated table's `curve`).
     pub curve: usize,
+    /// Particles formed in the fit windows of its curve, over every load and pair: 0 for a setting
+    /// below the onset of wear at every load of the study.
+    pub curve_particles: u64,
+    /// Which of the material, τ̃ and 𝒢 take more than one value in the study: the labels name only
+    /// those.
+    pub varies: [bool; 3],
     /// Every input but the material's name, τ̃, 𝒢 and the load, as text: settings compare within a family.
     pub family: String,
     /// The same inputs by column, for comparisons across one study axis (a box, a grid, λ_l, h_rms).
@@ -82,6 +98,8 @@ pub(super) struct Setting {
     /// The box's side Lx and the sliding distance over which the fit window runs (from its start to
     /// the end of the run): the exposure of the particle counts.
     pub length: f64,
+    /// The running-in s_r as a fraction of the box side Lx (`sliding.running_in`).
+    pub running_in: f64,
     pub fit_distance: f64,
     pub material: String,
     pub shear_strength: f64,
@@ -113,33 +131,57 @@ impl Setting {
 
     pub fn label(&self) -> String {
         format!(
-            "{}τ̃ = {}, 𝒢 = {}, F_N/(Lx·Ly) = {} (d* = {:.0} px)",
-            material_prefix(&self.material),
-            param(self.shear_strength),
-            param(self.fracture_energy),
+            "{}{}F_N/(Lx·Ly) = {} (d* = {:.0} px)",
+            self.material_prefix(),
+            self.strength_and_energy(),
             param(self.pressure),
             self.d_star_px()
         )
     }
 
-    /// "3 of 5 pairs run in (s_r/ℓ = 5.06, 4.80, 2.40, 3.43, 0.97)".
+    /// "τ̃ = 0.012, 𝒢 = 2.5e-7, " where they vary in the study.
+    pub fn strength_and_energy(&self) -> String {
+        let mut text = String::new();
+        if self.varies[1] {
+            text += &format!("τ̃ = {}, ", param(self.shear_strength));
+        }
+        if self.varies[2] {
+            text += &format!("𝒢 = {}, ", param(self.fracture_energy));
+        }
+        text
+    }
+
+    fn material_prefix(&self) -> String {
+        if self.varies[0] {
+            material_prefix(&self.material)
+        } else {
+            String::new()
+        }
+    }
+
+    /// "7 of 10 pairs run in": the per-pair measures are in the running-in diagnostic, once per
+    /// contact history.
     pub fn run_in_note(&self) -> String {
-        let r: Vec<String> = self.pairs.iter().map(|p| fmt(p.decay_lengths())).collect();
-        let counted = self.pairs.iter().any(|p| p.lineages_left().is_finite());
+        format!("{} of {} pairs run in", self.run_in_pairs().len(), self.pairs.len())
+    }
+
+    /// The running-in of this setting's contact history pair by pair: how many pairs each rule
+    /// runs in, the lineages of s = 0 left at s_r and s_r/ℓ.
+    pub fn run_in_table_row(&self) -> String {
+        let by = |rule: RunInRule| self.pairs.iter().filter(|p| p.run_in_by(rule)).count();
         let left: Vec<String> = self
             .pairs
             .iter()
             .map(|p| format!("{:.0} %", 100.0 * p.lineages_left()).replace("NaN %", "—"))
             .collect();
+        let r: Vec<String> = self.pairs.iter().map(|p| fmt(p.decay_lengths())).collect();
         format!(
-            "{} of {} pairs run in ({}s_r/ℓ = {})",
-            self.run_in_pairs().len(),
+            "{} of {} run in by the lineages left, {} by s_r ≥ {} ℓ; lineages of s = 0 left: {}; s_r/ℓ: {}",
+            by(RunInRule::LineagesLeft),
             self.pairs.len(),
-            if counted {
-                format!("lineages of s = 0 left = {}; ", left.join(", "))
-            } else {
-                String::new()
-            },
+            by(RunInRule::DecayLengths),
+            crate::sliding::RUN_IN_DECAY_LENGTHS,
+            left.join(", "),
             r.join(", ")
         )
     }
@@ -147,9 +189,13 @@ impl Setting {
     /// The label of the contact history (τ̃ and load: the memory does not depend on 𝒢).
     pub fn history_label(&self) -> String {
         format!(
-            "{}τ̃ = {}, F_N/(Lx·Ly) = {}",
-            material_prefix(&self.material),
-            param(self.shear_strength),
+            "{}{}F_N/(Lx·Ly) = {}",
+            self.material_prefix(),
+            if self.varies[1] {
+                format!("τ̃ = {}, ", param(self.shear_strength))
+            } else {
+                String::new()
+            },
             param(self.pressure)
         )
     }
@@ -179,10 +225,11 @@ pub(super) fn settings(tidy: &Table, rule: RunInRule) -> Vec<Setting> {
     let numeric: Vec<usize> = (0..tidy.columns.len())
         .filter(|&c| tidy.rows.iter().any(|r| matches!(r[c], Cell::Float(_) | Cell::Int(_))))
         .collect();
-    found
+    let mut all: Vec<Setting> = found
         .groups
         .iter()
-        .map(|g| {
+        .enumerate()
+        .map(|(id, g)| {
             let first = &tidy.rows[g.rows[0]];
             let num = |name: &str| col(name).map_or(f64::NAN, |i| first[i].number());
             let family_cells: BTreeMap<String, String> = found
@@ -214,11 +261,15 @@ pub(super) fn settings(tidy: &Table, rule: RunInRule) -> Vec<Setting> {
                 })
                 .collect();
             Setting {
+                id,
                 curve: g.curve,
+                curve_particles: 0,
+                varies: [false; 3],
                 family: family.join("|"),
                 family_cells,
                 load: num("load"),
                 length: num("surface.length"),
+                running_in: num("sliding.running_in"),
                 fit_distance: num("sliding.distance") * num("surface.length") - num("fit_window_start"),
                 material: col("material").map_or("material".into(), |i| first[i].text()),
                 shear_strength: num("material.shear_strength"),
@@ -230,7 +281,28 @@ pub(super) fn settings(tidy: &Table, rule: RunInRule) -> Vec<Setting> {
                 pairs,
             }
         })
-        .collect()
+        .collect();
+    mark_study_wide(&mut all);
+    all
+}
+
+/// What a setting knows of the whole study: the particles of its curve over every load, and which of
+/// the material, τ̃ and 𝒢 vary (the labels name only those).
+fn mark_study_wide(all: &mut [Setting]) {
+    let mut by_curve: BTreeMap<usize, u64> = BTreeMap::new();
+    for s in all.iter() {
+        *by_curve.entry(s.curve).or_default() += s.pairs.iter().map(Pair::particles).sum::<u64>();
+    }
+    let differ = |f: &dyn Fn(&Setting) -> String| all.iter().any(|s| f(s) != f(&all[0]));
+    let varies = [
+        differ(&|s| s.material.clone()),
+        differ(&|s| format!("{:e}", s.shear_strength)),
+        differ(&|s| format!("{:e}", s.fracture_energy)),
+    ];
+    for s in all.iter_mut() {
+        s.curve_particles = by_curve[&s.curve];
+        s.varies = varies;
+    }
 }
 
 /// An input value as given (0.008), in exponent form when small or large (2.5e-7, 3.37e9 Pa),
@@ -328,16 +400,19 @@ pub(super) fn pressures(all: &[Setting]) -> Vec<f64> {
     p
 }
 
-/// Whether a setting is at the highest load of its family: the "high loads" of the paper's
-/// statements read as the top of the study's range, not as whatever lies above its median.
-pub(super) fn at_highest_load(all: &[Setting], s: &Setting) -> bool {
-    let top = all
-        .iter()
-        .filter(|x| x.family == s.family)
+/// The highest load of a family at which a setting has at least two run-in pairs: "high loads" in
+/// the paper's sentences read as the top of the loads the study can judge, never as whatever lies
+/// above the median, nor as a top load where no pair is run in. NaN where no load has two.
+pub(super) fn highest_run_in_load(all: &[Setting], family: &str) -> f64 {
+    all.iter()
+        .filter(|x| x.family == family && x.run_in_pairs().len() >= 2)
         .map(|x| x.pressure)
-        .fold(f64::NEG_INFINITY, f64::max);
-    let loads = pressures(all).len();
-    loads > 1 && s.pressure == top
+        .fold(f64::NAN, f64::max)
+}
+
+/// Whether a setting is at [`highest_run_in_load`] of its family, in a study of several loads.
+pub(super) fn at_highest_load(all: &[Setting], s: &Setting) -> bool {
+    pressures(all).len() > 1 && s.pressure == highest_run_in_load(all, &s.family)
 }
 
 /// Pairs of settings in the same family at the same load whose d* differs through one parameter:
