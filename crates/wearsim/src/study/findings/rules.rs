@@ -96,7 +96,8 @@ impl Outcome {
 
 /// The key of a statistic read on settings `a` and `b` together (their order does not matter):
 /// "rates 3|7" for the particle rates or wear rates of two settings (W = ω d*³ dN*₊/ds, Eq. 5, so
-/// their ratios are one statistic), "slopes W 1|2" for two curves' exponents of W.
+/// their ratios are one statistic), "slopes W difference 1|2" for the difference of two curves'
+/// exponents of W (the crossover's trend, and that of k), "k 4|4" for one setting's mean k.
 pub(super) fn key_of(what: &str, a: usize, b: usize) -> String {
     format!("{what} {}|{}", a.min(b), a.max(b))
 }
