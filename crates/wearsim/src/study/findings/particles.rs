@@ -187,6 +187,15 @@ pub(super) fn hardest_least_tough_emits_most_wears_least(all: &[Setting]) -> Fin
     for u in &mut tally.units {
         u.part = Some("emission half");
     }
+    // A study that judges the emission half but no wear half (one load, or no load with two run-in
+    // pairs) cannot reproduce the sentence: the missing half is a unit not run in.
+    if wear.units.is_empty() && !tally.units.is_empty() {
+        wear.file(Outcome::not_run_in(
+            "the wear half: judged at the highest load with two run-in pairs of a study of several loads, which \
+             this study lacks"
+                .into(),
+        ));
+    }
     for mut u in wear.units {
         u.part = Some("wear half");
         tally.units.push(u);

@@ -1093,3 +1093,16 @@ fn the_highest_load_is_the_highest_with_run_in_pairs_and_fig_5_needs_both_halves
     assert!(fig5.kind().contains("parts: emission half: "), "{}", fig5.kind());
     check_counted_once(&f).unwrap();
 }
+
+#[test]
+fn fig_5_on_one_load_has_no_wear_half_and_is_not_reproduced() {
+    let mut tidy = study(None);
+    let load = tidy.column("load").unwrap();
+    tidy.rows.retain(|r| r[load].number() == 1e-3);
+    let f = findings(&tidy);
+    let fig5 = get(&f, "hardest-least-tough-emits-most-wears-least");
+    let wear: Vec<&Unit> = fig5.units.iter().filter(|u| u.part == Some("wear half")).collect();
+    assert_eq!(wear.len(), 1, "{}", fig5.observed);
+    assert_eq!(wear[0].outcome, "not run in");
+    assert_ne!(fig5.verdict, Verdict::Reproduced, "{}", fig5.observed);
+}
