@@ -106,6 +106,10 @@ fn k_maximum(c: &[&Setting]) -> String {
     if !best.is_finite() {
         return "no mean k: no pair has a wear coefficient".into();
     }
+    if best <= 0.0 {
+        // No particle at any load: k = 0 throughout has no maximum to place.
+        return "k = 0 at every load (no particle formed): no maximum".into();
+    }
     let where_ = if i == 0 {
         "at the lowest load: the maximum lies at or below it"
     } else if i + 1 == c.len() {

@@ -178,8 +178,17 @@ pub(super) fn on_run_in_pairs(
 ) -> Outcome {
     let run = s.run_in_pairs();
     if s.pairs.len() < 2 {
-        // A study of one surface pair has no spread to measure: no interval, whatever the pair shows.
-        let v = run.first().map_or(f64::NAN, |p| value(s, p));
+        // A study of one surface pair has no spread to measure: no interval, whatever the pair shows;
+        // a pair that is not run in has no value to show either, and says so.
+        let Some(p) = run.first() else {
+            return Outcome::not_run_in(format!(
+                "{}: one surface pair, not run in ({}): no value and no interval",
+                s.label(),
+                s.run_in_note()
+            ))
+            .reads(key_of(what, s.id, s.id));
+        };
+        let v = value(s, p);
         return Outcome::undecided(format!(
             "{}: {what} = {} (one surface pair: no interval)",
             s.label(),

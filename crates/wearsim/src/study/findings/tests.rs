@@ -875,6 +875,40 @@ fn the_largest_mean_k_of_a_curve_is_never_a_zero_from_pairs_not_run_in() {
     set(&mut tidy, 0.008, 2e-3, "running_in_decay_lengths", &[Cell::Float(1.0)]);
     let o = observed(&tidy);
     assert!(!o.contains("k = 0 ") && o.contains("largest mean k ="), "{o}");
+    // No particle at any load: k = 0 everywhere has no maximum, and none is placed.
+    let mut tidy = study(None);
+    let c = tidy.columns.iter().position(|c| c == "wear_coefficient").unwrap();
+    for r in tidy.rows.iter_mut() {
+        r[c] = Cell::Float(0.0);
+    }
+    let o = observed(&tidy);
+    assert!(
+        o.contains("k = 0 at every load (no particle formed): no maximum") && !o.contains("largest mean k"),
+        "{o}"
+    );
+}
+
+#[test]
+fn one_surface_pair_not_run_in_is_said_to_be_not_run_in() {
+    let mut tidy = kim(1);
+    let c = tidy
+        .columns
+        .iter()
+        .position(|c| c == "running_in_decay_lengths")
+        .unwrap();
+    for r in tidy.rows.iter_mut() {
+        r[c] = Cell::Float(1.0);
+    }
+    let f = findings(&tidy);
+    let k = get(&f, "kim-k-above-experiments");
+    assert!(
+        k.observed
+            .contains("one surface pair, not run in (0 of 1 pairs run in)")
+            && !k.observed.contains("= undefined"),
+        "{}",
+        k.observed
+    );
+    assert!(k.units.iter().all(|u| u.outcome == "not run in"), "{:?}", k.units);
 }
 
 #[test]
