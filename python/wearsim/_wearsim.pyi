@@ -22,6 +22,7 @@ __all__ = [
     "KIM_EXPERIMENTAL_K",
     "KIM_SEVERITY_FIT",
     "MAX_ESTIMATE_SAMPLES",
+    "MIN_GRID",
     "Material",
     "NotConvergedError",
     "PAPER_SEVERITY_FIT",
@@ -73,6 +74,7 @@ __version__: str
 DEFAULT_TOLERANCE: float
 DEFAULT_MAX_ITERATIONS: int
 DEFAULT_CONNECTIVITY: int
+MIN_GRID: int
 DEFAULT_DISTANCE: float
 DEFAULT_RUNNING_IN: float
 DEFAULT_STEP_RUNNING_IN: int

@@ -109,7 +109,7 @@ def test_fit_surface_levels_the_map_first_as_the_cli_does(tmp_path, wearsim_bin)
     cli = ["surface", "fit", tmp_path / "tilted.npy", "--length", "1", "--out", tmp_path / "fit"]
     subprocess.run([wearsim_bin, "--quiet", *cli], check=True, capture_output=True)
     cli = json.loads((tmp_path / "fit" / "fit.json").read_text())
-    assert fit == {**cli["fit"], **{k: cli[k] for k in ("spectrum", "notes", "self_affine", "reasons")}}
+    assert fit == {**cli["fit"], **{k: cli[k] for k in ("spectrum", "notes", "self_affine", "reasons", "rms_slope")}}
     # Without levelling, the tilt is the "roughness".
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

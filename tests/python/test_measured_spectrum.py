@@ -40,7 +40,7 @@ def cli_fit(wearsim_bin, tmp_path, heights, name):
 def python_fit_of_cli(cli):
     """What fit_surface returns for a map, from the fit.json of `wearsim surface fit` on it: the
     fit's fields and, beside them, the spectrum, notes and verdict."""
-    return {**cli["fit"], **{k: cli[k] for k in ("spectrum", "notes", "self_affine", "reasons")}}
+    return {**cli["fit"], **{k: cli[k] for k in ("spectrum", "notes", "self_affine", "reasons", "rms_slope")}}
 
 
 def test_an_anisotropic_spectrum_is_not_self_affine_and_warns_pointing_to_spectrum_pairs(tmp_path, wearsim_bin):

@@ -556,3 +556,113 @@ fn surface_fit_of_a_resampled_map_uses_its_measured_wavevectors() {
         "{e}"
     );
 }
+
+/// The generated surfaces' rms slope beside the map's, where the h_rms change is said: a band with
+/// white noise at the pixel scale (left out of the fit beyond λ_l) keeps most of its h_rms and loses
+/// most of its slope, which a note says, with both slopes in fit.json; the band alone changes its
+/// slope by little, and no note is given.
+#[test]
+fn surface_fit_says_how_much_the_generated_surfaces_change_the_rms_slope() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = Grid::square(256, 1.0).unwrap();
+    let spectrum = SpectrumParams {
+        hurst: 0.8,
+        lambda_lower: 1.0 / 32.0,
+        lambda_upper: 1.0 / 4.0,
+        rms_height: 0.01,
+        generation: Generation::RandomPhase,
+    };
+    let band = Surface::generate(grid, &spectrum, 5).unwrap().into_heights();
+    // Deterministic white noise of 10 % of the band's rms: as steep as the band at the pixel scale.
+    let mut state = 12345u64;
+    let noisy: Vec<f64> = band
+        .iter()
+        .map(|h| {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            h + 1e-3 * 3f64.sqrt() * (2.0 * ((state >> 11) as f64 / (1u64 << 53) as f64) - 1.0)
+        })
+        .collect();
+    write_npy(&dir.path().join("noisy.npy"), &[256, 256], &noisy);
+    write_npy(&dir.path().join("band.npy"), &[256, 256], &band);
+    let fit = |name: &str| {
+        let out = dir.path().join(format!("{name}-fit"));
+        let o = run(&[
+            "surface",
+            "fit",
+            s(&dir.path().join(format!("{name}.npy"))),
+            "--length",
+            "1.0",
+            "--out",
+            s(&out),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        (o, fit_record(&out))
+    };
+    let (o, record) = fit("noisy");
+    let slopes = &record["rms_slope"];
+    let (map, generated) = (slopes["map"].as_f64().unwrap(), slopes["generated"].as_f64().unwrap());
+    assert!(generated < 0.8 * map, "{record}");
+    let change = format!("{:+.0} %", 100.0 * (generated / map - 1.0));
+    let e = stderr(&o);
+    assert!(
+        e.contains("note: the generated surfaces' rms slope") && e.contains(&change),
+        "{e}\n{change}"
+    );
+    assert!(
+        stdout(&o).contains("rms slope of the generated surfaces"),
+        "{}",
+        stdout(&o)
+    );
+    assert!(record["notes"].to_string().contains("rms slope"), "{record}");
+    let (o, record) = fit("band");
+    let slopes = &record["rms_slope"];
+    let change = slopes["generated"].as_f64().unwrap() / slopes["map"].as_f64().unwrap() - 1.0;
+    assert!(change.abs() < 0.1, "{record}");
+    assert!(!stderr(&o).contains("rms slope"), "{}", stderr(&o));
+}
+
+/// A flat map (one value, or a plane that the levelling leaves as round-off) has a zero spectrum:
+/// `surface fit` says so instead of writing a block that cannot run, and a run file's
+/// `source = "spectrum"` on it says the same.
+#[test]
+fn a_flat_map_is_said_to_have_no_spectrum() {
+    let dir = tempfile::tempdir().unwrap();
+    write_npy(&dir.path().join("flat.npy"), &[32, 32], &[3.0; 32 * 32]);
+    let plane: Vec<f64> = (0..32 * 32)
+        .map(|k| 0.01 * (k / 32) as f64 + 0.002 * (k % 32) as f64)
+        .collect();
+    write_npy(&dir.path().join("plane.npy"), &[32, 32], &plane);
+    for name in ["flat.npy", "plane.npy"] {
+        let map = dir.path().join(name);
+        let o = run(&[
+            "surface",
+            "fit",
+            s(&map),
+            "--length",
+            "1",
+            "--out",
+            s(&dir.path().join("fit")),
+        ]);
+        let e = stderr(&o);
+        assert!(!o.status.success(), "{e}");
+        assert!(e.contains("the map is flat") && e.contains("spectrum is zero"), "{e}");
+        assert!(
+            !stdout(&o).contains("source = \"spectrum\"") && !dir.path().join("fit").exists(),
+            "{e}"
+        );
+        let run_path = common::run_file(
+            dir.path(),
+            &format!(
+                "[surface]\nsource = \"spectrum\"\nmap = {map:?}\nmap_length = 1\ngrid = 32\nlength = 1\n\
+                 [material]\nyoungs_modulus = 1.0\npoisson_ratio = 0.3\nshear_strength = 0.01\n\
+                 fracture_energies = [1e-6]\n"
+            ),
+        );
+        let o = run(&["surface", s(&run_path), "--out", s(&dir.path().join("pair"))]);
+        let e = stderr(&o);
+        assert!(!o.status.success() && e.contains("the map is flat"), "{e}");
+        assert!(!e.contains("holds no wavevector"), "{e}");
+    }
+}

@@ -196,3 +196,93 @@ fn a_study_collect_stopped_while_writing_its_tables_leaves_no_temporary_file() {
     }
     assert!(stopped > 0, "every collect finished before its signal");
 }
+
+/// An executable shell script `name` in `dir` with `body`: a stand-in for a Python interpreter.
+fn script(dir: &Path, name: &str, body: &str) -> std::path::PathBuf {
+    use std::os::unix::fs::PermissionsExt;
+    let path = dir.join(name);
+    std::fs::write(&path, format!("#!/bin/sh\n{body}\n")).unwrap();
+    std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
+    path
+}
+
+#[test]
+fn the_commands_that_run_python_stop_at_once_while_it_hangs_and_never_take_silence_for_success() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = dir.path().join("scan.x3p");
+    std::fs::write(&map, b"PK\x03\x04 not read by these stand-ins").unwrap();
+    let store = dir.path().join("fields.zarr");
+    std::fs::create_dir(&store).unwrap();
+    std::fs::write(store.join(".zgroup"), "{\"zarr_format\": 2}").unwrap();
+    let out = dir.path().join("imported");
+    let nc = dir.path().join("fields.nc");
+    let commands = |python: &Path| -> [Vec<String>; 2] {
+        let p = s(python).to_string();
+        [
+            ["surface", "import", s(&map), "--out", s(&out), "--python", &p]
+                .map(String::from)
+                .to_vec(),
+            ["fields", "to-netcdf", s(&store), s(&nc), "--python", &p]
+                .map(String::from)
+                .to_vec(),
+        ]
+    };
+    // The probe hangs (an interpreter on a dead file system): each stop signal stops the command at
+    // once, 128 + the signal, nothing written, and no word that the package is missing.
+    let hang = script(dir.path(), "hang", "exec sleep 60");
+    for args in commands(&hang) {
+        for signal in [libc::SIGTERM, libc::SIGUSR1] {
+            let child = wearsim()
+                .args(&args)
+                .stdout(Stdio::null())
+                .stderr(Stdio::piped())
+                .spawn()
+                .unwrap();
+            std::thread::sleep(Duration::from_millis(300));
+            let sent = Instant::now();
+            send(&child, signal);
+            let o = child.wait_with_output().unwrap();
+            let e = stderr(&o);
+            assert!(
+                sent.elapsed() < Duration::from_secs(5),
+                "{args:?}: took {:?}",
+                sent.elapsed()
+            );
+            assert_eq!(o.status.code(), Some(128 + signal), "{args:?}: {e}");
+            assert!(!e.contains("lacks the wearsim package"), "{e}");
+            assert!(!out.exists() && !nc.exists(), "{args:?}");
+        }
+        // Left alone, it is given up after WEARSIM_PYTHON_TIMEOUT and said to hang.
+        let started = Instant::now();
+        let o = wearsim()
+            .args(&args)
+            .env("WEARSIM_PYTHON_TIMEOUT", "0.5")
+            .output()
+            .unwrap();
+        let e = stderr(&o);
+        assert!(started.elapsed() < Duration::from_secs(10), "{:?}", started.elapsed());
+        assert_eq!(o.status.code(), Some(1), "{e}");
+        assert!(e.contains("did not answer within") && e.contains("--python"), "{e}");
+    }
+    // An interpreter that answers every question with success and does nothing: the command fails,
+    // saying that nothing was written, rather than exiting 0 with no folder.
+    let silent = script(dir.path(), "silent", "exit 0");
+    for args in commands(&silent) {
+        let o = wearsim().args(&args).output().unwrap();
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {e}");
+        assert!(
+            e.contains("ended with success but wrote nothing") && e.contains("missing"),
+            "{e}"
+        );
+    }
+    // Nor does an earlier output count as this run's.
+    std::fs::create_dir(&out).unwrap();
+    std::fs::write(&nc, b"an earlier conversion").unwrap();
+    for args in commands(&silent) {
+        let o = wearsim().args(&args).output().unwrap();
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {e}");
+        assert!(e.contains("wrote nothing") && e.contains("unchanged"), "{e}");
+    }
+}

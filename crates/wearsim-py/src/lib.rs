@@ -128,6 +128,7 @@ fn _wearsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("DEFAULT_TOLERANCE", wearsim::contact::DEFAULT_TOLERANCE)?;
     m.add("DEFAULT_MAX_ITERATIONS", wearsim::contact::DEFAULT_MAX_ITERATIONS)?;
     m.add("DEFAULT_CONNECTIVITY", wearsim::junctions::DEFAULT_CONNECTIVITY)?;
+    m.add("MIN_GRID", wearsim::check::MIN_GRID)?;
     m.add("DEFAULT_DISTANCE", wearsim::sliding::DEFAULT_DISTANCE)?;
     m.add("DEFAULT_RUNNING_IN", wearsim::sliding::DEFAULT_RUNNING_IN)?;
     m.add("DEFAULT_STEP_RUNNING_IN", wearsim::sliding::DEFAULT_STEP_RUNNING_IN)?;

@@ -75,7 +75,8 @@ fn periodicity(heights: PyReadonlyArray2<'_, f64>) -> PyResult<(f64, f64)> {
 /// H, λ_l, λ_u and h_rms (the band's) estimated from the radially averaged PSD, with what `wearsim
 /// surface fit` writes beside them in fit.json: the fit's fields, `spectrum` (the parameters a run
 /// generates from it on this grid), `notes` (what those adjust, and the share of the variance the
-/// band leaves out when it is much), `self_affine` and `reasons` (the verdict). `measured_pixel`:
+/// band leaves out and the change of rms slope, when they are much), `rms_slope` (`map` and
+/// `generated`, by forward differences inside the map), `self_affine` and `reasons` (the verdict). `measured_pixel`:
 /// the native pixel sizes (Δx, Δy) of a map resampled onto finer pixels, whose measured
 /// wavevectors alone are fitted.
 #[pyfunction]
@@ -92,7 +93,9 @@ fn fit_surface<'py>(
         .detach(|| topography::fit_measured(&s, measured_pixel))
         .map_err(to_py)?;
     let (spectrum, mut notes) = fit.spectrum(&s.grid());
+    let slopes = topography::SlopeComparison::of(&s, &spectrum).ok();
     notes.extend(fit.out_of_band_note());
+    notes.extend(slopes.as_ref().and_then(topography::SlopeComparison::note));
     let verdict = fit.verdict();
     let d = crate::json_to_py(py, &fit)?;
     let dict = d.cast::<PyDict>()?;
@@ -100,6 +103,7 @@ fn fit_surface<'py>(
     dict.set_item("self_affine", verdict.self_affine)?;
     dict.set_item("reasons", verdict.reasons)?;
     dict.set_item("notes", notes)?;
+    dict.set_item("rms_slope", crate::json_to_py(py, &slopes)?)?;
     Ok(d)
 }
 
@@ -152,7 +156,7 @@ fn spectrum_pair<'py>(
     ))
 }
 
-/// Metres per unit of a length unit name (m, mm, um, nm, pm, A).
+/// Metres per unit of a length unit name (Gm, Mm, km, m, cm, mm, um, nm, A, pm, fm).
 #[pyfunction]
 fn metres_per(unit: &str) -> PyResult<f64> {
     topography::metres_per("unit", unit).map_err(to_py)

@@ -39,13 +39,17 @@ pub fn scale(field: &str, value: f64) -> Result<()> {
     }
 }
 
-/// A grid side: an even number of pixels, at least 16 (the FFT and the periodic junction labelling
-/// need at least a few pixels per side; powers of two are fastest).
+/// The smallest grid side, in pixels: the FFT and the periodic junction labelling need at least a
+/// few pixels per side. Every reader of a height map refuses a smaller one, and so does
+/// `wearsim surface import`.
+pub const MIN_GRID: usize = 16;
+
+/// A grid side: an even number of pixels, at least [`MIN_GRID`] (powers of two are fastest).
 pub fn grid(n: usize) -> Result<()> {
-    if n < 16 || n & 1 != 0 {
+    if n < MIN_GRID || n & 1 != 0 {
         return Err(Error::param(
             "grid",
-            format!("{n} must be an even number of pixels ≥ 16 (powers of two are fastest)"),
+            format!("{n} must be an even number of pixels ≥ {MIN_GRID} (powers of two are fastest)"),
         ));
     }
     // Junction labels are 32-bit pixel indices.
@@ -76,16 +80,17 @@ pub fn connectivity(connectivity: u8) -> Result<()> {
 
 /// A normal load F_N the model can run on an apparent area Lx·Ly: its mean pressure F_N/(Lx·Ly) a normal
 /// positive number below the flow pressure p_m (above it the surfaces would be in full plastic
-/// contact, where the saturated model has no solution).
-pub fn load(load: f64, area: f64, flow_pressure: f64) -> Result<()> {
-    positive("loads", load)?;
+/// contact, where the saturated model has no solution). `field` names the load where it was given
+/// (`loads` of a run file, `--load` of `wearsim contact`).
+pub fn load(field: &str, load: f64, area: f64, flow_pressure: f64) -> Result<()> {
+    positive(field, load)?;
     let mean_pressure = load / area;
     if !mean_pressure.is_normal() {
         return Err(Error::param(
-            "loads",
+            field,
             format!(
                 "{load:e} over the apparent area L² = {area:e} gives a mean pressure of {mean_pressure:e}, which is not a \
-                 usable number; check `loads` and `length` (and their units)"
+                 usable number; check `{field}` and `length` (and their units)"
             ),
         ));
     }
@@ -422,9 +427,17 @@ mod tests {
 
     #[test]
     fn loads_that_give_no_usable_pressure_are_refused() {
-        assert!(load(1e-3, 1.0, 0.05).is_ok());
-        assert!(load(5e-324, 1.0, 0.05).unwrap_err().to_string().contains("`loads`"));
-        assert!(load(1e-3, 1e300 * 1e300, 0.05).is_err());
-        assert!(matches!(load(0.06, 1.0, 0.05), Err(Error::InfeasibleLoad { .. })));
+        assert!(load("loads", 1e-3, 1.0, 0.05).is_ok());
+        assert!(load("loads", 5e-324, 1.0, 0.05)
+            .unwrap_err()
+            .to_string()
+            .contains("`loads`"));
+        let e = load("--load", 1e-310, 1.0, 0.05).unwrap_err().to_string();
+        assert!(e.contains("`--load`") && !e.contains("`loads`"), "{e}");
+        assert!(load("loads", 1e-3, 1e300 * 1e300, 0.05).is_err());
+        assert!(matches!(
+            load("loads", 0.06, 1.0, 0.05),
+            Err(Error::InfeasibleLoad { .. })
+        ));
     }
 }

@@ -83,7 +83,7 @@ pub fn run(args: &Args) -> Result<()> {
         bail!("invalid `--load`: {load} must be a finite positive normal force");
     }
     let grid = config.grid()?;
-    wearsim::check::load(load, grid.area(), config.material.flow_pressure())?;
+    wearsim::check::load("--load", load, grid.area(), config.material.flow_pressure())?;
     let (n, ny) = (grid.nx(), grid.ny());
     let unit = config.units.length_unit();
     let (shift, offset) = offset_of(args, &grid, unit)?;

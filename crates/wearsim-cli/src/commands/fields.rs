@@ -38,7 +38,8 @@ pub fn to_netcdf(args: &ToNetcdfArgs) -> Result<()> {
     wearsim::io::refuse_foreign_file(&args.out, "fields to-netcdf", true, &[args.store.as_path()], |_| true)?;
     let python = super::python_with(
         args.python.as_deref(),
-        "import wearsim.fields, xarray, zarr, h5netcdf, h5py",
+        "wearsim.fields",
+        &["xarray", "zarr", "h5netcdf", "h5py"],
         "fields",
         "the conversion",
     )?;
@@ -58,5 +59,5 @@ pub fn to_netcdf(args: &ToNetcdfArgs) -> Result<()> {
     }
     command.arg(&args.store).arg(&args.out);
     // A stop signal is passed on: the conversion removes its temporary file and exits.
-    super::run_child(command, "the conversion")
+    super::run_child(command, "the conversion", &args.out)
 }

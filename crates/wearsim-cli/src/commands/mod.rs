@@ -12,8 +12,11 @@ pub mod slide;
 pub mod study;
 pub mod surface;
 
+use std::io::Read;
 use std::path::{Path, PathBuf};
+use std::process::Stdio;
 use std::sync::atomic::{AtomicBool, AtomicI32, Ordering};
+use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result};
 use wearsim::config::RunConfig;
@@ -175,27 +178,102 @@ pub fn report_surfaces(pair: &wearsim::config::SurfacePair, warnings: bool) {
     }
 }
 
+/// How long the interpreter may take to answer whether it has what the work needs before it is
+/// given up as hanging (a Python on an unreachable network file system, an import that deadlocks):
+/// `$WEARSIM_PYTHON_TIMEOUT` seconds, default 120 — an import of SurfaceTopography and its
+/// dependencies takes a few seconds, tens on a cold cluster file system.
+fn probe_timeout() -> Duration {
+    let seconds = std::env::var("WEARSIM_PYTHON_TIMEOUT")
+        .ok()
+        .and_then(|v| v.trim().parse::<f64>().ok())
+        .filter(|s| s.is_finite() && *s > 0.0)
+        .unwrap_or(120.0);
+    Duration::from_secs_f64(seconds)
+}
+
+/// The Python program that asks an interpreter whether it has wearsim's `module` (imported) and the
+/// `packages` of its extra (found, not imported: SurfaceTopography alone takes seconds to import,
+/// which the work itself then spends again), failing with the import error of what is missing.
+fn probe_program(module: &str, packages: &[&str]) -> String {
+    format!(
+        "import importlib.util, {module}\n\
+         for name in {packages:?}:\n    \
+             if importlib.util.find_spec(name) is None:\n        \
+                 raise ModuleNotFoundError(f\"No module named '{{name}}'\")\n"
+    )
+}
+
 /// The Python interpreter a command runs its work in (`--python`, else `$WEARSIM_PYTHON`, else
-/// python3), once asked whether it has what the work needs (`imports`, a Python import statement) —
-/// before any folder is made, so that the error says what to install: the package with its
-/// `extra` (`pip install "wearsim[EXTRA]"`). `work` says what runs there ("the conversion").
-pub fn python_with(python: Option<&Path>, imports: &str, extra: &str, work: &str) -> Result<std::path::PathBuf> {
+/// python3), once asked whether it has what the work needs (wearsim's `module` and the `packages`
+/// of its `extra`) — before any folder is made, so that the error says what to install: the
+/// package with its extra (`pip install "wearsim[EXTRA]"`). `work` says what runs there ("the
+/// conversion"). The question is a child process like the work itself: a stop signal stops it and
+/// the command at once, and one that does not answer within [`probe_timeout`] is stopped and said
+/// to hang.
+pub fn python_with(
+    python: Option<&Path>,
+    module: &str,
+    packages: &[&str],
+    extra: &str,
+    work: &str,
+) -> Result<std::path::PathBuf> {
     let python = python
         .map(Path::to_path_buf)
         .or_else(|| std::env::var_os("WEARSIM_PYTHON").map(std::path::PathBuf::from))
         .unwrap_or_else(|| std::path::PathBuf::from("python3"));
-    let probe = std::process::Command::new(&python)
-        .args(["-c", imports])
-        .output()
-        .with_context(|| {
-            format!(
-                "cannot run {} ({work} runs in Python); install Python 3 with `pip install \"wearsim[{extra}]\"`, or \
-                 name the interpreter with --python",
-                python.display()
-            )
-        })?;
-    if !probe.status.success() {
-        let why = String::from_utf8_lossy(&probe.stderr);
+    let asked = format!("{module} and {}", packages.join(", "));
+    let mut probe = std::process::Command::new(&python);
+    probe
+        .args(["-c", &probe_program(module, packages)])
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped());
+    let cannot_run = || {
+        format!(
+            "cannot run {} ({work} runs in Python); install Python 3 with `pip install \"wearsim[{extra}]\"`, or name \
+             the interpreter with --python",
+            python.display()
+        )
+    };
+    let mut child = probe.spawn().with_context(cannot_run)?;
+    set_child(child.id());
+    // Its error stream read beside it, so that a long message cannot fill the pipe and stall it.
+    let mut stderr = child.stderr.take();
+    let reader = std::thread::spawn(move || {
+        let mut text = String::new();
+        if let Some(e) = stderr.as_mut() {
+            let _ = e.read_to_string(&mut text);
+        }
+        text
+    });
+    let timeout = probe_timeout();
+    let started = Instant::now();
+    let status = loop {
+        match child.try_wait() {
+            Ok(Some(status)) => break Some(status),
+            Ok(None) => {}
+            Err(_) => break None,
+        }
+        if interrupt().is_requested() || started.elapsed() >= timeout {
+            let _ = child.kill();
+            let _ = child.wait();
+            set_child(0);
+            check_interrupt()?;
+            anyhow::bail!(
+                "{} did not answer within {:.0} s when asked whether it has {asked} (it hangs: an interpreter on \
+                 an unreachable file system, an import that deadlocks); name a working one with --python or \
+                 $WEARSIM_PYTHON, or allow it longer with WEARSIM_PYTHON_TIMEOUT=SECONDS",
+                python.display(),
+                timeout.as_secs_f64()
+            );
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    set_child(0);
+    check_interrupt()?;
+    let status = status.with_context(cannot_run)?;
+    if !status.success() {
+        let why = reader.join().unwrap_or_default();
         anyhow::bail!(
             "{} lacks the wearsim package or its `{extra}` extra ({}); install them with `pip install \"wearsim[{extra}]\"` \
              into that interpreter, or name another with --python",
@@ -206,11 +284,21 @@ pub fn python_with(python: Option<&Path>, imports: &str, extra: &str, work: &str
     Ok(python)
 }
 
+/// The identity of a file or folder (its device and inode), None where there is none: a rename into
+/// place gives the path a new one.
+fn identity(path: &Path) -> Option<(u64, u64)> {
+    use std::os::unix::fs::MetadataExt;
+    std::fs::symlink_metadata(path).ok().map(|m| (m.dev(), m.ino()))
+}
+
 /// Runs `command` (the work of a front end that runs in Python, `what` in the messages, e.g. "the
 /// import") as a child process and waits for it: a stop signal is passed on to it (it removes its
-/// temporary files and exits), and its failure is an error whose cause it printed itself.
-pub fn run_child(mut command: std::process::Command, what: &str) -> Result<()> {
+/// temporary files and exits), and its failure is an error whose cause it printed itself. The work
+/// puts `output` in place by a rename: a child that exits with success without having done so (an
+/// interpreter that is not the one asked, a wrapper script that swallows the work) is an error too.
+pub fn run_child(mut command: std::process::Command, what: &str, output: &Path) -> Result<()> {
     let program = command.get_program().to_string_lossy().to_string();
+    let before = identity(output);
     let mut child = command.spawn().with_context(|| format!("cannot run {program}"))?;
     set_child(child.id());
     if interrupt().is_requested() {
@@ -222,6 +310,15 @@ pub fn run_child(mut command: std::process::Command, what: &str) -> Result<()> {
     check_interrupt()?;
     if !status.success() {
         anyhow::bail!("{what} failed ({status}); its error is above");
+    }
+    let after = identity(output);
+    if after.is_none() || after == before {
+        anyhow::bail!(
+            "{what} ended with success but wrote nothing: {} is {}; {program} did not do the work (is it the Python \
+             with the wearsim package, or a wrapper that drops it?); name the interpreter with --python",
+            output.display(),
+            if after.is_none() { "missing" } else { "unchanged" }
+        );
     }
     Ok(())
 }

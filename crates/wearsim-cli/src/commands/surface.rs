@@ -93,7 +93,8 @@ struct FitArgs {
     /// state it themselves.
     #[arg(long, num_args = 1, allow_hyphen_values = true)]
     length: Vec<f64>,
-    /// Unit of the heights (m, mm, um, nm, pm, A): the results are then in metres (SI runs).
+    /// Unit of the heights (m, mm, um, nm, pm, A, or another SI prefix of the metre, Gm to fm): the
+    /// results are then in metres (SI runs).
     #[arg(long)]
     height_unit: Option<String>,
     /// Unit of a column file's x y coordinates (default: the height unit).
@@ -179,7 +180,8 @@ fn run_import(args: &ImportArgs) -> Result<()> {
     // Asked before any folder is made, so that the error says what to install.
     let python = super::python_with(
         args.python.as_deref(),
-        "import wearsim.measured, SurfaceTopography",
+        "wearsim.measured",
+        &["SurfaceTopography"],
         "measured",
         "the import",
     )?;
@@ -209,7 +211,7 @@ fn run_import(args: &ImportArgs) -> Result<()> {
     // `--` so that a file or folder whose name starts with '-' is not read as an option.
     command.arg("--").arg(&args.file).arg(&args.out);
     // A stop signal is passed on: the import removes its temporary folder and exits.
-    super::run_child(command, "the import")
+    super::run_child(command, "the import", &args.out)
 }
 
 /// How `surface fit` reads its file: the units, the sides given (at most two, each positive) and the
@@ -338,14 +340,27 @@ fn spectrum_block(args: &FitArgs, grid: &Grid, window: topography::Window, unit:
 }
 
 /// The fit in numbers: its band of wavenumbers, what it left out, the band's h_rms against the
-/// whole map's, the x/y power ratio and the periodicity of the prepared map.
-fn report_fit(fit: &topography::SpectrumFit, periodicity: &topography::Periodicity) {
+/// whole map's, the rms slope of the generated surfaces against the map's, the x/y power ratio and
+/// the periodicity of the prepared map.
+fn report_fit(
+    fit: &topography::SpectrumFit,
+    slopes: Option<&topography::SlopeComparison>,
+    periodicity: &topography::Periodicity,
+) {
+    let slope = slopes.map_or_else(String::new, |s| {
+        format!(
+            "; rms slope of the generated surfaces {:.4e}, of the map {:.4e} ({:+.0} %)",
+            s.generated,
+            s.map,
+            100.0 * s.change()
+        )
+    });
     say!(
         "fitted C(q) ∝ q^−2(1+H) over q = {:.4e} … {:.4e} (2π/λ, {} shells, {} window), R² = {} (log–log PSD); \
          left out: {} shells at longer wavelengths than λ_u and {} at shorter than λ_l, down to the floor \
          (round-off or noise) at {:.1e} of the power law at λ_l; h_rms of the band {:.4e}, of the whole map {:.4e} \
-         ({:.1} % of its variance outside the band); x/y power ratio {:.2}; periodicity of the prepared map: border \
-         jumps {:.1} (x) and {:.1} (y) typical steps",
+         ({:.1} % of its variance outside the band){slope}; x/y power ratio {:.2}; periodicity of the prepared map: \
+         border jumps {:.1} (x) and {:.1} (y) typical steps",
         fit.fitted_q[0],
         fit.fitted_q[1],
         fit.shells,
@@ -387,10 +402,14 @@ fn write_pair(
     Ok(())
 }
 
+/// What a fit gives a run file: the `[surface]` block, the generation parameters, the notes and the
+/// rms slopes of the map and of the surfaces the parameters generate.
+type Fitted = (String, SpectrumParams, Vec<String>, Option<topography::SlopeComparison>);
+
 /// The `[surface]` block of a fit, with the generation parameters it gives on the map's grid and
-/// the notes on what they adjust and leave out (the variance outside the band, when it is much):
-/// the self-affine block, or for a spectrum that is not self-affine `spectrum_block` with the fit
-/// kept below as comments. The fit is reported.
+/// the notes on what they adjust and leave out (the variance outside the band, when it is much;
+/// the change of rms slope, likewise): the self-affine block, or for a spectrum that is not
+/// self-affine `spectrum_block` with the fit kept below as comments. The fit is reported.
 fn fitted_block(
     fit: &topography::SpectrumFit,
     verdict: &topography::Verdict,
@@ -399,15 +418,20 @@ fn fitted_block(
     source: &str,
     unit: &str,
     spectrum_block: &str,
-) -> (String, SpectrumParams, Vec<String>) {
+) -> Fitted {
     let grid = loaded.surface.grid();
     let (params, mut fit_notes) = fit.spectrum(&grid);
     for note in &fit_notes {
         tell!("warning: {note}");
     }
     let block = topography::surface_block(&grid, &params, seed, source, unit.trim_matches(['(', ')']));
-    report_fit(fit, &loaded.periodicity);
-    if let Some(note) = fit.out_of_band_note() {
+    let slopes = topography::SlopeComparison::of(&loaded.surface, &params).ok();
+    report_fit(fit, slopes.as_ref(), &loaded.periodicity);
+    for note in fit
+        .out_of_band_note()
+        .into_iter()
+        .chain(slopes.as_ref().and_then(topography::SlopeComparison::note))
+    {
         tell!("note: {note}");
         fit_notes.push(note);
     }
@@ -422,7 +446,7 @@ fn fitted_block(
         let commented: String = block.lines().map(|l| format!("# {l}\n")).collect();
         format!("{spectrum_block}\n# The self-affine fit, which leaves out what the spectrum is not:\n{commented}")
     };
-    (block, params, fit_notes)
+    (block, params, fit_notes, slopes)
 }
 
 /// The note of the native pixels of a resampled map (`measured`: with where they come from), in
@@ -460,6 +484,26 @@ fn note_not_self_affine(source: &str, verdict: &topography::Verdict, fitted: boo
     }
 }
 
+/// The map of `surface fit` read as `how` says, with its notes printed, and its file's name. A flat
+/// map has no spectrum to fit or to carry: refused here rather than in a run file that reads its
+/// block.
+fn load_map(args: &FitArgs, how: &FileSurface) -> Result<(topography::Loaded, String)> {
+    // The library's errors name the file already.
+    let loaded = topography::load(&args.file, how)?;
+    for note in &loaded.notes {
+        tell!("note: {note}");
+    }
+    let source = args
+        .file
+        .file_name()
+        .map_or_else(|| args.file.display().to_string(), |n| n.to_string_lossy().into());
+    if loaded.flat {
+        let rms = loaded.surface.rms_height();
+        return Err(topography::flat_map(&source, how.preprocess.detrend, rms).into());
+    }
+    Ok((loaded, source))
+}
+
 fn run_fit(args: &FitArgs) -> Result<()> {
     let how = file_surface(args)?;
     let dir = match &args.out {
@@ -471,11 +515,7 @@ fn run_fit(args: &FitArgs) -> Result<()> {
         )?),
         None => None,
     };
-    // The library's errors name the file already.
-    let loaded = topography::load(&args.file, &how)?;
-    for note in &loaded.notes {
-        tell!("note: {note}");
-    }
+    let (loaded, source) = load_map(args, &how)?;
     let surface = &loaded.surface;
     let grid = surface.grid();
     let unit = if args.height_unit.is_some() {
@@ -483,10 +523,6 @@ fn run_fit(args: &FitArgs) -> Result<()> {
     } else {
         "(file units)"
     };
-    let source = args
-        .file
-        .file_name()
-        .map_or_else(|| args.file.display().to_string(), |n| n.to_string_lossy().into());
     let measured = measured_pixel(args, &grid)?;
     note_measured(measured.as_ref(), unit);
     let fitted = topography::fit_measured(surface, measured.as_ref().map(|m| m.0));
@@ -499,13 +535,13 @@ fn run_fit(args: &FitArgs) -> Result<()> {
         .as_ref()
         .map_or_else(|_| topography::Window::for_map(surface), |f| f.window);
     let spectrum_block = spectrum_block(args, &grid, window, unit);
-    let (block, spectrum, notes) = match &fitted {
+    let (block, spectrum, notes, slopes) = match &fitted {
         Ok(fit) => {
-            let (block, params, notes) =
+            let (block, params, notes, slopes) =
                 fitted_block(fit, &verdict, &loaded, args.seed, &source, unit, &spectrum_block);
-            (block, Some(params), notes)
+            (block, Some(params), notes, slopes)
         }
-        Err(_) => (spectrum_block.clone(), None, Vec::new()),
+        Err(_) => (spectrum_block.clone(), None, Vec::new(), None),
     };
     if !verdict.self_affine {
         note_not_self_affine(&source, &verdict, fitted.is_ok(), measured.is_some());
@@ -526,6 +562,7 @@ fn run_fit(args: &FitArgs) -> Result<()> {
             fitted.as_ref().ok().zip(spectrum.as_ref()),
             &verdict,
             &notes,
+            slopes.as_ref(),
             measured.as_ref().map(|m| m.1.as_str()),
         ),
     )?;

@@ -179,7 +179,7 @@ impl RunBuilder {
         let area = fixed_area(&self.surfaces);
         if let (Some(sl), Some(area)) = (&self.sliding, area) {
             for &load in &sl.loads {
-                crate::check::load(load, area, self.material.flow_pressure())?;
+                crate::check::load("loads", load, area, self.material.flow_pressure())?;
             }
         }
         Ok(RunConfig {
@@ -817,6 +817,13 @@ fn generated_pair(grid: Grid, spectrum: &SpectrumParams, seed: u64) -> Result<Su
 fn spectrum_pair(map: &Path, how: &FileSurface, grid: Grid, window: Option<Window>, seed: u64) -> Result<SurfacePair> {
     let loaded = crate::topography::load(map, how)?;
     let name = map.display().to_string();
+    if loaded.flat {
+        return Err(crate::topography::flat_map(
+            &name,
+            how.preprocess.detrend,
+            loaded.surface.rms_height(),
+        ));
+    }
     let psd = MeasuredPsd::of_map(&loaded.surface, window)?;
     let window = psd.window();
     let (top, bottom) = psd.generate_pair(grid, seed)?;

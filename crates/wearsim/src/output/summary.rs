@@ -406,6 +406,7 @@ pub fn surface_fit_summary(
     fit: Option<(&crate::topography::SpectrumFit, &crate::surface::SpectrumParams)>,
     verdict: &crate::topography::Verdict,
     notes: &[String],
+    rms_slope: Option<&crate::topography::SlopeComparison>,
     measured_pixel_from: Option<&str>,
 ) -> Value {
     let (fit, spectrum) = fit.unzip();
@@ -422,6 +423,7 @@ pub fn surface_fit_summary(
         "self_affine": verdict.self_affine,
         "reasons": verdict.reasons,
         "notes": notes,
+        "rms_slope": rms_slope,
         "measured_pixel_from": measured_pixel_from,
         "method": crate::topography::FIT_METHOD,
     })

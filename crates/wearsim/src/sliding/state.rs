@@ -410,7 +410,7 @@ fn check_run(top: &Surface, bottom: &Surface, setup: &SlidingSetup) -> Result<()
     crate::check::memory("a sliding run", nx, ny, crate::check::SLIDING_ARRAYS)?;
     let pm = setup.material.flow_pressure();
     for &load in &setup.sliding.loads {
-        crate::check::load(load, grid.area(), pm)?;
+        crate::check::load("loads", load, grid.area(), pm)?;
     }
     if setup.material.fracture_energies.is_empty() {
         return Err(Error::param(

@@ -524,6 +524,79 @@ impl SpectrumFit {
     }
 }
 
+/// A change of the RMS slope between the map and the surfaces its fit generates beyond this share
+/// is worth a note beside the h_rms change: the slope sets the junctions' sizes at a load (paper
+/// §4.1, the contact area grows as F_N/(E* h'_rms)), so it moves the wear rate as much as h_rms.
+pub const SLOPE_CHANGE: f64 = 0.1;
+
+/// The RMS slopes of a measured map and of the surfaces its fitted block generates on the map's
+/// grid, each by the same rule: forward differences between neighbouring pixels, never across the
+/// map's border (a measured map is not periodic), √⟨(Δh/Δx)² + (Δh/Δy)²⟩.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct SlopeComparison {
+    /// RMS slope of the map as fitted (levelled).
+    pub map: f64,
+    /// RMS slope of a surface generated with the block's parameters on the map's grid (random
+    /// phases, so every seed gives it alike to round-off).
+    pub generated: f64,
+}
+
+impl SlopeComparison {
+    /// The slopes of `map` and of a surface generated with `params` on its grid.
+    pub fn of(map: &Surface, params: &SpectrumParams) -> Result<Self> {
+        let generated = Surface::generate(map.grid(), params, 0)?;
+        Ok(SlopeComparison {
+            map: difference_rms_slope(map),
+            generated: difference_rms_slope(&generated),
+        })
+    }
+
+    /// The generated surfaces' slope relative to the map's, less one (−0.37: 37 % lower); NaN for
+    /// a flat map.
+    pub fn change(&self) -> f64 {
+        self.generated / self.map - 1.0
+    }
+
+    /// The note of a change beyond [`SLOPE_CHANGE`]: both slopes, the change and what follows; None
+    /// otherwise.
+    pub fn note(&self) -> Option<String> {
+        let change = self.change();
+        (change.abs() > SLOPE_CHANGE).then(|| {
+            format!(
+                "the generated surfaces' rms slope {:.4e} is {:+.0} % of the map's ({:.4e}): the block leaves out \
+                 what the map holds outside the self-affine band (or adds what the band holds beyond it), and the \
+                 contact area at a load, the junctions and the wear rate follow the rms slope (paper §4.1); give \
+                 `source = \"spectrum\"` to carry the measured spectrum instead",
+                self.generated,
+                100.0 * change,
+                self.map
+            )
+        })
+    }
+}
+
+/// √⟨(Δh/Δx)² + (Δh/Δy)²⟩ by forward differences inside the map (none across its border).
+fn difference_rms_slope(s: &Surface) -> f64 {
+    let (nx, ny, h) = (s.nx(), s.ny(), s.heights());
+    let dx = s.pixel_size();
+    let mean_square = |pairs: &mut dyn Iterator<Item = (f64, f64)>| {
+        let (mut sum, mut n) = (0.0, 0usize);
+        for (a, b) in pairs {
+            sum += (b - a) * (b - a);
+            n += 1;
+        }
+        if n == 0 {
+            0.0
+        } else {
+            sum / n as f64
+        }
+    };
+    let along_x =
+        mean_square(&mut (0..nx - 1).flat_map(|i| (0..ny).map(move |j| (h[i * ny + j], h[(i + 1) * ny + j]))));
+    let along_y = mean_square(&mut (0..nx).flat_map(|i| (0..ny - 1).map(move |j| (h[i * ny + j], h[i * ny + j + 1]))));
+    (along_x + along_y).sqrt() / dx
+}
+
 /// The warning of a PSD fit whose log–log line follows the PSD poorly (`r2`, its R², below 0.9):
 /// the slope −2(1 + H) of paper §4.1 is then a rough estimate of H. None for a good fit, or an
 /// undefined R².

@@ -5,20 +5,32 @@ use std::path::Path;
 use crate::error::{Error, Result};
 use crate::io::{read_npy_2d, read_npy_2d_from, NpyType};
 
-/// Metres per unit of a length unit name (`m`, `mm`, `um` or `µm`, `nm`, `pm`, `A` for ångström);
-/// `field` names the setting in the error.
+/// The length units [`metres_per`] knows, from the largest (instrument files state any SI prefix of
+/// the metre; ångström as `A` or `Å`, micrometre also as `µm`, `μm` or `micron`).
+pub const LENGTH_UNITS: [&str; 11] = ["Gm", "Mm", "km", "m", "cm", "mm", "um", "nm", "A", "pm", "fm"];
+
+/// Metres per unit of a length unit name (one of [`LENGTH_UNITS`]); `field` names the setting in
+/// the error.
 pub fn metres_per(field: &str, unit: &str) -> Result<f64> {
     Ok(match unit {
+        "Gm" => 1e9,
+        "Mm" => 1e6,
+        "km" => 1e3,
         "m" => 1.0,
+        "cm" => 1e-2,
         "mm" => 1e-3,
         "um" | "µm" | "μm" | "micron" => 1e-6,
         "nm" => 1e-9,
-        "pm" => 1e-12,
         "A" | "Å" => 1e-10,
+        "pm" => 1e-12,
+        "fm" => 1e-15,
         other => {
             return Err(Error::param(
                 field,
-                format!("\"{other}\" is not a length unit wearsim knows; use m, mm, um, nm, pm or A"),
+                format!(
+                    "\"{other}\" is not a length unit wearsim knows; use one of {}",
+                    LENGTH_UNITS.join(", ")
+                ),
             ))
         }
     })
@@ -442,6 +454,25 @@ pub(super) fn is_array(path: &Path) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_si_prefix_an_instrument_states_is_a_length_unit_and_the_error_lists_them() {
+        for (unit, metres) in [
+            ("km", 1e3),
+            ("Gm", 1e9),
+            ("Mm", 1e6),
+            ("cm", 1e-2),
+            ("fm", 1e-15),
+            ("µm", 1e-6),
+        ] {
+            assert_eq!(metres_per("unit", unit).unwrap(), metres, "{unit}");
+        }
+        for unit in LENGTH_UNITS {
+            assert!(metres_per("unit", unit).is_ok(), "{unit}");
+        }
+        let e = metres_per("height_unit", "furlong").unwrap_err().to_string();
+        assert!(e.contains("height_unit") && e.contains("km") && e.contains("fm"), "{e}");
+    }
 
     #[test]
     fn spreadsheet_csv_with_a_byte_order_mark_or_decimal_commas_reads_as_written() {

@@ -33,6 +33,10 @@ pub struct Loaded {
     pub warnings: Vec<String>,
     /// Periodicity of the prepared surface.
     pub periodicity: Periodicity,
+    /// Whether the map is flat: one value, or a plane that the levelling left as round-off. Such a
+    /// map is a body of a run (a flat counter-face), but its spectrum is zero
+    /// ([`super::prepare::flat_map`]).
+    pub flat: bool,
 }
 
 /// The grid a `rows × cols` height map of a file gives: odd sides lose their last row or column
@@ -132,7 +136,14 @@ pub fn load(path: &Path, how: &FileSurface) -> Result<Loaded> {
     if how.height_scale != 1.0 {
         heights.iter_mut().for_each(|h| *h *= how.height_scale);
     }
+    let spread = heights.iter().fold(0.0f64, |m, h| m.max(h.abs()));
     preprocess(&mut heights, nx, ny, &how.preprocess)?;
+    let flat = {
+        let n = heights.len() as f64;
+        let mean = heights.iter().sum::<f64>() / n;
+        let rms = (heights.iter().map(|h| (h - mean) * (h - mean)).sum::<f64>() / n).sqrt();
+        super::prepare::is_flat(rms, spread)
+    };
     if how.preprocess.detrend == Detrend::None {
         if let Some(note) = remove_offset(&mut heights) {
             notes.push(format!("{name}: {note}"));
@@ -153,6 +164,7 @@ pub fn load(path: &Path, how: &FileSurface) -> Result<Loaded> {
         notes,
         warnings,
         periodicity,
+        flat,
     })
 }
 

@@ -20,10 +20,10 @@ mod prepare;
 mod spectrum;
 
 pub use fit::{
-    fit, fit_measured, poor_fit_warning, spectrum_block, surface_block, SpectrumFit, Verdict, ANISOTROPIC, FIT_METHOD,
-    OUT_OF_BAND, PEAK,
+    fit, fit_measured, poor_fit_warning, spectrum_block, surface_block, SlopeComparison, SpectrumFit, Verdict,
+    ANISOTROPIC, FIT_METHOD, OUT_OF_BAND, PEAK, SLOPE_CHANGE,
 };
-pub use formats::{array_shape, metres_per, read, regular_file, Measured};
+pub use formats::{array_shape, metres_per, read, regular_file, Measured, LENGTH_UNITS};
 pub use load::{file_grid, file_span, imported_length, load, probe_grid, FileSurface, Loaded};
-pub use prepare::{periodicity, preprocess, Detrend, Periodicity, Preprocess, NOT_PERIODIC};
+pub use prepare::{flat_map, is_flat, periodicity, preprocess, Detrend, Periodicity, Preprocess, NOT_PERIODIC};
 pub use spectrum::{MeasuredPsd, Window};

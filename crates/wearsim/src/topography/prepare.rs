@@ -204,6 +204,30 @@ impl Periodicity {
     }
 }
 
+/// A levelled map whose RMS height is at most this fraction of its largest |height| before the
+/// levelling is flat: what is left is the round-off of the levelling.
+const FLAT: f64 = 1e-12;
+
+/// Whether a map of RMS height `levelled_rms` once levelled, and of largest |height| `spread`
+/// before, is flat (a map of one value, or a plane levelled away to round-off).
+pub fn is_flat(levelled_rms: f64, spread: f64) -> bool {
+    levelled_rms <= FLAT * spread || levelled_rms.is_nan()
+}
+
+/// The error of a flat map `name` (levelled by `detrend`, left with `rms`): its spectrum is zero,
+/// so there is nothing to fit and no surface can carry it.
+pub fn flat_map(name: &str, detrend: Detrend, rms: f64) -> Error {
+    Error::InvalidSurface {
+        name: name.into(),
+        message: format!(
+            "the map is flat: levelled ({}), its heights are all equal to round-off (RMS {rms:.3e}), so its spectrum \
+             is zero; there is nothing to fit and no surface can carry it: check the file (a map of one value, a \
+             channel that is not the heights)",
+            detrend.name()
+        ),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

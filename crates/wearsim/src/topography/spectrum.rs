@@ -34,7 +34,7 @@ use crate::fft::{wavenumber, FftPlan, C64};
 use crate::grid::Grid;
 use crate::surface::{PsdShell, Surface};
 
-use super::prepare::{periodicity, preprocess, Detrend, Preprocess, NOT_PERIODIC};
+use super::prepare::{flat_map, is_flat, periodicity, preprocess, Detrend, Preprocess, NOT_PERIODIC};
 
 /// The window a map is multiplied by before its FFT.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -113,6 +113,11 @@ impl MeasuredPsd {
         };
         preprocess(&mut h, nx, ny, &Preprocess { detrend, taper: 0.0 })?;
         let rms_height = (h.iter().map(|v| v * v).sum::<f64>() / h.len() as f64).sqrt();
+        // A flat map (one value, or a plane levelled away to round-off) has no spectrum to carry.
+        let spread = map.heights().iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        if is_flat(rms_height, spread) {
+            return Err(flat_map("map", detrend, rms_height));
+        }
         let mut power = 1.0;
         if window == Window::Hann {
             let hann = |k: usize, n: usize| (PI * (k as f64 + 0.5) / n as f64).sin().powi(2);
