@@ -12,13 +12,18 @@ The data flow follows the paper, one module per step:
 - :mod:`wearsim.junctions`: junctions (periodic connected components of the contact map);
 - :mod:`wearsim.wear`: the static model and the sliding model (pandas series, summary dict);
 - :mod:`wearsim.study`: study files, run locally or as Dask tasks, collected into tidy tables;
-- :mod:`wearsim.plot`: the paper's figures on matplotlib, from a study's tidy table.
+- :mod:`wearsim.plot`: the paper's figures on matplotlib, from a study's tidy table;
+- :mod:`wearsim.measured`: instrument height maps (every format SurfaceTopography reads) imported as
+  a run's two bodies; :mod:`wearsim.fields`: the per-step fields of a sliding run as xarray and
+  NetCDF.
 
 Units: every quantity is in the unit system of its inputs. In reduced units E = 1 and L = 1
 (pressures in E, lengths in L, loads in E·L², fracture energies in E·L); in SI, Pa, m, N and J/m².
 
 Long calls release the GIL and stop on Ctrl-C (KeyboardInterrupt).
 """
+
+from typing import TYPE_CHECKING, Any
 
 from . import contact, junctions, plot, study, surface, wear
 from ._wearsim import (
@@ -52,6 +57,21 @@ from .surface import (
 )
 from .wear import ResolutionWarning, RunFile, estimate, load_run, slide, static_wear
 
+if TYPE_CHECKING:
+    from . import fields, measured
+else:
+
+    def __getattr__(name: str) -> Any:
+        """``wearsim.measured`` and ``wearsim.fields``, imported on first use: imported with the
+        package, they would already be loaded when ``python -m wearsim.measured`` (what ``wearsim
+        surface import`` runs) starts them as a program, which Python warns about."""
+        if name in ("measured", "fields"):
+            import importlib
+
+            return importlib.import_module(f".{name}", __name__)
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
 __all__ = [
     "DEFAULT_CONNECTIVITY",
     "DEFAULT_DISTANCE",
@@ -73,6 +93,7 @@ __all__ = [
     "composite_heights",
     "contact",
     "estimate",
+    "fields",
     "fit_surface",
     "generate_pair",
     "generate_surface",
@@ -80,6 +101,7 @@ __all__ = [
     "junctions",
     "label_junctions",
     "load_run",
+    "measured",
     "periodicity",
     "plot",
     "preprocess_surface",

@@ -13,13 +13,14 @@ work).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
-from typing import Optional, Tuple, Union
+from typing import Any, Optional, Tuple, Union
 
 import numpy as np
 
 from . import _wearsim
-from .surface import _float_grid
+from .surface import _float_grid, _is_topography, as_heights
 
 
 @dataclass(frozen=True)
@@ -100,7 +101,7 @@ class ContactSolver:
 
     def solve(
         self,
-        heights: np.ndarray,
+        heights: Any,
         load: float,
         *,
         flow_pressure: float = np.inf,
@@ -111,9 +112,22 @@ class ContactSolver:
         ``flow_pressure`` (``inf``: elastic). ``initial_pressure`` warm-starts the solve (e.g. the
         previous step's pressure); without it the solve starts from a uniform pressure.
 
-        Raises ``ValueError`` for bad input (NaN heights, a load at or above p_m Lx Ly, …) and
-        :class:`wearsim.NotConvergedError` when the iteration limit is reached.
+        ``heights`` is an array, or a SurfaceTopography topography: one that states its unit is
+        taken in metres (as :func:`wearsim.heights_and_length` gives it), and its side must be the
+        solver's ``length``.
+
+        Raises ``ValueError`` for bad input (NaN heights, a load at or above p_m Lx Ly, a topography
+        of another side, …) and :class:`wearsim.NotConvergedError` when the iteration limit is
+        reached.
         """
+        if _is_topography(heights):
+            heights, side = as_heights("heights", heights)
+            if not math.isclose(side, self.length, rel_tol=1e-9):
+                raise ValueError(
+                    f"invalid `heights`: the topography's side along x is {side:.6g} (in metres where it states its "
+                    f"unit), the solver's length is {self.length:.6g}; make the solver with length={side!r}, or use "
+                    "solve_contact, which takes the side from the topography"
+                )
         p0 = None if initial_pressure is None else _float_grid("initial_pressure", initial_pressure)
         pressure, displacement, gap, info = self._solver.solve(
             _float_grid("heights", heights), float(load), float(flow_pressure), p0
@@ -127,11 +141,11 @@ class ContactSolver:
 
 
 def solve_contact(
-    heights: np.ndarray,
+    heights: Any,
     load: float,
     *,
     effective_modulus: float,
-    length: float = 1.0,
+    length: Optional[float] = None,
     flow_pressure: float = np.inf,
     initial_pressure: Optional[np.ndarray] = None,
     tolerance: float = _wearsim.DEFAULT_TOLERANCE,
@@ -140,8 +154,13 @@ def solve_contact(
 ) -> ContactResult:
     """One contact solve (see :meth:`ContactSolver.solve`); for many solves on one grid, keep a
     :class:`ContactSolver`. ``boundary="free"`` solves a map that is not periodic (a measured one)
-    as surrounded by an unloaded half-space."""
-    heights = _float_grid("heights", heights)
+    as surrounded by an unloaded half-space.
+
+    ``heights`` is an array with its side ``length`` along x (default 1), or a SurfaceTopography
+    topography, whose physical size gives the side (heights and side in metres where it states its
+    unit; a ``length`` given with it overrides the side, in metres too), as
+    :func:`wearsim.heights_and_length` reads it."""
+    heights, length = as_heights("heights", heights, length)
     solver = ContactSolver(
         (heights.shape[0], heights.shape[1]),
         length,

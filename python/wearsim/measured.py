@@ -47,9 +47,11 @@ import argparse
 import json
 import math
 import os
+import re
 import shutil
 import socket
 import sys
+import warnings
 from pathlib import Path
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
@@ -57,8 +59,9 @@ import numpy as np
 
 from ._entry import say as _say
 from ._entry import stop_on_signals as _stop_on_signals
-from ._wearsim import __version__
-from .surface import SQUARE_PIXELS, Detrend, heights_and_length, preprocess_surface
+from ._wearsim import MIN_GRID, __version__
+from ._wearsim import metres_per as _metres_per
+from .surface import SQUARE_PIXELS, Detrend, heights_and_length, preprocess_surface, read_surface
 
 #: Fill methods of SurfaceTopography's ``interpolate_undefined_data`` (1.27).
 FILL_METHODS = ("harmonic",)
@@ -68,6 +71,12 @@ WRITER = "wearsim surface import"
 TOP_FILE, BOTTOM_FILE = "heights.npy", "bottom.npy"
 #: The rule that makes the bottom body without a second map (``import.json``'s ``bodies``).
 ROTATED = "the map rotated by 180° about its centre"
+#: A filled map whose undefined pixels are more than this share of it is mostly invented by the
+#: fill: the import warns, with the share (``import.json``'s ``undefined_share``).
+FILLED_WARNING = 0.1
+#: Extensions of the height maps a run file and ``wearsim surface fit`` read themselves (NumPy
+#: arrays and text matrices), which state no physical size: they need no import.
+READ_DIRECTLY = ("npy", "npz", "txt", "csv", "dat", "asc")
 
 Say = Callable[[str], None]
 
@@ -91,7 +100,13 @@ def _written_by_import(path: Path) -> bool:
 
 def _check_out(sources: Sequence[Path], out: Path, overwrite: bool) -> None:
     """Refuses an ``out`` that is or holds one of the source files or the current folder (whatever
-    the spelling), and, unless ``overwrite``, one that exists and is not a folder this import wrote."""
+    the spelling), one below a file (``scan.txt/sub``), and, unless ``overwrite``, one that exists
+    and is not a folder this import wrote."""
+    for above in out.absolute().parents:
+        if above.exists():
+            if not above.is_dir():
+                raise ValueError(f"{out} lies inside {above}, which is a file, not a folder; give an --out in a folder")
+            break
     real_out = out.resolve()
     held = [("the instrument file", source.resolve()) for source in sources]
     for what, real in held + [("the current folder", Path.cwd().resolve())]:
@@ -112,6 +127,17 @@ def _sibling(out: Path, k: int) -> Path:
     return out.parent / f".{out.name}.{socket.gethostname()}.{os.getpid()}-{k}.tmp"
 
 
+def _last_position(n: int, pixel: float) -> float:
+    """The last sample's position of a non-periodic map of ``n`` pixels of size ``pixel``,
+    ``(n − 1)·pixel``, lowered by round-off where needed so that SurfaceTopography's own test of its
+    domain, ``position / pixel ≤ n − 1``, holds (with pixels of 2 µm, ``(n − 1)·2e-6 / 2e-6`` can
+    exceed ``n − 1`` by one unit in the last place, and the interpolation refuses the point)."""
+    last = (n - 1) * pixel
+    while last / pixel > n - 1:
+        last = float(np.nextafter(last, 0.0))
+    return last
+
+
 def _resample(topo: Any, say: Say) -> Any:
     """The topography on square pixels of its smaller pixel size, evaluated with SurfaceTopography's
     interpolation: bicubic for a periodic topography (the period kept), linear for a measured one,
@@ -119,7 +145,8 @@ def _resample(topo: Any, say: Say) -> Any:
     from SurfaceTopography import Topography  # type: ignore[import-untyped]
 
     (nx, ny), (lx, ly) = topo.nb_grid_pts, topo.physical_sizes
-    px, py = lx / nx, ly / ny
+    # The pixel sizes SurfaceTopography interpolates with (a file may state them apart from its size).
+    px, py = (float(v) for v in topo.pixel_size)
     p = min(px, py)
     periodic = bool(topo.is_periodic)
     if periodic:
@@ -132,7 +159,7 @@ def _resample(topo: Any, say: Say) -> Any:
         interpolate = topo.interpolate_linear()
     x, y = np.meshgrid(np.arange(mx) * p, np.arange(my) * p, indexing="ij")
     if not periodic:  # round-off at the last sample
-        x, y = np.minimum(x, (nx - 1) * px), np.minimum(y, (ny - 1) * py)
+        x, y = np.minimum(x, _last_position(nx, px)), np.minimum(y, _last_position(ny, py))
     h = np.asarray(interpolate(x, y), dtype=np.float64).reshape(mx, my)
     out = Topography(h, (mx * p, my * p), unit=topo.unit, periodic=periodic)
     u = f" {topo.unit}" if topo.unit else ""
@@ -141,6 +168,127 @@ def _resample(topo: Any, say: Say) -> Any:
         f"({'bicubic, periodic' if periodic else 'linear'}); size {mx * p:.6g}{u} × {my * p:.6g}{u}"
     )
     return out
+
+
+def _likely_reader(source: Path) -> Optional[str]:
+    """The name of SurfaceTopography's reader of files with ``source``'s extension (``.di``:
+    ``DIReader``), if one has it."""
+    from SurfaceTopography.IO import readers  # type: ignore[import-untyped]
+
+    suffix = source.suffix.lower().lstrip(".")
+    for reader in readers:
+        extensions = [str(e).lower() for e in getattr(reader, "_file_extensions", None) or []]
+        if suffix and (suffix == str(getattr(reader, "_format", "")).lower() or suffix in extensions):
+            return str(reader.__name__)
+    return None
+
+
+def _unreadable(source: Path, error: Exception) -> str:
+    """The message of a file no reader of SurfaceTopography opened: one line first (the file looks
+    damaged or is of no format read, and what the reader of its extension said), every reader's
+    answer after it."""
+    text = str(error).strip()
+    tried = dict(re.findall(r"^tried (\w+): \n (.*?)(?=\n\ntried |\Z)", text, flags=re.S | re.M))
+    if not tried:
+        return f"{source} could not be read: {text}"
+    likely = _likely_reader(source)
+    if likely in tried:
+        said = tried[likely].strip().splitlines()[0] if tried[likely].strip() else "(no message)"
+        lead = (
+            f"{source} looks damaged, or is in no format SurfaceTopography reads: its reader of "
+            f"{source.suffix} files, {likely}, said: {said}"
+        )
+    else:
+        lead = (
+            f"{source} is in no format SurfaceTopography reads (no reader takes {source.suffix or 'its'} files, and "
+            f"none of the {len(tried)} tried recognised it), or looks damaged"
+        )
+    cascade = "\n".join(f"  {line}" for line in text.splitlines() if line.strip())
+    return f"{lead}\nevery reader's answer:\n{cascade}"
+
+
+def _plain_map(source: Path) -> str:
+    return (
+        f"{source} is a plain height map that states no physical size, which wearsim reads without an "
+        'import: name it in a run file (`[surface] top = FILE` with `length`, or `source = "spectrum"` '
+        "with `map = FILE` and `map_length`) or give it to `wearsim surface fit FILE --length L`"
+    )
+
+
+def _read_directly(source: Path) -> bool:
+    """Whether ``source`` is a plain map (a ``.npy``/``.npz`` array, a text or CSV matrix) that a run
+    file reads itself."""
+    if source.suffix.lower().lstrip(".") not in READ_DIRECTLY:
+        return False
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # its periodicity, say: the map is only looked at
+            read_surface(source, length=1.0)
+    except Exception:  # not one: the readers' answers say why
+        return False
+    return True
+
+
+def _open(st: Any, source: Path) -> Any:
+    """SurfaceTopography's reader of ``source``, refusing what is no height map: an empty file, a
+    file no reader opens (:func:`_unreadable`), and one that only the reader of SRTM elevation
+    tiles takes (it reads any file of a square number of 16-bit values)."""
+    if source.stat().st_size == 0:
+        raise ValueError(f"{source} is empty (0 bytes): there is no height map to import")
+    try:
+        reader = st.open_topography(os.fspath(source))
+    except Exception as e:  # CannotDetectFileFormat, or a reader's own error
+        if _read_directly(source):
+            raise ValueError(_plain_map(source)) from None
+        raise ValueError(_unreadable(source, e)) from None
+    if type(reader).__name__ == "HGTReader" and source.suffix.lower() != ".hgt":
+        raise ValueError(
+            f"{source} is in no instrument format SurfaceTopography reads, or looks damaged: only its reader of SRTM "
+            "elevation tiles (.hgt), which takes any file of a square number of 16-bit values, opened it, and that "
+            "is no measured surface"
+        )
+    return reader
+
+
+def _is_length_unit(unit: Any) -> bool:
+    try:
+        return isinstance(unit, str) and bool(unit) and _metres_per(unit) > 0
+    except ValueError:
+        return False
+
+
+def _channel_of(source: Path, reader: Any, channel: Optional[int]) -> Tuple[int, Any]:
+    """The index and the channel information of the channel to read (default: the reader's own),
+    refused when it is no height channel (its unit no length: an AFM's phase or amplitude error),
+    naming the height channels."""
+    channels = reader.channels
+
+    def names(indices: Sequence[int]) -> str:
+        return ", ".join(f"{i} ({channels[i].name!r})" for i in indices)
+
+    index = reader.default_channel.index if channel is None else int(channel)
+    if not 0 <= index < len(channels):
+        raise ValueError(
+            f"invalid `channel`: {index}; {source} has {len(channels)} channel(s): {names(range(len(channels)))}"
+        )
+    info = channels[index]
+    unit = getattr(info, "unit", None)
+    # A channel that states no unit is read as it is (the unit is asked for further on).
+    if unit is not None and not _is_length_unit(unit):
+        heights = [i for i, c in enumerate(channels) if _is_length_unit(getattr(c, "unit", None))]
+        # SurfaceTopography gives a channel of other values its unit as (lateral, of the values).
+        values = (unit[1] if len(unit) > 1 else None) if isinstance(unit, (tuple, list)) else unit
+        if values:
+            what = f"its values are in {values}, not a length"
+        else:
+            what = "its values state no unit" + (f" (its sides are in {unit[0]})" if unit else "")
+        which = (
+            f"its height channels (a unit of length) are {names(heights)}: give --channel (channel=) one of them"
+            if heights
+            else "it has no channel in a unit of length"
+        )
+        raise ValueError(f"channel {index} ({info.name!r}) of {source} is not a height channel: {what}; {which}")
+    return index, info
 
 
 def _read_map(
@@ -155,20 +303,23 @@ def _read_map(
 ) -> Tuple[np.ndarray, Dict[str, Any]]:
     """The heights of the instrument file ``source`` in metres (square pixels, even sides, levelled)
     and the record of what was done to them: the keys of one map in ``import.json``."""
-    reader = st.open_topography(os.fspath(source))
+    reader = _open(st, source)
     channels = reader.channels
-    index = reader.default_channel.index if channel is None else int(channel)
-    if not 0 <= index < len(channels):
-        names = ", ".join(f"{i}: {c.name}" for i, c in enumerate(channels))
-        raise ValueError(f"invalid `channel`: {index}; {source} has {len(channels)} channel(s) ({names})")
-    info = channels[index]
+    index, info = _channel_of(source, reader, channel)
     if getattr(info, "physical_sizes", True) is None:
+        if source.suffix.lower().lstrip(".") in READ_DIRECTLY:
+            raise ValueError(_plain_map(source))
         raise ValueError(
             f"{source}, channel {index}, states no physical size; read it with SurfaceTopography's "
             "`read_topography(path, physical_sizes=(sx, sy), unit=...)` and pass "
             "`wearsim.heights_and_length(topography)` on"
         )
-    topo = reader.topography(channel_index=index)
+    try:
+        topo = reader.topography(channel_index=index)
+    except Exception as e:  # a header read whole, its data cut short or damaged
+        raise ValueError(
+            f"{source} looks damaged: {type(reader).__name__} read its header but not its heights: {e}"
+        ) from None
     fmt = reader.format() if callable(getattr(reader, "format", None)) else None
     say(f"read {source}: {type(reader).__name__} ({fmt}), channel {index} ({info.name!r}) of {len(channels)}")
     if topo.dim != 2:
@@ -204,27 +355,49 @@ def _read_map(
     raw = topo.heights()
     # Masked pixels (SurfaceTopography's undefined data) and any NaN or infinity left unmasked.
     undefined = int(np.count_nonzero(np.ma.getmaskarray(raw) | ~np.isfinite(np.ma.getdata(raw))))
+    total = grid[0] * grid[1]
     record["undefined_pixels"] = undefined
+    record["undefined_share"] = undefined / total
     record["fill"] = None
+    record["warnings"] = []
+    if undefined == total:
+        raise ValueError(
+            f"{source}, channel {index}: none of its {total} pixels is measured (every one is undefined); there is "
+            "no height map to import"
+        )
     if undefined:
         if fill is None:
             raise ValueError(
-                f"{source}: {undefined} of its {grid[0] * grid[1]} pixels are undefined (not measured); fill them "
-                f"with --fill {'|'.join(FILL_METHODS)} (fill={FILL_METHODS[0]!r}: SurfaceTopography's "
-                "interpolate_undefined_data), or crop them away"
+                f"{source}: {undefined} of its {total} pixels are undefined ({100 * undefined / total:.3g} %, not "
+                f"measured); fill them with --fill {'|'.join(FILL_METHODS)} (fill={FILL_METHODS[0]!r}: "
+                "SurfaceTopography's interpolate_undefined_data), or crop them away"
             )
         topo = topo.interpolate_undefined_data(method=fill)
         record["fill"] = fill
-        say(f"filled {undefined} undefined pixels ({fill})")
+        say(f"filled {undefined} undefined pixels ({fill}), {100 * undefined / total:.3g} % of the map")
+        if undefined > FILLED_WARNING * total:
+            record["warnings"].append(
+                f"{source}: {100 * undefined / total:.3g} % of the map ({undefined} of {total} pixels) was not "
+                f"measured and is invented by the {fill} fill, a smooth interpolation with no roughness of its "
+                "own: the contact, the junctions and the wear there are the fill's, not the surface's; crop the map "
+                "to its measured part where you can"
+            )
 
     square = abs(pixel[0] - pixel[1]) <= SQUARE_PIXELS * max(abs(pixel[0]), abs(pixel[1]))
     record["resampled"] = None
     if not square:
         if not resample:
+            # A text matrix states its size but not its grid: one cut short has stretched pixels.
+            cut = (
+                "; a text matrix that lost rows (a file cut short) reads with stretched pixels too: check that "
+                "it holds every scan line first"
+                if record["reader"] in ("AscReader", "XYZReader")
+                else ""
+            )
             raise ValueError(
                 f"{source}: its pixels are not square, {pixel[0]:.6g} {unit} along x and {pixel[1]:.6g} {unit} "
                 "along y; wearsim's grids have square pixels: --resample (resample=True) puts the map on square "
-                "pixels of the smaller size"
+                f"pixels of the smaller size{cut}"
             )
         topo = _resample(topo, say)
         record["resampled"] = {
@@ -248,8 +421,11 @@ def _read_map(
         h = h[:cx, :cy]
         record["cropped"] = {"from": [nx, ny], "to": [cx, cy]}
         say(f"cropped the odd side(s): {nx}×{ny} to {cx}×{cy} pixels (the FFT solver needs even sides)")
-    if cx < 2 or cy < 2:
-        raise ValueError(f"{source}: {cx}×{cy} pixels are too few for a height map")
+    if cx < MIN_GRID or cy < MIN_GRID:
+        raise ValueError(
+            f"{source}: {cx}×{cy} pixels (after the import's steps) are too few for a height map: every reader of "
+            f"wearsim needs at least {MIN_GRID} pixels a side (the FFT solver and the periodic junction labelling)"
+        )
     h = preprocess_surface(h, detrend=detrend)
     record["detrend"] = detrend
     if detrend != "none":
@@ -322,9 +498,16 @@ def import_topography(
     ``h_b[i, j] = h[Nx−1−i, Ny−1−j]``: the measured lay, spectrum and height distribution, and no
     pixel facing its own copy at any sliding offset (module documentation).
 
-    Refuses (``ValueError``) a map with undefined pixels unless ``fill`` (``"harmonic"``), one with
-    non-square pixels unless ``resample``, a line scan, a topography that states no unit, and a
-    ``bottom`` that is ``path`` itself. The folder is written beside ``out`` and renamed into place:
+    Refuses (``ValueError``) a map with undefined pixels unless ``fill`` (``"harmonic"``) and one
+    with no measured pixel at all, one with non-square pixels unless ``resample``, one under
+    :data:`MIN_GRID` pixels a side after these steps, a line scan, a topography that states no unit,
+    a channel whose unit is no length (naming the height channels), an empty file, a file no reader
+    opens (its first line says the file looks damaged or is of no format read, with what the reader
+    of its extension said; every reader's answer follows), one only the SRTM tile reader opens, a
+    plain ``.npy`` or text map without a size (read directly by a run file), and a ``bottom`` that
+    is ``path`` itself. Where ``fill`` invents more than :data:`FILLED_WARNING` of a map, a
+    ``UserWarning`` (and a ``warning:`` line to ``say``) gives the share; ``import.json`` keeps
+    ``undefined_share`` and ``warnings``. The folder is written beside ``out`` and renamed into place:
     a failed import leaves nothing. An existing ``out`` is replaced only when an earlier import
     wrote it, or with ``overwrite``; one that is or holds ``path`` or ``bottom`` never. ``say`` gets
     one line per action (default: none)."""
@@ -378,6 +561,11 @@ def import_topography(
             },
         },
     }
+    # Every warning of the import, both maps', in import.json and said (a warning also for an API caller).
+    record["warnings"] = first["warnings"] + ([] if bottom_map is None else bottom_map["warnings"])
+    for warning in record["warnings"]:
+        say(f"warning: {warning}")
+        warnings.warn(warning, UserWarning, stacklevel=2)
     if second is None:
         say(
             f"bottom body: {made}: the measured lay, spectrum and height distribution, and no pixel facing its "
@@ -447,18 +635,25 @@ def main(argv: Optional[List[str]] = None) -> int:
     parser.add_argument("--overwrite", action="store_true", help="replace OUT even when another program wrote it")
     args = parser.parse_args(argv)
     _stop_on_signals()
+
+    def line(text: str) -> None:
+        # Warnings on the error stream, as wearsim's commands print them; the rest on stdout.
+        _say(text, sys.stderr if text.startswith("warning: ") else sys.stdout)
+
     try:
-        import_topography(
-            args.file,
-            args.out,
-            bottom=args.bottom,
-            fill=args.fill,
-            resample=args.resample,
-            detrend=args.detrend,
-            channel=args.channel,
-            overwrite=args.overwrite,
-            say=lambda line: _say(line, sys.stdout),
-        )
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # said by `line` already
+            import_topography(
+                args.file,
+                args.out,
+                bottom=args.bottom,
+                fill=args.fill,
+                resample=args.resample,
+                detrend=args.detrend,
+                channel=args.channel,
+                overwrite=args.overwrite,
+                say=line,
+            )
     except KeyboardInterrupt:
         _say("error: stopped by a signal; nothing was written", sys.stderr)
         return 130

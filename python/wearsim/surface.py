@@ -263,10 +263,10 @@ def read_surface(
     along x.
 
     ``length``: the physical size, Lx or (Lx, Ly), in the unit of the result; column files state it
-    themselves. ``height_unit`` (m, mm, um, nm, pm, A) converts the heights to metres, and
-    ``lateral_unit`` (default ``height_unit``) the coordinates of a column file. Odd sides lose their
-    last row or column. ``detrend`` removes the mean, the plane or a quadratic; ``taper`` brings a
-    fraction of each side smoothly to the mean (see :func:`preprocess_surface`). A surface far from
+    themselves. ``height_unit`` (m, mm, um, nm, pm, A; also Gm, Mm, km, cm, fm) converts the heights
+    to metres, and ``lateral_unit`` (default ``height_unit``) the coordinates of a column file. Odd
+    sides lose their last row or column. ``detrend`` removes the mean, the plane or a quadratic;
+    ``taper`` brings a fraction of each side smoothly to the mean (see :func:`preprocess_surface`). A surface far from
     periodic draws a warning (see :func:`periodicity`).
     """
     lx, ly = (length if isinstance(length, tuple) else (length, None)) if length is not None else (None, None)
@@ -327,7 +327,10 @@ def fit_surface(
     the measured PSD level in the band; the whole map's would add the variance outside it (a
     waviness or form beyond λ_u, noise beyond λ_l). ``map_rms_height`` is the whole levelled map's,
     and ``out_of_band_share`` the share of its variance outside the band,
-    1 − (rms_height/map_rms_height)² (0 at least); above 10 %, ``notes`` says so.
+    1 − (rms_height/map_rms_height)² (0 at least); above 10 %, ``notes`` says so. ``rms_slope``:
+    ``map`` and ``generated``, the rms slopes of the map and of a surface the fitted parameters
+    generate on its grid (forward differences inside the map); a change over 10 % is in ``notes``
+    too. A flat map (one value, or a plane levelled away) is refused: its spectrum is zero.
 
     ``measured_pixel``: the native pixel size of a map resampled onto finer pixels than it was
     measured with (what ``wearsim surface import --resample`` records in import.json as
@@ -400,9 +403,12 @@ def fit_surface(
     return fit
 
 
-def composite_heights(top: np.ndarray, bottom: np.ndarray, offset: int = 0) -> np.ndarray:
+def composite_heights(top: Any, bottom: Any, offset: int = 0) -> np.ndarray:
     """Height of Johnson's equivalent rigid surface at a sliding offset of ``offset`` pixels along
-    x: ``bottom + np.roll(top, offset, axis=0)``."""
+    x: ``bottom + np.roll(top, offset, axis=0)``. Each body is an array or a SurfaceTopography
+    topography (in metres where it states its unit, as :func:`heights_and_length` reads it)."""
     if offset < 0:
         raise ValueError(f"invalid `offset`: {offset} must be a non-negative number of pixels")
-    return _wearsim.composite_heights(_float_grid("top", top), _float_grid("bottom", bottom), offset)
+    top_heights, _ = as_heights("top", top)
+    bottom_heights, _ = as_heights("bottom", bottom)
+    return _wearsim.composite_heights(top_heights, bottom_heights, offset)

@@ -5,6 +5,7 @@ the map itself, and the counter-body's own map or the map rotated by 180° about
 import json
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -212,10 +213,16 @@ def test_the_cli_imports_and_the_map_reads_in_surface_fit_and_a_run_file(tmp_pat
 
 
 def test_a_file_without_size_is_refused_with_the_way_to_give_it(tmp_path):
+    # A text matrix or a .npy array: wearsim reads it without an import, given its side.
     (tmp_path / "plain.txt").write_text("1 2 3 4\n5 6 7 8\n9 10 11 12\n13 14 15 16\n")
-    with pytest.raises(ValueError, match=r"no physical size.*read_topography\(path, physical_sizes"):
-        import_topography(tmp_path / "plain.txt", tmp_path / "out")
-    assert not (tmp_path / "out").exists()
+    np.save(tmp_path / "plain.npy", self_affine())
+    # A CSV matrix, which no reader of SurfaceTopography opens (its XYZ reader wants columns).
+    np.savetxt(tmp_path / "plain.csv", self_affine(), delimiter=",")
+    for plain in ("plain.txt", "plain.npy", "plain.csv"):
+        with pytest.raises(ValueError, match=r"states no physical size, which wearsim reads without an import") as e:
+            import_topography(tmp_path / plain, tmp_path / "out")
+        assert "wearsim surface fit FILE --length L" in str(e.value) and "physical_sizes" not in str(e.value)
+        assert not (tmp_path / "out").exists()
 
 
 def test_without_a_second_map_the_bottom_body_is_the_map_rotated_by_180_degrees(tmp_path):
@@ -350,3 +357,126 @@ def test_a_stop_while_the_bodies_are_written_leaves_the_earlier_folder(tmp_path,
     monkeypatch.setattr(np, "save", save)
     assert measured.main(argv) == 0
     assert json.loads((tmp_path / "out" / "import.json").read_text())["bodies"]["bottom"]["rule"] == "second-map"
+
+
+DI = Path(__file__).resolve().parents[2] / "examples" / "measured" / "di-3.di"
+
+
+@pytest.mark.parametrize("pixels", [(1.0, 2.0), (1.0, 1.5), (1.0, 2.1875), (2.0, 1.0)])
+def test_round_pixel_ratios_of_a_non_periodic_map_resample(tmp_path, pixels):
+    # Pixels of 1 × 2 µm put a sample at (n − 1)·2e-6 m, which divided by 2e-6 exceeds n − 1 by one
+    # unit in the last place: SurfaceTopography's linear interpolation refused it.
+    px, py = pixels
+    for nx, ny in ((52, 49), (34, 49), (70, 82)):
+        x, y = np.arange(nx)[:, None] * px, np.arange(ny)[None, :] * py
+        heights = 0.01 * x + 0.03 * y
+        Topography(heights, (nx * px * 1e-6, ny * py * 1e-6), unit="m", periodic=False).to_x3p(tmp_path / "r.x3p")
+        record = import_topography(tmp_path / "r.x3p", tmp_path / "out", resample=True, detrend="none")
+        a = np.load(tmp_path / "out" / "heights.npy")
+        p = min(px, py)
+        assert record["resampled"]["pixel_size"] == pytest.approx(p * 1e-6)
+        xs, ys = np.arange(a.shape[0])[:, None] * p, np.arange(a.shape[1])[None, :] * p
+        np.testing.assert_allclose(a, 0.01 * xs + 0.03 * ys, rtol=1e-9, atol=1e-12)
+
+
+def test_a_map_with_no_measured_pixel_is_refused_and_a_mostly_filled_one_warned_about(tmp_path):
+    h = np.ma.masked_array(self_affine(), mask=np.ones((64, 64), bool))
+    Topography(h, (32.0, 32.0), unit="nm").to_x3p(tmp_path / "none.x3p")
+    with pytest.raises(ValueError, match=r"none of its 4096 pixels is measured"):
+        import_topography(tmp_path / "none.x3p", tmp_path / "out", fill="harmonic")
+    assert not (tmp_path / "out").exists()
+    # Half of the map undefined: filled on request, with a warning giving the share, in import.json too.
+    h.mask[:] = False
+    h.mask[:, :32] = True
+    Topography(h, (32.0, 32.0), unit="nm").to_x3p(tmp_path / "half.x3p")
+    lines = []
+    with pytest.warns(UserWarning, match=r"50 % of the map \(2048 of 4096 pixels\) was not measured"):
+        record = import_topography(tmp_path / "half.x3p", tmp_path / "out", fill="harmonic", say=lines.append)
+    assert record["undefined_share"] == pytest.approx(0.5) and len(record["warnings"]) == 1
+    assert any(line.startswith("warning: ") and "invented" in line for line in lines)
+    assert json.loads((tmp_path / "out" / "import.json").read_text())["undefined_share"] == pytest.approx(0.5)
+    # A few filled pixels: no warning, the share recorded.
+    h.mask[:] = False
+    h.mask[3, 4] = True
+    Topography(h, (32.0, 32.0), unit="nm").to_x3p(tmp_path / "one.x3p")
+    record = import_topography(tmp_path / "one.x3p", tmp_path / "few", fill="harmonic")
+    assert record["warnings"] == [] and record["undefined_share"] == pytest.approx(1 / 4096)
+
+
+def test_maps_under_sixteen_pixels_a_side_are_refused_at_import(tmp_path):
+    for shape in ((2, 2), (2, 64), (64, 14)):
+        Topography(np.random.default_rng(0).normal(size=shape), shape, unit="um").to_netcdf(tmp_path / "s.nc")
+        with pytest.raises(ValueError, match=r"at least 16 pixels a side"):
+            import_topography(tmp_path / "s.nc", tmp_path / "out")
+        assert not (tmp_path / "out").exists()
+    # 16 × 16 (15 × 17 cropped to 14 × 16 would not be) imports.
+    Topography(np.random.default_rng(0).normal(size=(16, 17)), (16, 17), unit="um").to_netcdf(tmp_path / "s.nc")
+    assert import_topography(tmp_path / "s.nc", tmp_path / "out")["heights_grid"] == [16, 16]
+
+
+def test_a_channel_that_is_not_heights_is_named_with_the_height_channels(tmp_path):
+    with pytest.raises(ValueError) as e:
+        import_topography(DI, tmp_path / "out", channel=2)
+    text = str(e.value)
+    assert "channel 2 ('Phase')" in text and "is not a height channel" in text, text
+    assert "0 ('ZSensor'), 3 ('Height')" in text and "('nm', None)" not in text, text
+    assert not (tmp_path / "out").exists()
+    record = import_topography(DI, tmp_path / "out", channel=3)
+    assert record["channel_name"] == "Height"
+
+
+def test_a_damaged_or_unknown_file_is_said_in_one_line_before_every_readers_answer(tmp_path, capsys):
+    data = DI.read_bytes()
+    (tmp_path / "cut.di").write_bytes(data[: len(data) // 3])
+    with pytest.raises(ValueError) as e:
+        import_topography(tmp_path / "cut.di", tmp_path / "out")
+    lines = str(e.value).splitlines()
+    assert "looks damaged" in lines[0] and "DIReader" in lines[0] and "not large enough" in lines[0], lines[0]
+    assert lines[1] == "every reader's answer:" and any("tried XYZReader" in line for line in lines[2:])
+    # An empty file, and random bytes that only the elevation-tile reader takes: refused, with no
+    # advice to give them a physical size.
+    (tmp_path / "empty.dat").write_bytes(b"")
+    with pytest.raises(ValueError, match=r"is empty \(0 bytes\)"):
+        import_topography(tmp_path / "empty.dat", tmp_path / "out")
+    (tmp_path / "noise.bin").write_bytes(np.random.default_rng(0).bytes(2 * 64 * 64))
+    with pytest.raises(ValueError, match=r"only its reader of SRTM elevation tiles") as e:
+        import_topography(tmp_path / "noise.bin", tmp_path / "out")
+    assert "physical_sizes" not in str(e.value)
+    assert not (tmp_path / "out").exists()
+    # From the command line (`python -m wearsim.measured`, what `wearsim surface import` runs): the
+    # first line of the error leads.
+    assert measured.main([str(tmp_path / "cut.di"), str(tmp_path / "out")]) == 1
+    err = capsys.readouterr().err
+    assert err.startswith("error: ") and "looks damaged" in err.splitlines()[0], err
+
+
+def test_an_out_below_a_file_is_refused_in_words(tmp_path):
+    Topography(self_affine(), (32.0, 32.0), unit="um").to_netcdf(tmp_path / "scan.nc")
+    (tmp_path / "file.txt").write_text("keep")
+    with pytest.raises(ValueError, match=r"file.txt, which is a file, not a folder"):
+        import_topography(tmp_path / "scan.nc", tmp_path / "file.txt" / "sub")
+    assert (tmp_path / "file.txt").read_text() == "keep"
+
+
+def test_the_package_imports_its_measured_and_fields_modules(tmp_path):
+    done = subprocess.run(
+        [sys.executable, "-c", "import wearsim; print(wearsim.measured.import_topography, wearsim.fields)"],
+        capture_output=True,
+        text=True,
+    )
+    assert done.returncode == 0, done.stderr
+
+
+def test_the_contact_solver_takes_a_topography(tmp_path):
+    g = self_affine()
+    t = Topography(g, (32.0, 32.0), unit="um")
+    h, lx = wearsim.heights_and_length(t)
+    e_star, load = 1e11, 1e-3 * 1e11 * lx * lx
+    direct = wearsim.solve_contact(h, load, effective_modulus=e_star, length=lx)
+    via = wearsim.solve_contact(t, load, effective_modulus=e_star)
+    np.testing.assert_array_equal(via.pressure, direct.pressure)
+    solver = wearsim.ContactSolver(64, lx, e_star)
+    np.testing.assert_array_equal(solver.solve(t, load).pressure, direct.pressure)
+    with pytest.raises(ValueError, match="the solver's length"):
+        wearsim.ContactSolver(64, 32.0, e_star).solve(t, load)
+    np.testing.assert_array_equal(wearsim.composite_heights(t, t, 3), wearsim.composite_heights(h, h, 3))
