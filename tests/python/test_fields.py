@@ -218,6 +218,7 @@ def test_the_fields_extra_installs_every_module_the_conversion_imports(root, wea
     names = {re.split(r"[<>=\[ ]", r)[0].lower() for r in extra}
     # What `wearsim fields to-netcdf` checks before it runs the conversion.
     source = (root / "crates" / "wearsim-cli" / "src" / "commands" / "fields.rs").read_text()
-    probe = re.search(r'"import (wearsim\.fields[^"]*)"', source).group(1)
-    needed = {m.strip() for m in probe.split(",")} - {"wearsim.fields"}
+    probe = re.search(r'"wearsim\.fields",\s*&\[([^\]]*)\]', source).group(1)
+    needed = {m.strip().strip('"') for m in probe.split(",") if m.strip()}
+    assert {"xarray", "h5netcdf"} <= needed, needed
     assert needed <= names, needed - names
