@@ -78,3 +78,22 @@ def results(folder: Path) -> str:
     p = run(["study", "collect", str(folder)])
     assert p is not None and p.returncode == 0, p and p.stderr
     return (folder / "results.csv").read_text()
+
+
+def print_report(trials: list, outcomes: list, detail: int = 200) -> None:
+    """The table of a round's trials by class and outcome (as docs/reliability.md shows it), then
+    every trial that is neither accepted nor a clear error, with the first ``detail`` characters of
+    what it said."""
+    classes = sorted({t["class"] for t in trials})
+    count = collections.Counter((t["class"], t["outcome"]) for t in trials)
+    print(f"| class | trials | {' | '.join(outcomes)} |")
+    print("|---|---|" + "---|" * len(outcomes))
+    for c in classes:
+        counts = [count[(c, k)] for k in outcomes]
+        print(f"| {c} | {sum(counts)} | {' | '.join(map(str, counts))} |")
+    totals = [sum(count[(c, k)] for c in classes) for k in outcomes]
+    print(f"| **all** | {sum(totals)} | {' | '.join(map(str, totals))} |")
+    print()
+    for t in trials:
+        if t["outcome"] not in ("accepted", "clear error"):
+            print(f"- {t['outcome']}: {t['class']}: {t['name']}: {t['detail'][:detail]}")

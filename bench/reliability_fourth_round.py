@@ -1316,19 +1316,7 @@ def main() -> None:
                 step(tmp)
                 print(f"class {number}: {time.time() - t0:.0f} s", file=sys.stderr)
     elapsed = time.time() - start
-    classes = sorted({t["class"] for t in TRIALS})
-    count = collections.Counter((t["class"], t["outcome"]) for t in TRIALS)
-    print(f"| class | trials | {' | '.join(OUTCOMES)} |")
-    print("|---|---|" + "---|" * len(OUTCOMES))
-    for c in classes:
-        counts = [count[(c, k)] for k in OUTCOMES]
-        print(f"| {c} | {sum(counts)} | {' | '.join(map(str, counts))} |")
-    totals = [sum(count[(c, k)] for c in classes) for k in OUTCOMES]
-    print(f"| **all** | {sum(totals)} | {' | '.join(map(str, totals))} |")
-    print()
-    for t in TRIALS:
-        if t["outcome"] not in ("accepted", "clear error"):
-            print(f"- {t['outcome']}: {t['class']}: {t['name']}: {t['detail'][:200]}")
+    rt.print_report(TRIALS, OUTCOMES)
     print(f"\n{len(TRIALS)} trials in {elapsed:.0f} s with {WEARSIM}")
     if args.out:
         args.out.write_text(

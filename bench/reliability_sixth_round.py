@@ -36,7 +36,6 @@ unflagged result).
 from __future__ import annotations
 
 import argparse
-import collections
 import json
 import os
 import shutil
@@ -46,6 +45,8 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+
+import reliability_common as rt
 
 ROOT = Path(__file__).resolve().parents[1]
 DI = ROOT / "examples" / "measured" / "di-3.di"
@@ -540,19 +541,7 @@ def main() -> None:
                 shutil.rmtree(work, ignore_errors=True)
                 print(f"class {number}: {time.time() - t0:.0f} s", file=sys.stderr)
     elapsed = time.time() - start
-    classes = sorted({t["class"] for t in TRIALS})
-    count = collections.Counter((t["class"], t["outcome"]) for t in TRIALS)
-    print(f"| class | trials | {' | '.join(OUTCOMES)} |")
-    print("|---|---|" + "---|" * len(OUTCOMES))
-    for c in classes:
-        counts = [count[(c, k)] for k in OUTCOMES]
-        print(f"| {c} | {sum(counts)} | {' | '.join(map(str, counts))} |")
-    totals = [sum(count[(c, k)] for c in classes) for k in OUTCOMES]
-    print(f"| **all** | {sum(totals)} | {' | '.join(map(str, totals))} |")
-    print()
-    for t in TRIALS:
-        if t["outcome"] not in ("accepted", "clear error"):
-            print(f"- {t['outcome']}: {t['class']}: {t['name']}: {t['detail'][:300]}")
+    rt.print_report(TRIALS, OUTCOMES, 300)
     print(f"\n{len(TRIALS)} trials in {elapsed:.0f} s with {WEARSIM} and {PYTHON}")
     if args.out:
         args.out.write_text(json.dumps({"seconds": round(elapsed), "trials": TRIALS}, indent=1, ensure_ascii=False))

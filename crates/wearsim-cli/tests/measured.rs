@@ -347,6 +347,23 @@ fn fit_record(dir: &Path) -> serde_json::Value {
 }
 
 /// A value `key = v` of the block `surface fit` printed.
+/// `surface fit DIR/NAME.npy --length 1.0 --out DIR/NAME-fit`, which must succeed: its output and
+/// fit.json.
+fn fit_unit_box(dir: &Path, name: &str) -> (std::process::Output, serde_json::Value) {
+    let out = dir.join(format!("{name}-fit"));
+    let o = run(&[
+        "surface",
+        "fit",
+        s(&dir.join(format!("{name}.npy"))),
+        "--length",
+        "1.0",
+        "--out",
+        s(&out),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    (o, fit_record(&out))
+}
+
 fn block_value(text: &str, key: &str) -> f64 {
     let line = text.lines().find(|l| l.starts_with(&format!("{key} = "))).unwrap();
     line[key.len() + 3..].parse().unwrap()
@@ -378,20 +395,7 @@ fn surface_fit_writes_the_rms_height_of_the_band_and_reports_the_whole_maps() {
         .collect();
     write_npy(&dir.path().join("wavy.npy"), &[512, 512], &map);
     write_npy(&dir.path().join("band.npy"), &[512, 512], &band);
-    let fit = |name: &str| {
-        let out = dir.path().join(format!("{name}-fit"));
-        let o = run(&[
-            "surface",
-            "fit",
-            s(&dir.path().join(format!("{name}.npy"))),
-            "--length",
-            "1.0",
-            "--out",
-            s(&out),
-        ]);
-        assert!(o.status.success(), "{}", stderr(&o));
-        (o, fit_record(&out))
-    };
+    let fit = |name: &str| fit_unit_box(dir.path(), name);
     let (o, record) = fit("wavy");
     let (text, f) = (stdout(&o), &record["fit"]);
     let value = |key: &str| f[key].as_f64().unwrap();
@@ -586,20 +590,7 @@ fn surface_fit_says_how_much_the_generated_surfaces_change_the_rms_slope() {
         .collect();
     write_npy(&dir.path().join("noisy.npy"), &[256, 256], &noisy);
     write_npy(&dir.path().join("band.npy"), &[256, 256], &band);
-    let fit = |name: &str| {
-        let out = dir.path().join(format!("{name}-fit"));
-        let o = run(&[
-            "surface",
-            "fit",
-            s(&dir.path().join(format!("{name}.npy"))),
-            "--length",
-            "1.0",
-            "--out",
-            s(&out),
-        ]);
-        assert!(o.status.success(), "{}", stderr(&o));
-        (o, fit_record(&out))
-    };
+    let fit = |name: &str| fit_unit_box(dir.path(), name);
     let (o, record) = fit("noisy");
     let slopes = &record["rms_slope"];
     let (map, generated) = (slopes["map"].as_f64().unwrap(), slopes["generated"].as_f64().unwrap());

@@ -94,6 +94,14 @@ fn set(tidy: &mut Table, tau: f64, load: f64, column: &str, values: &[Cell]) {
     }
 }
 
+/// `column` set to `value` in every row of `tidy`.
+fn set_every_row(tidy: &mut Table, column: &str, value: Cell) {
+    let c = tidy.columns.iter().position(|c| c == column).unwrap();
+    for r in tidy.rows.iter_mut() {
+        r[c] = value.clone();
+    }
+}
+
 #[test]
 fn rows_of_a_model_not_known_here_are_not_judged() {
     // The same study with a copy of every row made by a third model (`sliding.model = "other"`),
@@ -856,14 +864,7 @@ fn the_largest_mean_k_of_a_curve_is_never_a_zero_from_pairs_not_run_in() {
     assert!(o.contains(&expected), "{o}\nexpected {expected}");
     // No pair is run in (the fit window starts after 1 decay length): the mean over all pairs, said so.
     let mut tidy = study(None);
-    let c = tidy
-        .columns
-        .iter()
-        .position(|c| c == "running_in_decay_lengths")
-        .unwrap();
-    for r in tidy.rows.iter_mut() {
-        r[c] = Cell::Float(1.0);
-    }
+    set_every_row(&mut tidy, "running_in_decay_lengths", Cell::Float(1.0));
     let o = observed(&tidy);
     let expected = expected.replace(" at", " (over all pairs: none is run in) at");
     assert!(
@@ -877,10 +878,7 @@ fn the_largest_mean_k_of_a_curve_is_never_a_zero_from_pairs_not_run_in() {
     assert!(!o.contains("k = 0 ") && o.contains("largest mean k ="), "{o}");
     // No particle at any load: k = 0 everywhere has no maximum, and none is placed.
     let mut tidy = study(None);
-    let c = tidy.columns.iter().position(|c| c == "wear_coefficient").unwrap();
-    for r in tidy.rows.iter_mut() {
-        r[c] = Cell::Float(0.0);
-    }
+    set_every_row(&mut tidy, "wear_coefficient", Cell::Float(0.0));
     let o = observed(&tidy);
     assert!(
         o.contains("k = 0 at every load (no particle formed): no maximum") && !o.contains("largest mean k"),
@@ -891,14 +889,7 @@ fn the_largest_mean_k_of_a_curve_is_never_a_zero_from_pairs_not_run_in() {
 #[test]
 fn one_surface_pair_not_run_in_is_said_to_be_not_run_in() {
     let mut tidy = kim(1);
-    let c = tidy
-        .columns
-        .iter()
-        .position(|c| c == "running_in_decay_lengths")
-        .unwrap();
-    for r in tidy.rows.iter_mut() {
-        r[c] = Cell::Float(1.0);
-    }
+    set_every_row(&mut tidy, "running_in_decay_lengths", Cell::Float(1.0));
     let f = findings(&tidy);
     let k = get(&f, "kim-k-above-experiments");
     assert!(
