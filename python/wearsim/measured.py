@@ -81,6 +81,11 @@ READ_DIRECTLY = ("npy", "npz", "txt", "csv", "dat", "asc")
 Say = Callable[[str], None]
 
 
+class MeasuredMapWarning(UserWarning):
+    """What an import says of a map it wrote (a fill that invents much of it): also in
+    ``import.json``'s ``warnings``."""
+
+
 def _surface_topography():
     try:
         import SurfaceTopography  # type: ignore[import-untyped]
@@ -506,11 +511,11 @@ def import_topography(
     of its extension said; every reader's answer follows), one only the SRTM tile reader opens, a
     plain ``.npy`` or text map without a size (read directly by a run file), and a ``bottom`` that
     is ``path`` itself. Where ``fill`` invents more than :data:`FILLED_WARNING` of a map, a
-    ``UserWarning`` (and a ``warning:`` line to ``say``) gives the share; ``import.json`` keeps
-    ``undefined_share`` and ``warnings``. The folder is written beside ``out`` and renamed into place:
-    a failed import leaves nothing. An existing ``out`` is replaced only when an earlier import
-    wrote it, or with ``overwrite``; one that is or holds ``path`` or ``bottom`` never. ``say`` gets
-    one line per action (default: none)."""
+    :class:`MeasuredMapWarning` (a ``UserWarning``; and a ``warning:`` line to ``say``) gives the
+    share; ``import.json`` keeps ``undefined_share`` and ``warnings``. The folder is written beside
+    ``out`` and renamed into place: a failed import leaves nothing. An existing ``out`` is replaced
+    only when an earlier import wrote it, or with ``overwrite``; one that is or holds ``path`` or
+    ``bottom`` never. ``say`` gets one line per action (default: none)."""
     st = _surface_topography()
     say = say or (lambda _line: None)
     source, out = Path(path), Path(out)
@@ -565,7 +570,7 @@ def import_topography(
     record["warnings"] = first["warnings"] + ([] if bottom_map is None else bottom_map["warnings"])
     for warning in record["warnings"]:
         say(f"warning: {warning}")
-        warnings.warn(warning, UserWarning, stacklevel=2)
+        warnings.warn(warning, MeasuredMapWarning, stacklevel=2)
     if second is None:
         say(
             f"bottom body: {made}: the measured lay, spectrum and height distribution, and no pixel facing its "
@@ -642,7 +647,7 @@ def main(argv: Optional[List[str]] = None) -> int:
 
     try:
         with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # said by `line` already
+            warnings.simplefilter("ignore", MeasuredMapWarning)  # said by `line` already
             import_topography(
                 args.file,
                 args.out,
