@@ -76,9 +76,9 @@ fn periodicity(heights: PyReadonlyArray2<'_, f64>) -> PyResult<(f64, f64)> {
 /// surface fit` writes beside them in fit.json: the fit's fields, `spectrum` (the parameters a run
 /// generates from it on this grid), `notes` (what those adjust, and the share of the variance the
 /// band leaves out and the change of rms slope, when they are much), `rms_slope` (`map` and
-/// `generated`, by forward differences inside the map), `self_affine` and `reasons` (the verdict). `measured_pixel`:
-/// the native pixel sizes (Δx, Δy) of a map resampled onto finer pixels, whose measured
-/// wavevectors alone are fitted.
+/// `generated`, by forward differences inside the map), `self_affine` and `reasons` (the
+/// verdict). `measured_pixel`: the native pixel sizes (Δx, Δy) of a map resampled onto finer
+/// pixels, whose measured wavevectors alone are fitted.
 #[pyfunction]
 #[pyo3(signature = (heights, length, measured_pixel = None))]
 fn fit_surface<'py>(

@@ -578,23 +578,15 @@ impl SlopeComparison {
 /// √⟨(Δh/Δx)² + (Δh/Δy)²⟩ by forward differences inside the map (none across its border).
 fn difference_rms_slope(s: &Surface) -> f64 {
     let (nx, ny, h) = (s.nx(), s.ny(), s.heights());
-    let dx = s.pixel_size();
-    let mean_square = |pairs: &mut dyn Iterator<Item = (f64, f64)>| {
-        let (mut sum, mut n) = (0.0, 0usize);
-        for (a, b) in pairs {
-            sum += (b - a) * (b - a);
-            n += 1;
-        }
-        if n == 0 {
-            0.0
-        } else {
-            sum / n as f64
-        }
-    };
-    let along_x =
-        mean_square(&mut (0..nx - 1).flat_map(|i| (0..ny).map(move |j| (h[i * ny + j], h[(i + 1) * ny + j]))));
-    let along_y = mean_square(&mut (0..nx).flat_map(|i| (0..ny - 1).map(move |j| (h[i * ny + j], h[i * ny + j + 1]))));
-    (along_x + along_y).sqrt() / dx
+    let step = |a: usize, b: usize| (h[b] - h[a]).powi(2);
+    // A grid has at least 16 pixels a side, so neither count is zero.
+    let along_x: f64 = (0..(nx - 1) * ny).map(|k| step(k, k + ny)).sum::<f64>() / ((nx - 1) * ny) as f64;
+    let along_y: f64 = (0..nx)
+        .flat_map(|i| (0..ny - 1).map(move |j| i * ny + j))
+        .map(|k| step(k, k + 1))
+        .sum::<f64>()
+        / (nx * (ny - 1)) as f64;
+    (along_x + along_y).sqrt() / s.pixel_size()
 }
 
 /// The warning of a PSD fit whose log–log line follows the PSD poorly (`r2`, its R², below 0.9):

@@ -138,12 +138,6 @@ pub fn load(path: &Path, how: &FileSurface) -> Result<Loaded> {
     }
     let spread = heights.iter().fold(0.0f64, |m, h| m.max(h.abs()));
     preprocess(&mut heights, nx, ny, &how.preprocess)?;
-    let flat = {
-        let n = heights.len() as f64;
-        let mean = heights.iter().sum::<f64>() / n;
-        let rms = (heights.iter().map(|h| (h - mean) * (h - mean)).sum::<f64>() / n).sqrt();
-        super::prepare::is_flat(rms, spread)
-    };
     if how.preprocess.detrend == Detrend::None {
         if let Some(note) = remove_offset(&mut heights) {
             notes.push(format!("{name}: {note}"));
@@ -159,6 +153,7 @@ pub fn load(path: &Path, how: &FileSurface) -> Result<Loaded> {
     let periodicity = periodicity(&heights, nx, ny);
     let warnings = periodicity.warning(&name).into_iter().collect();
     let surface = Surface::new(&name, grid, heights)?;
+    let flat = super::prepare::is_flat(surface.rms_height(), spread);
     Ok(Loaded {
         surface,
         notes,

@@ -25,5 +25,5 @@ pub use fit::{
 };
 pub use formats::{array_shape, metres_per, read, regular_file, Measured, LENGTH_UNITS};
 pub use load::{file_grid, file_span, imported_length, load, probe_grid, FileSurface, Loaded};
-pub use prepare::{flat_map, is_flat, periodicity, preprocess, Detrend, Periodicity, Preprocess, NOT_PERIODIC};
+pub use prepare::{flat_map, periodicity, preprocess, Detrend, Periodicity, Preprocess, NOT_PERIODIC};
 pub use spectrum::{MeasuredPsd, Window};
