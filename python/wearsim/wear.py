@@ -13,7 +13,7 @@ from __future__ import annotations
 import os
 import warnings
 from pathlib import Path
-from typing import Any, Dict, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import pandas as pd
@@ -29,6 +29,19 @@ SERIES_COLUMNS = list(_wearsim.SERIES_COLUMNS)
 #: The particle rules a run can name (``particle_rule``; ``[sliding] particle_rule`` in a run file),
 #: the paper's (§3) first (defined once, in the library).
 PARTICLE_RULES = list(_wearsim.PARTICLE_RULES)
+
+
+def _particle_rule(rule: Union[str, Mapping[str, Any]]) -> str:
+    """A particle rule with its parameters as the library reads it: ``name`` or ``name(key=value, …)``."""
+    if isinstance(rule, str):
+        return rule
+    if not isinstance(rule, Mapping) or not isinstance(rule.get("name"), str):
+        raise ValueError(
+            f"invalid `particle_rule`: {rule!r} is neither a rule's name nor a mapping with a `name`; "
+            'write e.g. "interacting" or {"name": "interacting", "reach": 2}'
+        )
+    parameters = ", ".join(f"{key}={value}" for key, value in rule.items() if key != "name")
+    return f"{rule['name']}({parameters})" if parameters else rule["name"]
 
 
 def static_wear(junctions: Junctions, critical_diameter: float) -> Dict[str, float]:
@@ -83,7 +96,7 @@ def slide(
     running_in: float = _wearsim.DEFAULT_RUNNING_IN,
     step_running_in: int = _wearsim.DEFAULT_STEP_RUNNING_IN,
     step: int = _wearsim.DEFAULT_STEP,
-    particle_rule: str = _wearsim.DEFAULT_PARTICLE_RULE,
+    particle_rule: Union[str, Mapping[str, Any]] = _wearsim.DEFAULT_PARTICLE_RULE,
     device: str = "cpu",
     stopping: str = "settled-map",
     threads: Optional[int] = None,
@@ -104,8 +117,10 @@ def slide(
     maps, and so the same wear results, with about a third more iterations). ``modulus``:
     "half-space" (E* = E/(1−ν²)) or "composite" (E* = E/(2(1−ν²))). ``particle_rule`` names the rule
     that turns each step's junctions into particles, one of :data:`PARTICLE_RULES` (default: the
-    paper's, §3). ``device``: where the contact solver computes, "cpu" (or "cuda", in builds with a
-    GPU backend); recorded in the summary. ``threads`` runs on that many threads (default: all).
+    paper's, §3), with its parameters as a run file's ``[sliding.particle_rule]`` table gives them:
+    ``{"name": "interacting", "reach": 2}``, or written ``"interacting(reach=2)"``. ``device``: where
+    the contact solver computes, "cpu" (or "cuda", in builds with a GPU backend); recorded in the
+    summary. ``threads`` runs on that many threads (default: all).
     ``progress``: True prints steps done on stderr; a callable gets ``(steps done, total)``.
 
     Returns ``(series, summary)``: series with the columns :data:`SERIES_COLUMNS` (s in the length
@@ -130,7 +145,7 @@ def slide(
         running_in,
         _args.count("step_running_in", step_running_in),
         _args.count("step", step),
-        particle_rule,
+        _particle_rule(particle_rule),
         device,
         stopping,
         _args.optional_count("threads", threads, 1, fix=", or None for all cores"),

@@ -235,6 +235,32 @@ def test_slide_defaults_are_the_library_constants(tmp_path):
     }
 
 
+def test_a_particle_rule_takes_its_parameters_from_a_mapping_a_string_or_a_run_file(tmp_path):
+    pair = wearsim.generate_pair(32, lambda_lower=0.125, lambda_upper=0.5, rms_height=0.01, seed=3)
+    material = wearsim.Material(1.0, 0.3, 0.01, [0.25e-6])
+    recorded = "interacting(reach=2, particle=hull)"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", wearsim.ResolutionWarning)
+        by_mapping = wearsim.slide(*pair, material, [2e-3], particle_rule={"name": "interacting", "reach": 2})
+        by_name = wearsim.slide(*pair, material, [2e-3], particle_rule="interacting(reach=2)")
+        path = tmp_path / "interacting.toml"
+        path.write_text(
+            "[surface]\ngrid = 32\nlambda_lower = 0.125\nlambda_upper = 0.5\nrms_height = 0.01\nseed = 3\n"
+            "[material]\nyoungs_modulus = 1.0\npoisson_ratio = 0.3\nshear_strength = 0.01\n"
+            "fracture_energies = [0.25e-6]\n[sliding]\nloads = [2e-3]\n"
+            '[sliding.particle_rule]\nname = "interacting"\nreach = 2\n'
+        )
+        run = wearsim.load_run(path)
+    assert by_mapping[1]["inputs"]["sliding"]["particle_rule"] == recorded == run.particle_rule
+    assert by_name[1]["inputs"]["sliding"]["particle_rule"] == recorded
+    assert by_mapping[0].equals(by_name[0])
+    assert "interacting" in wearsim.wear.PARTICLE_RULES
+    with pytest.raises(ValueError, match=re.escape("sliding.particle_rule.reach")):
+        wearsim.slide(*pair, material, [2e-3], particle_rule={"name": "interacting", "reach": -1})
+    with pytest.raises(ValueError, match="neither a rule's name nor a mapping"):
+        wearsim.slide(*pair, material, [2e-3], particle_rule={"reach": 2})
+
+
 @pytest.mark.parametrize(
     "call, message",
     [

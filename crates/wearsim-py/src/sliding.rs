@@ -11,7 +11,7 @@ use wearsim::junctions::DEFAULT_CONNECTIVITY;
 use wearsim::output::{estimate_rows, Table};
 use wearsim::run::{SlidingOutcome, SlidingRun};
 use wearsim::sliding::{SlidingConfig, DEFAULT_DISTANCE, DEFAULT_RUNNING_IN, DEFAULT_STEP, DEFAULT_STEP_RUNNING_IN};
-use wearsim::wear::{ParticleRuleKind, DEFAULT_PARTICLE_RULE};
+use wearsim::wear::{ParticleRuleSpec, DEFAULT_PARTICLE_RULE};
 use wearsim::{Device, SolverOptions};
 
 use crate::contact::PyMaterial;
@@ -54,7 +54,7 @@ fn slide<'py>(
     progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
     let (t, b) = surface_pair(&top, &bottom, length)?;
-    let rule = ParticleRuleKind::named(particle_rule).map_err(to_py)?;
+    let rule: ParticleRuleSpec = particle_rule.parse().map_err(to_py)?;
     let device: Device = device.parse().map_err(to_py)?;
     device.available().map_err(to_py)?;
     let grid = t.grid();
@@ -147,8 +147,8 @@ impl PyRunFile {
         self.config.connectivity
     }
     #[getter]
-    fn particle_rule(&self) -> Option<&'static str> {
-        self.config.sliding.as_ref().map(|s| s.particle_rule.name)
+    fn particle_rule(&self) -> Option<String> {
+        self.config.sliding.as_ref().map(|s| s.particle_rule.to_string())
     }
     #[getter]
     fn device(&self) -> &'static str {

@@ -256,7 +256,7 @@ impl<'a> SlidingRun<'a> {
         let running_in = (PROBE_STEPS * coarse) as f64 / nx as f64;
         let distance = running_in + (PROBE_STEPS * fine) as f64 / nx as f64;
         let probe = SlidingConfig::new(vec![load], distance, running_in, coarse, fine, Some(nx))?
-            .with_particle_rule(self.sliding.particle_rule);
+            .with_particle_rule(self.sliding.particle_rule.clone());
         let setup = SlidingSetup {
             sliding: &probe,
             ..self.setup.clone()

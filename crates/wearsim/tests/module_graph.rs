@@ -38,11 +38,12 @@ const LAYERS: [&str; 20] = [
 ];
 
 /// The order of the submodules of each folder module; a submodule uses only those before it.
-const SUBLAYERS: [(&str, &[&str]); 8] = [
+const SUBLAYERS: [(&str, &[&str]); 9] = [
     ("io", &["atomic", "npy", "zarr"]),
     ("stats", &["fit", "interval", "judge"]),
     ("contact", &["backend", "options", "cpu", "conformance", "profile"]),
     ("topography", &["formats", "prepare", "load", "spectrum", "fit"]),
+    ("wear", &["shear", "rule", "overlap", "interacting", "registry"]),
     ("sliding", &["schedule", "records", "fit", "checkpoint", "state"]),
     ("config", &["raw", "source", "record"]),
     (

@@ -296,6 +296,50 @@ pub fn run_slide(args: &SlideArgs) -> Result<()> {
         check_size(args.warm_n).context("--warm-n")?;
     }
     let threads = rayon::current_num_threads();
+    say!("wearsim {} bench-slide, {threads} threads", wearsim::VERSION);
+    // Both particle rules on the same runs: the paper's, then the rule of interacting junctions,
+    // whose cost beyond the paper's is the shear energies of the junctions it tries to join.
+    let rules = [wearsim::wear::OVERLAP, wearsim::wear::INTERACTING];
+    let mut full = Vec::new();
+    for rule in rules {
+        full.push(full_run(args, rule.into())?);
+    }
+    // The solves are the same in both runs: the rule's own cost is its labelling and bookkeeping
+    // beyond the paper's rule, timed step by step; the ratio of whole steps also carries the noise
+    // of two solves of the same contact.
+    let (a, b) = (&full[0].1, &full[1].1);
+    say!(
+        "  interacting / overlap at N = {}: whole step {:.3}; the rule's added labelling + bookkeeping {:.3} ms/step = {:.2} % of the paper's step",
+        args.n,
+        b.whole / a.whole,
+        (b.rule - a.rule) * 1e3,
+        (b.rule - a.rule) / a.whole * 100.0
+    );
+    if args.warm_n > 0 && args.warm_steps > 0 {
+        let mut warm = Vec::new();
+        for (i, (config, _)) in full.iter().enumerate() {
+            // The static estimate uses no particle rule: timed once, beside the paper's rule.
+            warm.push(warm_steps(args, config, i == 0)?);
+        }
+        say!(
+            "  interacting / overlap at N = {}: whole warm step {:.3}; the rule's added labelling + bookkeeping {:.1} ms/step = {:.2} % of the paper's step",
+            args.warm_n,
+            warm[1].whole / warm[0].whole,
+            (warm[1].rule - warm[0].rule) * 1e3,
+            (warm[1].rule - warm[0].rule) / warm[0].whole * 100.0
+        );
+    }
+    Ok(())
+}
+
+/// Seconds per step: the whole step, and its labelling and bookkeeping (what a particle rule adds to).
+struct PerStep {
+    whole: f64,
+    rule: f64,
+}
+
+/// The full sliding run at `--n` with particle rule `rule`: its configuration and time per step.
+fn full_run(args: &SlideArgs, rule: wearsim::wear::ParticleRuleSpec) -> Result<(RunConfig, PerStep)> {
     let material = Material::new(1.0, 0.3, 0.010, vec![0.25e-6, 0.5e-6, 0.75e-6, 1.0e-6], 3.0)?;
     let sliding = SlidingConfig::new(
         vec![2.5e-4, 5e-4, 1e-3, 2e-3],
@@ -304,7 +348,8 @@ pub fn run_slide(args: &SlideArgs) -> Result<()> {
         DEFAULT_STEP_RUNNING_IN,
         DEFAULT_STEP,
         Some(args.n),
-    )?;
+    )?
+    .with_particle_rule(rule.clone());
     // The benchmark's surface pair (`paper_pair`) as a run: generated, seed 1.
     let config = RunConfig::builder(
         SurfaceSource::Generated {
@@ -337,9 +382,8 @@ pub fn run_slide(args: &SlideArgs) -> Result<()> {
         )
     });
     let iterations: usize = runs.iter().map(|r| r.total_iterations).sum();
-    say!("wearsim {} bench-slide, {threads} threads", wearsim::VERSION);
     say!(
-        "sliding run N = {}: {} loads × {} offsets × {} fracture energies, {steps} contact solves in {total:.2} s ({:.2} ms/step; {:.1} iterations/step)",
+        "particle rule {rule}: sliding run N = {}: {} loads × {} offsets × {} fracture energies, {steps} contact solves in {total:.2} s ({:.2} ms/step; {:.1} iterations/step)",
         args.n,
         sliding.loads.len(),
         sliding.offsets(args.n).len(),
@@ -355,18 +399,23 @@ pub fn run_slide(args: &SlideArgs) -> Result<()> {
         (label + book) / (solve + label + book) * 100.0,
         peak_memory_mib().unwrap_or(f64::NAN)
     );
-    if args.warm_n > 0 && args.warm_steps > 0 {
-        warm_steps(args, &config)?;
-    }
-    Ok(())
+    let per_step = PerStep {
+        whole: total / steps as f64,
+        rule: (label + book) / steps as f64,
+    };
+    Ok((config, per_step))
 }
 
-/// Warm one-pixel steps of a sliding run at `--warm-n` (F_N = 1e-3, the full run's material), each
+/// Warm one-pixel steps of a sliding run at `--warm-n` (F_N = 1e-3, the full run's material and
+/// particle rule), each
 /// a whole step of the run (solve, labelling, the particle rules and static model of every 𝒢),
-/// extrapolated to the paper's schedule.
-fn warm_steps(args: &SlideArgs, full: &RunConfig) -> Result<()> {
-    let n = args.warm_n;
-    // One-pixel steps from s = 0 (no running-in), as the fit window slides.
+/// extrapolated to the paper's schedule. Gives the time per warm step.
+fn warm_steps(args: &SlideArgs, full: &RunConfig, with_estimate: bool) -> Result<PerStep> {
+    let (n, rule) = (
+        args.warm_n,
+        &full.sliding.as_ref().expect("a sliding run").particle_rule,
+    );
+    // One-pixel steps from s = 0 (no running-in), as the fit window slides, under the full run's rule.
     let sliding = SlidingConfig::new(
         vec![1e-3],
         DEFAULT_DISTANCE,
@@ -374,7 +423,8 @@ fn warm_steps(args: &SlideArgs, full: &RunConfig) -> Result<()> {
         DEFAULT_STEP_RUNNING_IN,
         DEFAULT_STEP,
         Some(n),
-    )?;
+    )?
+    .with_particle_rule(rule.clone());
     let config = full
         .to_builder()
         .surfaces(SurfaceSource::Generated {
@@ -411,7 +461,7 @@ fn warm_steps(args: &SlideArgs, full: &RunConfig) -> Result<()> {
     .offsets(n)
     .len();
     say!(
-        "warm steps at N = {n} (F_N = 1e-3): {:.3} s/step ({:.1} iterations; solve {:.3} s, labelling {:.1} ms, \
+        "particle rule {rule}: warm steps at N = {n} (F_N = 1e-3): {:.3} s/step ({:.1} iterations; solve {:.3} s, labelling {:.1} ms, \
          bookkeeping {:.1} ms); × {offsets} offsets = {:.1} min per load; peak memory {:.0} MiB",
         per_step,
         iters as f64 / k,
@@ -419,25 +469,35 @@ fn warm_steps(args: &SlideArgs, full: &RunConfig) -> Result<()> {
         split.labelling / k * 1e3,
         split.bookkeeping / k * 1e3,
         per_step * offsets as f64 / 60.0,
-        peak_memory_mib().unwrap_or(f64::NAN)
+        peak_memory_mib().unwrap_or(f64::NAN),
     );
     // The sliding run's fields are freed before the estimate, so that the peak is either's.
     drop(slide);
-    if args.estimate_samples > 0 {
-        // The same load of the same pair, estimated as a study job of it is: its static maps cold.
-        let sampling = wearsim::estimate::Sampling::of(Some(args.estimate_samples)).context("--estimate-samples")?;
-        let t = Instant::now();
-        let outcome = SlidingRun::prepare(&config)?.estimate(sampling, &wearsim::estimate::CALIBRATION, |_, _| {})?;
-        let seconds = t.elapsed().as_secs_f64();
-        let sliding_load = per_step * offsets as f64;
-        say!(
-            "static estimate at N = {n} (F_N = 1e-3, {} static maps, surfaces made included): {seconds:.1} s per load; \
-             sliding / estimate = {:.0}× per load; N* = {:.1} at d* = {:.1} px",
-            outcome.samples,
-            sliding_load / seconds,
-            outcome.loads[0].results[0].critical_junctions_mean,
-            outcome.loads[0].results[0].critical_diameter * n as f64,
-        );
+    if with_estimate && args.estimate_samples > 0 {
+        time_estimate(args, &config, per_step * offsets as f64)?;
     }
+    Ok(PerStep {
+        whole: per_step,
+        rule: (split.labelling + split.bookkeeping) / k,
+    })
+}
+
+/// The static estimate of the warm steps' load at `--warm-n` (`config`), timed against the sliding
+/// load's `sliding_load` seconds.
+fn time_estimate(args: &SlideArgs, config: &RunConfig, sliding_load: f64) -> Result<()> {
+    let n = args.warm_n;
+    // The same load of the same pair, estimated as a study job of it is: its static maps cold.
+    let sampling = wearsim::estimate::Sampling::of(Some(args.estimate_samples)).context("--estimate-samples")?;
+    let t = Instant::now();
+    let outcome = SlidingRun::prepare(config)?.estimate(sampling, &wearsim::estimate::CALIBRATION, |_, _| {})?;
+    let seconds = t.elapsed().as_secs_f64();
+    say!(
+        "static estimate at N = {n} (F_N = 1e-3, {} static maps, surfaces made included): {seconds:.1} s per load; \
+         sliding / estimate = {:.0}× per load; N* = {:.1} at d* = {:.1} px",
+        outcome.samples,
+        sliding_load / seconds,
+        outcome.loads[0].results[0].critical_junctions_mean,
+        outcome.loads[0].results[0].critical_diameter * n as f64,
+    );
     Ok(())
 }

@@ -26,7 +26,7 @@ use crate::sliding::{
 };
 use crate::surface::{pair_seeds, Generation, SpectrumParams, Surface};
 use crate::topography::{metres_per, FileSurface, MeasuredPsd, Preprocess, Window};
-use crate::wear::ParticleRuleKind;
+use crate::wear::ParticleRuleSpec;
 
 use raw::{one_line, RawRun};
 use source::{lateral_scale, surface_source};
@@ -272,8 +272,9 @@ impl RunConfig {
             .estimate_constants(estimate_constants);
         if let Some(sl) = raw.sliding {
             let rule = match &sl.particle_rule {
-                Some(name) => ParticleRuleKind::named(name)?,
-                None => ParticleRuleKind::default(),
+                Some(raw::RawParticleRule::Named(text)) => text.parse::<ParticleRuleSpec>()?,
+                Some(raw::RawParticleRule::Table(table)) => ParticleRuleSpec::from_table(table)?,
+                None => ParticleRuleSpec::default(),
             };
             let grid = run.fixed_grid().map(|g| g.nx());
             let loads = normal_loads(sl.loads, sl.pressures, &run.surfaces, raw.units, &mut conversions)?;
@@ -501,8 +502,8 @@ impl RunConfig {
             particle_rule: self
                 .sliding
                 .as_ref()
-                .filter(|s| s.particle_rule != ParticleRuleKind::default())
-                .map(|s| s.particle_rule.name.to_string()),
+                .filter(|s| s.particle_rule != ParticleRuleSpec::default())
+                .map(|s| s.particle_rule.to_string()),
             stopping: (self.sliding.is_some() && self.stopping != SLIDING_STOPPING).then_some(self.stopping),
             model: (self.model != WearModel::default()).then_some(self.model),
             estimate_samples: self.estimate_samples,

@@ -113,11 +113,20 @@ pub(super) struct RawSliding {
     pub(super) running_in: Option<f64>,
     pub(super) step_running_in: Option<usize>,
     pub(super) step: Option<usize>,
-    pub(super) particle_rule: Option<String>,
+    pub(super) particle_rule: Option<RawParticleRule>,
     pub(super) stopping: Option<Stopping>,
     pub(super) model: Option<WearModel>,
     pub(super) estimate_samples: Option<usize>,
     pub(super) estimate_constants: Option<RawConstants>,
+}
+
+/// `[sliding] particle_rule`: a rule's name (`"overlap"`, or `"interacting(reach=2)"` with
+/// parameters), or a `[sliding.particle_rule]` table with `name` and the rule's parameters.
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub(super) enum RawParticleRule {
+    Named(String),
+    Table(toml::Table),
 }
 
 /// `[sliding] estimate_constants`: the static estimate's constants, as `wearsim estimate-check

@@ -4,7 +4,7 @@ use crate::check::positive;
 use crate::contact::{Device, SolverOptions};
 use crate::error::{Error, Interrupt, Result};
 use crate::material::Material;
-use crate::wear::ParticleRuleKind;
+use crate::wear::ParticleRuleSpec;
 
 /// The sliding schedule (paper §3); distances as fractions of the box side Lx along the sliding
 /// direction x, steps in pixels.
@@ -20,9 +20,9 @@ pub struct SlidingConfig {
     pub step_running_in: usize,
     /// Step after running-in, in pixels ([`DEFAULT_STEP`]).
     pub step: usize,
-    /// The rule that turns each step's junctions into wear particles (`particle_rule`; the
-    /// paper's, [`crate::wear::DEFAULT_PARTICLE_RULE`], when not given).
-    pub particle_rule: ParticleRuleKind,
+    /// The rule that turns each step's junctions into wear particles, with its parameters
+    /// (`particle_rule`; the paper's, [`crate::wear::DEFAULT_PARTICLE_RULE`], when not given).
+    pub particle_rule: ParticleRuleSpec,
 }
 
 /// The paper's sliding distance (§3): half the box side, s up to Lx/2.
@@ -81,7 +81,7 @@ impl SlidingConfig {
             running_in,
             step_running_in,
             step,
-            particle_rule: ParticleRuleKind::default(),
+            particle_rule: ParticleRuleSpec::default(),
         };
         if let Some(n) = grid {
             config.check_grid(n)?;
@@ -89,10 +89,11 @@ impl SlidingConfig {
         Ok(config)
     }
 
-    /// The schedule with particles counted by `rule`.
-    pub fn with_particle_rule(self, rule: ParticleRuleKind) -> Self {
+    /// The schedule with particles counted by `rule` (a rule with its parameters, or a rule's kind
+    /// with its defaults).
+    pub fn with_particle_rule(self, rule: impl Into<ParticleRuleSpec>) -> Self {
         Self {
-            particle_rule: rule,
+            particle_rule: rule.into(),
             ..self
         }
     }

@@ -16,7 +16,10 @@ use crate::grid::Grid;
 use crate::influence::Boundary;
 use crate::junctions::{Junction, JunctionLabeller};
 use crate::surface::Surface;
-use crate::wear::{static_wear, InitialContactMemory, JunctionState, LabelledStep, ParticleRule, StaticWear, StepWear};
+use crate::wear::shear::{JunctionGeometry, ShearCompliance};
+use crate::wear::{
+    static_wear, InitialContactMemory, JunctionState, LabelledStep, ParticleRule, ShearStep, StaticWear, StepWear,
+};
 
 use super::checkpoint::{
     inputs_key, load_checkpoint, save_checkpoint, LoadedState, Resumed, SavedState, CHECKPOINT_FORMAT,
@@ -67,6 +70,21 @@ struct LoadState {
     timing: Timing,
 }
 
+/// The shear of this step for a rule that needs it: the junction geometry filled from the labels.
+fn shear_step<'s>(
+    shear: &'s mut Option<(ShearCompliance, JunctionGeometry)>,
+    labeller: &JunctionLabeller,
+    junctions: &[Junction],
+) -> Option<ShearStep<'s>> {
+    shear.as_mut().map(|(compliance, geometry)| {
+        geometry.fill(labeller, junctions);
+        ShearStep {
+            compliance: &*compliance,
+            geometry: &*geometry,
+        }
+    })
+}
+
 /// A sliding run between two steps (module documentation).
 pub(crate) struct SlidingState<'a> {
     setup: SlidingSetup<'a>,
@@ -78,6 +96,9 @@ pub(crate) struct SlidingState<'a> {
     /// Nx·Ny flags shared by the particle rules and the memory, all false between their steps.
     scratch: Vec<bool>,
     junctions: Vec<Junction>,
+    /// The box's shear compliance (made once) and each step's junction geometry, for a particle
+    /// rule that needs them (`ParticleRuleKind::needs_shear`); `None` otherwise.
+    shear: Option<(ShearCompliance, JunctionGeometry)>,
     offsets: Vec<usize>,
     /// The running-in distance in pixels: the fit window starts there.
     running_in: usize,
@@ -114,6 +135,12 @@ impl<'a> SlidingState<'a> {
             labeller: JunctionLabeller::new(grid.nx(), grid.ny(), setup.connectivity),
             scratch: vec![false; grid.pixels()],
             junctions: Vec::new(),
+            shear: setup.sliding.particle_rule.kind.needs_shear.then(|| {
+                (
+                    ShearCompliance::new(grid.nx(), grid.ny(), setup.material.poisson_ratio),
+                    JunctionGeometry::default(),
+                )
+            }),
             running_in: setup.sliding.running_in_pixels(grid.nx()),
             diameters: setup.material.critical_diameters(),
             total: offsets.len() * setup.sliding.loads.len(),
@@ -190,10 +217,12 @@ impl<'a> SlidingState<'a> {
             .map(|&d| static_wear(&self.junctions, d))
             .collect();
         let state = self.load.as_mut().expect("a load under way");
+        let shear = shear_step(&mut self.shear, &self.labeller, &self.junctions);
         let labelled = LabelledStep {
             labeller: &self.labeller,
             junctions: &self.junctions,
             slid,
+            shear,
         };
         let wear: Vec<StepWear> = state
             .rules
@@ -263,8 +292,9 @@ impl<'a> SlidingState<'a> {
     }
 
     fn new_rules(&self) -> Vec<Box<dyn ParticleRule>> {
-        let make = self.setup.sliding.particle_rule.make;
-        self.diameters.iter().map(|&d| make(d)).collect()
+        let rule = &self.setup.sliding.particle_rule;
+        let dx = self.grid.pixel_size();
+        self.diameters.iter().map(|&d| rule.make(d, dx)).collect()
     }
 
     /// Once the load under way has taken its last step: its results fitted, the load finished.
@@ -275,7 +305,8 @@ impl<'a> SlidingState<'a> {
         let load = self.setup.sliding.loads[self.finished.len()];
         let pm = self.setup.material.flow_pressure();
         let sides = (self.grid.length_x(), self.grid.length_y());
-        let (results, warnings) = results_of_load(&self.setup, load, pm, &state.steps, self.running_in, sides);
+        let (results, mut warnings) = results_of_load(&self.setup, load, pm, &state.steps, self.running_in, sides);
+        warnings.extend(state.rules.iter().flat_map(|r| r.warnings(load)));
         let steps = state.steps;
         self.finished.push(LoadRun {
             load,
