@@ -201,8 +201,8 @@ impl std::fmt::Display for SlurmRequest {
 
 /// The peak memory of one sliding run on `grid`, in bytes: the library's estimate of the arrays a
 /// run holds (the one place an estimate reads it).
-pub fn peak_memory(grid: Grid) -> f64 {
-    crate::check::SLIDING_ARRAYS * 8.0 * grid.pixels() as f64
+pub fn peak_memory(grid: Grid, sliding: &SlidingConfig) -> f64 {
+    sliding.memory_arrays() * 8.0 * grid.pixels() as f64
 }
 
 impl Calibration {
@@ -431,7 +431,7 @@ impl Calibration {
             steps: offsets * sliding.loads.len(),
             iterations: iterations * loads,
             seconds: self.step_seconds_total(grid, iterations, offsets, stopping) * loads,
-            peak_memory: peak_memory(grid),
+            peak_memory: peak_memory(grid, sliding),
             threads: self.threads,
             assumed_iterations: assumed_iterations * loads,
             measured,
@@ -482,7 +482,7 @@ impl Calibration {
             steps: offsets.len() * sliding.loads.len(),
             iterations: iterations * loads,
             seconds: seconds * loads,
-            peak_memory: peak_memory(grid),
+            peak_memory: peak_memory(grid, sliding),
             threads: self.threads,
             assumed_iterations: iterations * loads,
             measured: None,
@@ -701,7 +701,9 @@ mod tests {
         let a = c.seconds_per_iteration.settled_map;
         let expected = (e.iterations + STEP_CONVOLUTIONS * 640.0) * a * pixels * pixels.log2();
         assert!((e.seconds / expected - 1.0).abs() < 1e-12);
-        assert_eq!(e.peak_memory, peak_memory(grid));
+        assert_eq!(e.peak_memory, peak_memory(grid, &sliding));
+        let interacting = sliding.clone().with_particle_rule(crate::wear::INTERACTING);
+        assert!(peak_memory(grid, &interacting) > peak_memory(grid, &sliding));
         assert!(c.estimate(grid, &sliding, Stopping::Tolerance).seconds > e.seconds);
         assert!((e.cpu_hours() - e.seconds * 2.0 / 3600.0).abs() < 1e-12);
         // A small grid takes the iterations of the nearest calibration run, unscaled.

@@ -51,7 +51,7 @@ impl<'a> SlidingRun<'a> {
     /// ([`check_memory`]).
     pub fn prepare(config: &'a RunConfig) -> Result<Self> {
         let sliding = sliding_schedule(config)?;
-        check_memory(config.grid()?)?;
+        check_memory(config.grid()?, sliding)?;
         let start = Instant::now();
         let pair = config.surface_pair()?;
         let mut run = Self::on_surfaces(config, sliding, pair)?;
@@ -64,7 +64,7 @@ impl<'a> SlidingRun<'a> {
     /// memory is checked as [`SlidingRun::prepare`] checks it, with the same message.
     pub fn with_surfaces(config: &'a RunConfig, pair: SurfacePair) -> Result<Self> {
         let sliding = sliding_schedule(config)?;
-        check_memory(pair.top.grid())?;
+        check_memory(pair.top.grid(), sliding)?;
         Self::on_surfaces(config, sliding, pair)
     }
 
@@ -392,13 +392,13 @@ pub fn warnings_before_run(config: &RunConfig, grid: Grid, surfaces: &[String]) 
     )
 }
 
-/// Refuses a sliding run on `grid` that needs more memory ([`crate::check::SLIDING_ARRAYS`] arrays of
-/// Nx·Ny doubles and the program) than this process may use ([`crate::check::memory_room`]: the
+/// Refuses a sliding run on `grid` that needs more memory ([`SlidingConfig::memory_arrays`]: the
+/// run's arrays of Nx·Ny doubles with its particle rule's, and the program) than this process may use ([`crate::check::memory_room`]: the
 /// machine, cgroup and Slurm limits, `ulimit`), before anything is allocated: the one check of
 /// every front end that slides ([`SlidingRun::prepare`], [`SlidingRun::with_surfaces`]), with one
 /// message.
-pub fn check_memory(grid: Grid) -> Result<()> {
-    crate::check::memory("a sliding run", grid.nx(), grid.ny(), crate::check::SLIDING_ARRAYS)
+pub fn check_memory(grid: Grid, sliding: &SlidingConfig) -> Result<()> {
+    crate::check::memory("a sliding run", grid.nx(), grid.ny(), sliding.memory_arrays())
 }
 
 /// The schedule of a run, or an error saying that sliding needs one: the one check of every front
@@ -608,7 +608,12 @@ mod tests {
         }
         let e = SlidingRun::prepare(&config).unwrap_err().to_string();
         assert!(e.contains("a sliding run on 65534×65534 pixels"), "{e}");
-        assert_eq!(e, check_memory(grid).unwrap_err().to_string());
+        assert_eq!(
+            e,
+            check_memory(grid, config.sliding.as_ref().unwrap())
+                .unwrap_err()
+                .to_string()
+        );
         let (top, bottom) = RunConfig::from_toml(RUN, Path::new(".")).unwrap().surfaces().unwrap();
         let small = RunConfig::from_toml(RUN, Path::new(".")).unwrap();
         assert!(SlidingRun::with_surfaces(&small, SurfacePair::of_arrays(top, bottom)).is_ok());

@@ -68,6 +68,7 @@ const EVERY_CRITICAL_JUNCTION: ParticleRuleKind = ParticleRuleKind {
     description: "every junction at least d* across forms a particle at every step",
     parameters: &[],
     needs_shear: false,
+    memory_arrays: 0.0,
     make: |setup| {
         Box::new(EveryCriticalJunction {
             critical_area: wearsim::junctions::circle_area(setup.critical_diameter),

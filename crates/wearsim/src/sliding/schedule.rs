@@ -89,6 +89,12 @@ impl SlidingConfig {
         Ok(config)
     }
 
+    /// The peak memory of a sliding run with this schedule, in arrays of Nx·Ny doubles: the
+    /// run's own ([`crate::check::SLIDING_ARRAYS`]) and what its particle rule adds.
+    pub fn memory_arrays(&self) -> f64 {
+        crate::check::SLIDING_ARRAYS + self.particle_rule.kind.memory_arrays
+    }
+
     /// The schedule with particles counted by `rule` (a rule with its parameters, or a rule's kind
     /// with its defaults).
     pub fn with_particle_rule(self, rule: impl Into<ParticleRuleSpec>) -> Self {

@@ -438,7 +438,7 @@ fn check_run(top: &Surface, bottom: &Surface, setup: &SlidingSetup) -> Result<()
             ),
         ));
     }
-    crate::check::memory("a sliding run", nx, ny, crate::check::SLIDING_ARRAYS)?;
+    crate::check::memory("a sliding run", nx, ny, setup.sliding.memory_arrays())?;
     let pm = setup.material.flow_pressure();
     for &load in &setup.sliding.loads {
         crate::check::load("loads", load, grid.area(), pm)?;

@@ -399,24 +399,24 @@ pub fn workers_for_memory(jobs: &[&Job], workers: usize) -> Result<(usize, Optio
              thread",
         ));
     }
-    let mut largest = (0, 0);
+    // The job of the largest need: its grid and its arrays (the run's and its particle rule's).
+    let mut largest = (0, 0, crate::check::SLIDING_ARRAYS);
     for job in jobs {
         let grid = job.run.grid()?;
-        if grid.pixels() > largest.0 * largest.1 {
-            largest = (grid.nx(), grid.ny());
+        let arrays = job
+            .run
+            .sliding
+            .as_ref()
+            .map_or(crate::check::SLIDING_ARRAYS, |s| s.memory_arrays());
+        if grid.pixels() as f64 * arrays > (largest.0 * largest.1) as f64 * largest.2 {
+            largest = (grid.nx(), grid.ny(), arrays);
         }
     }
     if largest.0 == 0 {
         return Ok((workers, None));
     }
-    crate::check::memory(
-        "one job of this study",
-        largest.0,
-        largest.1,
-        crate::check::SLIDING_ARRAYS,
-    )?;
-    let per_job =
-        crate::check::memory_need(largest.0, largest.1, crate::check::SLIDING_ARRAYS) - crate::check::BASE_MEMORY;
+    crate::check::memory("one job of this study", largest.0, largest.1, largest.2)?;
+    let per_job = crate::check::memory_need(largest.0, largest.1, largest.2) - crate::check::BASE_MEMORY;
     match crate::check::memory_room() {
         Some(room) if per_job * workers as f64 + crate::check::BASE_MEMORY > room.bytes as f64 => {
             let fit = (((room.bytes as f64 - crate::check::BASE_MEMORY) / per_job) as usize).max(1);

@@ -1,7 +1,7 @@
 //! The particle rule of interacting micro-contacts: nearby junctions sheared together detach one
 //! combined particle when the elastic energy they store pays for it (Aghababaei, Warner & Molinari,
-//! PNAS 2016 and PRL 2018; Pham-Ba, Brink & Molinari, IJSS 2020, §3–4; Pham-Ba & Molinari, Tribol.
-//! Lett. 2021, §2–3).
+//! Nat. Commun. 2016 and PNAS 2017; Aghababaei, Brink & Molinari, PRL 2018; Pham-Ba, Brink &
+//! Molinari, IJSS 2020; Pham-Ba & Molinari, Tribol. Lett. 2021).
 //!
 //! The model's criterion for one junction (paper eq. 1) is an energy balance: the elastic energy a
 //! junction of diameter d stores under the shear strength τ̃, E_el(d) ∝ τ̃² d³/μ (for a uniformly
@@ -12,8 +12,8 @@
 //! junctions are loaded together (their elastic interaction included) to the sum of their energies
 //! loaded alone, both computed on the grid ([`ShearCompliance`]): about 1.3 for two junctions in
 //! contact along the shear, falling to 1 a few diameters apart (and a little below 1 beyond, in the
-//! periodic box, whose zero-mean displacement makes distant junctions unload each other). The group detaches one
-//! combined particle of diameter D_M when
+//! periodic box, whose zero-mean displacement makes distant junctions unload each other). The group
+//! detaches one combined particle of diameter D_M when
 //!
 //!   Φ_M Σ_m d_m³ ≥ d* D_M²,
 //!
