@@ -144,15 +144,23 @@ fn a_rule_written_outside_the_library_slides_with_its_known_answer() {
 
 #[test]
 fn a_rule_keeps_its_state_through_a_checkpoint() {
-    let trivial = config(EVERY_CRITICAL_JUNCTION);
-    let whole = SlidingRun::prepare(&trivial).unwrap().run(|_| {}).unwrap();
+    for rule in [EVERY_CRITICAL_JUNCTION, INTERACTING] {
+        resumes_as_if_uninterrupted(rule);
+    }
+}
+
+/// A run of `rule` stopped after 11 steps and resumed from its checkpoint takes the steps an
+/// uninterrupted run takes; the paper's rule does not take its checkpoint.
+fn resumes_as_if_uninterrupted(rule: ParticleRuleKind) {
+    let run = config(rule);
+    let whole = SlidingRun::prepare(&run).unwrap().run(|_| {}).unwrap();
     let dir = tempfile::tempdir().unwrap();
     let checkpointing = Checkpointing {
         path: dir.path().join("run.checkpoint"),
         every: std::time::Duration::ZERO,
     };
     let interrupt = wearsim::Interrupt::default();
-    let stopped = SlidingRun::prepare(&trivial)
+    let stopped = SlidingRun::prepare(&run)
         .unwrap()
         .interrupted_by(&interrupt)
         .run_resumable(
@@ -165,12 +173,12 @@ fn a_rule_keeps_its_state_through_a_checkpoint() {
             },
         );
     assert!(matches!(stopped, Err(wearsim::Error::Interrupted)));
-    // The paper's rule does not take the other rule's checkpoint.
+    // The paper's rule does not take another rule's checkpoint.
     let paper_config = config(ParticleRuleKind::default());
     let mut paper = SlidingRun::prepare(&paper_config).unwrap().start().unwrap();
     assert!(matches!(paper.resume(&checkpointing.path), Resumed::Ignored(_)));
     let mut resumed = None;
-    let again = SlidingRun::prepare(&trivial)
+    let again = SlidingRun::prepare(&run)
         .unwrap()
         .run_resumable(Some(&checkpointing), |r| resumed = Some(r.clone()), |_| {})
         .unwrap();
