@@ -229,7 +229,8 @@ def job_series(out: PathLike, job: int) -> pd.DataFrame:
     """The series of one finished job of a study folder: one row per step and fracture energy, the
     library's rows of its job file, with the columns of a sliding run's series
     (:data:`wearsim.wear.SERIES_COLUMNS`); ``static_wear_rate``, ``iterations`` and ``residual``,
-    which job files do not keep, are empty. Lengths in the study's unit."""
+    which job files do not keep, are empty, and so are ``merged_junctions`` and ``largest_junction``
+    in job files written before they were kept. Lengths in the study's unit."""
     return pd.DataFrame(_wearsim.job_series(Path(out), int(job)))
 
 

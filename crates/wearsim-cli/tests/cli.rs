@@ -207,7 +207,8 @@ fn slide_writes_summary_and_series() {
     assert_eq!(
         lines.next().unwrap(),
         "load,fracture_energy,s,junctions,contact_area,n_critical,n_formed,n_shrunk,volume,initial_junctions,\
-         static_wear_coefficient,static_wear_rate,iterations,residual,wrapping_junctions"
+         static_wear_coefficient,static_wear_rate,iterations,residual,wrapping_junctions,merged_junctions,\
+         largest_junction"
     );
     // 64 px: 4 offsets of 4 px in running-in, then 16 of 1 px; 2 loads × 1 fracture energy.
     assert_eq!(lines.count(), 2 * 20);

@@ -43,6 +43,19 @@ fn cheapest(study: &Study) -> (&Job, JobResult) {
         .expect("the evidence study's job files are committed")
 }
 
+/// A step's row as a committed job file keeps it: the breakdown measures (junctions merging, the
+/// largest junction) only where the file, written before they were kept or after, has them.
+pub(crate) fn as_committed(record: &wearsim::sliding::StepRecord, committed: &StepRow) -> StepRow {
+    let mut row = StepRow::from(record);
+    if committed.merged_junctions.is_none() {
+        row.merged_junctions = None;
+    }
+    if committed.largest_junction.is_none() {
+        row.largest_junction = None;
+    }
+    row
+}
+
 #[test]
 fn the_first_steps_of_the_cheapest_job_are_the_committed_ones() {
     let study = study();
@@ -53,7 +66,12 @@ fn the_first_steps_of_the_cheapest_job_are_the_committed_ones() {
     // lineages, particles, volumes and the static model at 1024², as the committed file has them.
     for (i, expected) in committed.steps.iter().take(24).enumerate() {
         let view = slide.step().unwrap().expect("the job has more steps");
-        assert_eq!(&StepRow::from(view.record), expected, "job {}, step {i}", job.index);
+        assert_eq!(
+            &as_committed(view.record, expected),
+            expected,
+            "job {}, step {i}",
+            job.index
+        );
     }
 }
 

@@ -29,7 +29,7 @@ use wearsim::estimate::{
     fit_distance, load_estimate, results_of, run_reach, EstimateResult, Sample, Sampling, CALIBRATED_DOMAIN,
     CALIBRATION,
 };
-use wearsim::output::{JobResult, StepRow};
+use wearsim::output::JobResult;
 use wearsim::run::{sliding_schedule, SlidingRun};
 use wearsim::study::compare::map_jobs;
 use wearsim::study::store::{read_result, stored_study};
@@ -232,7 +232,7 @@ fn the_first_steps_and_the_first_static_map_of_the_cheapest_measured_job_are_the
     for (i, expected) in committed.steps.iter().take(12).enumerate() {
         let view = slide.step().unwrap().expect("the job has more steps");
         assert_eq!(
-            &StepRow::from(view.record),
+            &super::evidence::as_committed(view.record, expected),
             expected,
             "evidence/measured/{name}, {}, step {i}: the sliding model no longer gives the committed steps; if the \
              change is meant, regenerate the set (the header of tests/measured_set.rs)",

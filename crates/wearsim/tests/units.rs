@@ -40,6 +40,8 @@ fn every_column_of_every_table_has_a_declared_unit() {
         wrapping_junctions: 0,
         contact_area: 0.0,
         initial_junctions: 0,
+        merged_junctions: None,
+        largest_junction: None,
         n_critical: vec![],
         n_formed: vec![],
         volume: vec![],

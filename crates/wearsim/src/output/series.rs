@@ -48,6 +48,15 @@ pub struct SeriesRow {
     /// Junctions that wrap the periodic box at this step (full contact, a band across the box):
     /// no particles of the model (paper §3), yet counted in N, V and k_static.
     pub wrapping_junctions: usize,
+    /// Junctions of this step that share pixels with two or more junctions of the previous step:
+    /// junctions merging, the sign of the paper's high-load breakdown (appendix C); empty in the
+    /// series of a job file written before it was kept (and in a `series.csv` written before, read
+    /// back).
+    #[serde(default)]
+    pub merged_junctions: Option<usize>,
+    /// The largest junction's equivalent diameter over the box's shorter side (empty as above).
+    #[serde(default)]
+    pub largest_junction: Option<f64>,
 }
 
 impl SeriesRow {
@@ -69,6 +78,12 @@ impl SeriesRow {
         ("iterations", "", ""),
         ("residual", "1", "1"),
         ("wrapping_junctions", "", ""),
+        ("merged_junctions", "", ""),
+        (
+            "largest_junction",
+            "1 (fraction of the box's shorter side)",
+            "1 (fraction of the box's shorter side)",
+        ),
     ];
 
     /// The row of one step of a load `load` for the fracture energy `fracture_energy`, the
@@ -92,6 +107,8 @@ impl SeriesRow {
             iterations: Some(step.iterations),
             residual: Some(step.residual),
             wrapping_junctions: step.wrapping_junctions,
+            merged_junctions: step.merged_junctions,
+            largest_junction: step.largest_junction,
         }
     }
 }
@@ -127,6 +144,12 @@ pub struct StepRow {
     pub wrapping_junctions: usize,
     pub contact_area: f64,
     pub initial_junctions: usize,
+    /// Junctions merging and the largest junction against the box (see [`SeriesRow`]); absent in
+    /// job files written before they were kept.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub merged_junctions: Option<usize>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub largest_junction: Option<f64>,
     pub n_critical: Vec<usize>,
     pub n_formed: Vec<usize>,
     pub volume: Vec<f64>,
@@ -141,6 +164,8 @@ impl From<&StepRecord> for StepRow {
             wrapping_junctions: r.wrapping_junctions,
             contact_area: r.contact_area,
             initial_junctions: r.initial_junctions,
+            merged_junctions: r.merged_junctions,
+            largest_junction: r.largest_junction,
             static_wear_coefficient: r.statics.iter().map(|w| w.wear_coefficient).collect(),
             n_critical: r.wear.iter().map(|w| w.n_critical).collect(),
             n_formed: r.wear.iter().map(|w| w.n_formed).collect(),
@@ -171,6 +196,8 @@ impl StepRow {
             wrapping_junctions: self.wrapping_junctions,
             contact_area: self.contact_area,
             initial_junctions: self.initial_junctions,
+            merged_junctions: self.merged_junctions,
+            largest_junction: self.largest_junction,
             iterations: 0,
             residual: f64::NAN,
             wear: (0..energies)
@@ -243,6 +270,8 @@ pub fn steps_of_rows(rows: &[SeriesRow], load: f64, energies: &[f64]) -> crate::
                 wrapping_junctions: first.wrapping_junctions,
                 contact_area: first.contact_area,
                 initial_junctions: first.initial_junctions,
+                merged_junctions: first.merged_junctions,
+                largest_junction: first.largest_junction,
                 n_critical: Vec::new(),
                 n_formed: Vec::new(),
                 volume: Vec::new(),
@@ -291,6 +320,8 @@ mod tests {
             wrapping_junctions: 1,
             contact_area: 0.125,
             initial_junctions: 4,
+            merged_junctions: None,
+            largest_junction: None,
             iterations: 12,
             residual: 1e-9,
             wear: vec![

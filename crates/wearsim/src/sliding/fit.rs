@@ -392,6 +392,8 @@ mod tests {
             wrapping_junctions: 0,
             contact_area: contact,
             initial_junctions: 0,
+            merged_junctions: None,
+            largest_junction: None,
             iterations: 1,
             residual: 0.0,
             wear: Vec::new(),

@@ -21,6 +21,14 @@ pub struct StepRecord {
     /// Junctions of this step that descend from a junction present at s = 0 (paper §3's memory of
     /// the initial contact).
     pub initial_junctions: usize,
+    /// Junctions of this step that share pixels with two or more junctions of the previous step:
+    /// junctions merging, the paper's sign of its high-load breakdown (appendix C). Absent where a
+    /// study's job file written before it was kept gives the step.
+    #[serde(default)]
+    pub merged_junctions: Option<usize>,
+    /// The largest junction's equivalent diameter over the box's shorter side (absent as above).
+    #[serde(default)]
+    pub largest_junction: Option<f64>,
     /// Solver iterations of this step.
     pub iterations: usize,
     /// Solver residual of this step.

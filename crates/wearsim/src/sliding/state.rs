@@ -70,6 +70,12 @@ struct LoadState {
     timing: Timing,
 }
 
+/// The largest junction's equivalent diameter over the box's shorter side (0 without contact).
+fn largest_junction(junctions: &[Junction], grid: Grid) -> f64 {
+    let largest = junctions.iter().fold(0.0, |d: f64, j| d.max(j.diameter));
+    largest / grid.length_x().min(grid.length_y())
+}
+
 /// The shear of this step for a rule that needs it: the junction geometry filled from the labels.
 fn shear_step<'s>(
     shear: &'s mut Option<(ShearCompliance, JunctionGeometry)>,
@@ -246,6 +252,8 @@ impl<'a> SlidingState<'a> {
             wrapping_junctions: self.labeller.wrapping(),
             contact_area: info.contact_pixels as f64 / self.grid.pixels() as f64,
             initial_junctions,
+            merged_junctions: Some(state.memory.merged_junctions()),
+            largest_junction: Some(largest_junction(&self.junctions, self.grid)),
             iterations: info.iterations,
             residual: info.residual,
             wear,

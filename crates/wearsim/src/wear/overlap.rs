@@ -144,7 +144,10 @@ pub struct CarriedBookkeeping {
 
 /// The memory of the initial contact (paper §3): how many junctions of the current step descend from
 /// a junction present at s = 0, following junctions from step to step by shared pixels as the
-/// paper's particle rule does. The paper finds this number to decay exponentially with s.
+/// paper's particle rule does. The paper finds this number to decay exponentially with s. Followed
+/// the same way, a junction that shares pixels with two or more junctions of the previous step is
+/// junctions merging, which the paper's appendix C names as the sign of its high-load breakdown:
+/// [`InitialContactMemory::merged_junctions`] counts them.
 /// Serialisable, so that a checkpoint of a long run carries it (its scratch `flags` included).
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct InitialContactMemory {
@@ -153,7 +156,19 @@ pub struct InitialContactMemory {
     /// Per-junction scratch: descends from s = 0.
     flags: Vec<bool>,
     started: bool,
+    /// Every contact pixel of the previous step with its junction's label.
+    #[serde(default)]
+    previous: Vec<(u32, u32)>,
+    /// Junctions of the last step that share pixels with two or more junctions of the one before.
+    #[serde(default)]
+    merged: usize,
+    /// Per-junction scratch: the first previous junction met, or [`MERGED`].
+    #[serde(skip)]
+    parent: Vec<u32>,
 }
+
+/// A junction met by two or more junctions of the previous step (in `InitialContactMemory::parent`).
+const MERGED: u32 = u32::MAX - 1;
 
 impl InitialContactMemory {
     /// Advances by one step; the first step is s = 0, whose junctions all count. Returns the number
@@ -168,7 +183,37 @@ impl InitialContactMemory {
             self.started = true;
         }
         flagged_pixels(labeller, &self.flags, &mut self.descendants);
+        self.count_merged(labeller);
         self.flags.iter().filter(|&&f| f).count()
+    }
+
+    /// Junctions of the last step that share pixels with two or more junctions of the step
+    /// before it (0 at s = 0).
+    pub fn merged_junctions(&self) -> usize {
+        self.merged
+    }
+
+    fn count_merged(&mut self, labeller: &JunctionLabeller) {
+        let labels = labeller.labels();
+        self.parent.clear();
+        self.parent.resize(labeller.sizes().len(), NO_JUNCTION);
+        self.merged = 0;
+        for &(k, was) in &self.previous {
+            let now = labels[k as usize];
+            if now == NO_JUNCTION {
+                continue;
+            }
+            let p = &mut self.parent[now as usize];
+            if *p == NO_JUNCTION {
+                *p = was;
+            } else if *p != was && *p != MERGED {
+                *p = MERGED;
+                self.merged += 1;
+            }
+        }
+        self.previous.clear();
+        self.previous
+            .extend(labeller.contact_pixels().iter().map(|&k| (k, labels[k as usize])));
     }
 }
 
@@ -276,6 +321,30 @@ mod tests {
     fn a_junction_across_the_periodic_edge_is_one_particle() {
         let recs = run(&[&["#..#", "....", "....", "#..#"]], 3.0);
         assert_record(recs[0], 1, 1, v(4));
+    }
+
+    #[test]
+    fn junctions_merging_are_those_that_meet_two_of_the_previous_step() {
+        let maps: [&[&str]; 4] = [
+            &["##.##.", "......", "......", "#.....", "......", "......"], // three junctions
+            &["#####.", "......", "......", "#.....", "......", "......"], // two of them joined
+            &["#####.", "......", "......", "##....", "......", "......"], // one grows: no merge
+            &["......", "......", "......", "......", "......", "......"], // none
+        ];
+        let n = 6;
+        let mut labeller = JunctionLabeller::new(n, n, 4);
+        let mut memory = InitialContactMemory::default();
+        let mut scratch = vec![false; n * n];
+        let merged: Vec<usize> = maps
+            .iter()
+            .map(|rows| {
+                let flat: Vec<bool> = rows.iter().flat_map(|r| r.chars().map(|c| c == '#')).collect();
+                labeller.label(|k| flat[k]);
+                memory.step(&labeller, &mut scratch);
+                memory.merged_junctions()
+            })
+            .collect();
+        assert_eq!(merged, vec![0, 1, 0, 0]);
     }
 
     #[test]

@@ -104,6 +104,8 @@ fn result_of(job: &Job) -> JobResult {
             wrapping_junctions: 0,
             contact_area: 0.1,
             initial_junctions: 20usize >> k,
+            merged_junctions: None,
+            largest_junction: None,
             n_critical: vec![3; energies.len()],
             n_formed: vec![2 + k; energies.len()],
             volume: results
