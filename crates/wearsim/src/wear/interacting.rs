@@ -40,10 +40,9 @@
 
 use crate::junctions::particle_volume;
 
-use super::overlap::{flagged_pixels, mark_overlapping};
+use super::overlap::OverlapRule;
 use super::rule::{
-    is_critical, Allowed, JunctionState, LabelledStep, ParameterValue, ParticleRule, RuleParameter, RuleSetup,
-    ShearStep, StepWear,
+    Allowed, JunctionState, LabelledStep, ParameterValue, ParticleRule, RuleParameter, RuleSetup, ShearStep, StepWear,
 };
 use super::shear::{hull_area, JunctionGeometry, ShearCompliance};
 
@@ -70,20 +69,15 @@ pub const INTERACTING_PARAMETERS: &[RuleParameter] = &[
 pub struct InteractingRule {
     /// d* in pixels.
     critical_pixels: f64,
-    critical_area: f64,
     pixel_size: f64,
     reach: f64,
     hull: bool,
-    /// Pixels of the previous step's formed or disabled junctions.
-    blocked: Vec<u32>,
-    n_formed: usize,
-    volume: f64,
+    /// The paper's bookkeeping (states carried by pixel overlap, N*₊, V), which counts the
+    /// combined particles too.
+    paper: OverlapRule,
     /// Combined particles formed so far, and groups refused because of the box.
     combined: usize,
     refused: usize,
-    /// Per junction: formed or disabled (the overlap rule's flags).
-    overlap: Vec<bool>,
-    states: Vec<JunctionState>,
     groups: Groups,
     cells: Cells,
 }
@@ -151,6 +145,14 @@ impl Groups {
         j
     }
 
+    /// Junction `j` belongs to a group of two or more (its root's count, without compressing).
+    fn is_joined(&self, mut j: usize) -> bool {
+        while self.parent[j] != j {
+            j = self.parent[j];
+        }
+        self.count[j] > 1
+    }
+
     /// The members of the group of root `r`.
     fn members(&self, r: usize) -> impl Iterator<Item = usize> + '_ {
         let mut at = Some(r);
@@ -169,17 +171,12 @@ impl InteractingRule {
         let p = setup.parameters;
         Self {
             critical_pixels: setup.critical_diameter / setup.pixel_size,
-            critical_area: crate::junctions::circle_area(setup.critical_diameter),
             pixel_size: setup.pixel_size,
             reach: p.number("reach"),
             hull: p.choice("particle") == "hull",
-            blocked: Vec::new(),
-            n_formed: 0,
-            volume: 0.0,
+            paper: OverlapRule::new(setup.critical_diameter),
             combined: 0,
             refused: 0,
-            overlap: Vec::new(),
-            states: Vec::new(),
             groups: Groups::default(),
             cells: Cells::default(),
         }
@@ -219,7 +216,8 @@ impl InteractingRule {
         cells.head.resize(cx * cy, usize::MAX);
         cells.next.clear();
         cells.next.resize(step.junctions.len(), usize::MAX);
-        for j in (0..step.junctions.len()).filter(|&j| !self.overlap[j] && geometry.is_finite(j)) {
+        let disabled = self.paper.disabled();
+        for j in (0..step.junctions.len()).filter(|&j| !disabled[j] && geometry.is_finite(j)) {
             let b = bin(j);
             cells.next[j] = cells.head[b];
             cells.head[b] = j;
@@ -366,69 +364,47 @@ impl ParticleRule for InteractingRule {
         let shear = step
             .shear
             .expect("the interacting rule declares needs_shear, so every step hands it the shear");
-        mark_overlapping(step.labeller, &self.blocked, scratch, &mut self.overlap);
-        let n = step.junctions.len();
-        self.groups.reset(n);
+        self.paper.mark_disabled(step, scratch);
+        self.groups.reset(step.junctions.len());
         for (_, i, j) in self.neighbour_pairs(step, shear.geometry) {
             self.try_join(step, shear, i, j);
         }
-        let mut n_critical = 0;
-        self.states.clear();
-        // Combined particles first (their members' flags change below).
-        for r in 0..n {
+        // The combined particles first, then every junction as the paper's rule settles it.
+        for r in 0..step.junctions.len() {
             if self.groups.parent[r] == r && self.groups.count[r] > 1 {
-                self.volume += particle_volume(self.groups.size2[r].sqrt() * self.pixel_size);
-                self.n_formed += 1;
+                self.paper
+                    .add_particle(particle_volume(self.groups.size2[r].sqrt() * self.pixel_size));
                 self.combined += 1;
             }
         }
-        for j in 0..n {
-            let critical = is_critical(&step.junctions[j], self.critical_area);
-            n_critical += usize::from(critical);
-            let root = self.groups.root(j);
-            let joined = self.groups.count[root] > 1;
-            let disabled = self.overlap[j];
-            self.states.push(match (disabled, critical || joined) {
-                (false, false) => JunctionState::Below,
-                (false, true) => JunctionState::Forming,
-                (true, true) => JunctionState::DisabledCritical,
-                (true, false) => JunctionState::Disabled,
-            });
-            if !disabled && joined {
-                self.overlap[j] = true;
-            } else if !disabled && critical {
-                self.volume += step.junctions[j].volume;
-                self.n_formed += 1;
-                self.overlap[j] = true;
-            }
-        }
-        flagged_pixels(step.labeller, &self.overlap, &mut self.blocked);
-        StepWear {
-            n_critical,
-            n_formed: self.n_formed,
-            volume: self.volume,
-        }
+        let groups = &self.groups;
+        self.paper.settle(step, |j| groups.is_joined(j))
     }
 
     fn states(&self) -> &[JunctionState] {
-        &self.states
+        self.paper.states()
     }
 
+    /// The paper's bookkeeping ([`OverlapRule`]'s state, under `paper`), the combined particles
+    /// formed and the groups refused for the box.
     fn carried(&self) -> serde_json::Value {
-        serde_json::to_value(CarriedInteracting {
-            blocked: self.blocked.clone(),
-            n_formed: self.n_formed,
-            volume: self.volume,
-            combined: self.combined,
-            refused: self.refused,
+        serde_json::json!({
+            "paper": self.paper.carried(),
+            "combined": self.combined,
+            "refused": self.refused,
         })
-        .expect("plain data serialises")
     }
 
     fn restore(&mut self, carried: serde_json::Value) -> std::result::Result<(), String> {
-        let c: CarriedInteracting = serde_json::from_value(carried).map_err(|e| e.to_string())?;
-        (self.blocked, self.n_formed, self.volume) = (c.blocked, c.n_formed, c.volume);
-        (self.combined, self.refused) = (c.combined, c.refused);
+        let count = |key: &str| {
+            carried[key]
+                .as_u64()
+                .map(|n| n as usize)
+                .ok_or_else(|| format!("no count `{key}`"))
+        };
+        let (combined, refused) = (count("combined")?, count("refused")?);
+        self.paper.restore(carried["paper"].clone())?;
+        (self.combined, self.refused) = (combined, refused);
         Ok(())
     }
 
@@ -445,19 +421,8 @@ impl ParticleRule for InteractingRule {
     }
 }
 
-/// The state of an [`InteractingRule`] between two steps.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-struct CarriedInteracting {
-    blocked: Vec<u32>,
-    n_formed: usize,
-    volume: f64,
-    combined: usize,
-    refused: usize,
-}
-
 #[cfg(test)]
 mod tests {
-    use super::super::overlap::OverlapRule;
     use super::super::rule::RuleParameters;
     use super::*;
     use crate::junctions::{Junction, JunctionLabeller};
@@ -623,7 +588,8 @@ mod tests {
                 pixel_size: 1.0,
                 parameters: &parameters(reach, "hull"),
             });
-            rule.overlap = vec![false; junctions.len()];
+            let mut scratch = vec![false; nx * ny];
+            rule.paper.mark_disabled(&step, &mut scratch);
             let mut found: Vec<(usize, usize)> =
                 rule.neighbour_pairs(&step, &geometry).into_iter().map(|(_, i, j)| (i, j)).collect();
             found.sort_unstable();

@@ -40,25 +40,48 @@ impl OverlapRule {
     pub fn boxed(setup: &RuleSetup) -> Box<dyn ParticleRule> {
         Box::new(Self::new(setup.critical_diameter))
     }
-}
 
-impl ParticleRule for OverlapRule {
-    fn step(&mut self, step: &LabelledStep, scratch: &mut [bool]) -> StepWear {
+    /// The first half of a step: marks the junctions of `step` disabled (sharing a pixel with a
+    /// junction of the previous step that formed a particle or was disabled) and gives those flags.
+    pub(super) fn mark_disabled(&mut self, step: &LabelledStep, scratch: &mut [bool]) -> &[bool] {
         mark_overlapping(step.labeller, &self.blocked, scratch, &mut self.overlap);
+        &self.overlap
+    }
+
+    /// The flags [`OverlapRule::mark_disabled`] gave, until [`OverlapRule::settle`].
+    pub(super) fn disabled(&self) -> &[bool] {
+        &self.overlap
+    }
+
+    /// One particle of volume `volume` formed at this step from junctions the rule settles as
+    /// `joined` (between [`OverlapRule::mark_disabled`] and [`OverlapRule::settle`]).
+    pub(super) fn add_particle(&mut self, volume: f64) {
+        self.volume += volume;
+        self.n_formed += 1;
+    }
+
+    /// The second half of a step: every junction's state; an active junction at least d* across
+    /// forms its own particle, an active one `joined` to others (whose particle
+    /// [`OverlapRule::add_particle`] counted) forms with them; both count as formed for the next
+    /// step.
+    pub(super) fn settle(&mut self, step: &LabelledStep, joined: impl Fn(usize) -> bool) -> StepWear {
         let mut n_critical = 0;
         self.states.clear();
-        for (j, overlap) in step.junctions.iter().zip(self.overlap.iter_mut()) {
+        for (k, (j, overlap)) in step.junctions.iter().zip(self.overlap.iter_mut()).enumerate() {
             let critical = is_critical(j, self.critical_area);
             if critical {
                 n_critical += 1;
             }
-            self.states.push(match (*overlap, critical) {
+            let joined = joined(k);
+            self.states.push(match (*overlap, critical || joined) {
                 (false, false) => JunctionState::Below,
                 (false, true) => JunctionState::Forming,
                 (true, true) => JunctionState::DisabledCritical,
                 (true, false) => JunctionState::Disabled,
             });
-            if !*overlap && critical {
+            if !*overlap && joined {
+                *overlap = true;
+            } else if !*overlap && critical {
                 // Active and large enough: forms a particle, and is "formed" for the next step.
                 self.volume += j.volume;
                 self.n_formed += 1;
@@ -72,6 +95,13 @@ impl ParticleRule for OverlapRule {
             n_formed: self.n_formed,
             volume: self.volume,
         }
+    }
+}
+
+impl ParticleRule for OverlapRule {
+    fn step(&mut self, step: &LabelledStep, scratch: &mut [bool]) -> StepWear {
+        self.mark_disabled(step, scratch);
+        self.settle(step, |_| false)
     }
 
     fn states(&self) -> &[JunctionState] {
@@ -99,12 +129,7 @@ impl ParticleRule for OverlapRule {
 
 /// Marks, in `overlap` (one flag per junction of `labeller`), the junctions that share a pixel with
 /// `pixels` (a previous step's pixels). `scratch` is an Nx·Ny flag buffer, all false on entry and exit.
-pub(super) fn mark_overlapping(
-    labeller: &JunctionLabeller,
-    pixels: &[u32],
-    scratch: &mut [bool],
-    overlap: &mut Vec<bool>,
-) {
+fn mark_overlapping(labeller: &JunctionLabeller, pixels: &[u32], scratch: &mut [bool], overlap: &mut Vec<bool>) {
     let labels = labeller.labels();
     for &k in pixels {
         scratch[k as usize] = true;
@@ -122,7 +147,7 @@ pub(super) fn mark_overlapping(
 }
 
 /// The pixels of the junctions whose flag is set, for the next step's overlap test.
-pub(super) fn flagged_pixels(labeller: &JunctionLabeller, flags: &[bool], out: &mut Vec<u32>) {
+fn flagged_pixels(labeller: &JunctionLabeller, flags: &[bool], out: &mut Vec<u32>) {
     let labels = labeller.labels();
     out.clear();
     for &k in labeller.contact_pixels() {
@@ -323,6 +348,24 @@ mod tests {
         assert_record(recs[0], 1, 1, v(4));
     }
 
+    /// The memory stepped over 6 × 6 maps ('#' = contact): per step, the junctions descending from
+    /// s = 0 and the junctions merging.
+    fn memory_over(maps: &[&[&str]]) -> Vec<(usize, usize)> {
+        let n = 6;
+        let mut labeller = JunctionLabeller::new(n, n, 4);
+        let mut memory = InitialContactMemory::default();
+        let mut scratch = vec![false; n * n];
+        maps.iter()
+            .map(|rows| {
+                let flat: Vec<bool> = rows.iter().flat_map(|r| r.chars().map(|c| c == '#')).collect();
+                labeller.label(|k| flat[k]);
+                let c = memory.step(&labeller, &mut scratch);
+                assert!(scratch.iter().all(|&b| !b));
+                (c, memory.merged_junctions())
+            })
+            .collect()
+    }
+
     #[test]
     fn junctions_merging_are_those_that_meet_two_of_the_previous_step() {
         let maps: [&[&str]; 4] = [
@@ -331,19 +374,7 @@ mod tests {
             &["#####.", "......", "......", "##....", "......", "......"], // one grows: no merge
             &["......", "......", "......", "......", "......", "......"], // none
         ];
-        let n = 6;
-        let mut labeller = JunctionLabeller::new(n, n, 4);
-        let mut memory = InitialContactMemory::default();
-        let mut scratch = vec![false; n * n];
-        let merged: Vec<usize> = maps
-            .iter()
-            .map(|rows| {
-                let flat: Vec<bool> = rows.iter().flat_map(|r| r.chars().map(|c| c == '#')).collect();
-                labeller.label(|k| flat[k]);
-                memory.step(&labeller, &mut scratch);
-                memory.merged_junctions()
-            })
-            .collect();
+        let merged: Vec<usize> = memory_over(&maps).into_iter().map(|(_, m)| m).collect();
         assert_eq!(merged, vec![0, 1, 0, 0]);
     }
 
@@ -355,20 +386,7 @@ mod tests {
             &["..####", "......", "......", "......", "......", "#....."], // the first merged with a new one
             &["......", "......", "......", ".#....", "......", "......"], // every old contact gone
         ];
-        let n = 6;
-        let mut labeller = JunctionLabeller::new(n, n, 4);
-        let mut memory = InitialContactMemory::default();
-        let mut scratch = vec![false; n * n];
-        let counts: Vec<usize> = maps
-            .iter()
-            .map(|rows| {
-                let flat: Vec<bool> = rows.iter().flat_map(|r| r.chars().map(|c| c == '#')).collect();
-                labeller.label(|k| flat[k]);
-                let c = memory.step(&labeller, &mut scratch);
-                assert!(scratch.iter().all(|&b| !b));
-                c
-            })
-            .collect();
+        let counts: Vec<usize> = memory_over(&maps).into_iter().map(|(c, _)| c).collect();
         assert_eq!(counts, vec![2, 1, 1, 0]);
     }
 }

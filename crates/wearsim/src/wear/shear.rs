@@ -173,6 +173,9 @@ pub struct JunctionGeometry {
     /// ½ Σ C over each junction's own pixels; NaN until computed.
     self_energies: Vec<std::cell::Cell<f64>>,
     plans: std::cell::RefCell<PlanCache>,
+    /// Scratch of `fill`: each junction's next free slot in `pixels`, and its first pixel.
+    next: Vec<usize>,
+    first: Vec<(i32, i32)>,
 }
 
 impl JunctionGeometry {
@@ -193,8 +196,11 @@ impl JunctionGeometry {
         }
         self.pixels.clear();
         self.pixels.resize(labeller.contact_pixels().len(), (0, 0));
-        let mut next: Vec<usize> = self.starts[..n].to_vec();
-        let mut first: Vec<(i32, i32)> = vec![(i32::MIN, 0); n];
+        let (next, first) = (&mut self.next, &mut self.first);
+        next.clear();
+        next.extend_from_slice(&self.starts[..n]);
+        first.clear();
+        first.resize(n, (i32::MIN, 0));
         let (hx, hy) = (nx as i32 / 2, ny as i32 / 2);
         for &k in labeller.contact_pixels() {
             let j = labels[k as usize] as usize;
