@@ -104,7 +104,7 @@ def figure_data(tidy: pd.DataFrame, names: Optional[Sequence[str]] = None) -> Li
     """The library's figures of a tidy table (all, or the registry entries ``names``), as dicts:
     ``entry``, ``name`` (the file name the CLI writes), ``title``, ``panels`` (each with axes ``x``
     and ``y`` — label, log, fallback —, shaded ``x_band``/``y_band``, ``diagonal``, and ``series`` of
-    ``points`` x, y, low, high, hollow, no_wear), ``legend``, ``legend_title``, ``note`` (why a figure
+    ``points`` x, y, low, high, hollow, no_wear, breakdown), ``legend``, ``legend_title``, ``note`` (why a figure
     has nothing to draw) and ``csv`` (its numbers). The series figures need job files:
     :func:`study_figure_data`."""
     return list(_wearsim.table_figures(_columns(tidy), None if names is None else list(names)))
@@ -155,9 +155,9 @@ def _limits(panel: Dict[str, Any], axis: str) -> Optional[Tuple[float, float]]:
 
 
 def _draw_means(ax: Any, s: Dict[str, Any], log: bool, stacked: Dict[float, int], gid: str) -> None:
-    """Means over surface pairs: a line, markers (hollow on few particles), the 95 % interval as bars
-    (a lower end at or below zero reaches the axis on a log axis), and settings without wear on the
-    axis, stacked per load."""
+    """Means over surface pairs: a line, markers (hollow on few particles, ringed in the breakdown regime
+    of the paper's appendix C), the 95 % interval as bars (a lower end at or below zero reaches the axis
+    on a log axis), and settings without wear on the axis, stacked per load."""
     color, marker = _color(s["color"]), _MARKERS[s["marker"] % len(_MARKERS)]
     x, y = _values(s["points"], "x"), _values(s["points"], "y")
     lo, hi = _values(s["points"], "low"), _values(s["points"], "high")
@@ -169,6 +169,9 @@ def _draw_means(ax: Any, s: Dict[str, Any], log: bool, stacked: Dict[float, int]
     ax.plot(
         x[drawn & hollow], y[drawn & hollow], marker, color=color, markerfacecolor="none", mew=1.5, linestyle="none"
     )
+    # A load in the paper's breakdown regime (appendix C) in at least one surface pair: ringed.
+    ringed = drawn & np.array([p.get("breakdown", False) for p in s["points"]], dtype=bool)
+    ax.plot(x[ringed], y[ringed], "o", color=_color("grey"), ms=14, markerfacecolor="none", mew=1.5, linestyle="none")
     floor = ax.get_ylim()[0]
     lower = np.where(log & (lo <= 0), floor, lo)
     bar = drawn & np.isfinite(lo) & np.isfinite(hi)
@@ -242,6 +245,8 @@ def _handle(entry: Dict[str, Any]) -> Any:
         return Line2D([], [], color=color, marker=marker, lw=2, label=label)
     if swatch == "hollow":
         return Line2D([], [], color=color, marker=marker, markerfacecolor="none", linestyle="none", label=label)
+    if swatch == "ring":
+        return Line2D([], [], color=color, marker="o", ms=12, markerfacecolor="none", linestyle="none", label=label)
     if swatch == "at_axis":
         return Line2D([], [], color=color, marker="v", linestyle="none", label=label)
     dashed = isinstance(swatch, dict) and swatch["line"]["dashed"]

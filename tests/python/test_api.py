@@ -183,7 +183,11 @@ def test_slide_equals_the_cli(tmp_path, run_file, wearsim_bin):
         return (r["load"], r["fracture_energy"])
 
     for a, b in zip(sorted(summary["results"], key=key), sorted(cli_summary["results"], key=key)):
-        assert a == pytest.approx(b, rel=1e-12, nan_ok=True)
+        # Undefined results (None: N*'s growth at the lowest load, …) are undefined in both.
+        undefined = {k for k, v in b.items() if v is None}
+        assert {k for k, v in a.items() if v is None} == undefined
+        defined = {k: v for k, v in a.items() if k not in undefined}
+        assert defined == pytest.approx({k: v for k, v in b.items() if k not in undefined}, rel=1e-12, nan_ok=True)
     assert summary["inputs"] == cli_summary["inputs"]
     # The array API on the same surfaces and material gives the same series and results.
     top, bottom = run.surfaces()

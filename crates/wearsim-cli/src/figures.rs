@@ -417,6 +417,19 @@ impl<'a, DB: DrawingBackend + 'a> Panel<'a, DB> {
         Ok(())
     }
 
+    /// A ring around each drawable point (a load in the paper's breakdown regime), wider than any
+    /// marker.
+    pub fn rings(&mut self, points: &[(f64, f64)], color: RGBColor) -> Result<()> {
+        let pts: Vec<(f64, f64)> = points.iter().filter_map(|p| self.point(*p)).collect();
+        self.chart
+            .draw_series(
+                pts.into_iter()
+                    .map(|p| EmptyElement::at(p) + Circle::new((0, 0), 10, color.stroke_width(2))),
+            )
+            .map_err(drawing)?;
+        Ok(())
+    }
+
     /// A value of zero on a log axis: a downward triangle resting on the x axis at each x, the
     /// `level`-th of several at one x stacked that many triangles higher.
     pub fn zeros_at_axis(&mut self, at: &[(f64, usize)], color: RGBColor) -> Result<()> {
@@ -475,12 +488,16 @@ impl<'a, DB: DrawingBackend + 'a> Panel<'a, DB> {
 /// How a legend entry is drawn.
 #[derive(Debug, Clone, Copy)]
 pub enum Swatch {
-    Line { dashed: bool },
+    Line {
+        dashed: bool,
+    },
     LineMarker(Marker),
     Marker(Marker),
     Hollow(Marker),
     AtAxis,
     Band,
+    /// A ring: a point in the paper's breakdown regime.
+    Ring,
 }
 
 /// One legend entry.
@@ -572,6 +589,9 @@ pub fn legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, title: &str, en
                     &(EmptyElement::at((21, mid + 6))
                         + Polygon::new(vec![(-6, -12), (6, -12), (0, 0)], e.color.filled())),
                 )
+                .map_err(drawing)?,
+            Swatch::Ring => area
+                .draw(&(EmptyElement::at((21, mid)) + Circle::new((0, 0), 7, e.color.stroke_width(2))))
                 .map_err(drawing)?,
             Swatch::Band => area
                 .draw(&Rectangle::new(

@@ -465,7 +465,8 @@ impl<'a> Slide<'a> {
     /// with every warning once.
     pub fn finish(self) -> Result<SlidingOutcome<'a>> {
         let steps_per_load = self.state.total() / self.sliding.loads.len();
-        let runs = self.state.finish()?;
+        let mut runs = self.state.finish()?;
+        crate::sliding::across_loads(&mut runs);
         let seconds = self.surfaces_seconds + self.start.elapsed().as_secs_f64();
         let warnings = distinct(
             self.warnings

@@ -44,7 +44,10 @@ const SUBLAYERS: [(&str, &[&str]); 9] = [
     ("contact", &["backend", "options", "cpu", "conformance", "profile"]),
     ("topography", &["formats", "prepare", "load", "spectrum", "fit"]),
     ("wear", &["shear", "rule", "overlap", "interacting", "registry"]),
-    ("sliding", &["schedule", "records", "fit", "checkpoint", "state"]),
+    (
+        "sliding",
+        &["schedule", "records", "breakdown", "fit", "checkpoint", "state"],
+    ),
     ("config", &["raw", "source", "record"]),
     (
         "output",

@@ -71,6 +71,10 @@ fn show(units: Units, kind: &str, v: f64) -> String {
 fn setting_label(column: &str, cell: &Cell, units: Units) -> String {
     let name = column.rsplit('.').next().unwrap_or(column);
     let v = cell.number();
+    // An empty particle rule is the paper's, recorded only when another is run.
+    if name == "particle_rule" && cell.text().is_empty() {
+        return format!("{name} = {}", crate::wear::OVERLAP.name);
+    }
     if v.is_nan() {
         return format!("{name} = {}", cell.text());
     }

@@ -8,7 +8,7 @@ use serde_json::json;
 use crate::config::{InputRecord, Units};
 use crate::error::{Error, Result};
 use crate::estimate::{EstimateResult, WearModel};
-use crate::sliding::{not_run_in, InitialContactMemory, WearResult};
+use crate::sliding::{not_run_in, BreakdownStep, InitialContactMemory, LoadBreakdown, WearResult};
 
 use super::provenance::Provenance;
 use super::series::{job_series_rows, SeriesRow, StepRow};
@@ -103,6 +103,24 @@ impl JobResult {
             }
             (None, None) => {}
         }
+        self.refill_breakdown(fit_start);
+    }
+
+    /// The breakdown measures of the job's load over its fit window (appendix C), computed again
+    /// from its steps as [`crate::sliding::LoadBreakdown::of_steps`] does in a run, with N*'s growth
+    /// as the file (or the study's collection) gives it, and the load's breakdown warning made again.
+    fn refill_breakdown(&mut self, fit_start: f64) {
+        let from = fit_start - 1e-9 * fit_start.abs().max(f64::MIN_POSITIVE);
+        let measures = LoadBreakdown::of_steps(self.steps.iter().filter(|r| r.s >= from).map(|r| BreakdownStep {
+            junctions: r.junctions,
+            contact_area: r.contact_area,
+            merged_junctions: r.merged_junctions,
+            largest_junction: r.largest_junction,
+        }));
+        for w in &mut self.results {
+            measures.apply_to(w);
+        }
+        crate::sliding::replace_warning(self.load, &self.results, &mut self.warnings);
     }
 }
 
@@ -112,6 +130,43 @@ impl JobResult {
     /// keep (W_static/ω, the solver's iterations and residual per step) are empty.
     pub fn series_rows(&self) -> Vec<SeriesRow> {
         job_series_rows(self.load, &self.results, &self.steps)
+    }
+}
+
+/// N*'s growth with load across a study's sliding jobs (appendix C,
+/// [`crate::sliding::critical_junction_growth`]): the jobs that differ in the load alone (the same
+/// surface pair, material and every other input) form one run of several loads, as in one
+/// `slide`; each job's results gain `critical_junction_growth` and their count of breakdown
+/// measures, and its breakdown warning is made again. Static estimates (no steps) are left out.
+pub fn growth_across_jobs(jobs: &mut [JobResult]) {
+    let mut runs: BTreeMap<String, Vec<usize>> = BTreeMap::new();
+    for (i, job) in jobs.iter().enumerate().filter(|(_, j)| !j.steps.is_empty()) {
+        let key = format!(
+            "{}\u{1f}{}",
+            job.material,
+            serde_json::to_string(&job.inputs).expect("plain data")
+        );
+        runs.entry(key).or_default().push(i);
+    }
+    for members in runs.values() {
+        let energies = members.iter().map(|&i| jobs[i].results.len()).min().unwrap_or(0);
+        for e in 0..energies {
+            let points: Vec<(f64, f64)> = members
+                .iter()
+                .map(|&i| (jobs[i].load, jobs[i].results[e].critical_junctions_mean))
+                .collect();
+            for (&i, g) in members.iter().zip(crate::sliding::critical_junction_growth(&points)) {
+                jobs[i].results[e].critical_junction_growth = g;
+            }
+        }
+        for &i in members {
+            let job = &mut jobs[i];
+            let measures = crate::sliding::measures_of(&job.results);
+            for w in &mut job.results {
+                measures.apply_to(w);
+            }
+            crate::sliding::replace_warning(job.load, &job.results, &mut job.warnings);
+        }
     }
 }
 
@@ -484,7 +539,9 @@ pub fn aggregate(tidy: &Table) -> Table {
 }
 
 /// The results of a sliding run measured over its fit window (after running-in): what the findings
-/// read on the run-in surface pairs only.
+/// read on the run-in surface pairs only. The breakdown measures, also over the fit window, are not
+/// among them: a pair not run in still shows where its contact merges (the figures ring a load where
+/// any pair is in the breakdown regime).
 pub const FIT_WINDOW_COLUMNS: [&str; 10] = [
     "wear_rate",
     "wear_rate_r2",
@@ -728,6 +785,15 @@ mod tests {
             ..WearResult::default()
         };
         expected.apply_to(&mut current);
+        // The breakdown measures, as a run gives them over its fit window (s ≥ 0.02).
+        LoadBreakdown::of_steps(steps.iter().filter(|r| r.s >= 0.02 - 1e-12).map(|r| BreakdownStep {
+            junctions: r.junctions,
+            contact_area: r.contact_area,
+            merged_junctions: r.merged_junctions,
+            largest_junction: r.largest_junction,
+        }))
+        .apply_to(&mut current);
+        assert_eq!(current.breakdown_measures, Some(0));
         let written = JobResult {
             results: vec![current.clone()],
             steps,

@@ -164,6 +164,7 @@ pub fn sliding_summary(
         "static_wear_rate_convention": "W_static/ω = k_static Σ A_i; static_wear_coefficient and static_wear_rate at s = 0, *_mean and *_std over every offset of the run",
         "wear_rate_estimate_convention": "ω d*³ dN*₊/ds with ω = π/6",
         "memory_convention": "initial_junctions: junctions descending by step-to-step pixel overlap from a junction present at s = 0; memory_decay_length ℓ from a least-squares fit of ln N₀ = ln N₀(0) − s/ℓ; running_in_decay_lengths = s_r/ℓ at the start s_r of the fit window; initial_lineages_left = N₀(s_r)/N₀(0), counted; a run counts as run in with at most 5 % of the lineages left (where N₀(0) = 0, from s_r/ℓ ≥ 3)",
+        "breakdown_convention": crate::sliding::breakdown_convention(),
         "results": results,
         "units_of_results": units_map(inputs.units, columns::<WearResult>().iter().map(String::as_str).chain(["load", "specific_wear_rate", "flow_pressure", "effective_modulus"])),
         "units_of_series": units_map(inputs.units, columns::<SeriesRow>().iter().map(String::as_str)),

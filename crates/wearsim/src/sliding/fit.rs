@@ -4,6 +4,7 @@ use crate::junctions::particle_volume;
 use crate::material::Material;
 use crate::stats::{line_fit, mean_std, LineFit};
 
+use super::breakdown::{breakdown_warning, BreakdownStep, LoadBreakdown};
 use super::records::{finite, InitialContactMemory, StepRecord, WearResult};
 use super::schedule::SlidingSetup;
 
@@ -141,7 +142,7 @@ pub(crate) fn results_of_load(
     let fitted: Vec<&StepRecord> = steps.iter().filter(|r| r.offset >= running_in).collect();
     let mut warnings = Vec::new();
     let shared = load_fits(load, steps, &fitted, box_sides.0, &mut warnings);
-    let results = setup
+    let mut results: Vec<WearResult> = setup
         .material
         .critical_diameters()
         .into_iter()
@@ -158,6 +159,13 @@ pub(crate) fn results_of_load(
             result_of_energy(&context, steps, &fitted, &shared, &mut warnings)
         })
         .collect();
+    // The breakdown measures over the fit window (appendix C); N*'s growth with load needs the
+    // run's other loads and is added with them (`across_loads`).
+    let measures = LoadBreakdown::of_steps(fitted.iter().map(|r| BreakdownStep::from(*r)));
+    for w in &mut results {
+        measures.apply_to(w);
+    }
+    warnings.extend(breakdown_warning(load, &measures, &[]));
     (results, warnings)
 }
 
@@ -336,6 +344,7 @@ fn result_of_energy(
         critical_residence: particle_rate
             .filter(|r| *r > 0.0)
             .and_then(|r| finite(critical_junctions_mean / r)),
+        ..WearResult::default()
     }
 }
 

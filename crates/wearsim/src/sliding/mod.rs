@@ -4,16 +4,23 @@
 //! least-squares wear rate, particle rate and Archard wear coefficient after running-in.
 //!
 //! `schedule` (the offsets and what a run needs besides the surfaces), `records` (what a step and a
-//! load record), `fit` (a load's results and warnings), `checkpoint` (the state between two steps
-//! saved and read back), `state` (the run as a state taking one step at a time, which every front
-//! end drives through `run::SlidingRun`).
+//! load record), `fit` (a load's results and warnings), `breakdown` (the measures of the paper's
+//! high-load breakdown, appendix C), `checkpoint` (the state between two steps saved and read
+//! back), `state` (the run as a state taking one step at a time, which every front end drives
+//! through `run::SlidingRun`).
 
+mod breakdown;
 mod checkpoint;
 mod fit;
 mod records;
 mod schedule;
 mod state;
 
+pub use breakdown::{
+    across_loads, breakdown_convention, breakdown_opening, breakdown_warning, critical_junction_growth, measures_of,
+    replace_warning, BreakdownStep, LoadBreakdown, CRITICAL_GROWTH_LIMIT, GROWTH_REFERENCE_JUNCTIONS,
+    LARGEST_JUNCTION_LIMIT, MERGED_SHARE_LIMIT,
+};
 pub use checkpoint::{Checkpointing, Resumed, CHECKPOINT_EVERY};
 pub use fit::{box_warnings, load_trend_warnings, resolution_warnings, FEW_PARTICLES, PAPER_MAX_WEAR_COEFFICIENT};
 pub use records::{

@@ -121,6 +121,35 @@ pub struct WearResult {
     /// it overlaps itself (paper §3), so when critical junctions grow and live longer with load, this
     /// grows and the particle rate per critical junction, and k, fall; absent without particles.
     pub critical_residence: Option<f64>,
+    /// The breakdown measures of the load (paper appendix C, `LoadBreakdown` of `breakdown`), over the fit
+    /// window: the mean real contact fraction A/A₀. Absent in job files written before it existed
+    /// until filled from their steps when read.
+    #[serde(default)]
+    pub contact_area_mean: Option<f64>,
+    /// Junctions that formed by merging over all junctions, summed over the fit window; absent where
+    /// the steps do not count merging (job files written before it was counted).
+    #[serde(default)]
+    pub merged_junction_share: Option<f64>,
+    /// The largest junction's equivalent diameter over the box's shorter side, its largest value
+    /// over the fit window; absent as above.
+    #[serde(default)]
+    pub largest_junction_max: Option<f64>,
+    /// N*/F_N at this load over its largest value at a lower load of the same surfaces (a run's other
+    /// loads, or a study's other jobs on the same surface pair, read together when collected); below
+    /// three quarters, N* has fallen behind linear growth with load (appendix C). Absent at the
+    /// lowest load, where no lower load has N* ≥ 3, and in a run of one load.
+    #[serde(default)]
+    pub critical_junction_growth: Option<f64>,
+    /// How many of the breakdown measures lie beyond their limits (0 to 3): above 0 the load is in
+    /// the regime the paper treats as unreliable, and a warning names it and the measures. Absent for
+    /// a static estimate, which measures none.
+    #[serde(default)]
+    pub breakdown_measures: Option<usize>,
+    /// Particles that combine several junctions, over the whole run (s = 0 included), under a rule
+    /// of interacting junctions (`particle_rule = "interacting"`); absent under the paper's rule,
+    /// whose every particle is one junction's.
+    #[serde(default)]
+    pub combined_particles: Option<usize>,
 }
 
 impl WearResult {
@@ -155,6 +184,12 @@ impl WearResult {
         ("running_in_decay_lengths", "1", "1"),
         ("initial_lineages_left", "1", "1"),
         ("critical_residence", "L", "m"),
+        ("contact_area_mean", "1", "1"),
+        ("merged_junction_share", "1", "1"),
+        ("largest_junction_max", "1", "1"),
+        ("critical_junction_growth", "1", "1"),
+        ("breakdown_measures", "", ""),
+        ("combined_particles", "", ""),
     ];
 }
 

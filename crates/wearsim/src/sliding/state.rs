@@ -313,8 +313,11 @@ impl<'a> SlidingState<'a> {
         let load = self.setup.sliding.loads[self.finished.len()];
         let pm = self.setup.material.flow_pressure();
         let sides = (self.grid.length_x(), self.grid.length_y());
-        let (results, mut warnings) = results_of_load(&self.setup, load, pm, &state.steps, self.running_in, sides);
+        let (mut results, mut warnings) = results_of_load(&self.setup, load, pm, &state.steps, self.running_in, sides);
         warnings.extend(state.rules.iter().flat_map(|r| r.warnings(load)));
+        for (w, rule) in results.iter_mut().zip(&state.rules) {
+            w.combined_particles = rule.combined_particles();
+        }
         let steps = state.steps;
         self.finished.push(LoadRun {
             load,

@@ -8,8 +8,9 @@ use crate::output::{write_results_tables, JobResult, TidyRow};
 use crate::study::expand::{expand_stored, Study};
 use crate::study::store::{job_path, read_result, stored_study};
 
-/// Reads a study folder: the stored study, expanded, and every job's result in job order. Fails
-/// naming the missing jobs when the study is unfinished.
+/// Reads a study folder: the stored study, expanded, and every job's result in job order, with N*'s
+/// growth with load across the jobs of one surface pair ([`crate::output::growth_across_jobs`]).
+/// Fails naming the missing jobs when the study is unfinished.
 pub fn load_results(dir: &Path) -> Result<(Study, Vec<JobResult>)> {
     let (text, base) = stored_study(dir)?;
     let study = expand_stored(&text, &base)?;
@@ -29,11 +30,12 @@ pub fn load_results(dir: &Path) -> Result<(Study, Vec<JobResult>)> {
             ),
         });
     }
-    let results = study
+    let mut results = study
         .jobs
         .iter()
         .map(|job| read_result(job, dir))
         .collect::<Result<Vec<_>>>()?;
+    crate::output::growth_across_jobs(&mut results);
     Ok((study, results))
 }
 

@@ -108,6 +108,9 @@ fn result_out_of_range(w: &WearResult, g: f64) -> Option<(&'static str, f64, &'s
         ("running_in_decay_lengths", w.running_in_decay_lengths),
         ("initial_lineages_left", w.initial_lineages_left),
         ("critical_residence", w.critical_residence),
+        ("contact_area_mean", w.contact_area_mean),
+        ("largest_junction_max", w.largest_junction_max),
+        ("critical_junction_growth", w.critical_junction_growth),
     ];
     let plain = [
         ("fit_window_start", w.fit_window_start),
@@ -124,6 +127,7 @@ fn result_out_of_range(w: &WearResult, g: f64) -> Option<(&'static str, f64, &'s
         ("memory_decay_r2", w.memory_decay_r2),
         ("static_wear_coefficient", Some(w.static_wear_coefficient)),
         ("static_wear_coefficient_mean", Some(w.static_wear_coefficient_mean)),
+        ("merged_junction_share", w.merged_junction_share),
     ];
     optional
         .iter()

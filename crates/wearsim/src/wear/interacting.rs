@@ -408,6 +408,10 @@ impl ParticleRule for InteractingRule {
         Ok(())
     }
 
+    fn combined_particles(&self) -> Option<usize> {
+        Some(self.combined)
+    }
+
     fn warnings(&self, load: f64) -> Vec<String> {
         if self.refused == 0 {
             return Vec::new();

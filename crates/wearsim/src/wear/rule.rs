@@ -108,6 +108,12 @@ pub trait ParticleRule: Send {
     /// says why the state is not one.
     fn restore(&mut self, carried: serde_json::Value) -> std::result::Result<(), String>;
 
+    /// The particles formed so far that combine several junctions (a rule of interacting
+    /// junctions); `None` for a rule that forms one particle per junction, as the paper's does.
+    fn combined_particles(&self) -> Option<usize> {
+        None
+    }
+
     /// What the rule has to say about the load `load` once its last step is done (e.g. groups of
     /// junctions it refused as particles), one sentence each; nothing by default.
     fn warnings(&self, load: f64) -> Vec<String> {

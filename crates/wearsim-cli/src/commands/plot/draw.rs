@@ -76,6 +76,8 @@ fn panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, spec: &data::Panel, 
                 let (hollow, filled): (Vec<data::Point>, Vec<data::Point>) = s.points.iter().partition(|p| p.hollow);
                 panel.markers(&xy(&filled), col, marker)?;
                 panel.markers_hollow(&xy(&hollow), col, marker)?;
+                let ringed: Vec<data::Point> = s.points.iter().filter(|p| p.breakdown).copied().collect();
+                panel.rings(&xy(&ringed), rgb(Tint::Grey))?;
                 // No wear in any surface pair: zero has no place on a log axis, so it is marked on
                 // the axis itself.
                 if spec.y.log {
@@ -115,6 +117,7 @@ fn entry(e: &data::LegendEntry) -> Entry {
             data::Swatch::LineMarker => Swatch::LineMarker(marker),
             data::Swatch::Hollow => Swatch::Hollow(marker),
             data::Swatch::AtAxis => Swatch::AtAxis,
+            data::Swatch::Ring => Swatch::Ring,
             data::Swatch::Band => Swatch::Band,
         },
     }

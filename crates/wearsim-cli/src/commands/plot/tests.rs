@@ -12,6 +12,7 @@ fn point(x: f64, y: f64, hollow: bool, no_wear: bool) -> Point {
         high: y * 1.5,
         hollow,
         no_wear,
+        breakdown: false,
     }
 }
 
@@ -31,7 +32,10 @@ fn every_style() -> Figure {
     };
     let means = vec![
         point(1e-3, 2e-4, false, false),
-        point(2e-3, 1e-4, true, false),
+        Point {
+            breakdown: true,
+            ..point(2e-3, 1e-4, true, false)
+        },
         point(3e-3, 0.0, false, true),
     ];
     let line = vec![point(1e-3, 1e-4, false, false), point(3e-3, 3e-4, false, false)];
@@ -67,6 +71,7 @@ fn every_style() -> Figure {
             Swatch::Hollow,
             Swatch::AtAxis,
             Swatch::Band,
+            Swatch::Ring,
         ]
         .into_iter()
         .enumerate()
@@ -103,7 +108,7 @@ fn every_style_and_a_note_are_drawn_with_their_numbers() {
     }
     let svg = std::fs::read_to_string(dir.path().join("every_style.svg")).unwrap();
     assert!(svg.contains("the legend&apos;s title") || svg.contains("the legend's title"));
-    assert!((0..6).all(|i| svg.contains(&format!("entry {i}"))));
+    assert!((0..7).all(|i| svg.contains(&format!("entry {i}"))));
     assert!(std::fs::read_to_string(dir.path().join("a_note.svg"))
         .unwrap()
         .contains("nothing to draw here"));
@@ -112,7 +117,12 @@ fn every_style_and_a_note_are_drawn_with_their_numbers() {
     // Seven points and two bands; the label with a comma quoted.
     assert_eq!(csv.lines().count(), 1 + 7 + 2, "{csv}");
     assert!(
-        csv.contains("\"means, with a comma\",point,1e-3,2e-4,1e-4,3.0000000000000003e-4,false,false"),
+        csv.contains("\"means, with a comma\",point,1e-3,2e-4,1e-4,3.0000000000000003e-4,false,false,false"),
+        "{csv}"
+    );
+    // The ringed point, a load in the breakdown regime.
+    assert!(
+        csv.contains(",point,2e-3,1e-4,5e-5,1.5000000000000001e-4,true,false,true"),
         "{csv}"
     );
 }

@@ -122,6 +122,8 @@ pub enum Swatch {
     Hollow,
     /// The marker of a setting without wear, on the axis.
     AtAxis,
+    /// A ring around a marker: a load in the paper's breakdown regime (appendix C).
+    Ring,
     /// A shaded range.
     Band,
 }
@@ -140,6 +142,9 @@ pub struct Point {
     pub hollow: bool,
     /// No surface pair wore (the maximum over pairs is 0): on a log axis, marked on the axis.
     pub no_wear: bool,
+    /// The load lies in the paper's breakdown regime (appendix C: a breakdown measure beyond its
+    /// limit, `crate::sliding::LoadBreakdown`) in at least one surface pair: drawn ringed.
+    pub breakdown: bool,
 }
 
 impl Point {
@@ -151,6 +156,7 @@ impl Point {
             high: f64::NAN,
             hollow: false,
             no_wear: false,
+            breakdown: false,
         }
     }
 }
@@ -238,30 +244,32 @@ impl Figure {
     }
 
     /// The figure's numbers as CSV, one row per point and per shaded range, for a reader who
-    /// re-plots it: `panel, x_label, y_label, series, kind, x, y, low, high, hollow, no_wear`. `kind`
+    /// re-plots it: `panel, x_label, y_label, series, kind, x, y, low, high, hollow, no_wear,
+    /// breakdown`. `kind`
     /// is `point` (low/high the 95 % interval of y, empty where there is none), `x_band` or
     /// `y_band` (low/high the shaded range). Numbers in Rust's shortest round-trip form.
     pub fn to_csv(&self) -> String {
-        let mut out = String::from("panel,x_label,y_label,series,kind,x,y,low,high,hollow,no_wear\n");
+        let mut out = String::from("panel,x_label,y_label,series,kind,x,y,low,high,hollow,no_wear,breakdown\n");
         let f = |v: f64| if v.is_finite() { format!("{v:e}") } else { String::new() };
         for (p, panel) in self.panels.iter().enumerate() {
             let head = format!("{p},{},{}", quote(&panel.x.label), quote(&panel.y.label));
             for (band, kind) in [(&panel.x_band, "x_band"), (&panel.y_band, "y_band")] {
                 if let Some(b) = band {
-                    out += &format!("{head},,{kind},,,{},{},,\n", f(b.low), f(b.high));
+                    out += &format!("{head},,{kind},,,{},{},,,\n", f(b.low), f(b.high));
                 }
             }
             for s in &panel.series {
                 for q in &s.points {
                     out += &format!(
-                        "{head},{},point,{},{},{},{},{},{}\n",
+                        "{head},{},point,{},{},{},{},{},{},{}\n",
                         quote(&s.label),
                         f(q.x),
                         f(q.y),
                         f(q.low),
                         f(q.high),
                         q.hollow,
-                        q.no_wear
+                        q.no_wear,
+                        q.breakdown
                     );
                 }
             }
@@ -278,6 +286,10 @@ fn quote(text: &str) -> String {
         text.to_string()
     }
 }
+
+/// The legend entry of the ringed points of the figures against load.
+pub const BREAKDOWN_LEGEND: &str = "ringed: in the breakdown regime of the paper's appendix C (junctions merging, the \
+largest junction a quarter of the box, or N* behind linear growth) in at least one surface pair";
 
 /// The legend title of the figures against load: what points and bars are.
 pub const MEANS: &str = "mean over surface pairs; bars: 95 % confidence interval of the mean (Student t)";
@@ -480,7 +492,8 @@ impl Curves {
     /// One curve's points of a quantity, per load where it is defined: its mean over the surface
     /// pairs with its 95 % interval, divided by the nominal area when `per_area`; hollow where
     /// `fitted` and the fit window holds fewer than [`RESOLVED_PARTICLES`] particles (summed over
-    /// the pairs); marked "no wear" where no pair has a positive value.
+    /// the pairs); marked "no wear" where no pair has a positive value; ringed where a pair is in the
+    /// breakdown regime (its count of breakdown measures beyond their limits is above 0).
     fn points(&self, c: &Curve, quantity: &str, per_area: bool, fitted: bool, log: bool) -> Vec<Point> {
         c.rows
             .iter()
@@ -504,6 +517,7 @@ impl Curves {
                     high: high * scale,
                     hollow: fitted && c.slides && particles < RESOLVED_PARTICLES,
                     no_wear: self.get(r, &format!("{quantity}_max")) <= 0.0,
+                    breakdown: self.get(r, "breakdown_measures_max") > 0.0,
                 })
             })
             .collect()
@@ -652,6 +666,19 @@ impl LoadFigure<'_> {
                 color: Color::Grey,
                 marker: 0,
                 swatch: Swatch::Hollow,
+            });
+        }
+        if panels
+            .iter()
+            .flat_map(|p| &p.series)
+            .flat_map(|s| &s.points)
+            .any(|q| q.breakdown)
+        {
+            entries.push(LegendEntry {
+                label: BREAKDOWN_LEGEND.into(),
+                color: Color::Grey,
+                marker: 0,
+                swatch: Swatch::Ring,
             });
         }
         let no_wear = panels

@@ -5,9 +5,12 @@
 
 use crate::stats::Region;
 
-use super::rules::{all_of, compare, compare_unpaired, Compared};
-use super::setting::{differ_only_in, param, Setting};
-use super::{finding, Finding, Tally};
+use crate::sliding::{CRITICAL_GROWTH_LIMIT, GROWTH_REFERENCE_JUNCTIONS, LARGEST_JUNCTION_LIMIT, MERGED_SHARE_LIMIT};
+use crate::stats::Side;
+
+use super::rules::{all_of, compare, compare_unpaired, Compared, Outcome};
+use super::setting::{differ_only_in, fmt, param, Pair, Setting};
+use super::{finding, Finding, Tally, Verdict};
 
 /// A setting's value of an input column (NaN when empty).
 fn cell(s: &Setting, column: &str) -> f64 {
@@ -127,6 +130,73 @@ pub(super) fn appendix_c_more_spots_not_more_wear(all: &[Setting]) -> Finding {
         "pairs of settings",
         tally,
     )
+}
+
+/// Appendix C: the loads past the breakdown, where junctions merge and N* stops growing linearly,
+/// whose data the paper treats as unreliable: per setting with a pair in that regime, the measures
+/// over its pairs. Shown, not counted: a mark on the data, not a verdict on the paper.
+pub(super) fn breakdown_regime(all: &[Setting]) -> Finding {
+    let mut tally = Tally::default();
+    let range = |pairs: &[&Pair], column: &str, scale: f64| {
+        let v: Vec<f64> = pairs
+            .iter()
+            .map(|p| p.get(column) * scale)
+            .filter(|x| x.is_finite())
+            .collect();
+        match (v.iter().copied().reduce(f64::min), v.iter().copied().reduce(f64::max)) {
+            (Some(lo), Some(hi)) => format!("{}–{}", fmt(lo), fmt(hi)),
+            _ => "—".into(),
+        }
+    };
+    // Settings that differ in a study axis the labels do not name (the particle rule: the same
+    // contact histories) give the same line; it is shown once.
+    let mut shown = std::collections::BTreeSet::new();
+    for s in all.iter().filter(|s| !s.breakdown_pairs().is_empty()) {
+        let pairs: Vec<&Pair> = s.pairs.iter().collect();
+        let line = format!(
+            "{}: merged junctions {} %, largest junction {} of the box, N*/F_N {} of its best at a lower load, real \
+             contact {} % (over the pairs)",
+            s.label(),
+            range(&pairs, "merged_junction_share", 100.0),
+            range(&pairs, "largest_junction_max", 1.0),
+            range(&pairs, "critical_junction_growth", 1.0),
+            range(&pairs, "contact_area_mean", 100.0),
+        );
+        if shown.insert(line.clone()) {
+            tally.file(Outcome::judged(Side::Undecided, line, None, None));
+        }
+    }
+    let mut f = finding(
+        "breakdown-regime",
+        "appendix C: above a load junctions start to merge and N* breaks down from its linear scaling with F_N; \
+         \"the contacts are expected to interact if they come closer together … we have to treat data after this \
+         'breakdown' as unreliable\"",
+        format!(
+            "per setting with a surface pair in the breakdown regime: a pair is when, over its fit window, at least \
+             {:.0} % of its junctions formed by merging, or its largest junction spans at least {} of the box's \
+             shorter side, or N*/F_N has fallen below {} of its largest value at a lower load on the same surfaces \
+             (a lower load with N* ≥ {}); a mark on the data, shown and not counted",
+            100.0 * MERGED_SHARE_LIMIT,
+            LARGEST_JUNCTION_LIMIT,
+            CRITICAL_GROWTH_LIMIT,
+            GROWTH_REFERENCE_JUNCTIONS
+        ),
+        "settings",
+        tally,
+    );
+    for u in &mut f.units {
+        u.outcome = "shown";
+    }
+    f.observed = if f.units.is_empty() {
+        "no load of the study lies in the breakdown regime".into()
+    } else {
+        f.units.iter().map(|u| u.text.as_str()).collect::<Vec<_>>().join("; ")
+    };
+    f.verdict = Verdict::Diagnostic;
+    f.counts = (0, 0, 0, 0);
+    f.pairs_to_decide = None;
+    f.verdict_under_holm = None;
+    f
 }
 
 /// Appendix D: W is robust against λ_l.

@@ -633,6 +633,7 @@ fn findings_of(all: &[setting::Setting]) -> Vec<Finding> {
         appendix::appendix_c_more_spots_not_more_wear(all),
         appendix::appendix_d_lambda_lower(all),
         appendix::appendix_e_rms_height(all),
+        appendix::breakdown_regime(all),
     ]
 }
 
@@ -670,6 +671,7 @@ pub fn claim(key: &str) -> &'static str {
         "appendix-c-more-spots-not-more-wear" => "larger box: more spots, not more W (appendix C)",
         "appendix-d-lambda-lower" => "W robust against λ_l (appendix D)",
         "appendix-e-rms-height" => "W unchanged by h_rms (appendix E)",
+        "breakdown-regime" => "loads past the breakdown, data unreliable (appendix C)",
         _ => "",
     }
 }
@@ -831,6 +833,10 @@ impl Finding {
             Verdict::SameData => self.verdict_text(),
             Verdict::NotTestable => format!("this study cannot show it; it needs {}", needed_study(self.key)),
             Verdict::Cited => format!("not counted: {}", self.cites.unwrap_or("restates another finding")),
+            Verdict::Diagnostic if self.key == "breakdown-regime" => {
+                "a mark on this study's data (the loads the paper treats as unreliable), not a verdict on the paper"
+                    .to_string()
+            }
             Verdict::Diagnostic => "a measure of this study's running-in, not a verdict on the paper".to_string(),
         };
         if let Some(v) = self.verdict_under_holm {
@@ -948,7 +954,10 @@ fn shared_data(findings: &[Finding]) -> String {
 /// findings.md's running-in table: the diagnostic's row per contact history.
 fn running_in_table(findings: &[Finding]) -> String {
     let mut text = String::new();
-    if let Some(run_in) = findings.iter().find(|f| f.verdict == Verdict::Diagnostic) {
+    if let Some(run_in) = findings
+        .iter()
+        .find(|f| f.verdict == Verdict::Diagnostic && f.key == "running-in-sufficient")
+    {
         text += &format!(
             "\n## Running-in, per contact history (a diagnostic)\n\n{}\n\n| contact history | pairs run in, and per \
              pair the lineages of s = 0 left at s_r and s_r/ℓ |\n|---|---|\n",

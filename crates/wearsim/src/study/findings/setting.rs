@@ -129,14 +129,29 @@ impl Setting {
         self.critical_diameter / self.pixel_size
     }
 
+    /// "τ̃ = 0.012, F_N/(Lx·Ly) = 0.001 (d* = 16 px)", marked where a pair lies in the paper's
+    /// breakdown regime (appendix C): "(d* = 16 px; breakdown regime in 2 of 5 pairs)".
     pub fn label(&self) -> String {
+        let breakdown = match self.breakdown_pairs().len() {
+            0 => String::new(),
+            k => format!("; breakdown regime in {k} of {} pairs", self.pairs.len()),
+        };
         format!(
-            "{}{}F_N/(Lx·Ly) = {} (d* = {:.0} px)",
+            "{}{}F_N/(Lx·Ly) = {} (d* = {:.0} px{breakdown})",
             self.material_prefix(),
             self.strength_and_energy(),
             param(self.pressure),
             self.d_star_px()
         )
+    }
+
+    /// The pairs whose load lies in the paper's breakdown regime (appendix C): a breakdown measure
+    /// beyond its limit (`crate::sliding::LoadBreakdown`).
+    pub fn breakdown_pairs(&self) -> Vec<&Pair> {
+        self.pairs
+            .iter()
+            .filter(|p| p.get("breakdown_measures") > 0.0)
+            .collect()
     }
 
     /// "τ̃ = 0.012, 𝒢 = 2.5e-7, " where they vary in the study.
