@@ -8,9 +8,10 @@ beside it, under the names the CLI uses.
 Figures (Brink, Frérot & Molinari 2021): :func:`static_model` (Fig. 2), :func:`sliding_wear`
 (Fig. 4a–b), :func:`constant_critical_diameter` (Figs. 4c/5c), :func:`particle_rate` (Fig. 5),
 :func:`kim_comparison` (Fig. 6), :func:`equation_5` (Fig. B.9b), :func:`junction_counts` and
-:func:`critical_junction_counts` (appendix C), :func:`contact_severity` (appendix F), each from a tidy
-table; :func:`memory_of_setting` (the memory of the initial contact, §3) from a study folder; and for
-the series of one run of :func:`wearsim.slide`, :func:`wear_volume` (Fig. 3), :func:`particle_counts`
+:func:`critical_junction_counts` (appendix C), :func:`contact_severity` (appendix F) and, beyond the
+paper, :func:`wear_regime` (the particle rules against load), each from a tidy table;
+:func:`memory_of_setting` (the memory of the initial contact, §3) from a study folder; and for the
+series of one run of :func:`wearsim.slide`, :func:`wear_volume` (Fig. 3), :func:`particle_counts`
 (appendix B) and :func:`memory`.
 
 Curves are settings (material and every input that varies, but the surface pair) and fracture
@@ -327,6 +328,22 @@ def constant_critical_diameter(tidy: pd.DataFrame) -> List[Any]:
     """Paper Figs. 4c/5c: W, k and dN*₊/ds for settings whose d* agree within 15 % and differ in τ̃
     or 𝒢 (the library's grouping); one figure per such group (none when the study has no two)."""
     return [draw(f) for f in figure_data(tidy, ["fig4c"]) if f["note"] is None]
+
+
+def wear_regime(tidy: pd.DataFrame) -> Any:
+    """The wear-regime map, beyond the paper: W/F_N, the mean particle diameter over d* and W of each
+    particle rule over the paper's rule against p_N, with the load where a rule of interacting
+    junctions departs from the paper's (its paired ratio's 95 % interval over surface pairs excludes 1)
+    and the loads in the breakdown regime of the paper's appendix C ringed. Needs a study with
+    ``particle_rule`` as an axis holding ``"overlap"`` and another rule (``studies/wear-regime.toml``);
+    raises ``ValueError`` otherwise."""
+    figures = figure_data(tidy, ["wear-regime"])
+    if not figures:
+        raise ValueError(
+            'the wear-regime map needs a study with `particle_rule` as an axis that holds "overlap" and another '
+            "rule, such as studies/wear-regime.toml"
+        )
+    return draw(figures[0])
 
 
 def equation_5(tidy: pd.DataFrame) -> Any:

@@ -177,6 +177,34 @@ def test_settings_of_equal_critical_diameter_by_the_library():
     plt.close(figures[0])
 
 
+def test_the_wear_regime_map_pairs_each_rule_with_the_papers():
+    """The map, beyond the paper: a study without a particle-rule axis has none (a clear error); with
+    one, each rule's W over the paper's rule's on the same pairs, where it departs in the legend, and
+    a load in the breakdown regime ringed."""
+    import matplotlib.pyplot as plt
+
+    tidy = _tidy()
+    with pytest.raises(ValueError, match="particle_rule"):
+        wearsim.plot.wear_regime(tidy)
+    tidy["particle_rate"] = tidy["particles_in_fit"] * 10.0
+    tidy["breakdown_measures"] = 0
+    paper = tidy.assign(**{"sliding.particle_rule": ""})
+    other = tidy.assign(
+        **{"sliding.particle_rule": "interacting(reach=1, particle=members)", "wear_rate": tidy["wear_rate"] * 1.5}
+    )
+    paper.loc[paper["nominal_pressure"] == P2, "breakdown_measures"] = 1
+    both = pd.concat([paper, other], ignore_index=True)
+    both["job"] = range(len(both))
+    fig = wearsim.plot.wear_regime(both)
+    texts = _legend_texts(fig)
+    assert sum("departs" in t for t in texts) == 2, texts
+    assert any(t.startswith("ringed") for t in texts), texts
+    ratio = wearsim.plot.figure_data(both, ["wear-regime"])[0]["panels"][2]
+    ys = {round(p["y"], 12) for s in ratio["series"] for p in s["points"]}
+    assert ys == {1.5}, ys
+    plt.close(fig)
+
+
 def test_particle_counts_draws_three_curves_per_fracture_energy():
     """Appendix B on one run's series, the library's figure: N*₊ solid and thick, N* dashed, N*₋
     thin, one colour per 𝒢, at the load asked for, each curve the series' own numbers; without the

@@ -16,6 +16,7 @@ mod paper_comparison;
 mod paper_window;
 mod particle_rule;
 mod rectangular;
+mod regime;
 mod scales;
 mod sliding;
 mod spectrum_fit;

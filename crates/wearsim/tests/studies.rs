@@ -28,6 +28,7 @@ fn shipped_study_files_expand() {
         ("paper-box-estimate.toml", 24),
         ("paper-window-estimate.toml", 30),
         ("particle-rules.toml", 100),
+        ("wear-regime.toml", 150),
     ];
     for (file, jobs) in expected {
         let text = std::fs::read_to_string(dir.join(file)).unwrap();

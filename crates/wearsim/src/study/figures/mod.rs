@@ -26,6 +26,8 @@ use crate::stats::{mean_interval, PowerLawFit};
 
 use crate::study::findings::RESOLVED_PARTICLES;
 
+mod regime;
+
 /// One entry of the registry: the name `--figures` (and Python's `names`) takes, and what it shows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub struct FigureSpec {
@@ -35,7 +37,7 @@ pub struct FigureSpec {
 
 /// Every figure of a study, in the order drawn. A new figure is one entry here and its function in
 /// `figure`.
-pub const FIGURES: [FigureSpec; 11] = [
+pub const FIGURES: [FigureSpec; 12] = [
     FigureSpec {
         name: "fig2",
         about: "static model over every offset: W_static/ω per unit area and k_static against p_N (paper Fig. 2)",
@@ -75,6 +77,11 @@ pub const FIGURES: [FigureSpec; 11] = [
     FigureSpec {
         name: "appF",
         about: "the contact-severity fits W = α S_cⁿ per material and over all (appendix F)",
+    },
+    FigureSpec {
+        name: "wear-regime",
+        about: "the wear-regime map: W/F_N, the particle size and W of each particle rule over the paper's against \
+                p_N, with the load where a rule of interacting junctions departs (a study with a particle_rule axis)",
     },
     FigureSpec {
         name: "memory",
@@ -803,6 +810,7 @@ fn figure(study: &Study, entry: &'static str) -> Vec<Figure> {
         "appC" => junction_counts(data, shown),
         "appB-eq5" => vec![equation_5(data, study.tidy, shown)],
         "appF" => contact_severity(study.tidy, shown).into_iter().collect(),
+        "wear-regime" => regime::wear_regime(study.tidy, shown).into_iter().collect(),
         "fig3" => vec![series_figure(study, entry, "fig3_wear_volume", |r, _, shown| {
             wear_volume(r, shown)
         })],

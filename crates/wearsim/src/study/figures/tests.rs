@@ -558,3 +558,68 @@ fn rates_per_area_are_labelled_by_what_they_are_in_si() {
     let reduced = Shown { system: Units::Reduced }.per_area("particle_rate", "dN*₊/ds");
     assert!(reduced.contains("a box L × L"), "{reduced}");
 }
+
+#[test]
+fn the_wear_regime_map_pairs_each_rule_with_the_papers_and_says_where_it_departs() {
+    // No particle-rule axis: no map.
+    assert!(figures(REDUCED, &["wear-regime"]).is_empty());
+    let text = REDUCED.replace(
+        "running_in = 0.25",
+        "running_in = 0.25\nparticle_rule = [\"overlap\", \"interacting\"]",
+    );
+    let (mut results, _) = study(&text);
+    // The interacting rule wears half as much again at the higher load, in every pair, and one
+    // pair of the paper's rule lies in the breakdown regime there.
+    for r in &mut results {
+        let interacting = r
+            .inputs
+            .particle_rule
+            .as_deref()
+            .is_some_and(|p| p.starts_with("interacting"));
+        for w in &mut r.results {
+            w.breakdown_measures = Some(0);
+            if r.load > 3e-4 && interacting {
+                w.wear_rate = w.wear_rate.map(|x| 1.5 * x);
+            }
+            if r.load > 3e-4 && !interacting && r.inputs.seed == Some(2) {
+                w.breakdown_measures = Some(1);
+            }
+        }
+    }
+    let rows: Vec<TidyRow> = results.iter().flat_map(TidyRow::of_job).collect();
+    let tidy = Table::of(&rows);
+    let names = vec!["wear-regime".to_string()];
+    let all = study_figures(&tidy, &results, None, Some(&names)).unwrap();
+    let map = named(&all, "wear_regime");
+    assert_eq!(map.panels.len(), 3);
+    // Two τ̃ × two 𝒢 × two rules on the first two panels, the four interacting curves on the third.
+    assert_eq!(map.panels[0].series.len(), 8);
+    assert_eq!(map.panels[2].series.len(), 4);
+    for s in &map.panels[2].series {
+        let ratios: Vec<f64> = s.points.iter().map(|q| q.y).collect();
+        assert_eq!(ratios.len(), 2, "{}", s.label);
+        assert!(
+            (ratios[0] - 1.0).abs() < 1e-12 && (ratios[1] - 1.5).abs() < 1e-12,
+            "{ratios:?}"
+        );
+        // Paired on the same surfaces: no spread, so an interval of one point.
+        assert!((s.points[1].low - 1.5).abs() < 1e-9, "{:?}", s.points[1]);
+        assert!(s.points[1].breakdown && !s.points[0].breakdown);
+    }
+    let departing: Vec<&LegendEntry> = map
+        .legend
+        .iter()
+        .filter(|e| e.label.contains("departs between"))
+        .collect();
+    assert_eq!(departing.len(), 4, "{:?}", map.legend);
+    assert!(map.legend.iter().any(|e| e.swatch == Swatch::Ring));
+    // The particle size over d*: W/(dN*₊/ds) is ω d_p³.
+    let first = &map.panels[1].series[0].points[0];
+    assert!(first.y.is_finite() && first.y > 0.0);
+    assert!(map
+        .to_csv()
+        .lines()
+        .next()
+        .unwrap()
+        .ends_with(",hollow,no_wear,breakdown"));
+}
