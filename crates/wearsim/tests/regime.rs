@@ -71,6 +71,27 @@ fn the_map_says_where_each_rule_departs_and_the_findings_mark_the_breakdown() {
         MEMBERS_AGREE,
         "{labels:#?}"
     );
+    // Where the hull rule parts from the paper's: at s = 0, with combined particles that grow in
+    // number with load (d* = 16 px: τ̃ = 0.012 E, 𝒢 = 0.25×10⁻⁶ E L, five pairs summed).
+    let column = |name: &str| tidy.column(name).unwrap();
+    let (rule, tau, energy) = (
+        column("sliding.particle_rule"),
+        column("material.shear_strength"),
+        column("fracture_energy"),
+    );
+    let (pressure, combined) = (column("nominal_pressure"), column("combined_particles"));
+    let mut by_load: Vec<(f64, f64)> = Vec::new();
+    for row in tidy.rows.iter().filter(|r| {
+        r[rule].text().contains("particle=hull") && r[tau].number() == 0.012 && r[energy].number() == 0.25e-6
+    }) {
+        match by_load.iter_mut().find(|(p, _)| *p == row[pressure].number()) {
+            Some((_, n)) => *n += row[combined].number(),
+            None => by_load.push((row[pressure].number(), row[combined].number())),
+        }
+    }
+    by_load.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let counts: Vec<f64> = by_load.iter().map(|(_, n)| *n).collect();
+    assert_eq!(counts, [0.0, 1.0, 10.0, 35.0, 65.0], "{by_load:?}");
     let all = findings(&tidy);
     let breakdown = all.iter().find(|f| f.key == "breakdown-regime").unwrap();
     assert_eq!(breakdown.verdict, Verdict::Diagnostic);
