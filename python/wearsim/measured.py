@@ -520,12 +520,43 @@ def import_topography(
     say = say or (lambda _line: None)
     source, out = Path(path), Path(out)
     second = None if bottom is None else Path(bottom)
+    _check_inputs(source, second, detrend, fill)
+    _check_out([source] if second is None else [source, second], out, overwrite)
+    options: Dict[str, Any] = {"fill": fill, "resample": resample, "detrend": detrend, "channel": channel}
+    h, hb, first, bottom_map = _read_bodies(st, source, second, options, say)
+    record = _import_record(st, (h, hb), (first, bottom_map), second, out)
+    # Every warning of the import, both maps', in import.json and said (a warning also for an API caller).
+    for warning in record["warnings"]:
+        say(f"warning: {warning}")
+        warnings.warn(warning, MeasuredMapWarning, stacklevel=2)
+    made = record["bodies"]["bottom"]["made_from"]
+    if second is None:
+        say(
+            f"bottom body: {made}: the measured lay, spectrum and height distribution, and no pixel facing its "
+            "own copy at any sliding offset (--bottom FILE2 imports the counter-body's own map)"
+        )
+    else:
+        cx, cy = first["heights_grid"]
+        say(f"bottom body: {made}, on the same {cx}×{cy} grid")
+    _write_folder(out, h, hb, record)
+    (cx, cy), (lx, ly) = first["heights_grid"], first["length"]
+    say(
+        f"wrote {out / TOP_FILE} (top body) and {out / BOTTOM_FILE} (bottom body), {cx}×{cy} pixels in metres, "
+        f"and {out / 'import.json'}; Lx = {lx:.6g} m, Ly = {ly:.6g} m"
+    )
+    say("for a run file (paths relative to the run file's folder):")
+    for line in record["surface_toml"].splitlines():
+        say(f"  {line}")
+    return record
+
+
+def _check_inputs(source: Path, second: Optional[Path], detrend: Detrend, fill: Optional[str]) -> None:
+    """The options and the files of an import, checked before anything is read."""
     if detrend not in DETRENDS:
         raise ValueError(f"invalid `detrend`: {detrend!r}; use one of {', '.join(DETRENDS)}")
     if fill is not None and fill not in FILL_METHODS:
         raise ValueError(f"invalid `fill`: {fill!r}; SurfaceTopography fills with {', '.join(FILL_METHODS)}")
-    sources = [source] if second is None else [source, second]
-    for file in sources:
+    for file in [source] if second is None else [source, second]:
         if not file.is_file():
             raise FileNotFoundError(f"{file}: no such file")
     if second is not None and second.resolve() == source.resolve():
@@ -533,23 +564,41 @@ def import_topography(
             f"the second map (--bottom) is {source} itself: the two bodies would be one map, perfectly correlated "
             f"at offset 0; give the counter-body's own map, or leave it out for {ROTATED}"
         )
-    _check_out(sources, out, overwrite)
 
-    options: Dict[str, Any] = {"fill": fill, "resample": resample, "detrend": detrend, "channel": channel}
-    bottom_map: Optional[Dict[str, Any]] = None
+
+def _read_bodies(
+    st: Any, source: Path, second: Optional[Path], options: Dict[str, Any], say: Say
+) -> Tuple[np.ndarray, np.ndarray, Dict[str, Any], Optional[Dict[str, Any]]]:
+    """The two bodies' heights and the records of their maps: the top from ``source``; the bottom
+    from ``second`` on the same grid, or the top rotated by 180° (``bottom_map`` None)."""
     if second is None:
         h, first = _read_map(st, source, say=say, **options)
-        hb = np.ascontiguousarray(h[::-1, ::-1])
+        return h, np.ascontiguousarray(h[::-1, ::-1]), first, None
+    h, first = _read_map(st, source, say=lambda line: say(f"top: {line}"), **options)
+    hb, bottom_map = _read_map(st, second, say=lambda line: say(f"bottom: {line}"), **options)
+    _check_same_grid(first, bottom_map)
+    return h, hb, first, bottom_map
+
+
+def _import_record(
+    st: Any,
+    heights: Tuple[np.ndarray, np.ndarray],
+    maps: Tuple[Dict[str, Any], Optional[Dict[str, Any]]],
+    second: Optional[Path],
+    out: Path,
+) -> Dict[str, Any]:
+    """The content of ``import.json``: the top map's record, the bottom map's (of the file
+    ``second``, or none for the rotated top), what each body is made from, every warning of both
+    maps, and the lines of a run file's ``[surface]``."""
+    (h, hb), (first, bottom_map) = heights, maps
+    if bottom_map is None or second is None:
         rule, made = "rotated-180", f"{ROTATED} (h_b[i, j] = h[Nx−1−i, Ny−1−j])"
         comment = ROTATED
     else:
-        h, first = _read_map(st, source, say=lambda line: say(f"top: {line}"), **options)
-        hb, bottom_map = _read_map(st, second, say=lambda line: say(f"bottom: {line}"), **options)
-        _check_same_grid(first, bottom_map)
         rule, made = "second-map", f"the second map {bottom_map['source']}"
         comment = f"the second map {json.dumps(second.name, ensure_ascii=False)}"
-    (cx, cy), (lx, ly) = first["heights_grid"], first["length"]
-    record: Dict[str, Any] = {
+    lx, ly = first["length"]
+    return {
         "written_by": WRITER,
         "wearsim": __version__,
         "surface_topography": getattr(st, "__version__", None),
@@ -565,27 +614,20 @@ def import_topography(
                 "rms_height_m": _rms(hb),
             },
         },
+        "warnings": first["warnings"] + ([] if bottom_map is None else bottom_map["warnings"]),
+        "surface_toml": (
+            'units = "si"\n'
+            "[surface]\n"
+            f"top = {json.dumps(os.fspath(out / TOP_FILE))}\n"
+            f"bottom = {json.dumps(os.fspath(out / BOTTOM_FILE))}  # {comment}\n"
+            f"length = {lx!r}  # m, along x (Ly = {ly:.6g} m)\n"
+        ),
     }
-    # Every warning of the import, both maps', in import.json and said (a warning also for an API caller).
-    record["warnings"] = first["warnings"] + ([] if bottom_map is None else bottom_map["warnings"])
-    for warning in record["warnings"]:
-        say(f"warning: {warning}")
-        warnings.warn(warning, MeasuredMapWarning, stacklevel=2)
-    if second is None:
-        say(
-            f"bottom body: {made}: the measured lay, spectrum and height distribution, and no pixel facing its "
-            "own copy at any sliding offset (--bottom FILE2 imports the counter-body's own map)"
-        )
-    else:
-        say(f"bottom body: {made}, on the same {cx}×{cy} grid")
-    record["surface_toml"] = (
-        'units = "si"\n'
-        "[surface]\n"
-        f"top = {json.dumps(os.fspath(out / TOP_FILE))}\n"
-        f"bottom = {json.dumps(os.fspath(out / BOTTOM_FILE))}  # {comment}\n"
-        f"length = {lx!r}  # m, along x (Ly = {ly:.6g} m)\n"
-    )
 
+
+def _write_folder(out: Path, h: np.ndarray, hb: np.ndarray, record: Dict[str, Any]) -> None:
+    """Writes the folder ``out`` (the two bodies and ``import.json``) beside it and renames it into
+    place, replacing an earlier one: a failed write leaves the earlier folder, or nothing."""
     out.parent.mkdir(parents=True, exist_ok=True)
     tmp, old = _sibling(out, 0), _sibling(out, 1)
     try:
@@ -607,14 +649,6 @@ def import_topography(
         shutil.rmtree(old, ignore_errors=True)
     elif old.exists() or old.is_symlink():
         old.unlink()
-    say(
-        f"wrote {out / TOP_FILE} (top body) and {out / BOTTOM_FILE} (bottom body), {cx}×{cy} pixels in metres, "
-        f"and {out / 'import.json'}; Lx = {lx:.6g} m, Ly = {ly:.6g} m"
-    )
-    say("for a run file (paths relative to the run file's folder):")
-    for line in record["surface_toml"].splitlines():
-        say(f"  {line}")
-    return record
 
 
 def main(argv: Optional[List[str]] = None) -> int:
