@@ -144,12 +144,12 @@ impl Figure for Drawn<'_> {
 }
 
 /// The size a figure is drawn at: wider with more panels, and for the series against the sliding
-/// distance, whose legends are long.
+/// distance, whose legends are long (its registry entry's layout).
 pub(super) fn size(figure: &data::Figure) -> (u32, u32) {
-    match (figure.panels.len(), figure.entry) {
+    match (figure.panels.len(), data::layout_of(figure.entry)) {
         (3, _) => (2100, 640),
         (2, _) => (1700, 640),
-        (1, "fig3" | "appB" | "memory") => (1400, 640),
+        (1, data::Layout::Series) => (1400, 640),
         _ => (1150, 640),
     }
 }

@@ -28,64 +28,124 @@ use crate::study::findings::RESOLVED_PARTICLES;
 
 mod regime;
 
-/// One entry of the registry: the name `--figures` (and Python's `names`) takes, and what it shows.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+/// One entry of the registry: the name `--figures` (and Python's `names`) takes, what it shows,
+/// how it is laid out, and the function that builds its figures from a study: an entry cannot be
+/// registered without what draws it.
+#[derive(Clone, Copy, Serialize)]
 pub struct FigureSpec {
     pub name: &'static str,
     pub about: &'static str,
+    pub layout: Layout,
+    /// Its figures of a study (none where the study cannot show it: Fig. 4c without curves of equal
+    /// d*, the wear-regime map without a particle-rule axis).
+    #[serde(skip)]
+    build: fn(&Study) -> Vec<Figure>,
 }
 
-/// Every figure of a study, in the order drawn. A new figure is one entry here and its function in
-/// `figure`.
+impl std::fmt::Debug for FigureSpec {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("FigureSpec")
+            .field("name", &self.name)
+            .field("about", &self.about)
+            .field("layout", &self.layout)
+            .finish()
+    }
+}
+
+/// How a front end lays a figure out.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Layout {
+    /// Panels against load (or another quantity), the legend beside them.
+    Panels,
+    /// One panel of series against the sliding distance, whose legend entries are long: wider.
+    Series,
+}
+
+/// The layout of the figures of registry entry `entry` (a figure's `entry`): panels where no entry
+/// has the name.
+pub fn layout_of(entry: &str) -> Layout {
+    FIGURES
+        .iter()
+        .find(|f| f.name == entry)
+        .map_or(Layout::Panels, |f| f.layout)
+}
+
+/// Every figure of a study, in the order drawn. A new figure is one entry here, with the function
+/// that builds it.
 pub const FIGURES: [FigureSpec; 12] = [
     FigureSpec {
         name: "fig2",
         about: "static model over every offset: W_static/ω per unit area and k_static against p_N (paper Fig. 2)",
+        layout: Layout::Panels,
+        build: build_fig2,
     },
     FigureSpec {
         name: "fig3",
         about: "V(s) of one job with the fitted lines and the running-in region (Fig. 3)",
+        layout: Layout::Series,
+        build: build_fig3,
     },
     FigureSpec {
         name: "fig4",
         about: "sliding W per unit area and k against p_N, 95 % intervals over surface pairs (Fig. 4)",
+        layout: Layout::Panels,
+        build: build_fig4,
     },
     FigureSpec {
         name: "fig4c",
         about: "W, k and dN*₊/ds for settings of (nearly) equal d* (Figs. 4c, 5c)",
+        layout: Layout::Panels,
+        build: build_fig4c,
     },
     FigureSpec {
         name: "fig5",
         about: "dN*₊/ds per unit area against p_N (Fig. 5)",
+        layout: Layout::Panels,
+        build: build_fig5,
     },
     FigureSpec {
         name: "fig6",
         about: "k against p_N per material, beside Kim et al.'s experimental range for Kim's ceramics (Fig. 6)",
+        layout: Layout::Panels,
+        build: build_fig6,
     },
     FigureSpec {
         name: "appB",
         about: "N*₊, N*, N*₋ against s of one job (appendix B, Fig. B.9a)",
+        layout: Layout::Series,
+        build: build_app_b,
     },
     FigureSpec {
         name: "appB-eq5",
         about: "Eq. 5, ω d*³ dN*₊/ds, against the summed W (Fig. B.9b), and Eq. 5 / W against load",
+        layout: Layout::Panels,
+        build: build_app_b_eq5,
     },
     FigureSpec {
         name: "appC",
         about: "junctions N and critical junctions N* against p_N (appendix C)",
+        layout: Layout::Panels,
+        build: build_app_c,
     },
     FigureSpec {
         name: "appF",
         about: "the contact-severity fits W = α S_cⁿ per material and over all (appendix F)",
+        layout: Layout::Panels,
+        build: build_app_f,
     },
     FigureSpec {
         name: "wear-regime",
         about: "the wear-regime map: W/F_N, the particle size and W of each particle rule over the paper's against \
                 p_N, with the load where a rule of interacting junctions departs (a study with a particle_rule axis)",
+        layout: Layout::Panels,
+        build: build_wear_regime,
     },
     FigureSpec {
         name: "memory",
         about: "the memory of the initial contact N₀(s) of every surface pair of one setting, with fits (§3)",
+        layout: Layout::Series,
+        build: build_memory,
     },
 ];
 
@@ -783,7 +843,7 @@ pub fn study_figures(
         .iter()
         .filter(|f| names.is_none_or(|w| w.iter().any(|n| n == f.name)))
     {
-        out.extend(figure(&study, spec.name));
+        out.extend((spec.build)(&study));
     }
     Ok(out)
 }
@@ -800,31 +860,51 @@ fn pairs_of<'a>(jobs: &'a [JobResult], job: &JobResult) -> Vec<&'a JobResult> {
     jobs.iter().filter(|r| key(r) == mine).collect()
 }
 
-/// The figures of one registry entry.
-fn figure(study: &Study, entry: &'static str) -> Vec<Figure> {
-    let (data, shown) = (&study.data, study.shown);
-    match entry {
-        "fig2" | "fig4" | "fig5" => vec![against_load(data, shown, entry)],
-        "fig4c" => constant_critical_diameter(data, shown),
-        "fig6" => vec![kim_comparison(study)],
-        "appC" => junction_counts(data, shown),
-        "appB-eq5" => vec![equation_5(data, study.tidy, shown)],
-        "appF" => contact_severity(study.tidy, shown).into_iter().collect(),
-        "wear-regime" => regime::wear_regime(study.tidy, shown).into_iter().collect(),
-        "fig3" => vec![series_figure(study, entry, "fig3_wear_volume", |r, _, shown| {
-            wear_volume(r, shown)
-        })],
-        "appB" => vec![series_figure(study, entry, "appB_particle_counts", |r, _, shown| {
-            particle_counts(r, shown)
-        })],
-        "memory" => vec![series_figure(
-            study,
-            entry,
-            "memory_of_initial_contact",
-            |_, pairs, shown| memory(pairs, shown),
-        )],
-        _ => Vec::new(),
-    }
+// The builders of the registry's entries, one per entry.
+fn build_fig2(s: &Study) -> Vec<Figure> {
+    vec![against_load(&s.data, s.shown, "fig2")]
+}
+fn build_fig4(s: &Study) -> Vec<Figure> {
+    vec![against_load(&s.data, s.shown, "fig4")]
+}
+fn build_fig5(s: &Study) -> Vec<Figure> {
+    vec![against_load(&s.data, s.shown, "fig5")]
+}
+fn build_fig4c(s: &Study) -> Vec<Figure> {
+    constant_critical_diameter(&s.data, s.shown)
+}
+fn build_fig6(s: &Study) -> Vec<Figure> {
+    vec![kim_comparison(s)]
+}
+fn build_app_c(s: &Study) -> Vec<Figure> {
+    junction_counts(&s.data, s.shown)
+}
+fn build_app_b_eq5(s: &Study) -> Vec<Figure> {
+    vec![equation_5(&s.data, s.tidy, s.shown)]
+}
+fn build_app_f(s: &Study) -> Vec<Figure> {
+    contact_severity(s.tidy, s.shown).into_iter().collect()
+}
+fn build_wear_regime(s: &Study) -> Vec<Figure> {
+    regime::wear_regime(s.tidy, s.shown).into_iter().collect()
+}
+fn build_fig3(s: &Study) -> Vec<Figure> {
+    vec![series_figure(s, "fig3", "fig3_wear_volume", |r, _, shown| {
+        wear_volume(r, shown)
+    })]
+}
+fn build_app_b(s: &Study) -> Vec<Figure> {
+    vec![series_figure(s, "appB", "appB_particle_counts", |r, _, shown| {
+        particle_counts(r, shown)
+    })]
+}
+fn build_memory(s: &Study) -> Vec<Figure> {
+    vec![series_figure(
+        s,
+        "memory",
+        "memory_of_initial_contact",
+        |_, pairs, shown| memory(pairs, shown),
+    )]
 }
 
 /// A figure against load of every curve, no band, coloured by curve.
