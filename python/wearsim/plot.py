@@ -72,9 +72,10 @@ def _columns(table: pd.DataFrame) -> Dict[str, List[Any]]:
 def curves(tidy: pd.DataFrame) -> List[Tuple[str, pd.DataFrame]]:
     """The curves of a tidy table: (label, per-load DataFrame of the library's aggregated table, with
     the nominal pressure, the surface pairs and the statistics over them of every result column:
-    ``<column>_mean``, ``_min``, ``_max``, ``_ci_low``, ``_ci_high``), one per setting and fracture
-    energy. The grouping, the statistics and the labels are the library's (those of
-    ``results_aggregated.csv`` and of ``wearsim study plot``)."""
+    ``<column>_mean``, ``_min``, ``_max``, ``_ci_low``, ``_ci_high``; the fit window's results over
+    the ``fit_window_pairs`` run in, all where none is), one per setting and fracture energy. The
+    grouping, the statistics and the labels are the library's: the same numbers as
+    ``results_aggregated.csv`` and the figures of ``wearsim study plot``."""
     columns = _columns(tidy)
     aggregated = pd.DataFrame(_wearsim.aggregate(columns))
     labels = _wearsim.curve_labels(columns)

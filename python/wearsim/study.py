@@ -210,7 +210,9 @@ def collect(out: PathLike) -> Tuple[pd.DataFrame, pd.DataFrame]:
     there as ``wearsim study collect`` does; returns both as DataFrames (tidy: one row per job and
     fracture energy; aggregated: mean, min, max and the 95 % confidence interval of the mean
     (``_ci_low``, ``_ci_high``, Student t over the surface pairs; the method is the
-    ``interval_method`` column) of every result over the surface pairs)."""
+    ``interval_method`` column) of every result over the surface pairs, the results of the fit window
+    over the run-in pairs (``fit_window_pairs`` of ``surface_pairs``; all where none is run in), as
+    ``wearsim study plot`` and :func:`wearsim.plot.curves` give them)."""
     out = Path(out)
     _wearsim.collect_study(out)
     units = json.loads((out / "results.units.json").read_text())["columns"]

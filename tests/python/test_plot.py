@@ -70,6 +70,14 @@ def test_curves_come_from_the_library():
     assert np.isclose(stats["wear_rate_ci_high"].iloc[0], 1.5e-4 + half, rtol=1e-7)
     assert np.isclose(stats["wear_rate_ci_low"].iloc[0], 1.5e-4 - half, rtol=1e-7)
     assert "Student t" in stats["interval_method"].iloc[0]
+    # One value per quantity: the figure draws the curves' means (per unit nominal area), and
+    # results_aggregated.csv holds the same table (the library's study_means).
+    assert list(stats["fit_window_pairs"]) == [2, 2]
+    drawn = wearsim.plot.figure_data(tidy, ["fig4"])[0]["panels"][0]["series"]
+    for (label, curve), series in zip(data, drawn):
+        assert series["label"] == label
+        means = curve["wear_rate_mean"] * (1 / 0.5**2)  # the box is 0.5 × 0.5
+        assert [p["y"] for p in series["points"]] == list(means[curve["wear_rate_mean"].notna()])
     # Units: the library's rule for the table's unit system, on the figures' axes.
     assert _wearsim.unit_of("si", "nominal_pressure") == "Pa"
     fig = wearsim.plot.figure_data(tidy, ["fig4"])[0]

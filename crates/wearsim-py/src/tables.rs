@@ -68,10 +68,11 @@ fn curves(columns: &Bound<'_, PyDict>) -> PyResult<(Vec<usize>, Vec<String>)> {
     Ok((c.index, c.settings))
 }
 
-/// The aggregated table of a tidy table (what `results_aggregated.csv` holds), as columns.
+/// The aggregated table of a tidy table (what `results_aggregated.csv` holds and the figures
+/// draw, `output::study_means`), as columns.
 #[pyfunction]
 fn aggregate<'py>(py: Python<'py>, columns: &Bound<'py, PyDict>) -> PyResult<Bound<'py, PyDict>> {
-    table_to_py(py, &wearsim::output::aggregate(&table_of(columns)?))
+    table_to_py(py, &wearsim::output::study_means(&table_of(columns)?))
 }
 
 /// The groups of curves of (nearly) equal d* that Figs. 4c and 5c compare, from (d*, τ̃, 𝒢) per

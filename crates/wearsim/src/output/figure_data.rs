@@ -98,13 +98,7 @@ fn setting_label(column: &str, cell: &Cell, units: Units) -> String {
 /// ("τ̃ = 0.012 E, 𝒢 = 2.5×10⁻⁷ E L (d* = 0.00401 L)").
 pub fn curve_labels(table: &Table) -> Vec<String> {
     let found = curves(table);
-    let units = match table
-        .column("units")
-        .and_then(|c| table.rows.first().map(|r| r[c].text()))
-    {
-        Some(u) if u == "si" => Units::Si,
-        _ => Units::Reduced,
-    };
+    let units = table.units();
     let d_star = table
         .column("critical_diameter")
         .or_else(|| table.column("critical_diameter_mean"));

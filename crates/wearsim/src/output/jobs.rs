@@ -291,7 +291,13 @@ pub struct Curves {
 /// [`NOT_A_SETTING`] nor [`ALONG_A_CURVE`], nor a result (`results` lists them), nor a column the
 /// aggregation adds.
 fn names_a_curve(column: &str, results: &[String]) -> bool {
-    let added = ["curve", "surface_pairs", "pairs_with_warnings", "interval_method"];
+    let added = [
+        "curve",
+        "surface_pairs",
+        "pairs_with_warnings",
+        "fit_window_pairs",
+        "interval_method",
+    ];
     !NOT_A_SETTING.contains(&column)
         && !ALONG_A_CURVE.contains(&column)
         && !added.contains(&column)
@@ -562,17 +568,10 @@ pub const FIT_WINDOW_COLUMNS: [&str; 10] = [
 /// [`aggregate`] averages the fit-window results over the pairs the findings judge (its
 /// `surface_pairs` column still counts them all).
 pub fn run_in_rows(tidy: &Table) -> Table {
-    let col = |name: &str| tidy.column(name);
-    let (left, lengths) = (col("initial_lineages_left"), col("running_in_decay_lengths"));
-    let fit: Vec<usize> = FIT_WINDOW_COLUMNS.iter().filter_map(|c| col(c)).collect();
-    let number = |row: &[Cell], c: Option<usize>| c.map(|c| row[c].number()).filter(|x| x.is_finite());
-    let run_in = |row: &[Cell]| crate::sliding::is_run_in(number(row, left), number(row, lengths));
+    let fit: Vec<usize> = FIT_WINDOW_COLUMNS.iter().filter_map(|c| tidy.column(c)).collect();
     let mut out = tidy.clone();
-    for group in settings(tidy).groups {
-        if !group.rows.iter().any(|&r| run_in(&tidy.rows[r])) {
-            continue;
-        }
-        for &r in group.rows.iter().filter(|&&r| !run_in(&tidy.rows[r])) {
+    for (group, pairs) in settings(tidy).groups.iter().zip(fit_window_pairs(tidy)) {
+        for &r in group.rows.iter().filter(|&&r| !pairs.contains(&r)) {
             for &c in &fit {
                 out.rows[r][c] = Cell::Empty;
             }
@@ -581,12 +580,52 @@ pub fn run_in_rows(tidy: &Table) -> Table {
     out
 }
 
+/// Per setting of `tidy` ([`settings`], in its order), the rows whose fit-window results the means
+/// are over: those run in ([`crate::sliding::is_run_in`]; a row without a memory of the initial
+/// contact, such as a static estimate's, counts as run in), or every row of a setting where none is.
+/// The one rule of [`run_in_rows`] and of the findings' figures.
+pub fn fit_window_pairs(tidy: &Table) -> Vec<Vec<usize>> {
+    let col = |name: &str| tidy.column(name);
+    let (left, lengths) = (col("initial_lineages_left"), col("running_in_decay_lengths"));
+    let number = |row: &[Cell], c: Option<usize>| c.map(|c| row[c].number()).filter(|x| x.is_finite());
+    let run_in = |r: usize| crate::sliding::is_run_in(number(&tidy.rows[r], left), number(&tidy.rows[r], lengths));
+    settings(tidy)
+        .groups
+        .into_iter()
+        .map(|group| {
+            let kept: Vec<usize> = group.rows.iter().copied().filter(|&r| run_in(r)).collect();
+            if kept.is_empty() {
+                group.rows
+            } else {
+                kept
+            }
+        })
+        .collect()
+}
+
+/// The means of a study's settings as every output gives them — `results_aggregated.csv`, the
+/// figures against load and Python's `wearsim.plot.curves` —, so that one quantity of one setting
+/// has one value: the [`aggregate`] of [`run_in_rows`] (the fit-window results over the run-in
+/// surface pairs, every other result over all pairs), with `fit_window_pairs` beside
+/// `surface_pairs`: how many pairs the fit-window results are over.
+pub fn study_means(tidy: &Table) -> Table {
+    let mut table = aggregate(&run_in_rows(tidy));
+    let at = table
+        .column("pairs_with_warnings")
+        .map_or(table.columns.len(), |c| c + 1);
+    table.columns.insert(at, "fit_window_pairs".into());
+    for (row, pairs) in table.rows.iter_mut().zip(fit_window_pairs(tidy)) {
+        row.insert(at, Cell::Int(pairs.len() as i64));
+    }
+    table
+}
+
 /// Writes `results.csv` (tidy), `results_aggregated.csv` and `results.units.json` (the unit of every
 /// column that has one) into `dir`, together (a failure leaves the earlier files); returns the row
 /// counts of the two tables.
 pub fn write_results_tables(dir: &std::path::Path, rows: &[TidyRow]) -> Result<(usize, usize)> {
     let tidy = Table::of(rows);
-    let aggregated = aggregate(&tidy);
+    let aggregated = study_means(&tidy);
     let units = rows.first().map_or(Units::Reduced, |r| r.inputs.units);
     let unit_map = units_map(
         units,

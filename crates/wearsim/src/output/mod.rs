@@ -26,9 +26,10 @@ pub use figure_data::{
     MaterialSeverity, KIM_1986, KIM_EXPERIMENTAL_K, KIM_SEVERITY_FIT, PAPER_SEVERITY_FIT,
 };
 pub use jobs::{
-    aggregate, curves, equal_critical_diameter, growth_across_jobs, interval_method, read_job_file, run_in_rows,
-    series_job, settings, sliding_rows, write_results_tables, CurveMaterial, Curves, JobResult, SettingRows, Settings,
-    TidyRow, AGGREGATE_SUFFIXES, ALONG_A_CURVE, FIT_WINDOW_COLUMNS, JOB_FORMAT, NOT_A_SETTING, STATISTICS, TOTALLED,
+    aggregate, curves, equal_critical_diameter, fit_window_pairs, growth_across_jobs, interval_method, read_job_file,
+    run_in_rows, series_job, settings, sliding_rows, study_means, write_results_tables, CurveMaterial, Curves,
+    JobResult, SettingRows, Settings, TidyRow, AGGREGATE_SUFFIXES, ALONG_A_CURVE, FIT_WINDOW_COLUMNS, JOB_FORMAT,
+    NOT_A_SETTING, STATISTICS, TOTALLED,
 };
 pub use provenance::{Provenance, DEPENDENCY_VERSIONS};
 pub(crate) use series::distinct;

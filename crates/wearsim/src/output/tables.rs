@@ -96,6 +96,18 @@ impl Table {
         }
     }
 
+    /// The unit system of a study's table: its `units` column's first cell ("si"), reduced where it
+    /// says otherwise or has no such column. The one reading of it for the figures and their labels.
+    pub fn units(&self) -> crate::config::Units {
+        match self
+            .column("units")
+            .and_then(|c| self.rows.first().map(|r| r[c].text()))
+        {
+            Some(u) if u == "si" => crate::config::Units::Si,
+            _ => crate::config::Units::Reduced,
+        }
+    }
+
     /// Index of a column.
     pub fn column(&self, name: &str) -> Option<usize> {
         self.columns.iter().position(|c| c == name)

@@ -17,9 +17,9 @@ use serde::Serialize;
 use crate::config::Units;
 use crate::error::{Error, Result};
 use crate::output::{
-    aggregate, curve_labels, curves, distinct, equal_critical_diameter, has_kim_materials, job_series_rows,
-    lineages_left, number, pretty, series_job, severity_fits, steps_of_rows, unit_of, Cell, CurveMaterial, JobResult,
-    MaterialSeverity, SeriesRow, StepRow, Table, KIM_EXPERIMENTAL_K, KIM_SEVERITY_FIT, PAPER_SEVERITY_FIT,
+    curve_labels, curves, distinct, equal_critical_diameter, has_kim_materials, job_series_rows, lineages_left, number,
+    pretty, series_job, severity_fits, steps_of_rows, unit_of, Cell, CurveMaterial, JobResult, MaterialSeverity,
+    SeriesRow, StepRow, Table, KIM_EXPERIMENTAL_K, KIM_SEVERITY_FIT, PAPER_SEVERITY_FIT,
 };
 use crate::sliding::{WearResult, RUN_IN_DECAY_LENGTHS, RUN_IN_LINEAGES_LEFT};
 use crate::stats::{mean_interval, PowerLawFit};
@@ -473,7 +473,7 @@ impl Curves {
         let found = curves(tidy);
         let labels = curve_labels(tidy);
         // The fit-window results over the run-in pairs, the pairs the findings judge.
-        let aggregated = aggregate(&crate::output::run_in_rows(tidy));
+        let aggregated = crate::output::study_means(tidy);
         let column = |name: &str| tidy.column(name);
         let value = |row: &[Cell], name: &str| column(name).map_or(f64::NAN, |c| row[c].number());
         let mut materials: Vec<String> = Vec::new();
@@ -803,13 +803,7 @@ pub fn study_figures(
             format!("no figure is named {unknown:?}: the figures are {}", known.join(", ")),
         ));
     }
-    let system = match tidy
-        .column("units")
-        .and_then(|c| tidy.rows.first().map(|r| r[c].text()))
-    {
-        Some(u) if u == "si" => Units::Si,
-        _ => Units::Reduced,
-    };
+    let system = tidy.units();
     let series = if jobs.is_empty() {
         None
     } else {

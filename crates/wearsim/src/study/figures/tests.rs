@@ -623,3 +623,29 @@ fn the_wear_regime_map_pairs_each_rule_with_the_papers_and_says_where_it_departs
         .unwrap()
         .ends_with(",hollow,no_wear,breakdown"));
 }
+
+#[test]
+fn the_figures_and_the_aggregated_table_give_one_mean_per_setting() {
+    // Seeds 2 and 3 are not run in: the fit window's means are over seed 1 in both.
+    let (results, tidy) = decaying(REDUCED);
+    let means = crate::output::study_means(&tidy);
+    let figures = study_figures(&tidy, &results, None, Some(&["fig4".to_string()])).unwrap();
+    let wear = &figures[0].panels[0];
+    let labels = crate::output::curve_labels(&tidy);
+    let col = |name: &str| means.column(name).unwrap();
+    let (curve, pressure, area, w, pairs, kept) = (
+        col("curve"),
+        col("nominal_pressure"),
+        col("nominal_area"),
+        col("wear_rate_mean"),
+        col("surface_pairs"),
+        col("fit_window_pairs"),
+    );
+    for row in &means.rows {
+        assert_eq!((row[pairs].number(), row[kept].number()), (3.0, 1.0));
+        let label = &labels[row[curve].number() as usize];
+        let series = wear.series.iter().find(|s| &s.label == label).unwrap();
+        let point = series.points.iter().find(|q| q.x == row[pressure].number()).unwrap();
+        assert_eq!(point.y, row[w].number() / row[area].number(), "{label}");
+    }
+}

@@ -1119,13 +1119,7 @@ pub(crate) fn equation_5_over_w(tidy: &Table) -> Vec<(usize, f64, Option<Interva
     setting::settings(tidy, setting::RunInRule::LineagesLeft)
         .iter()
         .map(|s| {
-            let run_in = s.run_in_pairs();
-            let pairs: Vec<&setting::Pair> = if run_in.is_empty() {
-                s.pairs.iter().collect()
-            } else {
-                run_in
-            };
-            let ratios: Vec<f64> = pairs.iter().map(|p| sliding::equation_5_over_w(p)).collect();
+            let ratios: Vec<f64> = s.figure_pairs().iter().map(|p| sliding::equation_5_over_w(p)).collect();
             (s.curve, s.pressure, crate::stats::mean_interval(&ratios))
         })
         .collect()

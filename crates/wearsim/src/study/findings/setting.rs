@@ -119,6 +119,17 @@ impl Setting {
         self.pairs.iter().filter(|p| p.run_in()).collect()
     }
 
+    /// The pairs the figures average: those run in, or every pair of a setting where none is (the
+    /// fallback of `output::run_in_rows`, which the figures' tables are made with).
+    pub fn figure_pairs(&self) -> Vec<&Pair> {
+        let run_in = self.run_in_pairs();
+        if run_in.is_empty() {
+            self.pairs.iter().collect()
+        } else {
+            run_in
+        }
+    }
+
     /// The pair of a seed.
     pub fn pair(&self, seed: &str) -> Option<&Pair> {
         self.pairs.iter().find(|p| p.seed == seed)
@@ -228,15 +239,11 @@ fn material_prefix(material: &str) -> String {
 pub(super) fn settings(tidy: &Table, rule: RunInRule) -> Vec<Setting> {
     let found = setting_groups(tidy);
     let col = |name: &str| tidy.column(name);
-    let not_family = [
-        "material",
-        "material.shear_strength",
-        "fracture_energy",
-        "load",
-        "nominal_pressure",
-        "contact_severity",
-        "nominal_area",
-    ];
+    // A family is every input but the material, τ̃, 𝒢 and what changes along a curve against load.
+    let not_family: Vec<&str> = ["material", "material.shear_strength", "fracture_energy"]
+        .into_iter()
+        .chain(crate::output::ALONG_A_CURVE)
+        .collect();
     let numeric: Vec<usize> = (0..tidy.columns.len())
         .filter(|&c| tidy.rows.iter().any(|r| matches!(r[c], Cell::Float(_) | Cell::Int(_))))
         .collect();
