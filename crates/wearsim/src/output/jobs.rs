@@ -8,7 +8,7 @@ use serde_json::json;
 use crate::config::{InputRecord, Units};
 use crate::error::{Error, Result};
 use crate::estimate::{EstimateResult, WearModel};
-use crate::sliding::{not_run_in, BreakdownStep, InitialContactMemory, LoadBreakdown, WearResult};
+use crate::sliding::{not_run_in, BreakdownStep, InitialContactMemory, LoadBreakdown, LoadOfRun, WearResult};
 
 use super::provenance::Provenance;
 use super::series::{job_series_rows, SeriesRow, StepRow};
@@ -111,12 +111,7 @@ impl JobResult {
     /// as the file (or the study's collection) gives it, and the load's breakdown warning made again.
     fn refill_breakdown(&mut self, fit_start: f64) {
         let from = fit_start - 1e-9 * fit_start.abs().max(f64::MIN_POSITIVE);
-        let measures = LoadBreakdown::of_steps(self.steps.iter().filter(|r| r.s >= from).map(|r| BreakdownStep {
-            junctions: r.junctions,
-            contact_area: r.contact_area,
-            merged_junctions: r.merged_junctions,
-            largest_junction: r.largest_junction,
-        }));
+        let measures = LoadBreakdown::of_steps(self.steps.iter().filter(|r| r.s >= from).map(BreakdownStep::from));
         for w in &mut self.results {
             measures.apply_to(w);
         }
@@ -139,34 +134,21 @@ impl JobResult {
 /// `slide`; each job's results gain `critical_junction_growth` and their count of breakdown
 /// measures, and its breakdown warning is made again. Static estimates (no steps) are left out.
 pub fn growth_across_jobs(jobs: &mut [JobResult]) {
-    let mut runs: BTreeMap<String, Vec<usize>> = BTreeMap::new();
-    for (i, job) in jobs.iter().enumerate().filter(|(_, j)| !j.steps.is_empty()) {
+    let mut runs: BTreeMap<String, Vec<LoadOfRun>> = BTreeMap::new();
+    for job in jobs.iter_mut().filter(|j| !j.steps.is_empty()) {
         let key = format!(
             "{}\u{1f}{}",
             job.material,
             serde_json::to_string(&job.inputs).expect("plain data")
         );
-        runs.entry(key).or_default().push(i);
+        runs.entry(key).or_default().push(LoadOfRun {
+            load: job.load,
+            results: &mut job.results,
+            warnings: &mut job.warnings,
+        });
     }
-    for members in runs.values() {
-        let energies = members.iter().map(|&i| jobs[i].results.len()).min().unwrap_or(0);
-        for e in 0..energies {
-            let points: Vec<(f64, f64)> = members
-                .iter()
-                .map(|&i| (jobs[i].load, jobs[i].results[e].critical_junctions_mean))
-                .collect();
-            for (&i, g) in members.iter().zip(crate::sliding::critical_junction_growth(&points)) {
-                jobs[i].results[e].critical_junction_growth = g;
-            }
-        }
-        for &i in members {
-            let job = &mut jobs[i];
-            let measures = crate::sliding::measures_of(&job.results);
-            for w in &mut job.results {
-                measures.apply_to(w);
-            }
-            crate::sliding::replace_warning(job.load, &job.results, &mut job.warnings);
-        }
+    for loads in runs.values_mut() {
+        crate::sliding::growth_across(loads);
     }
 }
 
@@ -825,13 +807,8 @@ mod tests {
         };
         expected.apply_to(&mut current);
         // The breakdown measures, as a run gives them over its fit window (s ≥ 0.02).
-        LoadBreakdown::of_steps(steps.iter().filter(|r| r.s >= 0.02 - 1e-12).map(|r| BreakdownStep {
-            junctions: r.junctions,
-            contact_area: r.contact_area,
-            merged_junctions: r.merged_junctions,
-            largest_junction: r.largest_junction,
-        }))
-        .apply_to(&mut current);
+        LoadBreakdown::of_steps(steps.iter().filter(|r| r.s >= 0.02 - 1e-12).map(BreakdownStep::from))
+            .apply_to(&mut current);
         assert_eq!(current.breakdown_measures, Some(0));
         let written = JobResult {
             results: vec![current.clone()],

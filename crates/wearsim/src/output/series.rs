@@ -174,6 +174,18 @@ impl From<&StepRecord> for StepRow {
     }
 }
 
+impl From<&StepRow> for crate::sliding::BreakdownStep {
+    /// What the breakdown measures read of a job file's step (`sliding::LoadBreakdown::of_steps`).
+    fn from(r: &StepRow) -> Self {
+        Self {
+            junctions: r.junctions,
+            contact_area: r.contact_area,
+            merged_junctions: r.merged_junctions,
+            largest_junction: r.largest_junction,
+        }
+    }
+}
+
 impl StepRow {
     /// The step's record as far as the job file keeps it, for [`SeriesRow::of_step`]: what it does
     /// not keep (the offset, the solver's iterations and residual, W_static/ω and the static N*) is

@@ -200,22 +200,44 @@ fn growth_words(w: &WearResult) -> Option<String> {
 /// fracture energy; each load's count of measures beyond the limits and its breakdown warning (in
 /// place of the one its own measures gave).
 pub fn across_loads(runs: &mut [LoadRun]) {
-    let energies = runs.iter().map(|r| r.results.len()).min().unwrap_or(0);
+    let mut loads: Vec<LoadOfRun> = runs
+        .iter_mut()
+        .map(|r| LoadOfRun {
+            load: r.load,
+            results: &mut r.results,
+            warnings: &mut r.warnings,
+        })
+        .collect();
+    growth_across(&mut loads);
+}
+
+/// One load of a run of several, as N*'s growth across them reads and writes it: a run's
+/// [`LoadRun`], or a study's job of one surface pair.
+pub struct LoadOfRun<'a> {
+    pub load: f64,
+    pub results: &'a mut [WearResult],
+    pub warnings: &'a mut Vec<String>,
+}
+
+/// N*'s growth with load across the loads of one run ([`critical_junction_growth`] per fracture
+/// energy), each load's count of measures beyond their limits, and its breakdown warning made again.
+pub fn growth_across(loads: &mut [LoadOfRun]) {
+    let energies = loads.iter().map(|l| l.results.len()).min().unwrap_or(0);
     for e in 0..energies {
-        let points: Vec<(f64, f64)> = runs
+        let points: Vec<(f64, f64)> = loads
             .iter()
-            .map(|r| (r.load, r.results[e].critical_junctions_mean))
+            .map(|l| (l.load, l.results[e].critical_junctions_mean))
             .collect();
-        for (run, g) in runs.iter_mut().zip(critical_junction_growth(&points)) {
-            run.results[e].critical_junction_growth = g;
+        for (l, g) in loads.iter_mut().zip(critical_junction_growth(&points)) {
+            l.results[e].critical_junction_growth = g;
         }
     }
-    for run in runs {
-        let measures = measures_of(&run.results);
-        for w in &mut run.results {
+    for l in loads {
+        let measures = measures_of(l.results);
+        for w in l.results.iter_mut() {
             measures.apply_to(w);
         }
-        replace_warning(run.load, &run.results, &mut run.warnings);
+        replace_warning(l.load, l.results, l.warnings);
     }
 }
 
@@ -229,7 +251,7 @@ pub fn replace_warning(load: f64, results: &[WearResult], warnings: &mut Vec<Str
 }
 
 /// The per-load measures that a load's results hold (the same in each).
-pub fn measures_of(results: &[WearResult]) -> LoadBreakdown {
+fn measures_of(results: &[WearResult]) -> LoadBreakdown {
     results.first().map_or_else(LoadBreakdown::default, |w| LoadBreakdown {
         contact_area_mean: w.contact_area_mean,
         merged_junction_share: w.merged_junction_share,

@@ -17,8 +17,8 @@ mod schedule;
 mod state;
 
 pub use breakdown::{
-    across_loads, breakdown_convention, breakdown_opening, breakdown_warning, critical_junction_growth, measures_of,
-    replace_warning, BreakdownStep, LoadBreakdown, CRITICAL_GROWTH_LIMIT, GROWTH_REFERENCE_JUNCTIONS,
+    across_loads, breakdown_convention, breakdown_opening, breakdown_warning, critical_junction_growth, growth_across,
+    replace_warning, BreakdownStep, LoadBreakdown, LoadOfRun, CRITICAL_GROWTH_LIMIT, GROWTH_REFERENCE_JUNCTIONS,
     LARGEST_JUNCTION_LIMIT, MERGED_SHARE_LIMIT,
 };
 pub use checkpoint::{Checkpointing, Resumed, CHECKPOINT_EVERY};
