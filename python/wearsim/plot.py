@@ -338,7 +338,7 @@ def wear_regime(tidy: pd.DataFrame) -> Any:
     and the loads in the breakdown regime of the paper's appendix C ringed. Needs a study with
     ``particle_rule`` as an axis holding ``"overlap"`` and another rule (``studies/wear-regime.toml``);
     raises ``ValueError`` otherwise."""
-    figures = figure_data(tidy, ["wear-regime"])
+    figures = [f for f in figure_data(tidy, ["wear-regime"]) if f["note"] is None]
     if not figures:
         raise ValueError(
             'the wear-regime map needs a study with `particle_rule` as an axis that holds "overlap" and another '

@@ -837,7 +837,16 @@ pub fn study_figures(
         .iter()
         .filter(|f| names.is_none_or(|w| w.iter().any(|n| n == f.name)))
     {
-        out.extend((spec.build)(&study));
+        let built = (spec.build)(&study);
+        // A figure asked for by name that the study cannot show says so, rather than nothing.
+        if built.is_empty() && names.is_some() {
+            out.push(Figure::note(
+                spec.name,
+                spec.name,
+                format!("this study has nothing for {}: {}", spec.name, spec.about),
+            ));
+        }
+        out.extend(built);
     }
     Ok(out)
 }

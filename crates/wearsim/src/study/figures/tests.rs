@@ -561,8 +561,11 @@ fn rates_per_area_are_labelled_by_what_they_are_in_si() {
 
 #[test]
 fn the_wear_regime_map_pairs_each_rule_with_the_papers_and_says_where_it_departs() {
-    // No particle-rule axis: no map.
-    assert!(figures(REDUCED, &["wear-regime"]).is_empty());
+    // No particle-rule axis: no map, and asked for by name, a note that says so.
+    let none = figures(REDUCED, &["wear-regime"]);
+    assert_eq!(none.len(), 1);
+    assert!(none[0].panels.is_empty(), "{:?}", none[0].note);
+    assert!(none[0].note.as_deref().unwrap().contains("particle_rule axis"));
     let text = REDUCED.replace(
         "running_in = 0.25",
         "running_in = 0.25\nparticle_rule = [\"overlap\", \"interacting\"]",
