@@ -10,17 +10,14 @@ use std::collections::BTreeMap;
 use crate::output::{curve_labels, curves, settings, Table, ALONG_A_CURVE};
 use crate::stats::mean_interval;
 
-use super::{log_space_interval, Axis, Color, Figure, LegendEntry, Panel, Point, Series, Shown, Style, Swatch};
+use super::labels::Shown;
+use super::model::{log_space_interval, Axis, Color, Figure, LegendEntry, Panel, Point, Series, Style, Swatch};
 
 /// The column that names a run's particle rule.
 pub(super) const RULE: &str = "sliding.particle_rule";
 
 /// The paper's rule, the reference of the map.
 const PAPER_RULE: &str = crate::wear::OVERLAP.name;
-
-/// The registry entry and its file name.
-const ENTRY: &str = "wear-regime";
-const NAME: &str = "wear_regime";
 
 /// How far a ratio's interval must lie from 1 to count as departing: round-off only (two rules
 /// that form the same particles give W equal to the last digits).
@@ -345,8 +342,8 @@ pub(super) fn wear_regime(tidy: &Table, shown: Shown) -> Option<Figure> {
     let panels = map.panels(shown);
     let legend = map.legend(&panels);
     Some(Figure {
-        entry: ENTRY,
-        name: NAME.into(),
+        entry: "",
+        name: String::new(),
         title,
         panels,
         legend_title: "mean over surface pairs; bars: 95 % confidence interval (Student t; the ratio's on the \

@@ -5,7 +5,9 @@
 use std::path::Path;
 
 use super::*;
-use crate::output::{Provenance, StepRow, TidyRow, JOB_FORMAT};
+use super::model::log_space_interval;
+use crate::config::Units;
+use crate::output::{Cell, Provenance, StepRow, TidyRow, JOB_FORMAT, KIM_EXPERIMENTAL_K};
 use crate::sliding::WearResult;
 use crate::study::expand::Job;
 
@@ -527,7 +529,7 @@ fn a_runs_series_figures_name_what_they_lack() {
     let err = run_figure("fig4", &runs[..1], None, Units::Reduced)
         .unwrap_err()
         .to_string();
-    assert!(err.contains("fig3, appB or memory"), "{err}");
+    assert!(err.contains("fig3, appB, memory"), "{err}");
     let mut cut = of_job[0].0.clone();
     cut.rows.pop();
     let err = run_figure(
