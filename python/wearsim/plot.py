@@ -359,10 +359,10 @@ def contact_severity(tidy: pd.DataFrame) -> Any:
     log–log per material and over all materials; Kim et al.'s fit to their experiments and the
     paper's to its simulations only beside Kim's ceramics. Raises ValueError with fewer than two
     rows with W > 0 on generated surfaces."""
-    figures = figure_data(tidy, ["appF"])
-    if not figures:
-        raise ValueError("invalid `tidy`: appendix F needs two rows or more with W > 0 on generated surfaces")
-    return draw(figures[0])
+    figure = figure_data(tidy, ["appF"])[0]
+    if figure["note"] is not None:
+        raise ValueError(f"invalid `tidy`: {figure['note']}")
+    return draw(figure)
 
 
 Results = Union[pd.DataFrame, Sequence[Dict[str, Any]]]
@@ -462,8 +462,8 @@ def study_figures(
     folder.mkdir(parents=True, exist_ok=True)
     tidy, _ = study.collect(out)
     _, markdown = study.findings(tidy)
-    (folder / "findings.md").write_text(f"# The paper's findings on this study\n\n{markdown}")
-    (folder / "findings_units.csv").write_text(study.findings_units_csv(tidy))
+    (folder / "findings.md").write_text(markdown, encoding="utf-8")
+    (folder / "findings_units.csv").write_text(study.findings_units_csv(tidy), encoding="utf-8")
     written = [folder / "findings.md", folder / "findings_units.csv"]
     for data in study_figure_data(out, job):
         fig = draw(data)

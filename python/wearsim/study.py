@@ -246,7 +246,7 @@ def findings(tidy: pd.DataFrame) -> Tuple[pd.DataFrame, str]:
     by the lineages of s = 0 left, by s_r ≥ 3 ℓ and with every pair kept; same_data_as and reading: for
     a finding whose every unit reads a statistic a finding above it counts, that finding and the
     verdict its own units give; claim: the claim in a few words; notes: what else qualifies it),
-    and the Markdown of findings.md."""
+    and the text of findings.md, byte for byte what ``wearsim study plot`` writes."""
     rows, markdown, _ = _wearsim.findings({str(c): tidy[c].tolist() for c in tidy.columns})
     return pd.DataFrame(rows), markdown
 

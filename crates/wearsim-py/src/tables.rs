@@ -60,6 +60,12 @@ fn table_of(columns: &Bound<'_, PyDict>) -> PyResult<Table> {
     Ok(Table { columns: names, rows })
 }
 
+/// A study's table (the library's one derivation of its settings, run-in pairs and means) from
+/// the columns of its tidy table.
+fn study_table_of(columns: &Bound<'_, PyDict>) -> PyResult<wearsim::output::StudyTable> {
+    Ok(wearsim::output::StudyTable::of(table_of(columns)?))
+}
+
 /// The curves of a tidy or aggregated table: per row the index of its curve, and the setting
 /// columns that tell the curves apart.
 #[pyfunction]
@@ -69,10 +75,10 @@ fn curves(columns: &Bound<'_, PyDict>) -> PyResult<(Vec<usize>, Vec<String>)> {
 }
 
 /// The aggregated table of a tidy table (what `results_aggregated.csv` holds and the figures
-/// draw, `output::study_means`), as columns.
+/// draw, `StudyTable::means`), as columns.
 #[pyfunction]
 fn aggregate<'py>(py: Python<'py>, columns: &Bound<'py, PyDict>) -> PyResult<Bound<'py, PyDict>> {
-    table_to_py(py, &wearsim::output::study_means(&table_of(columns)?))
+    table_to_py(py, study_table_of(columns)?.means())
 }
 
 /// The groups of curves of (nearly) equal d* that Figs. 4c and 5c compare, from (d*, τ̃, 𝒢) per
@@ -201,14 +207,17 @@ fn severity_fits<'py>(
 
 /// The paper's findings judged on a tidy table: one dict per finding (key, paper, rule, observed,
 /// verdict, counts (holds, contrary, inconclusive, not run in), pairs_to_decide, kind,
-/// verdict_under_holm, verdicts_by_rule, same_data_as, reading, claim, notes), the Markdown of `figures/findings.md` and the text of
-/// `figures/findings_units.csv`.
+/// verdict_under_holm, verdicts_by_rule, same_data_as, reading, claim, notes), the text of
+/// `figures/findings.md` and of `figures/findings_units.csv`: the library's document, byte for byte
+/// what `wearsim study plot` writes.
 #[pyfunction]
 fn findings<'py>(py: Python<'py>, columns: &Bound<'py, PyDict>) -> PyResult<(Vec<Bound<'py, PyDict>>, String, String)> {
-    let found = wearsim::study::findings::findings(&table_of(columns)?);
-    let markdown = wearsim::study::findings::markdown(&found);
-    let units = wearsim::study::findings::units_csv(&found);
-    let out = found
+    let wearsim::study::findings::FindingsDocument {
+        findings,
+        markdown,
+        units_csv: units,
+    } = wearsim::study::findings::document(&study_table_of(columns)?);
+    let out = findings
         .into_iter()
         .map(|f| {
             let d = PyDict::new(py);
@@ -267,7 +276,7 @@ fn table_figures<'py>(
     columns: &Bound<'py, PyDict>,
     names: Option<Vec<String>>,
 ) -> PyResult<Vec<Bound<'py, PyAny>>> {
-    let table = table_of(columns)?;
+    let table = study_table_of(columns)?;
     let figures =
         wearsim::study::figures::study_figures(&table, &[], None, names.as_deref()).map_err(crate::error::to_py)?;
     figures_to_py(py, &figures)

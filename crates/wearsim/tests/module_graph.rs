@@ -58,6 +58,7 @@ const SUBLAYERS: [(&str, &[&str]); 9] = [
             "tables",
             "summary",
             "jobs",
+            "study_table",
             "figure_data",
             "fields",
         ],

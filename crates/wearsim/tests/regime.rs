@@ -11,7 +11,7 @@
 
 use std::path::PathBuf;
 
-use wearsim::output::{Table, TidyRow};
+use wearsim::output::{StudyTable, Table, TidyRow};
 use wearsim::run::SlidingRun;
 use wearsim::study::figures::study_figures;
 use wearsim::study::findings::{findings, Verdict};
@@ -54,7 +54,7 @@ fn the_map_says_where_each_rule_departs_and_the_findings_mark_the_breakdown() {
     let rows: Vec<TidyRow> = results.iter().flat_map(TidyRow::of_job).collect();
     let tidy = Table::of(&rows);
     let names = vec!["wear-regime".to_string()];
-    let figures = study_figures(&tidy, &results, None, Some(&names)).unwrap();
+    let figures = study_figures(&StudyTable::of(tidy.clone()), &results, None, Some(&names)).unwrap();
     assert_eq!(figures.len(), 1);
     let map = &figures[0];
     for entry in &map.legend {

@@ -3,9 +3,8 @@
 use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
-use serde_json::json;
 
-use crate::config::{InputRecord, Units};
+use crate::config::InputRecord;
 use crate::error::{Error, Result};
 use crate::estimate::{EstimateResult, WearModel};
 use crate::sliding::{not_run_in, BreakdownStep, InitialContactMemory, LoadBreakdown, LoadOfRun, WearResult};
@@ -13,7 +12,6 @@ use crate::sliding::{not_run_in, BreakdownStep, InitialContactMemory, LoadBreakd
 use super::provenance::Provenance;
 use super::series::{job_series_rows, SeriesRow, StepRow};
 use super::tables::{columns, Cell, Table};
-use super::units::units_map;
 
 /// The format of the job files this version writes; raised whenever what identifies a job or what
 /// a job file holds changes (3: results hold `fit_window_start`, `wear_volume_intercept` and
@@ -490,7 +488,11 @@ fn statistics(v: &[f64], totalled: bool) -> Vec<Cell> {
 /// last `interval_method`, the intervals' method in words. Rows keep the order in which settings
 /// first appear; undefined results (empty cells) are left out of the statistics.
 pub fn aggregate(tidy: &Table) -> Table {
-    let found = settings(tidy);
+    aggregate_over(tidy, settings(tidy))
+}
+
+/// [`aggregate`] of `tidy` over its settings `found` (computed once by the caller).
+pub(crate) fn aggregate_over(tidy: &Table, found: Settings) -> Table {
     let warnings = tidy.column("warnings");
     let mut columns: Vec<String> = found.key_columns.iter().map(|&i| tidy.columns[i].clone()).collect();
     columns.push("curve".into());
@@ -543,86 +545,6 @@ pub const FIT_WINDOW_COLUMNS: [&str; 10] = [
     "critical_residence",
 ];
 
-/// `tidy` with the fit-window results ([`FIT_WINDOW_COLUMNS`]) of every surface pair that is not run
-/// in emptied ([`crate::sliding::is_run_in`]), in each setting that has a run-in pair (a setting
-/// with none keeps all its pairs: the findings count it as not run in, and the figures still show
-/// it); rows without a memory of the initial contact, such as a static estimate's, are kept. Its
-/// [`aggregate`] averages the fit-window results over the pairs the findings judge (its
-/// `surface_pairs` column still counts them all).
-pub fn run_in_rows(tidy: &Table) -> Table {
-    let fit: Vec<usize> = FIT_WINDOW_COLUMNS.iter().filter_map(|c| tidy.column(c)).collect();
-    let mut out = tidy.clone();
-    for (group, pairs) in settings(tidy).groups.iter().zip(fit_window_pairs(tidy)) {
-        for &r in group.rows.iter().filter(|&&r| !pairs.contains(&r)) {
-            for &c in &fit {
-                out.rows[r][c] = Cell::Empty;
-            }
-        }
-    }
-    out
-}
-
-/// Per setting of `tidy` ([`settings`], in its order), the rows whose fit-window results the means
-/// are over: those run in ([`crate::sliding::is_run_in`]; a row without a memory of the initial
-/// contact, such as a static estimate's, counts as run in), or every row of a setting where none is.
-/// The one rule of [`run_in_rows`] and of the findings' figures.
-pub fn fit_window_pairs(tidy: &Table) -> Vec<Vec<usize>> {
-    let col = |name: &str| tidy.column(name);
-    let (left, lengths) = (col("initial_lineages_left"), col("running_in_decay_lengths"));
-    let number = |row: &[Cell], c: Option<usize>| c.map(|c| row[c].number()).filter(|x| x.is_finite());
-    let run_in = |r: usize| crate::sliding::is_run_in(number(&tidy.rows[r], left), number(&tidy.rows[r], lengths));
-    settings(tidy)
-        .groups
-        .into_iter()
-        .map(|group| {
-            let kept: Vec<usize> = group.rows.iter().copied().filter(|&r| run_in(r)).collect();
-            if kept.is_empty() {
-                group.rows
-            } else {
-                kept
-            }
-        })
-        .collect()
-}
-
-/// The means of a study's settings as every output gives them — `results_aggregated.csv`, the
-/// figures against load and Python's `wearsim.plot.curves` —, so that one quantity of one setting
-/// has one value: the [`aggregate`] of [`run_in_rows`] (the fit-window results over the run-in
-/// surface pairs, every other result over all pairs), with `fit_window_pairs` beside
-/// `surface_pairs`: how many pairs the fit-window results are over.
-pub fn study_means(tidy: &Table) -> Table {
-    let mut table = aggregate(&run_in_rows(tidy));
-    let at = table
-        .column("pairs_with_warnings")
-        .map_or(table.columns.len(), |c| c + 1);
-    table.columns.insert(at, "fit_window_pairs".into());
-    for (row, pairs) in table.rows.iter_mut().zip(fit_window_pairs(tidy)) {
-        row.insert(at, Cell::Int(pairs.len() as i64));
-    }
-    table
-}
-
-/// Writes `results.csv` (tidy), `results_aggregated.csv` and `results.units.json` (the unit of every
-/// column that has one) into `dir`, together (a failure leaves the earlier files); returns the row
-/// counts of the two tables.
-pub fn write_results_tables(dir: &std::path::Path, rows: &[TidyRow]) -> Result<(usize, usize)> {
-    let tidy = Table::of(rows);
-    let aggregated = study_means(&tidy);
-    let units = rows.first().map_or(Units::Reduced, |r| r.inputs.units);
-    let unit_map = units_map(
-        units,
-        tidy.columns.iter().chain(&aggregated.columns).map(String::as_str),
-    );
-    let units_text = serde_json::to_string_pretty(&json!({"units": units, "columns": unit_map})).expect("plain data");
-    let (tidy_csv, aggregated_csv) = (tidy.to_csv(), aggregated.to_csv());
-    crate::io::write_texts_together(&[
-        (&dir.join("results.csv"), &tidy_csv),
-        (&dir.join("results_aggregated.csv"), &aggregated_csv),
-        (&dir.join("results.units.json"), &units_text),
-    ])?;
-    Ok((tidy.rows.len(), aggregated.rows.len()))
-}
-
 /// Reads a job file, with the fix in the message when it cannot be used.
 pub fn read_job_file(path: &std::path::Path) -> Result<JobResult> {
     let text = crate::io::read_text(path)?;
@@ -640,6 +562,7 @@ pub fn read_job_file(path: &std::path::Path) -> Result<JobResult> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::config::Units;
     use crate::output::units::unit_of;
 
     #[test]

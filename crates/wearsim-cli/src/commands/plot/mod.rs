@@ -11,7 +11,6 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, Result};
 use wearsim::study::figures::{study_folder_figures, Figure, Swatch, FIGURES};
-use wearsim::study::findings::{findings, markdown, units_csv};
 
 use crate::figures::{save, write_into};
 use crate::out::say;
@@ -105,45 +104,17 @@ pub fn run(args: &Args) -> Result<()> {
         },
         other => other,
     })?;
-    if args.figures.as_ref().is_none_or(|f| f.iter().any(|n| n == "appF"))
-        && !study.figures.iter().any(|f| f.entry == "appF")
-    {
-        say!("appF: fewer than two jobs with W > 0 on generated surfaces; not drawn");
-    }
     let figures = wearsim::io::OutputDir::begin(&dir.join("figures"), "study plot", false, &[])?;
     let (out, shown) = (figures.join(""), dir.join("figures"));
     draw(&study.figures, &out, &shown)?;
-    // The paper's findings on this study, judged on the runs of its sliding model only: an estimate
-    // (or any other model) is no sliding run.
-    let (sliding, others) = wearsim::output::sliding_rows(&study.tidy);
-    let found = if sliding.rows.is_empty() {
-        Vec::new()
-    } else {
-        findings(&study.tidy)
-    };
-    let note = match (others, sliding.rows.len()) {
-        (0, _) => String::new(),
-        (_, 0) => "This study holds no run of the sliding model (its `sliding.model` is another, such as \
-                   \"estimate\": static estimates): the paper's findings are judged on sliding runs, so none is \
-                   judged here. Its figures draw the other models' results, labelled by model (\"static \
-                   estimate\").\n\n"
-            .to_string(),
-        (n, _) => format!(
-            "{n} rows of this study are not sliding runs (their `sliding.model` is another, such as \"estimate\": \
-             static estimates); the findings below are judged on its sliding jobs only.\n\n"
-        ),
-    };
-    let text = format!(
-        "# The paper's findings on this study\n\nBrink, Frérot & Molinari (2021); `wearsim study plot` on {}.\n\n{note}{}",
-        dir.display(),
-        markdown(&found)
-    );
-    write_into(&out, &shown, "findings.md", text.as_bytes())
+    // The paper's findings on this study: the library's document, which Python writes too.
+    let document = wearsim::study::findings::document(&study.table);
+    write_into(&out, &shown, "findings.md", document.markdown.as_bytes())
         .with_context(|| format!("cannot write findings.md into {}", shown.display()))?;
-    write_into(&out, &shown, "findings_units.csv", units_csv(&found).as_bytes())
+    write_into(&out, &shown, "findings_units.csv", document.units_csv.as_bytes())
         .with_context(|| format!("cannot write findings_units.csv into {}", shown.display()))?;
     figures.commit()?;
-    for f in &found {
+    for f in &document.findings {
         say!("{:<18} {}: {}", f.verdict.name(), f.key, f.observed);
     }
     match study.series_job {

@@ -1,10 +1,10 @@
 //! The figures against load (Figs. 2, 4, 4c, 5, 6 and appendix C): one curve per setting and
 //! fracture energy, a point per nominal pressure, the mean over the run-in surface pairs with its
-//! 95 % interval, from the study's one table of means ([`crate::output::study_means`]).
+//! 95 % interval, from the study's one table of means ([`StudyTable::means`]).
 
 use crate::error::{Error, Result};
 use crate::output::{
-    curve_labels, curves, equal_critical_diameter, has_kim_materials, number, Cell, CurveMaterial, Table,
+    curve_labels, curves, equal_critical_diameter, has_kim_materials, number, Cell, CurveMaterial, StudyTable, Table,
     KIM_EXPERIMENTAL_K,
 };
 use crate::study::findings::RESOLVED_PARTICLES;
@@ -39,11 +39,12 @@ pub(super) struct Curves {
 }
 
 impl Curves {
-    pub(super) fn of(tidy: &Table) -> Result<Self> {
+    pub(super) fn of(table: &StudyTable) -> Result<Self> {
+        let tidy = table.tidy();
         let found = curves(tidy);
         let labels = curve_labels(tidy);
         // The fit-window results over the run-in pairs, the pairs the findings judge.
-        let aggregated = crate::output::study_means(tidy);
+        let aggregated = table.means();
         let column = |name: &str| tidy.column(name);
         let value = |row: &[Cell], name: &str| column(name).map_or(f64::NAN, |c| row[c].number());
         let mut materials: Vec<String> = Vec::new();
@@ -87,7 +88,7 @@ impl Curves {
                 "it has no nominal_pressure column: not a study's results table",
             ));
         };
-        for row in aggregated.rows {
+        for row in &aggregated.rows {
             let c = row[curve].number();
             let Some(target) = (c >= 0.0).then(|| out.get_mut(c as usize)).flatten() else {
                 return Err(Error::param(
@@ -95,14 +96,14 @@ impl Curves {
                     format!("an aggregated row of an unknown curve {c}"),
                 ));
             };
-            target.rows.push(row);
+            target.rows.push(row.clone());
         }
         for c in &mut out {
             c.rows
                 .sort_by(|a, b| a[pressure].number().total_cmp(&b[pressure].number()));
         }
         Ok(Self {
-            columns: aggregated.columns,
+            columns: aggregated.columns.clone(),
             curves: out,
             materials: materials.len(),
         })

@@ -11,7 +11,7 @@
 //! axis). Colours are indices into the front end's palette, markers indices into its shapes.
 
 use crate::error::{Error, Result};
-use crate::output::{series_job, JobResult, Table};
+use crate::output::{series_job, JobResult, StudyTable, Table};
 
 mod labels;
 mod load;
@@ -153,7 +153,7 @@ pub const FIGURES: [FigureSpec; 12] = [
         name: "fig6",
         stem: "fig6_kim_comparison",
         about: "k against p_N per material, beside Kim et al.'s experimental range for Kim's ceramics (Fig. 6)",
-        build: Build::Tables(|s| vec![load::kim_comparison(&s.data, s.tidy, s.shown)]),
+        build: Build::Tables(|s| vec![load::kim_comparison(&s.data, s.table.tidy(), s.shown)]),
     },
     FigureSpec {
         name: "appB",
@@ -168,7 +168,7 @@ pub const FIGURES: [FigureSpec; 12] = [
         name: "appB-eq5",
         stem: "appB_eq5_against_w",
         about: "Eq. 5, ω d*³ dN*₊/ds, against the summed W (Fig. B.9b), and Eq. 5 / W against load",
-        build: Build::Tables(|s| vec![severity::equation_5(&s.data, s.tidy, s.shown)]),
+        build: Build::Tables(|s| vec![severity::equation_5(&s.data, s.table.tidy(), s.shown)]),
     },
     FigureSpec {
         name: "appC",
@@ -180,14 +180,14 @@ pub const FIGURES: [FigureSpec; 12] = [
         name: "appF",
         stem: "appF_contact_severity",
         about: "the contact-severity fits W = α S_cⁿ per material and over all (appendix F)",
-        build: Build::Tables(|s| severity::contact_severity(s.tidy, s.shown).into_iter().collect()),
+        build: Build::Tables(|s| vec![severity::contact_severity(s.table.tidy(), s.shown)]),
     },
     FigureSpec {
         name: "wear-regime",
         stem: "wear_regime",
         about: "the wear-regime map: W/F_N, the particle size and W of each particle rule over the paper's against \
                 p_N, with the load where a rule of interacting junctions departs (a study with a particle_rule axis)",
-        build: Build::Tables(|s| regime::wear_regime(s.tidy, s.shown).into_iter().collect()),
+        build: Build::Tables(|s| regime::wear_regime(s.table, s.shown).into_iter().collect()),
     },
     FigureSpec {
         name: "memory",
@@ -202,7 +202,7 @@ pub const FIGURES: [FigureSpec; 12] = [
 
 /// What every figure is built from.
 struct Study<'a> {
-    tidy: &'a Table,
+    table: &'a StudyTable,
     data: Curves,
     shown: Shown,
     /// The job whose series fig3 and appB draw, and every surface pair of its setting (memory);
@@ -211,12 +211,12 @@ struct Study<'a> {
 }
 
 /// Every figure asked for by registry name (all without a list), in the registry's order, from a
-/// study's tidy table (`results.csv`, [`crate::output::TidyRow`]) and its job files. The series
+/// study's table (its tidy table, `results.csv`, and the means derived from it) and its job files. The series
 /// figures (fig3, appB, memory) draw job `job` (default: the one that formed the most particles
 /// after running-in, the lowest index among equals) and need `jobs`; without them they are notes
 /// that say so.
 pub fn study_figures(
-    tidy: &Table,
+    table: &StudyTable,
     jobs: &[JobResult],
     job: Option<usize>,
     names: Option<&[String]>,
@@ -232,7 +232,7 @@ pub fn study_figures(
             format!("no figure is named {unknown:?}: the figures are {}", known.join(", ")),
         ));
     }
-    let system = tidy.units();
+    let system = table.units();
     let series = if jobs.is_empty() {
         None
     } else {
@@ -256,8 +256,8 @@ pub fn study_figures(
         Some((shown, pairs_of(jobs, shown)))
     };
     let study = Study {
-        tidy,
-        data: Curves::of(tidy)?,
+        table,
+        data: Curves::of(table)?,
         shown: Shown { system },
         series,
     };
@@ -294,10 +294,10 @@ fn pairs_of<'a>(jobs: &'a [JobResult], job: &JobResult) -> Vec<&'a JobResult> {
     jobs.iter().filter(|r| key(r) == mine).collect()
 }
 
-/// A study folder's figures, with the tidy table they were drawn from (the findings are judged on
-/// the same) and the job whose series they show.
+/// A study folder's figures, with the table they were drawn from (the findings are judged on the
+/// same) and the job whose series they show.
 pub struct StudyFigures {
-    pub tidy: Table,
+    pub table: StudyTable,
     pub figures: Vec<Figure>,
     /// The job whose series fig3, appB and memory draw.
     pub series_job: Option<usize>,
@@ -311,8 +311,8 @@ pub fn study_folder_figures(
 ) -> Result<StudyFigures> {
     let (_, results) = crate::study::collect::load_results(dir)?;
     let rows: Vec<crate::output::TidyRow> = results.iter().flat_map(crate::output::TidyRow::of_job).collect();
-    let tidy = Table::of(&rows);
-    let figures = study_figures(&tidy, &results, job, names)?;
+    let table = StudyTable::of(Table::of(&rows));
+    let figures = study_figures(&table, &results, job, names)?;
     let series_job = match job {
         Some(j) => Some(j),
         None => series_job(
@@ -322,7 +322,7 @@ pub fn study_folder_figures(
         ),
     };
     Ok(StudyFigures {
-        tidy,
+        table,
         figures,
         series_job,
     })

@@ -7,7 +7,7 @@
 
 use std::collections::BTreeMap;
 
-use crate::output::{curve_labels, curves, settings, Table, ALONG_A_CURVE};
+use crate::output::{curve_labels, curves, StudyTable, ALONG_A_CURVE};
 use crate::stats::mean_interval;
 
 use super::labels::Shown;
@@ -45,7 +45,8 @@ struct RegimeCurve {
 
 /// The curves of a tidy table with a particle-rule column of at least two values, one of them the
 /// paper's; `None` otherwise.
-fn regime_curves(tidy: &Table) -> Option<Vec<RegimeCurve>> {
+fn regime_curves(table: &StudyTable) -> Option<Vec<RegimeCurve>> {
+    let tidy = table.tidy();
     let rule = tidy.column(RULE)?;
     // The rule as recorded, with its parameters (an empty cell: the default, the paper's rule).
     let rules: Vec<String> = tidy
@@ -62,7 +63,7 @@ fn regime_curves(tidy: &Table) -> Option<Vec<RegimeCurve>> {
     }
     let col = |name: &str| tidy.column(name);
     let get = |row: &[crate::output::Cell], name: &str| col(name).map_or(f64::NAN, |c| row[c].number());
-    let found = settings(tidy);
+    let found = table.settings();
     let base_columns: Vec<usize> = found
         .key_columns
         .iter()
@@ -321,8 +322,8 @@ impl Map {
 
 /// The wear-regime map of a study whose particle rule is an axis with the paper's rule among its
 /// values; none for another study (as Fig. 4c for a study without curves of equal d*).
-pub(super) fn wear_regime(tidy: &Table, shown: Shown) -> Option<Figure> {
-    let all = regime_curves(tidy)?;
+pub(super) fn wear_regime(table: &StudyTable, shown: Shown) -> Option<Figure> {
+    let all = regime_curves(table)?;
     let mut bases: Vec<String> = all.iter().map(|c| c.base.clone()).collect();
     bases.sort_unstable();
     bases.dedup();

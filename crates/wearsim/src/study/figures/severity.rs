@@ -209,10 +209,15 @@ pub(super) fn severity_references(all: PowerLawFit, kim: bool) -> Vec<((f64, f64
 
 /// Appendix F: W against the contact severity S_c = p_N √h_rms / K_Ic per material with its fit
 /// W = α S_cⁿ, the fit over all materials, and beside Kim's ceramics the paper's and Kim et al.'s
-/// fits. None with fewer than two jobs with W > 0 on generated surfaces.
-pub(super) fn contact_severity(tidy: &Table, shown: Shown) -> Option<Figure> {
+/// fits; a note with fewer than two jobs with W > 0 on generated surfaces.
+pub(super) fn contact_severity(tidy: &Table, shown: Shown) -> Figure {
     let (materials, all) = severity_fits(tidy);
-    let all = all?;
+    let Some(all) = all else {
+        return Figure::note(
+            "appendix F fits W = α S_cⁿ to the jobs with W > 0 on generated surfaces (S_c needs their h_rms): this \
+             study has fewer than two such jobs of distinct S_c, so there is nothing to fit",
+        );
+    };
     let s_c = materials.iter().flat_map(|m| m.points.iter().map(|p| p.0));
     let (lo, hi) = s_c.fold((f64::INFINITY, 0.0_f64), |(a, b), x| (a.min(x), b.max(x)));
     // Fitted lines over the points' span of S_c.
@@ -243,7 +248,7 @@ pub(super) fn contact_severity(tidy: &Table, shown: Shown) -> Option<Figure> {
         log: true,
         fallback: (1e-6, 1.0),
     };
-    Some(Figure {
+    Figure {
         entry: "",
         name: String::new(),
         title: format!(
@@ -256,5 +261,5 @@ pub(super) fn contact_severity(tidy: &Table, shown: Shown) -> Option<Figure> {
         legend_title: String::new(),
         legend,
         note: None,
-    })
+    }
 }

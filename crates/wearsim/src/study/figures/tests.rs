@@ -4,9 +4,10 @@
 
 use std::path::Path;
 
-use super::*;
 use super::model::log_space_interval;
+use super::*;
 use crate::config::Units;
+use crate::output::StudyTable;
 use crate::output::{Cell, Provenance, StepRow, TidyRow, JOB_FORMAT, KIM_EXPERIMENTAL_K};
 use crate::sliding::WearResult;
 use crate::study::expand::Job;
@@ -160,7 +161,7 @@ fn decaying(text: &str) -> (Vec<JobResult>, Table) {
 fn figures(text: &str, names: &[&str]) -> Vec<Figure> {
     let (results, tidy) = study(text);
     let names: Vec<String> = names.iter().map(|n| n.to_string()).collect();
-    study_figures(&tidy, &results, None, Some(&names)).unwrap()
+    study_figures(&StudyTable::of(tidy.clone()), &results, None, Some(&names)).unwrap()
 }
 
 fn named<'a>(figures: &'a [Figure], name: &str) -> &'a Figure {
@@ -173,7 +174,7 @@ fn named<'a>(figures: &'a [Figure], name: &str) -> &'a Figure {
 #[test]
 fn every_entry_of_the_registry_gives_its_figures_under_their_names() {
     let (results, tidy) = study(REDUCED);
-    let all = study_figures(&tidy, &results, None, None).unwrap();
+    let all = study_figures(&StudyTable::of(tidy.clone()), &results, None, None).unwrap();
     let names: Vec<&str> = all.iter().map(|f| f.name.as_str()).collect();
     assert_eq!(
         names,
@@ -212,9 +213,9 @@ fn every_entry_of_the_registry_gives_its_figures_under_their_names() {
         );
     }
     // Without job files the series figures say where their data is; an unknown name is refused.
-    let table_only = study_figures(&tidy, &[], None, Some(&["fig3".into()])).unwrap();
+    let table_only = study_figures(&StudyTable::of(tidy.clone()), &[], None, Some(&["fig3".into()])).unwrap();
     assert!(table_only[0].note.as_deref().unwrap().contains("job files"));
-    let err = study_figures(&tidy, &results, None, Some(&["fig9".into()])).unwrap_err();
+    let err = study_figures(&StudyTable::of(tidy.clone()), &results, None, Some(&["fig9".into()])).unwrap_err();
     assert!(err.to_string().contains("fig2, fig3"), "{err}");
 }
 
@@ -283,7 +284,13 @@ fn fig3_says_a_pair_without_a_memory_to_follow_is_run_in_as_the_findings_count_i
         (w.initial_lineages_left, w.running_in_decay_lengths) = (None, None);
     }
     let job = results[0].index;
-    let title = study_figures(&tidy, &results, Some(job), Some(&["fig3".into()])).unwrap()[0]
+    let title = study_figures(
+        &StudyTable::of(tidy.clone()),
+        &results,
+        Some(job),
+        Some(&["fig3".into()]),
+    )
+    .unwrap()[0]
         .title
         .clone();
     assert!(title.ends_with("; run in (no lineage of s = 0 to follow and no decay fitted: the memory of the initial contact is gone by the first step)"), "{title}");
@@ -292,7 +299,13 @@ fn fig3_says_a_pair_without_a_memory_to_follow_is_run_in_as_the_findings_count_i
 #[test]
 fn the_rates_against_load_are_means_over_the_run_in_pairs_as_in_the_findings() {
     let (results, tidy) = decaying(REDUCED);
-    let fig = study_figures(&tidy, &results, None, Some(&["fig4".into(), "fig2".into()])).unwrap();
+    let fig = study_figures(
+        &StudyTable::of(tidy.clone()),
+        &results,
+        None,
+        Some(&["fig4".into(), "fig2".into()]),
+    )
+    .unwrap();
     let fig4 = named(&fig, "fig4_sliding_wear");
     assert!(
         fig4.title.contains("means over the run-in surface pairs"),
@@ -315,7 +328,7 @@ fn junctions_are_one_curve_per_setting_and_fits_do_not_span_the_axes() {
     // Two τ̃ × two 𝒢: four curves of N*, two of N (it does not depend on 𝒢), with or without the job
     // column (a table made by hand).
     for _ in 0..2 {
-        let fig = study_figures(&tidy, &[], None, Some(&["appC".into()])).unwrap();
+        let fig = study_figures(&StudyTable::of(tidy.clone()), &[], None, Some(&["appC".into()])).unwrap();
         assert_eq!(named(&fig, "appC_junctions").panels[0].series.len(), 2);
         assert_eq!(named(&fig, "appC_critical_junctions").panels[0].series.len(), 4);
         if let Some(job) = tidy.column("job") {
@@ -326,7 +339,13 @@ fn junctions_are_one_curve_per_setting_and_fits_do_not_span_the_axes() {
         }
     }
     // Fitted lines are drawn over the data; the data alone span the axes.
-    let fig = study_figures(&tidy, &results, Some(0), Some(&["fig3".into(), "memory".into()])).unwrap();
+    let fig = study_figures(
+        &StudyTable::of(tidy.clone()),
+        &results,
+        Some(0),
+        Some(&["fig3".into(), "memory".into()]),
+    )
+    .unwrap();
     for f in &fig {
         for s in &f.panels[0].series {
             assert_eq!(s.reference, s.label.contains("fit"), "{}: {}", f.name, s.label);
@@ -368,7 +387,13 @@ fn equation_5_pairs_w_and_its_estimate_of_the_same_row() {
 #[test]
 fn the_memory_figure_shows_every_pair_of_the_setting() {
     let (results, tidy) = decaying(REDUCED);
-    let fig = study_figures(&tidy, &results, Some(0), Some(&["memory".into()])).unwrap();
+    let fig = study_figures(
+        &StudyTable::of(tidy.clone()),
+        &results,
+        Some(0),
+        Some(&["memory".into()]),
+    )
+    .unwrap();
     let labels: Vec<&str> = fig[0].panels[0]
         .series
         .iter()
@@ -419,7 +444,13 @@ fn the_memory_figure_shows_every_pair_of_the_setting() {
     assert_eq!((band.low, band.high), (0.0, 0.25 * 0.5));
     // Fig. 3 says it of its job.
     let fig3 = |job| {
-        study_figures(&tidy, &results, Some(job), Some(&["fig3".into()])).unwrap()[0]
+        study_figures(
+            &StudyTable::of(tidy.clone()),
+            &results,
+            Some(job),
+            Some(&["fig3".into()]),
+        )
+        .unwrap()[0]
             .title
             .clone()
     };
@@ -470,7 +501,13 @@ fn a_runs_series_figures_plot_the_numbers_of_the_studys() {
         ("appB", "appB_particle_counts"),
         ("memory", "memory_of_initial_contact"),
     ] {
-        let study = study_figures(&tidy, &results, Some(job.index), Some(&[entry.into()])).unwrap();
+        let study = study_figures(
+            &StudyTable::of(tidy.clone()),
+            &results,
+            Some(job.index),
+            Some(&[entry.into()]),
+        )
+        .unwrap();
         let run = run_figure(entry, &runs, None, Units::Reduced).unwrap();
         assert_eq!(run.name, name);
         let points = |f: &Figure| -> Vec<Vec<(f64, f64)>> {
@@ -485,7 +522,13 @@ fn a_runs_series_figures_plot_the_numbers_of_the_studys() {
         assert!(run.title.contains("F_N = "), "{}", run.title);
     }
     // The run's wear-volume figure says whether it is run in, as the study's does.
-    let study = study_figures(&tidy, &results, Some(job.index), Some(&["fig3".into()])).unwrap();
+    let study = study_figures(
+        &StudyTable::of(tidy.clone()),
+        &results,
+        Some(job.index),
+        Some(&["fig3".into()]),
+    )
+    .unwrap();
     let words = |t: &str| t.split("; ").last().unwrap().to_string();
     let run = run_figure("fig3", &runs[..1], None, Units::Reduced).unwrap();
     assert_eq!(words(&run.title), words(&study[0].title));
@@ -594,7 +637,7 @@ fn the_wear_regime_map_pairs_each_rule_with_the_papers_and_says_where_it_departs
     let rows: Vec<TidyRow> = results.iter().flat_map(TidyRow::of_job).collect();
     let tidy = Table::of(&rows);
     let names = vec!["wear-regime".to_string()];
-    let all = study_figures(&tidy, &results, None, Some(&names)).unwrap();
+    let all = study_figures(&StudyTable::of(tidy.clone()), &results, None, Some(&names)).unwrap();
     let map = named(&all, "wear_regime");
     assert_eq!(map.panels.len(), 3);
     // Two τ̃ × two 𝒢 × two rules on the first two panels, the four interacting curves on the third.
@@ -633,8 +676,14 @@ fn the_wear_regime_map_pairs_each_rule_with_the_papers_and_says_where_it_departs
 fn the_figures_and_the_aggregated_table_give_one_mean_per_setting() {
     // Seeds 2 and 3 are not run in: the fit window's means are over seed 1 in both.
     let (results, tidy) = decaying(REDUCED);
-    let means = crate::output::study_means(&tidy);
-    let figures = study_figures(&tidy, &results, None, Some(&["fig4".to_string()])).unwrap();
+    let means = StudyTable::of(tidy.clone()).means().clone();
+    let figures = study_figures(
+        &StudyTable::of(tidy.clone()),
+        &results,
+        None,
+        Some(&["fig4".to_string()]),
+    )
+    .unwrap();
     let wear = &figures[0].panels[0];
     let labels = crate::output::curve_labels(&tidy);
     let col = |name: &str| means.column(name).unwrap();

@@ -120,14 +120,13 @@ impl Setting {
     }
 
     /// The pairs the figures average: those run in, or every pair of a setting where none is (the
-    /// fallback of `output::run_in_rows`, which the figures' tables are made with).
+    /// fallback of the study's means, [`crate::output::averaged_pairs`]).
     pub fn figure_pairs(&self) -> Vec<&Pair> {
-        let run_in = self.run_in_pairs();
-        if run_in.is_empty() {
-            self.pairs.iter().collect()
-        } else {
-            run_in
-        }
+        let run_in: Vec<bool> = self.pairs.iter().map(Pair::run_in).collect();
+        crate::output::averaged_pairs(&run_in)
+            .into_iter()
+            .map(|i| &self.pairs[i])
+            .collect()
     }
 
     /// The pair of a seed.

@@ -125,6 +125,21 @@ fn rows_of_a_model_not_known_here_are_not_judged() {
         (sliding.clone(), 2 * sliding.rows.len())
     );
     assert_eq!(findings(&mixed), findings(&sliding));
+    // The document both front ends write says which rows it leaves out, and judges the rest.
+    let of = |t: &Table| document(&crate::output::StudyTable::of(t.clone()));
+    let (alone, with_others) = (of(&sliding), of(&mixed));
+    assert!(alone.markdown.starts_with("# The paper's findings on this study\n"));
+    assert!(alone.markdown.ends_with(&markdown(&alone.findings)));
+    assert!(!alone.markdown.contains("not sliding runs"));
+    let left_out = format!("{} rows of this study are not sliding runs", 2 * sliding.rows.len());
+    assert!(with_others.markdown.contains(&left_out), "{}", with_others.markdown);
+    assert_eq!(with_others.findings, alone.findings);
+    assert_eq!(with_others.units_csv, alone.units_csv);
+    // A study of estimates alone is judged on nothing, and says why.
+    let mut estimates = sliding.clone();
+    set_every_row(&mut estimates, "sliding.model", Cell::Text("estimate".into()));
+    let none = of(&estimates);
+    assert!(none.findings.is_empty() && none.markdown.contains("holds no run of the sliding model"));
 }
 
 #[test]
