@@ -73,7 +73,7 @@ fn slide<'py>(
                 .with_particle_rule(rule),
         )
         .stopping(stopping.parse().map_err(to_py)?)
-        .model(wearsim::estimate::WearModel::Sliding)
+        .model(wearsim::model::WearModel::Sliding)
         .build()
         .map_err(to_py)?;
     let pair = SurfacePair::of_arrays(t, b);

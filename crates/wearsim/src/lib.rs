@@ -152,6 +152,7 @@ pub mod influence;
 pub mod io;
 pub mod junctions;
 pub mod material;
+pub mod model;
 pub mod output;
 pub mod run;
 pub mod sliding;

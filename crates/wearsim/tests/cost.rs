@@ -49,7 +49,7 @@ fn the_estimate_is_within_a_factor_of_three_of_the_measured_time() {
                 .connectivity(4)
                 .sliding(sliding.clone())
                 .stopping(Stopping::SettledMap)
-                .model(wearsim::estimate::WearModel::Sliding)
+                .model(wearsim::model::WearModel::Sliding)
                 .build()
                 .unwrap();
             let t = processor_seconds();

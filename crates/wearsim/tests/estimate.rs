@@ -4,7 +4,8 @@
 use std::path::Path;
 
 use wearsim::config::RunConfig;
-use wearsim::estimate::{Sampling, WearModel, CALIBRATION};
+use wearsim::estimate::{Sampling, CALIBRATION};
+use wearsim::model::WearModel;
 use wearsim::run::SlidingRun;
 use wearsim::study::{expand, run_job};
 use wearsim::Interrupt;

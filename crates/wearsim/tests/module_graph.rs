@@ -14,7 +14,7 @@
 use std::collections::BTreeSet;
 use std::path::Path;
 
-const LAYERS: [&str; 20] = [
+const LAYERS: [&str; 21] = [
     "error",
     "check",
     "io",
@@ -30,6 +30,7 @@ const LAYERS: [&str; 20] = [
     "wear",
     "sliding",
     "estimate",
+    "model",
     "config",
     "cost",
     "output",

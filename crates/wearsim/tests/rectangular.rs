@@ -107,7 +107,7 @@ fn slide(top: &Surface, bottom: &Surface, loads: Vec<f64>) -> Vec<LoadRun> {
     .connectivity(4)
     .sliding(sliding)
     .stopping(wearsim::contact::SLIDING_STOPPING)
-    .model(wearsim::estimate::WearModel::Sliding)
+    .model(wearsim::model::WearModel::Sliding)
     .build()
     .unwrap();
     slide_config(&config, SurfacePair::of_arrays(top.clone(), bottom.clone()))

@@ -24,7 +24,7 @@ fn arrays_run(top: &Surface, material: &Material, sliding: &SlidingConfig) -> Ru
     .connectivity(4)
     .sliding(sliding.clone())
     .stopping(wearsim::contact::SLIDING_STOPPING)
-    .model(wearsim::estimate::WearModel::Sliding)
+    .model(wearsim::model::WearModel::Sliding)
     .build()
     .unwrap()
 }

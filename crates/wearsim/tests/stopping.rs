@@ -142,7 +142,7 @@ fn a_sliding_run_gives_the_same_wear_results_with_either_rule() {
         .connectivity(4)
         .sliding(sliding.clone())
         .stopping(stopping)
-        .model(wearsim::estimate::WearModel::Sliding)
+        .model(wearsim::model::WearModel::Sliding)
         .build()
         .unwrap();
         SlidingRun::with_surfaces(&config, SurfacePair::of_arrays(top.clone(), bottom.clone()))

@@ -365,7 +365,7 @@ fn full_run(args: &SlideArgs, rule: wearsim::wear::ParticleRuleSpec) -> Result<(
     .device(args.device)
     .sliding(sliding)
     .stopping(wearsim::contact::SLIDING_STOPPING)
-    .model(wearsim::estimate::WearModel::Sliding)
+    .model(wearsim::model::WearModel::Sliding)
     .build()?;
     let material = &config.material;
     let prepared = SlidingRun::prepare(&config)?;

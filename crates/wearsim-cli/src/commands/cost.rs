@@ -209,7 +209,7 @@ pub fn print_run(run: &SlidingRun) -> Result<Estimate> {
 /// The notes on the jobs the cost model leaves out: it sizes sliding steps, so the jobs of a model
 /// that takes none are counted apart.
 fn note_jobs_left_out(jobs: &[&Job]) {
-    for model in wearsim::estimate::WearModel::ALL {
+    for model in wearsim::model::WearModel::ALL {
         let n = jobs.iter().filter(|j| j.run.model == model).count();
         if let (Some(note), true) = (model.cost_note(), n > 0) {
             tell!(

@@ -4,8 +4,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use wearsim::config::{RunConfig, Units};
-use wearsim::estimate::WearModel;
 use wearsim::io::{write_json, write_text, OutputDir};
+use wearsim::model::WearModel;
 use wearsim::output::{unit_of, FieldSelection, FieldsWriter};
 use wearsim::run::{SlidingOutcome, SlidingRun};
 use wearsim::sliding::{Checkpointing, Resumed};

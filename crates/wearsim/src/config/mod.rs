@@ -15,12 +15,13 @@ use std::sync::Arc;
 use crate::check::connectivity as check_connectivity;
 use crate::contact::{Device, SolverOptions, Stopping, SLIDING_STOPPING};
 use crate::error::{Error, Interrupt, Result};
-use crate::estimate::{Sampling, WearModel};
+use crate::estimate::Sampling;
 use crate::grid::Grid;
 use crate::influence::Boundary;
 use crate::io::{parent_or_dot, read_text};
 use crate::junctions::DEFAULT_CONNECTIVITY;
 use crate::material::{Material, ModulusConvention};
+use crate::model::WearModel;
 use crate::sliding::{
     SlidingConfig, SlidingSetup, DEFAULT_DISTANCE, DEFAULT_RUNNING_IN, DEFAULT_STEP, DEFAULT_STEP_RUNNING_IN,
 };
@@ -905,7 +906,7 @@ mod tests {
             .to_string();
         let expected = &e[e.find("expected").expect(&e)..];
         let mut accepted: Vec<&str> = expected.split('`').skip(1).step_by(2).collect();
-        let mut known = crate::estimate::SLIDING_KEYS.to_vec();
+        let mut known = crate::model::SLIDING_KEYS.to_vec();
         accepted.sort_unstable();
         known.sort_unstable();
         assert_eq!(accepted, known, "{e}");

@@ -6,9 +6,9 @@ use std::path::PathBuf;
 use serde::Deserialize;
 
 use crate::contact::{Device, Stopping};
-use crate::estimate::WearModel;
 use crate::influence::Boundary;
 use crate::material::ModulusConvention;
+use crate::model::WearModel;
 use crate::surface::Generation;
 use crate::topography::{Detrend, Window};
 

@@ -3,8 +3,8 @@
 use serde::Deserialize;
 
 use crate::contact::{Device, Stopping};
-use crate::estimate::WearModel;
 use crate::material::ModulusConvention;
+use crate::model::WearModel;
 use crate::surface::Generation;
 
 use super::raw::Units;

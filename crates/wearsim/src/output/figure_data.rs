@@ -3,7 +3,7 @@
 //! and whether a study holds them, and numbers as legends print them.
 
 use crate::config::Units;
-use crate::estimate::WearModel;
+use crate::model::WearModel;
 use crate::stats::{power_law_fit, PowerLawFit};
 
 use super::jobs::curves;

@@ -6,7 +6,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::config::InputRecord;
 use crate::error::{Error, Result};
-use crate::estimate::{EstimateResult, WearModel};
+use crate::estimate::EstimateResult;
+use crate::model::WearModel;
 use crate::sliding::{not_run_in, BreakdownStep, InitialContactMemory, LoadBreakdown, LoadOfRun, WearResult};
 
 use super::provenance::Provenance;
@@ -67,13 +68,13 @@ impl JobResult {
     /// lineages left) and the warning of a load not run in, computed again from the job's steps by
     /// this version's fit, [`InitialContactMemory::of_steps`]: a job file written by an earlier
     /// version (an unweighted ℓ fit) is judged as this version's run would be. The steps are what the
-    /// run measured; these are fitted from them. A job with no steps (the static estimate) is left
-    /// as it is.
+    /// run measured; these are fitted from them. A job of a model that takes no sliding step (the
+    /// static estimate) is left as it is.
     pub fn refit_memory(&mut self) {
         let Some(fit_start) = self.results.first().map(|w| w.fit_window_start) else {
             return;
         };
-        if self.steps.is_empty() {
+        if !self.model().slides() {
             return;
         }
         let points: Vec<(f64, usize)> = self.steps.iter().map(|r| (r.s, r.initial_junctions)).collect();
@@ -124,16 +125,22 @@ impl JobResult {
     pub fn series_rows(&self) -> Vec<SeriesRow> {
         job_series_rows(self.load, &self.results, &self.steps)
     }
+
+    /// The wear model that made it (its inputs record the model when it is not the default).
+    pub fn model(&self) -> WearModel {
+        self.inputs.model.unwrap_or_default()
+    }
 }
 
 /// N*'s growth with load across a study's sliding jobs (appendix C,
 /// [`crate::sliding::critical_junction_growth`]): the jobs that differ in the load alone (the same
 /// surface pair, material and every other input) form one run of several loads, as in one
 /// `slide`; each job's results gain `critical_junction_growth` and their count of breakdown
-/// measures, and its breakdown warning is made again. Static estimates (no steps) are left out.
+/// measures, and its breakdown warning is made again. Jobs of a model that takes no sliding step
+/// (static estimates) are left out.
 pub fn growth_across_jobs(jobs: &mut [JobResult]) {
     let mut runs: BTreeMap<String, Vec<LoadOfRun>> = BTreeMap::new();
-    for job in jobs.iter_mut().filter(|j| !j.steps.is_empty()) {
+    for job in jobs.iter_mut().filter(|j| j.model().slides()) {
         let key = format!(
             "{}\u{1f}{}",
             job.material,

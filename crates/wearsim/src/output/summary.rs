@@ -6,9 +6,10 @@ use serde_json::{json, Value};
 
 use crate::config::{RunConfig, SurfaceSource, Units};
 use crate::contact::{Device, SolveInfo, SolverOptions};
-use crate::estimate::{Calibration, EstimateResult, LoadEstimate, WearModel};
+use crate::estimate::{Calibration, EstimateResult, LoadEstimate};
 use crate::influence::Boundary;
 use crate::material::{Material, ModulusConvention};
+use crate::model::WearModel;
 use crate::sliding::{LoadRun, SlidingConfig, WearResult};
 use crate::surface::Surface;
 

@@ -218,7 +218,7 @@ pub fn job_ranges(jobs: &[usize]) -> String {
 /// The finished sliding jobs of study folder `dir` with the static maps of each, taken as `samples`
 /// says (else as each job's `estimate_samples`, else chosen by the sampling error); unfinished
 /// jobs and jobs of a model other than the paper's sliding model
-/// ([`feeds_findings`](crate::estimate::WearModel::feeds_findings): the estimate's) are left out
+/// ([`feeds_findings`](crate::model::WearModel::feeds_findings): the estimate's) are left out
 /// and counted. The surface files must be those the
 /// study ran with. `on_job(done, total)` is told after each job.
 pub fn map_jobs(

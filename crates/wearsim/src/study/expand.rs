@@ -8,7 +8,7 @@ use toml::{Table, Value};
 
 use crate::config::{InputRecord, RunConfig, SurfaceFiles};
 use crate::error::{Error, Result};
-use crate::estimate::WearModel;
+use crate::model::WearModel;
 use crate::output::JobResult;
 
 /// One job of a study: a single-load run and the parameters that vary across the study.

@@ -6,8 +6,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
 use crate::error::{Error, Interrupt, Result};
-use crate::estimate::{Sampling, WearModel, MAX_SAMPLES};
+use crate::estimate::{Sampling, MAX_SAMPLES};
 use crate::io::refresh_claim;
+use crate::model::WearModel;
 use crate::output::{JobResult, Provenance, StepRow};
 use crate::run::SlidingRun;
 use crate::sliding::{Checkpointing, Resumed};

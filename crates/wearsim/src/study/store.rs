@@ -7,12 +7,12 @@ use std::path::{Path, PathBuf};
 use std::time::SystemTime;
 
 use crate::error::{Error, Result};
-use crate::estimate::WearModel;
 use crate::io::{
     claim_is_stale, create_claim_file, folder_owner, host_name, make_folder, marker, process_gone, read_text,
     remove_own_claim, temporary_sibling, write_json, write_text, FolderOwner, MARKER,
 };
 pub use crate::io::{CLAIM_EXPIRY, CLAIM_REFRESH};
+use crate::model::WearModel;
 use crate::output::{read_job_file, JobResult};
 use crate::sliding::WearResult;
 use crate::study::expand::{Job, Study};

@@ -78,7 +78,7 @@ impl Curves {
                 critical_diameter: value(row, "critical_diameter"),
                 shear_strength: value(row, "material.shear_strength"),
                 fracture_energy: value(row, "fracture_energy"),
-                slides: model.is_none_or(|m| crate::estimate::WearModel::of_cell(&m).is_none_or(|m| m.slides())),
+                slides: model.is_none_or(|m| crate::model::WearModel::of_cell(&m).is_none_or(|m| m.slides())),
                 rows: Vec::new(),
             });
         }

@@ -31,7 +31,7 @@ pub(super) fn of_study(
 ) -> Figure {
     match series {
         None => Figure::note(NO_JOB_FILES),
-        Some((job, _)) if job.steps.is_empty() => Figure::note(NO_SERIES),
+        Some((job, _)) if !job.model().slides() => Figure::note(NO_SERIES),
         Some((job, pairs)) => {
             let pairs: Vec<SeriesOf> = pairs.iter().map(|r| SeriesOf::of_job(r, shown)).collect();
             draw(&SeriesOf::of_job(job, shown), &pairs, shown)

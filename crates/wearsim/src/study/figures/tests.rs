@@ -387,13 +387,8 @@ fn equation_5_pairs_w_and_its_estimate_of_the_same_row() {
 #[test]
 fn the_memory_figure_shows_every_pair_of_the_setting() {
     let (results, tidy) = decaying(REDUCED);
-    let fig = study_figures(
-        &StudyTable::of(tidy.clone()),
-        &results,
-        Some(0),
-        Some(&["memory".into()]),
-    )
-    .unwrap();
+    let table = StudyTable::of(tidy.clone());
+    let fig = study_figures(&table, &results, Some(0), Some(&["memory".into()])).unwrap();
     let labels: Vec<&str> = fig[0].panels[0]
         .series
         .iter()

@@ -518,8 +518,7 @@ pub fn document(table: &StudyTable) -> FindingsDocument {
     };
     FindingsDocument {
         markdown: format!(
-            "# The paper's findings on this study\n\nBrink, Frérot & Molinari (2021), judged by wearsim {}.\n\n{note}{}",
-            crate::VERSION,
+            "# The paper's findings on this study\n\nBrink, Frérot & Molinari (2021).\n\n{note}{}",
             markdown(&found)
         ),
         units_csv: units_csv(&found),
