@@ -39,7 +39,7 @@ const LAYERS: [&str; 21] = [
 ];
 
 /// The order of the submodules of each folder module; a submodule uses only those before it.
-const SUBLAYERS: [(&str, &[&str]); 9] = [
+const SUBLAYERS: [(&str, &[&str]); 10] = [
     ("io", &["atomic", "npy", "zarr"]),
     ("stats", &["fit", "interval", "judge"]),
     ("contact", &["backend", "options", "cpu", "conformance", "profile"]),
@@ -49,6 +49,7 @@ const SUBLAYERS: [(&str, &[&str]); 9] = [
         "sliding",
         &["schedule", "records", "breakdown", "fit", "checkpoint", "state"],
     ),
+    ("estimate", &["samples", "calibration", "rule", "reach", "estimator"]),
     ("config", &["raw", "source", "record"]),
     (
         "output",

@@ -58,7 +58,7 @@ pub struct Point {
     /// line that is no mean).
     pub low: f64,
     pub high: f64,
-    /// A fitted rate resting on fewer than [`RESOLVED_PARTICLES`] particles (summed over the
+    /// A fitted rate resting on fewer than [`RESOLVED_PARTICLES`](crate::study::findings::RESOLVED_PARTICLES) particles (summed over the
     /// pairs): drawn hollow.
     pub hollow: bool,
     /// No surface pair wore (the maximum over pairs is 0): on a log axis, marked on the axis.
