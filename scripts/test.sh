@@ -229,3 +229,10 @@ for file in "$logs"/*.cpu; do
 done
 cpu_seconds
 echo "CPU time of all phases: $cpu s (user + system; the Slurm daemons and jobs not counted)"
+# The budget of the whole command on a 2-core machine, said out loud (a busy machine can exceed
+# it without anything being wrong, so it is not a failure).
+if awk -v c="$cpu" 'BEGIN { exit !(c > 1000) }'; then
+    echo "NOTE: over the 1,000 s CPU budget of this command: look for a test that grew"
+else
+    echo "within the 1,000 s CPU budget of this command"
+fi
