@@ -42,7 +42,10 @@ const LAYERS: [&str; 21] = [
 const SUBLAYERS: [(&str, &[&str]); 10] = [
     ("io", &["atomic", "npy", "zarr"]),
     ("stats", &["fit", "interval", "judge"]),
-    ("contact", &["backend", "options", "cpu", "conformance", "profile"]),
+    (
+        "contact",
+        &["backend", "options", "cpu", "conformance", "spy", "profile"],
+    ),
     ("topography", &["formats", "prepare", "load", "spectrum", "fit"]),
     ("wear", &["shear", "rule", "overlap", "interacting", "registry"]),
     (

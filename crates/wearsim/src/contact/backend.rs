@@ -5,13 +5,14 @@
 //! that touches an Nx·Ny field goes through a [`ContactBackend`]: the backend owns the fields of a
 //! solve (heights h, pressure p, displacement u = 𝒦p and its spare, the conjugate direction t and
 //! the transform of its curvature, the previous pressure) for as long as the solver lives (a whole
-//! sliding run),
-//! performs the convolutions and the fused element-wise passes, and returns only the scalars of
-//! their reductions ([`Stats`], [`LoadSums`], sums). The surfaces of a sliding run are bound once
-//! ([`ContactBackend::bind_surfaces`]) and composed where the fields live at each offset; what
-//! crosses back per step is the contact map as one bit per pixel, made by the backend
-//! ([`ContactBackend::contact_map`]), and the pressure only when a caller asks
-//! ([`ContactBackend::pressure`]).
+//! sliding run), performs the convolutions and the fused element-wise passes, and returns only the
+//! scalars of their reductions ([`Stats`], [`LoadSums`], sums). The surfaces of a sliding run are
+//! bound once ([`ContactBackend::bind_surfaces`]) and composed where the fields live at each
+//! offset. The law at the surface, elastic or saturated at the flow pressure ([`SurfaceLaw`]), is
+//! bound once per solve ([`ContactBackend::bind_law`]) and read by every pass that clips or
+//! classifies a pressure, so that no pass takes p_m as an argument. What crosses back per step is
+//! the contact map as one bit per pixel, made by the backend ([`ContactBackend::contact_map`]), and
+//! the pressure only when a caller asks ([`ContactBackend::pressure`]).
 //!
 //! A backend fixes the order of its reductions, so that its results do not depend on the thread
 //! count: the CPU backend takes per-row partials combined in row order, and for the load sums
@@ -20,11 +21,54 @@
 //! plainly, in the reference backend of the conformance test (`contact::conformance`), which any
 //! backend must pass: exactly, for a backend that keeps these orders, or within the round-off of
 //! its own.
+//!
+//! The law describes the surface only, and the heights may be rewritten between solves
+//! ([`ContactBackend::write_heights`]). A model of plasticity in the volume beneath the surface, as
+//! the Fourier-accelerated volume-integral method of Frérot et al. (2019) computes it, is therefore
+//! an outer loop around the solver, not a backend's concern: between its iterations the surface
+//! displacement of the plastic strains is added to the heights, and each solve is an ordinary one
+//! under a surface law (in that method, the elastic one). Nothing in this trait would change for
+//! it.
 
 use std::sync::Arc;
 
 use crate::influence::Boundary;
 use crate::surface::Surface;
+
+/// The law at the surface: what pressure a pixel may carry (paper §2, appendix A). Bound to a
+/// backend for a solve ([`ContactBackend::bind_law`]); the passes read p_m from it
+/// ([`SurfaceLaw::flow_pressure`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum SurfaceLaw {
+    /// Elastic contact: p ≥ 0, no upper bound.
+    Elastic,
+    /// The saturated pressure of an elastic–perfectly-plastic surface: 0 ≤ p ≤ p_m, the flow
+    /// pressure (the hardness, p_m = 3√3 τ̃ by von Mises in the paper's model).
+    Saturated { flow_pressure: f64 },
+}
+
+impl SurfaceLaw {
+    /// The law of a flow pressure as `ContactSolver::solve` takes it: ∞ is elastic, any other value
+    /// saturated there (it is validated by the solve's set-up, not here).
+    pub fn of_flow_pressure(flow_pressure: f64) -> Self {
+        if flow_pressure == f64::INFINITY {
+            SurfaceLaw::Elastic
+        } else {
+            SurfaceLaw::Saturated { flow_pressure }
+        }
+    }
+
+    /// The bound p_m that the passes clip to and classify by: ∞ for the elastic law. An elastic
+    /// solve thus takes exactly the operations of a saturated one whose bound no finite pressure
+    /// reaches, so that the algorithm of `ContactSolver` and every pass are written once for both.
+    #[inline]
+    pub fn flow_pressure(self) -> f64 {
+        match self {
+            SurfaceLaw::Elastic => f64::INFINITY,
+            SurfaceLaw::Saturated { flow_pressure } => flow_pressure,
+        }
+    }
+}
 
 /// Pixels per partial of the load sums (row-major order), combined in order.
 pub(crate) const LOAD_CHUNK: usize = 4096;
@@ -82,9 +126,10 @@ pub(crate) struct LoadSums {
 }
 
 impl LoadSums {
+    /// Adds a pixel of pressure p, plastic where p reaches the law's p_m.
     #[inline]
-    pub fn add(&mut self, p: f64, pm: f64) {
-        if p >= pm {
+    pub fn add(&mut self, p: f64, law: SurfaceLaw) {
+        if p >= law.flow_pressure() {
             self.plastic += p;
             self.n_contact += 1;
         } else if p > 0.0 {
@@ -125,11 +170,13 @@ impl Default for Stats {
 }
 
 impl Stats {
-    /// Adds pixel (p, u, h) with g = u − h, free-pixel sums taken about `reference`.
+    /// Adds pixel (p, u, h) with g = u − h, free-pixel sums taken about `reference`, its region
+    /// (free or plastic) by the law's p_m.
     #[inline]
-    pub fn add(&mut self, p: f64, u: f64, h: f64, reference: f64, flow_pressure: f64) {
+    pub fn add(&mut self, p: f64, u: f64, h: f64, reference: f64, law: SurfaceLaw) {
         let g = u - h;
-        self.load.add(p, flow_pressure);
+        let flow_pressure = law.flow_pressure();
+        self.load.add(p, law);
         if p <= 0.0 {
             self.min_zero = self.min_zero.min(g);
         } else {
@@ -265,6 +312,12 @@ pub(crate) trait ContactBackend: Send + Sync {
     /// live. Only after [`ContactBackend::bind_surfaces`].
     fn compose(&mut self, offset: usize);
 
+    /// Binds the law at the surface for the passes that follow (the solver does so at the set-up of
+    /// every solve; a backend is made elastic). Only the surface: a change of the heights between
+    /// solves (volume plasticity, module documentation) goes through
+    /// [`ContactBackend::write_heights`].
+    fn bind_law(&mut self, law: SurfaceLaw);
+
     /// Sets the pressure p (initial guess or warm start): `fill` writes it into a host buffer.
     fn write_pressure(&mut self, fill: &mut dyn FnMut(&mut [f64]));
 
@@ -281,37 +334,38 @@ pub(crate) trait ContactBackend: Send + Sync {
 
     /// The initial guess: p clipped to p_m where it is usable (finite, ≥ 0, not all zero), else
     /// the uniform pressure `mean_pressure`. Returns whether p was left exactly as it was (usable
-    /// and nowhere above p_m).
-    fn initial_guess(&mut self, mean_pressure: f64, pm: f64) -> bool;
+    /// and nowhere above p_m). Here and below, p_m is that of the bound law
+    /// ([`SurfaceLaw::flow_pressure`], ∞ when elastic).
+    fn initial_guess(&mut self, mean_pressure: f64) -> bool;
 
     /// [`LoadSums`] of p, over chunks of [`LOAD_CHUNK`] pixels combined in order.
-    fn load_sums(&mut self, pm: f64) -> LoadSums;
+    fn load_sums(&mut self) -> LoadSums;
 
     /// p ← p_m on every contact pixel (the contact cannot carry the load and must grow).
-    fn saturate_contact(&mut self, pm: f64);
+    fn saturate_contact(&mut self);
 
     /// Σ min(p_m, s·pᵢ) and its derivative in s, over the movable pixels (free ones, or every
     /// contact pixel when `scale_plastic`), over chunks of [`LOAD_CHUNK`] pixels combined in order.
-    fn scaled_load(&mut self, s: f64, pm: f64, scale_plastic: bool) -> (f64, f64);
+    fn scaled_load(&mut self, s: f64, scale_plastic: bool) -> (f64, f64);
 
     /// pᵢ ← min(p_m, s·pᵢ) on the movable pixels.
-    fn scale(&mut self, s: f64, pm: f64, scale_plastic: bool);
+    fn scale(&mut self, s: f64, scale_plastic: bool);
 
     /// Gives the load missing from Σp = `total` to the non-contact pixels in proportion to their
     /// penetration −(g − `mean`) (all of them evenly when `mean` is NaN or none penetrates).
-    fn spread_missing_load(&mut self, total: f64, pm: f64, mean: f64);
+    fn spread_missing_load(&mut self, total: f64, mean: f64);
 
     /// u = 𝒦p, and the [`Stats`] of g = u − h about `reference`.
-    fn displacement_and_stats(&mut self, reference: f64, pm: f64) -> Stats;
+    fn displacement_and_stats(&mut self, reference: f64) -> Stats;
 
     /// The [`Stats`] of g = u − h about `reference` for the u held (no convolution), bit for bit
     /// those that [`ContactBackend::displacement_and_stats`] returns when u = 𝒦p already: for a
     /// warm start whose p is unchanged since its u was computed (only the heights moved).
-    fn stats(&mut self, reference: f64, pm: f64) -> Stats;
+    fn stats(&mut self, reference: f64) -> Stats;
 
     /// t ← (g − `mean`) + β t on free pixels, 0 elsewhere; returns (Σ t, Σ (g − `mean`) t) over
     /// free pixels.
-    fn direction(&mut self, mean: f64, beta: f64, pm: f64) -> (f64, f64);
+    fn direction(&mut self, mean: f64, beta: f64) -> (f64, f64);
 
     /// A power of two near 𝒦ᵢᵢ: [`ContactBackend::curvature`] returns its form divided by it, since
     /// Σ t_f·𝒦t_f itself scales as L³/E* and leaves double precision for boxes far from unit size
@@ -339,13 +393,13 @@ pub(crate) trait ContactBackend: Send + Sync {
     /// penetrate and plastic pixels whose gap opens take a gradient step p −= τ(g − `mean`). With
     /// `shift` NaN no CG step is taken. u is not moved: after a step that changed the sets the
     /// caller recomputes u = 𝒦p, after one on the CG line it calls [`ContactBackend::advance`].
-    fn update(&mut self, mean: f64, tau: f64, shift: f64, pm: f64) -> Update;
+    fn update(&mut self, mean: f64, tau: f64, shift: f64) -> Update;
 
     /// After an [`ContactBackend::update`] whose CG step changed no set: r = 𝒦t_f, from the
     /// transform the last [`ContactBackend::curvature`] left when `kept` (no convolution since),
     /// else afresh from t; then u −= τr, and the [`Stats`] of the new p about `mean`, with each
     /// pixel's move ([`Stats::add_change`]: Δp against the copy of p, −Δu = τr).
-    fn advance(&mut self, mean: f64, tau: f64, shift: f64, pm: f64, kept: bool) -> Stats;
+    fn advance(&mut self, mean: f64, tau: f64, shift: f64, kept: bool) -> Stats;
 
     /// Swaps u with its spare buffer: the u of the step's start is kept there (for an undo) while
     /// the next [`ContactBackend::displacement_and_stats`] writes a fresh 𝒦p into u.

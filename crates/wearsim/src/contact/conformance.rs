@@ -1,15 +1,16 @@
 //! The conformance test of a contact backend: every pass of [`ContactBackend`] and whole solves,
 //! run on small grids against a plain reference written from the trait's documentation (serial
 //! loops, one pixel at a time, the reductions in their documented order), for both boundaries and
-//! for the saturated (p_m finite) and elastic (p_m = ∞) cases; and each pass repeated on one and
+//! for both laws at the surface bound to each (saturated, p_m finite, and elastic, p_m = ∞; a few
+//! passes under an enormous finite p_m too); and each pass repeated on one and
 //! on two threads, which must agree bit for bit. A new backend passes the conformance test of
 //! `contact/mod.rs` (these passes, then whole solves against the reference's) with its own
 //! constructor: exactly when it keeps the reductions' order (as the CPU backend does), else within
 //! round-off.
 
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 
-use super::backend::{contact_bit, ContactBackend, HeightStats, LoadSums, Stats, Update, LOAD_CHUNK};
+use super::backend::{contact_bit, ContactBackend, HeightStats, LoadSums, Stats, SurfaceLaw, Update, LOAD_CHUNK};
 use super::cpu::CpuBackend;
 use crate::grid::Grid;
 use crate::influence::{Boundary, Influence, PairForm};
@@ -32,6 +33,8 @@ struct Reference {
     u_kept: Vec<f64>,
     bits: Vec<u64>,
     surfaces: Option<(Arc<Surface>, Arc<Surface>)>,
+    /// The law bound by `bind_law`, elastic until one is.
+    law: SurfaceLaw,
     response_scale: f64,
     /// The kernel in real space (periodic), for `direct_curvature`.
     pair_form: Option<PairForm>,
@@ -57,6 +60,7 @@ impl Reference {
             u_kept: field(),
             bits: vec![0; (nx * ny).div_ceil(64)],
             surfaces: None,
+            law: SurfaceLaw::Elastic,
             response_scale,
             pair_form,
         }
@@ -111,6 +115,10 @@ impl ContactBackend for Reference {
         composite_heights(top, bottom, offset, &mut self.h);
     }
 
+    fn bind_law(&mut self, law: SurfaceLaw) {
+        self.law = law;
+    }
+
     fn write_pressure(&mut self, fill: &mut dyn FnMut(&mut [f64])) {
         fill(&mut self.p);
     }
@@ -154,7 +162,8 @@ impl ContactBackend for Reference {
         }
     }
 
-    fn initial_guess(&mut self, mean_pressure: f64, pm: f64) -> bool {
+    fn initial_guess(&mut self, mean_pressure: f64) -> bool {
+        let pm = self.law.flow_pressure();
         let usable = self.p.iter().all(|p| p.is_finite() && *p >= 0.0) && self.p.iter().any(|&p| p > 0.0);
         let before = self.p.clone();
         for p in &mut self.p {
@@ -163,26 +172,26 @@ impl ContactBackend for Reference {
         usable && self.p.iter().zip(&before).all(|(a, b)| a.to_bits() == b.to_bits())
     }
 
-    fn load_sums(&mut self, pm: f64) -> LoadSums {
+    fn load_sums(&mut self) -> LoadSums {
         let mut total = LoadSums::default();
         for chunk in self.p.chunks(LOAD_CHUNK) {
             let mut s = LoadSums::default();
             for &p in chunk {
-                s.add(p, pm);
+                s.add(p, self.law);
             }
             total = LoadSums::merge(total, s);
         }
         total
     }
 
-    fn saturate_contact(&mut self, pm: f64) {
+    fn saturate_contact(&mut self) {
         for p in self.p.iter_mut().filter(|p| **p > 0.0) {
-            *p = pm;
+            *p = self.law.flow_pressure();
         }
     }
 
-    fn scaled_load(&mut self, s: f64, pm: f64, scale_plastic: bool) -> (f64, f64) {
-        let mut total = (0.0, 0.0);
+    fn scaled_load(&mut self, s: f64, scale_plastic: bool) -> (f64, f64) {
+        let (mut total, pm) = ((0.0, 0.0), self.law.flow_pressure());
         for chunk in self.p.chunks(LOAD_CHUNK) {
             let (mut f, mut df) = (0.0, 0.0);
             for &p in chunk {
@@ -200,7 +209,8 @@ impl ContactBackend for Reference {
         total
     }
 
-    fn scale(&mut self, s: f64, pm: f64, scale_plastic: bool) {
+    fn scale(&mut self, s: f64, scale_plastic: bool) {
+        let pm = self.law.flow_pressure();
         for p in &mut self.p {
             if *p > 0.0 && (scale_plastic || *p < pm) {
                 *p = (s * *p).min(pm);
@@ -208,7 +218,7 @@ impl ContactBackend for Reference {
         }
     }
 
-    fn spread_missing_load(&mut self, total: f64, pm: f64, mean: f64) {
+    fn spread_missing_load(&mut self, total: f64, mean: f64) {
         let missing = total - self.p.iter().sum::<f64>();
         let penetration = |k: usize| {
             if mean.is_nan() {
@@ -237,29 +247,29 @@ impl ContactBackend for Reference {
             .collect();
         for (p, share) in self.p.iter_mut().zip(shares) {
             if let Some(share) = share {
-                *p = share.min(pm);
+                *p = share.min(self.law.flow_pressure());
             }
         }
     }
 
-    fn displacement_and_stats(&mut self, reference: f64, pm: f64) -> Stats {
+    fn displacement_and_stats(&mut self, reference: f64) -> Stats {
         self.influence.apply(&self.p, &mut self.u);
-        self.stats(reference, pm)
+        self.stats(reference)
     }
 
-    fn stats(&mut self, reference: f64, pm: f64) -> Stats {
+    fn stats(&mut self, reference: f64) -> Stats {
         let rows = self.rows(|_, range| {
             let mut s = Stats::default();
             for k in range {
-                s.add(self.p[k], self.u[k], self.h[k], reference, pm);
+                s.add(self.p[k], self.u[k], self.h[k], reference, self.law);
             }
             s
         });
         Stats::combine(&rows)
     }
 
-    fn direction(&mut self, mean: f64, beta: f64, pm: f64) -> (f64, f64) {
-        let mut total = (0.0, 0.0);
+    fn direction(&mut self, mean: f64, beta: f64) -> (f64, f64) {
+        let (mut total, pm) = ((0.0, 0.0), self.law.flow_pressure());
         for i in 0..self.nx {
             let (mut st, mut sdt) = (0.0, 0.0);
             for k in i * self.ny..(i + 1) * self.ny {
@@ -308,8 +318,8 @@ impl ContactBackend for Reference {
         Some(form)
     }
 
-    fn update(&mut self, mean: f64, tau: f64, shift: f64, pm: f64) -> Update {
-        let cg_step = shift.is_finite();
+    fn update(&mut self, mean: f64, tau: f64, shift: f64) -> Update {
+        let (cg_step, pm) = (shift.is_finite(), self.law.flow_pressure());
         self.p_old.copy_from_slice(&self.p);
         let (mut load, mut sums) = (LoadSums::default(), Vec::new());
         let (mut released, mut clipped) = (false, false);
@@ -341,7 +351,7 @@ impl ContactBackend for Reference {
                     }
                 }
                 sum_p += self.p[k];
-                row_load.add(self.p[k], pm);
+                row_load.add(self.p[k], self.law);
             }
             load = LoadSums::merge(load, row_load);
             sums.push(sum_p);
@@ -355,7 +365,7 @@ impl ContactBackend for Reference {
     }
 
     /// r afresh whether or not a transform was kept (the reference keeps none).
-    fn advance(&mut self, mean: f64, tau: f64, shift: f64, pm: f64, _kept: bool) -> Stats {
+    fn advance(&mut self, mean: f64, tau: f64, shift: f64, _kept: bool) -> Stats {
         let shifted = self.shifted_direction(shift);
         self.influence.apply(&shifted, &mut self.r);
         let mut parts = Vec::with_capacity(self.nx);
@@ -364,7 +374,7 @@ impl ContactBackend for Reference {
             for k in i * self.ny..(i + 1) * self.ny {
                 self.u[k] -= tau * self.r[k];
                 let p = self.p[k];
-                s.add(p, self.u[k], self.h[k], mean, pm);
+                s.add(p, self.u[k], self.h[k], mean, self.law);
                 // Each pixel's last move, for the settled-map stop.
                 s.add_change(p, p - self.p_old[k], self.u[k] - self.h[k], tau * self.r[k]);
             }
@@ -448,6 +458,7 @@ fn passes(backend: &mut dyn ContactBackend, reference: &mut Reference, pm: f64, 
     for b in [&mut *backend, &mut *reference as &mut dyn ContactBackend] {
         b.bind_surfaces(Arc::clone(&top), Arc::clone(&bottom));
         b.compose(3);
+        b.bind_law(SurfaceLaw::of_flow_pressure(pm));
     }
     let hs = (backend.height_stats(), reference.height_stats());
     agree(hs.0.sum, hs.1.sum, exact, hs.1.sum_sq.sqrt(), "height_stats.sum");
@@ -459,12 +470,9 @@ fn passes(backend: &mut dyn ContactBackend, reference: &mut Reference, pm: f64, 
     }
     assert_eq!(backend.contact_map(), reference.contact_map(), "contact_map");
     assert!((0..nn).all(|k| contact_bit(reference.contact_map(), k) == (p0[k] > 0.0)));
-    agree_loads(&backend.load_sums(pm), &reference.load_sums(pm), exact, "load_sums");
+    agree_loads(&backend.load_sums(), &reference.load_sums(), exact, "load_sums");
     for (s, plastic) in [(0.7, false), (1.3, false), (1.1, true)] {
-        let (a, b) = (
-            backend.scaled_load(s, pm, plastic),
-            reference.scaled_load(s, pm, plastic),
-        );
+        let (a, b) = (backend.scaled_load(s, plastic), reference.scaled_load(s, plastic));
         agree(a.0, b.0, exact, b.0, "scaled_load");
         agree(a.1, b.1, exact, b.1, "scaled_load'");
     }
@@ -482,14 +490,14 @@ fn iteration_passes(backend: &mut dyn ContactBackend, reference: &mut Reference,
         both(&mut *backend, &mut *reference, exact, f, what)
     };
     run(
-        &mut |b| vec![b.displacement_and_stats(0.0, pm).energy],
+        &mut |b| vec![b.displacement_and_stats(0.0).energy],
         "displacement_and_stats",
     );
-    run(&mut |b| every_stat(b, pm), "displacement_and_stats");
+    run(&mut |b| every_stat(b), "displacement_and_stats");
     run(
         &mut |b| {
-            let fresh = every_stat(b, pm);
-            let held = stat_values(&b.stats(1e-3, pm));
+            let fresh = every_stat(b);
+            let held = stat_values(&b.stats(1e-3));
             let same = fresh.iter().zip(&held).all(|(x, y)| x.to_bits() == y.to_bits());
             assert!(same, "stats of the held u {held:?} are not a fresh 𝒦p's {fresh:?}");
             held
@@ -498,52 +506,21 @@ fn iteration_passes(backend: &mut dyn ContactBackend, reference: &mut Reference,
     );
     run(
         &mut |b| {
-            b.scale(1.2, pm, false);
-            b.spread_missing_load(target, pm, 2e-3);
+            b.scale(1.2, false);
+            b.spread_missing_load(target, 2e-3);
             vec![]
         },
         "scale, spread_missing_load",
     );
     run(
         &mut |b| {
-            b.spread_missing_load(target, pm, f64::NAN);
-            vec![b.displacement_and_stats(0.0, pm).sum]
+            b.spread_missing_load(target, f64::NAN);
+            vec![b.displacement_and_stats(0.0).sum]
         },
         "spread_missing_load (even)",
     );
     conjugate_steps(&mut *backend, &mut *reference, pm, exact);
-    let mut run = |f: &mut dyn FnMut(&mut dyn ContactBackend) -> Vec<f64>, what: &str| {
-        both(&mut *backend, &mut *reference, exact, f, what)
-    };
-    // initial_guess reports whether p stayed as it was: at p_m it does, above it or unusable not.
-    let kept = |k: bool| f64::from(u8::from(k));
-    run(
-        &mut |b| {
-            b.saturate_contact(pm_eff);
-            let k = b.initial_guess(mean_pressure, pm_eff);
-            assert!(k, "a usable p at or below p_m is kept");
-            vec![kept(k), b.load_sums(pm_eff).free]
-        },
-        "saturate_contact, initial_guess",
-    );
-    run(
-        &mut |b| {
-            b.write_pressure(&mut |p| p[nn / 2] = 2.0 * pm_eff.min(0.05));
-            let k = b.initial_guess(mean_pressure, pm_eff.min(0.05));
-            assert!(!k, "a p above p_m is clipped");
-            vec![kept(k), b.load_sums(pm_eff).plastic]
-        },
-        "initial_guess (above p_m)",
-    );
-    run(
-        &mut |b| {
-            b.write_pressure(&mut |p| p.fill(-1.0));
-            let k = b.initial_guess(mean_pressure, pm_eff);
-            assert!(!k, "an unusable p is replaced");
-            vec![kept(k)]
-        },
-        "initial_guess (unusable)",
-    );
+    initial_guesses(&mut *backend, &mut *reference, pm_eff, mean_pressure, exact);
     let input = uniform(9, nn);
     let (mut a, mut b) = (vec![0.0; nn], vec![0.0; nn]);
     backend.apply_influence(&input, &mut a);
@@ -551,9 +528,58 @@ fn iteration_passes(backend: &mut dyn ContactBackend, reference: &mut Reference,
     agree_fields(&a, &b, exact, "apply_influence");
 }
 
+/// The initial guesses of a solve's set-up, under a finite p_m (`pm_eff`, enormous for the elastic
+/// case), from the pressure the conjugate steps left: one kept, one clipped, one replaced.
+fn initial_guesses(
+    backend: &mut dyn ContactBackend,
+    reference: &mut Reference,
+    pm_eff: f64,
+    mean_pressure: f64,
+    exact: bool,
+) {
+    let nn = reference.nx * reference.ny;
+    let mut run = |f: &mut dyn FnMut(&mut dyn ContactBackend) -> Vec<f64>, what: &str| {
+        both(&mut *backend, &mut *reference, exact, f, what)
+    };
+    // initial_guess reports whether p stayed as it was: at p_m it does, above it or unusable not.
+    let kept = |k: bool| f64::from(u8::from(k));
+    run(
+        &mut |b| {
+            b.bind_law(SurfaceLaw::Saturated { flow_pressure: pm_eff });
+            b.saturate_contact();
+            let k = b.initial_guess(mean_pressure);
+            assert!(k, "a usable p at or below p_m is kept");
+            vec![kept(k), b.load_sums().free]
+        },
+        "saturate_contact, initial_guess",
+    );
+    run(
+        &mut |b| {
+            b.write_pressure(&mut |p| p[nn / 2] = 2.0 * pm_eff.min(0.05));
+            b.bind_law(SurfaceLaw::Saturated {
+                flow_pressure: pm_eff.min(0.05),
+            });
+            let k = b.initial_guess(mean_pressure);
+            assert!(!k, "a p above p_m is clipped");
+            b.bind_law(SurfaceLaw::Saturated { flow_pressure: pm_eff });
+            vec![kept(k), b.load_sums().plastic]
+        },
+        "initial_guess (above p_m)",
+    );
+    run(
+        &mut |b| {
+            b.write_pressure(&mut |p| p.fill(-1.0));
+            let k = b.initial_guess(mean_pressure);
+            assert!(!k, "an unusable p is replaced");
+            vec![kept(k)]
+        },
+        "initial_guess (unusable)",
+    );
+}
+
 /// Every number `displacement_and_stats` reports (at a gap offset of 10⁻³), its load sums included.
-fn every_stat(b: &mut dyn ContactBackend, pm: f64) -> Vec<f64> {
-    stat_values(&b.displacement_and_stats(1e-3, pm))
+fn every_stat(b: &mut dyn ContactBackend) -> Vec<f64> {
+    stat_values(&b.displacement_and_stats(1e-3))
 }
 
 /// Conjugate-gradient steps and their undo from a mixed pressure (the load balance before them
@@ -568,7 +594,7 @@ fn conjugate_steps(backend: &mut dyn ContactBackend, reference: &mut Reference, 
     run(
         &mut |b| {
             b.write_pressure(&mut |p| p.copy_from_slice(&p1));
-            vec![b.displacement_and_stats(0.0, pm).energy]
+            vec![b.displacement_and_stats(0.0).energy]
         },
         "write_pressure, displacement_and_stats",
     );
@@ -584,19 +610,15 @@ fn conjugate_steps(backend: &mut dyn ContactBackend, reference: &mut Reference, 
         (0.1, 0.7, 2e-4, -5e-3, true),
     ] {
         run(
-            &mut |b| conjugate_step(b, beta, tau, shift, mean, pm, kept),
+            &mut |b| conjugate_step(b, beta, tau, shift, mean, kept),
             "direction, curvature, update, advance",
         );
         run(
             &mut |b| {
                 b.keep_displacement();
-                let s = b.displacement_and_stats(1e-3, pm);
+                let s = b.displacement_and_stats(1e-3);
                 b.undo();
-                vec![
-                    s.energy,
-                    b.stats(2e-3, pm).energy,
-                    b.displacement_and_stats(2e-3, pm).energy,
-                ]
+                vec![s.energy, b.stats(2e-3).energy, b.displacement_and_stats(2e-3).energy]
             },
             "keep_displacement, undo",
         );
@@ -615,12 +637,12 @@ fn conjugate_steps(backend: &mut dyn ContactBackend, reference: &mut Reference, 
         run(
             &mut |b| {
                 b.write_pressure(&mut |p| p.copy_from_slice(&sparse));
-                b.displacement_and_stats(1e-3, pm);
-                let mut values = conjugate_step(b, beta, 0.5, shift, 1e-3, pm, false);
+                b.displacement_and_stats(1e-3);
+                let mut values = conjugate_step(b, beta, 0.5, shift, 1e-3, false);
                 if b.boundary() == Boundary::Periodic {
                     assert!(values[3].is_finite(), "no pair sum for nine free pixels");
                 }
-                values.push(b.displacement_and_stats(1e-3, pm).energy);
+                values.push(b.displacement_and_stats(1e-3).energy);
                 values
             },
             "direction, curvature (pairs of free pixels), update",
@@ -653,21 +675,13 @@ fn stat_values(s: &Stats) -> Vec<f64> {
 
 /// One conjugate-gradient step (`direction`, `curvature`, `update`, and with a CG step `advance`,
 /// from the transform `curvature` kept or afresh) and every number it reports.
-fn conjugate_step(
-    b: &mut dyn ContactBackend,
-    beta: f64,
-    tau: f64,
-    shift: f64,
-    mean: f64,
-    pm: f64,
-    kept: bool,
-) -> Vec<f64> {
-    let (st, sdt) = b.direction(mean, beta, pm);
+fn conjugate_step(b: &mut dyn ContactBackend, beta: f64, tau: f64, shift: f64, mean: f64, kept: bool) -> Vec<f64> {
+    let (st, sdt) = b.direction(mean, beta);
     let shift_t = if shift.is_nan() { 0.0 } else { shift };
     let curvature = b.curvature(shift_t);
     // The pair sum where the backend has one, after the transform (which it leaves in place).
     let direct = b.direct_curvature(shift_t).unwrap_or(f64::NAN);
-    let u = b.update(mean, tau, shift, pm);
+    let u = b.update(mean, tau, shift);
     let l = u.load;
     let mut values = vec![
         st,
@@ -683,7 +697,7 @@ fn conjugate_step(
         l.max_free,
     ];
     if shift.is_finite() {
-        values.extend(stat_values(&b.advance(mean, tau, shift, pm, kept)));
+        values.extend(stat_values(&b.advance(mean, tau, shift, kept)));
     }
     values
 }
@@ -755,157 +769,4 @@ pub(crate) fn reference(grid: Grid, effective_modulus: f64, boundary: Boundary) 
 /// The CPU backend's constructor.
 pub(crate) fn cpu(grid: Grid, effective_modulus: f64, boundary: Boundary) -> Box<dyn ContactBackend> {
     Box::new(CpuBackend::new(grid, effective_modulus, boundary).unwrap())
-}
-
-/// What a [`Spy`] saw of a solve, in call order.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) enum Call {
-    /// `direction`: an iteration starts.
-    Direction,
-    /// `update`, with the plastic load Σ p (p ≥ p_m) of the new p.
-    Update { plastic: f64 },
-    /// The statistics of a new state (`displacement_and_stats`, `stats`, `advance`), with its
-    /// plastic load.
-    Stats { plastic: f64 },
-    /// `undo`.
-    Undo,
-}
-
-/// A backend that does what the one it wraps does and logs the calls that steer a solve; or,
-/// `broken`, one that counts the plastic pixels of the load sums as free: a backend the
-/// conformance test must fail.
-pub(crate) struct Spy {
-    inner: Box<dyn ContactBackend>,
-    calls: Arc<Mutex<Vec<Call>>>,
-    broken: bool,
-}
-
-impl Spy {
-    /// The spy on `inner` and its log.
-    pub(crate) fn new(inner: Box<dyn ContactBackend>) -> (Self, Arc<Mutex<Vec<Call>>>) {
-        let calls = Arc::new(Mutex::new(Vec::new()));
-        let spy = Self {
-            inner,
-            calls: Arc::clone(&calls),
-            broken: false,
-        };
-        (spy, calls)
-    }
-
-    /// `inner` with its load sums broken.
-    pub(crate) fn broken(inner: Box<dyn ContactBackend>) -> Self {
-        Self {
-            broken: true,
-            ..Self::new(inner).0
-        }
-    }
-
-    fn log(&self, call: Call) {
-        self.calls.lock().unwrap().push(call);
-    }
-
-    fn logged(&self, stats: Stats) -> Stats {
-        self.log(Call::Stats {
-            plastic: stats.load.plastic,
-        });
-        stats
-    }
-}
-
-impl ContactBackend for Spy {
-    fn boundary(&self) -> Boundary {
-        self.inner.boundary()
-    }
-    fn self_influence(&self) -> f64 {
-        self.inner.self_influence()
-    }
-    fn apply_influence(&mut self, i: &[f64], o: &mut [f64]) {
-        self.inner.apply_influence(i, o)
-    }
-    fn write_heights(&mut self, f: &mut dyn FnMut(&mut [f64])) {
-        self.inner.write_heights(f)
-    }
-    fn bind_surfaces(&mut self, t: Arc<Surface>, b: Arc<Surface>) {
-        self.inner.bind_surfaces(t, b)
-    }
-    fn compose(&mut self, o: usize) {
-        self.inner.compose(o)
-    }
-    fn write_pressure(&mut self, f: &mut dyn FnMut(&mut [f64])) {
-        self.inner.write_pressure(f)
-    }
-    fn pressure(&mut self) -> &[f64] {
-        self.inner.pressure()
-    }
-    fn contact_map(&mut self) -> &[u64] {
-        self.inner.contact_map()
-    }
-    fn height_stats(&mut self) -> HeightStats {
-        self.inner.height_stats()
-    }
-    fn initial_guess(&mut self, m: f64, pm: f64) -> bool {
-        self.inner.initial_guess(m, pm)
-    }
-    fn load_sums(&mut self, pm: f64) -> LoadSums {
-        let s = self.inner.load_sums(pm);
-        if !self.broken {
-            return s;
-        }
-        LoadSums {
-            free: s.free + s.plastic,
-            plastic: 0.0,
-            ..s
-        }
-    }
-    fn saturate_contact(&mut self, pm: f64) {
-        self.inner.saturate_contact(pm)
-    }
-    fn scaled_load(&mut self, s: f64, pm: f64, sp: bool) -> (f64, f64) {
-        self.inner.scaled_load(s, pm, sp)
-    }
-    fn scale(&mut self, s: f64, pm: f64, sp: bool) {
-        self.inner.scale(s, pm, sp)
-    }
-    fn spread_missing_load(&mut self, t: f64, pm: f64, m: f64) {
-        self.inner.spread_missing_load(t, pm, m)
-    }
-    fn displacement_and_stats(&mut self, r: f64, pm: f64) -> Stats {
-        let stats = self.inner.displacement_and_stats(r, pm);
-        self.logged(stats)
-    }
-    fn stats(&mut self, r: f64, pm: f64) -> Stats {
-        let stats = self.inner.stats(r, pm);
-        self.logged(stats)
-    }
-    fn direction(&mut self, m: f64, b: f64, pm: f64) -> (f64, f64) {
-        self.log(Call::Direction);
-        self.inner.direction(m, b, pm)
-    }
-    fn response_scale(&self) -> f64 {
-        self.inner.response_scale()
-    }
-    fn curvature(&mut self, s: f64) -> f64 {
-        self.inner.curvature(s)
-    }
-    fn direct_curvature(&mut self, s: f64) -> Option<f64> {
-        self.inner.direct_curvature(s)
-    }
-    fn update(&mut self, m: f64, t: f64, s: f64, pm: f64) -> Update {
-        let update = self.inner.update(m, t, s, pm);
-        self.log(Call::Update {
-            plastic: update.load.plastic,
-        });
-        update
-    }
-    fn advance(&mut self, m: f64, t: f64, s: f64, pm: f64, k: bool) -> Stats {
-        let stats = self.inner.advance(m, t, s, pm, k);
-        self.logged(stats)
-    }
-    fn keep_displacement(&mut self) {
-        self.inner.keep_displacement()
-    }
-    fn undo(&mut self) {
-        self.log(Call::Undo);
-        self.inner.undo()
-    }
 }

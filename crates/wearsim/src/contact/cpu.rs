@@ -6,7 +6,9 @@ use rayon::prelude::*;
 
 use std::sync::Arc;
 
-use super::backend::{ContactBackend, HeightStats, LoadSums, Stats, Update, LOAD_CHUNK, SETTLED_CHANGE_FACTOR};
+use super::backend::{
+    ContactBackend, HeightStats, LoadSums, Stats, SurfaceLaw, Update, LOAD_CHUNK, SETTLED_CHANGE_FACTOR,
+};
 use crate::error::Result;
 use crate::fft::zeroed_buffer;
 use crate::grid::Grid;
@@ -38,6 +40,8 @@ pub(crate) struct CpuBackend {
     u_alt: Vec<f64>,
     /// The surfaces of a sliding run, shared with the caller (no copy).
     surfaces: Option<(Arc<Surface>, Arc<Surface>)>,
+    /// The law at the surface ([`ContactBackend::bind_law`]), elastic until one is bound.
+    law: SurfaceLaw,
     /// The contact map, one bit per pixel.
     bits: Vec<u64>,
     stats: Vec<Stats>,
@@ -84,6 +88,7 @@ impl CpuBackend {
             p_old: zeroed_buffer(nx * ny),
             u_alt: zeroed_buffer(nx * ny),
             surfaces: None,
+            law: SurfaceLaw::Elastic,
             bits: vec![0; (nx * ny).div_ceil(64)],
             stats: vec![Stats::default(); nx],
             load_rows: vec![LoadSums::default(); nx],
@@ -132,6 +137,10 @@ impl ContactBackend for CpuBackend {
 
     fn bind_surfaces(&mut self, top: Arc<Surface>, bottom: Arc<Surface>) {
         self.surfaces = Some((top, bottom));
+    }
+
+    fn bind_law(&mut self, law: SurfaceLaw) {
+        self.law = law;
     }
 
     /// [`composite_heights`](crate::surface::composite_heights), with the row partials of
@@ -208,8 +217,8 @@ impl ContactBackend for CpuBackend {
     }
 
     /// One pass over rows for the tests, one to set p (none when p stays as it is).
-    fn initial_guess(&mut self, mean_pressure: f64, pm: f64) -> bool {
-        let n = self.ny;
+    fn initial_guess(&mut self, mean_pressure: f64) -> bool {
+        let (n, pm) = (self.ny, self.law.flow_pressure());
         self.guess_rows
             .par_iter_mut()
             .with_min_len(self.min_len)
@@ -234,7 +243,8 @@ impl ContactBackend for CpuBackend {
         false
     }
 
-    fn load_sums(&mut self, pm: f64) -> LoadSums {
+    fn load_sums(&mut self) -> LoadSums {
+        let law = self.law;
         self.load_chunks
             .par_iter_mut()
             .zip(self.pressure.par_chunks(LOAD_CHUNK))
@@ -242,7 +252,7 @@ impl ContactBackend for CpuBackend {
             .for_each(|(acc, c)| {
                 let mut s = LoadSums::default();
                 for &p in c {
-                    s.add(p, pm);
+                    s.add(p, law);
                 }
                 *acc = s;
             });
@@ -251,7 +261,8 @@ impl ContactBackend for CpuBackend {
             .fold(LoadSums::default(), |a, &b| LoadSums::merge(a, b))
     }
 
-    fn saturate_contact(&mut self, pm: f64) {
+    fn saturate_contact(&mut self) {
+        let pm = self.law.flow_pressure();
         self.pressure
             .par_chunks_mut(self.ny)
             .with_min_len(self.min_len)
@@ -262,7 +273,8 @@ impl ContactBackend for CpuBackend {
             });
     }
 
-    fn scaled_load(&mut self, s: f64, pm: f64, scale_plastic: bool) -> (f64, f64) {
+    fn scaled_load(&mut self, s: f64, scale_plastic: bool) -> (f64, f64) {
+        let pm = self.law.flow_pressure();
         let movable_pixel = |p: f64| p > 0.0 && (scale_plastic || p < pm);
         self.scaled_chunks
             .par_iter_mut()
@@ -288,7 +300,8 @@ impl ContactBackend for CpuBackend {
             .fold((0.0, 0.0), |(a, b), &(f, df)| (a + f, b + df))
     }
 
-    fn scale(&mut self, s: f64, pm: f64, scale_plastic: bool) {
+    fn scale(&mut self, s: f64, scale_plastic: bool) {
+        let pm = self.law.flow_pressure();
         let movable_pixel = |p: f64| p > 0.0 && (scale_plastic || p < pm);
         self.pressure
             .par_chunks_mut(self.ny)
@@ -302,7 +315,8 @@ impl ContactBackend for CpuBackend {
             });
     }
 
-    fn spread_missing_load(&mut self, total: f64, pm: f64, mean: f64) {
+    fn spread_missing_load(&mut self, total: f64, mean: f64) {
+        let pm = self.law.flow_pressure();
         let pressure = &mut self.pressure;
         let carried: f64 = pressure.iter().sum();
         let missing = total - carried;
@@ -333,8 +347,8 @@ impl ContactBackend for CpuBackend {
 
     /// Gathers the statistics row by row as the inverse transform writes u (one pass over the
     /// arrays fewer than computing them after the convolution).
-    fn displacement_and_stats(&mut self, reference: f64, pm: f64) -> Stats {
-        let n = self.ny;
+    fn displacement_and_stats(&mut self, reference: f64) -> Stats {
+        let (n, law) = (self.ny, self.law);
         let (pressure, heights) = (&self.pressure, &self.heights);
         self.influence.apply_with(
             pressure,
@@ -346,7 +360,7 @@ impl ContactBackend for CpuBackend {
                     u,
                     &heights[i * n..(i + 1) * n],
                     reference,
-                    pm,
+                    law,
                 )
             },
             Some(&mut self.stats),
@@ -355,19 +369,19 @@ impl ContactBackend for CpuBackend {
     }
 
     /// The post hook of `displacement_and_stats` as a pass of its own, row by row.
-    fn stats(&mut self, reference: f64, pm: f64) -> Stats {
-        let n = self.ny;
+    fn stats(&mut self, reference: f64) -> Stats {
+        let (n, law) = (self.ny, self.law);
         self.stats
             .par_iter_mut()
             .with_min_len(self.min_len)
             .zip(self.pressure.par_chunks(n))
             .zip(self.u.par_chunks(n).zip(self.heights.par_chunks(n)))
-            .for_each(|((acc, p), (u, h))| *acc = row_stats(p, u, h, reference, pm));
+            .for_each(|((acc, p), (u, h))| *acc = row_stats(p, u, h, reference, law));
         Stats::combine(&self.stats)
     }
 
-    fn direction(&mut self, mean: f64, beta: f64, pm: f64) -> (f64, f64) {
-        let n = self.ny;
+    fn direction(&mut self, mean: f64, beta: f64) -> (f64, f64) {
+        let (n, pm) = (self.ny, self.law.flow_pressure());
         self.sums
             .par_iter_mut()
             .with_min_len(self.min_len)
@@ -425,9 +439,14 @@ impl ContactBackend for CpuBackend {
 
     /// t is zero outside the free pixels, so `t ≠ 0` marks them without reading p (a free pixel
     /// whose t is exactly 0 is left out consistently here and in `update`).
-    fn update(&mut self, mean: f64, tau: f64, shift: f64, pm: f64) -> Update {
+    fn update(&mut self, mean: f64, tau: f64, shift: f64) -> Update {
         let n = self.ny;
-        let step = StepParameters { mean, tau, shift, pm };
+        let step = StepParameters {
+            mean,
+            tau,
+            shift,
+            law: self.law,
+        };
         let mut loads = std::mem::take(&mut self.load_rows);
         let mut totals = std::mem::take(&mut self.row_partials);
         let mut events = std::mem::take(&mut self.sums);
@@ -461,13 +480,13 @@ impl ContactBackend for CpuBackend {
 
     /// r goes into the spare buffer, whose row the post hook turns into the new u = (old u) − τr
     /// while it gathers the statistics; the buffers are then swapped.
-    fn advance(&mut self, mean: f64, tau: f64, shift: f64, pm: f64, kept: bool) -> Stats {
-        let n = self.ny;
+    fn advance(&mut self, mean: f64, tau: f64, shift: f64, kept: bool) -> Stats {
+        let (n, law) = (self.ny, self.law);
         let (pressure, p_old, u, heights) = (&self.pressure, &self.p_old, &self.u, &self.heights);
         let post = |i: usize, row: &mut [f64]| {
             let rows = i * n..(i + 1) * n;
             advance_row(
-                (mean, tau, pm),
+                (mean, tau, law),
                 row,
                 &u[rows.clone()],
                 &pressure[rows.clone()],
@@ -514,10 +533,10 @@ fn shift_free(row: &mut [f64], shift: f64) {
 }
 
 /// The [`Stats`] of one row of g = u − h about `reference`, pixels in order.
-fn row_stats(p: &[f64], u: &[f64], h: &[f64], reference: f64, pm: f64) -> Stats {
+fn row_stats(p: &[f64], u: &[f64], h: &[f64], reference: f64, law: SurfaceLaw) -> Stats {
     let mut s = Stats::default();
     for ((&p, &u), &h) in p.iter().zip(u).zip(h) {
-        s.add(p, u, h, reference, pm);
+        s.add(p, u, h, reference, law);
     }
     s
 }
@@ -528,7 +547,7 @@ struct StepParameters {
     tau: f64,
     /// NaN when no conjugate-gradient step is taken.
     shift: f64,
-    pm: f64,
+    law: SurfaceLaw,
 }
 
 /// The update pass over one row: p in place, its copy `p_old` made pixel by pixel as p is read;
@@ -542,7 +561,8 @@ fn update_row(
     u: &[f64],
     h: &[f64],
 ) -> (LoadSums, f64, [f64; 2]) {
-    let StepParameters { mean, tau, shift, pm } = *step;
+    let StepParameters { mean, tau, shift, law } = *step;
+    let pm = law.flow_pressure();
     let cg_step = shift.is_finite();
     let mut load = LoadSums::default();
     let mut sum_p = 0.0;
@@ -581,7 +601,7 @@ fn update_row(
             }
         }
         sum_p += *p;
-        load.add(*p, pm);
+        load.add(*p, law);
     }
     (load, sum_p, [released, clipped])
 }
@@ -592,7 +612,7 @@ fn update_row(
 /// part in two minima, kept apart from the sums (a minimum is the same in any order).
 #[inline]
 fn advance_row(
-    (mean, tau, pm): (f64, f64, f64),
+    (mean, tau, law): (f64, f64, SurfaceLaw),
     row: &mut [f64],
     u: &[f64],
     p: &[f64],
@@ -609,7 +629,7 @@ fn advance_row(
             min_zero = min_zero.min(g);
             settle_gap = settle_gap.min(g - SETTLED_CHANGE_FACTOR * (tau * r).abs());
         } else {
-            s.add(p, *v, h, mean, pm);
+            s.add(p, *v, h, mean, law);
             s.add_change(p, p - before, g, tau * r);
         }
     }
@@ -645,6 +665,7 @@ mod tests {
         let (n, pm) = (16, 0.05);
         let grid = Grid::square(n, 1.0).unwrap();
         let mut backend = CpuBackend::new(grid, 1.0, Boundary::Periodic).unwrap();
+        backend.bind_law(SurfaceLaw::Saturated { flow_pressure: pm });
         backend.write_heights(&mut |h| {
             for (k, v) in h.iter_mut().enumerate() {
                 *v = 1e-3 * ((k * 7) % 11) as f64;
@@ -671,7 +692,7 @@ mod tests {
             backend.write_pressure(&mut |p| p.copy_from_slice(field));
             // A mean gap of −1 keeps every non-contact pixel out (g − ḡ > 0); plastic pixels
             // are released, so the update changes p.
-            backend.update(-1.0, 0.5, f64::NAN, pm);
+            backend.update(-1.0, 0.5, f64::NAN);
             assert_ne!(bits(backend.pressure()), bits(field), "the update changed nothing");
             backend.undo();
             assert_eq!(bits(backend.pressure()), bits(field));

@@ -7,6 +7,10 @@
 //! pressure confined to the map. Its optimality conditions, with
 //! g = 𝒦p − h and c the Lagrange multiplier of the load (the rigid body's position), are
 //! g + c ≥ 0 where p = 0, g + c = 0 where 0 < p < p_m, g + c ≤ 0 where p = p_m.
+//! The bound p_m is the law at the surface (`backend::SurfaceLaw`: saturated, or elastic where
+//! p_m = ∞), bound to the backend at the set-up of each solve; plasticity in the volume beneath is
+//! not modelled, and would be an outer loop around the solves that rewrites the heights between
+//! them (`contact::backend` says how).
 //!
 //! Algorithm: the constrained conjugate gradient of Polonsky & Keer (1999), extended to the upper
 //! bound as in the bound-constrained CG of Vollebregt (2014): conjugate directions live on the free
@@ -71,12 +75,14 @@ mod conformance;
 mod cpu;
 mod options;
 mod profile;
+#[cfg(test)]
+mod spy;
 
 use std::sync::Arc;
 
 use rayon::prelude::*;
 
-use self::backend::{ContactBackend, LoadSums, Stats, Update};
+use self::backend::{ContactBackend, LoadSums, Stats, SurfaceLaw, Update};
 use self::cpu::CpuBackend;
 pub use self::options::{
     SolveInfo, SolverOptions, Stopping, Termination, DEFAULT_MAX_ITERATIONS, DEFAULT_TOLERANCE, MIN_TOLERANCE,
@@ -206,8 +212,9 @@ const WARM_LOAD_ROUNDOFF: f64 = 1e-12;
 
 /// The constants of one solve and the state carried from one iteration to the next.
 struct SolveState {
-    /// Flow pressure p_m.
-    pm: f64,
+    /// The law at the surface, bound to the backend for this solve: its flow pressure p_m enters
+    /// the load balance's scalars here, and every pass there.
+    law: SurfaceLaw,
     /// Total load Σp = Nx Ny F_N/(Lx Ly).
     total: f64,
     /// Residual scale: std(h), or P·L/E* for a flat surface.
@@ -456,7 +463,8 @@ impl ContactSolver {
     pub fn profile_passes(&mut self, flow_pressure: f64, repeats: usize) -> Vec<PassTiming> {
         // Its timed `advance` steps move u.
         self.displacement_current = false;
-        profile::passes(&mut *self.backend, self.grid.ny(), flow_pressure, repeats)
+        self.backend.bind_law(SurfaceLaw::of_flow_pressure(flow_pressure));
+        profile::passes(&mut *self.backend, self.grid.ny(), repeats)
     }
 
     /// [`ContactSolver::solve`] on the heights set by [`ContactSolver::compose`] from the
@@ -490,7 +498,7 @@ impl ContactSolver {
                 // Confirm with an exactly balanced load and a freshly computed displacement.
                 self.balance_load(&state, mean, Some(state.stats.load));
                 state.reference = mean;
-                state.stats = self.backend.displacement_and_stats(state.reference, state.pm);
+                state.stats = self.backend.displacement_and_stats(state.reference);
                 state.convolutions += 1;
                 state.fresh = true;
                 continue;
@@ -530,7 +538,9 @@ impl ContactSolver {
                 message: format!("height at ({}, {}) is {}", k / n, k % n, h),
             });
         }
-        let pm = flow_pressure;
+        // The law at the surface, bound once for the passes of this solve.
+        let law = SurfaceLaw::of_flow_pressure(flow_pressure);
+        self.backend.bind_law(law);
         let total = mean_pressure * nn as f64;
         let shift_mean = heights.sum / nn as f64;
         let h_std = (heights.sum_sq / nn as f64 - shift_mean * shift_mean).max(0.0).sqrt();
@@ -540,9 +550,9 @@ impl ContactSolver {
         } else {
             mean_pressure * self.grid.length_x() / self.effective_modulus
         };
-        let kept = self.backend.initial_guess(mean_pressure, pm);
+        let kept = self.backend.initial_guess(mean_pressure);
         let mut state = SolveState {
-            pm,
+            law,
             total,
             scale,
             h_std,
@@ -560,16 +570,16 @@ impl ContactSolver {
         // and these sums, in another order, differ in the last bits) is taken as it is. If it is
         // also the p of the last solve's final 𝒦p, u is that 𝒦p bit for bit (only the heights
         // moved): its statistics need no convolution, and equal a fresh one's.
-        let sums = self.backend.load_sums(pm);
+        let sums = self.backend.load_sums();
         let slack = (sums.free + sums.plastic - total).abs();
         let balanced = slack <= WARM_LOAD_ROUNDOFF * sums.free;
         if !balanced {
             self.balance_load(&state, f64::NAN, Some(sums));
         }
         if kept && balanced && self.displacement_current {
-            state.stats = self.backend.stats(state.reference, pm);
+            state.stats = self.backend.stats(state.reference);
         } else {
-            state.stats = self.backend.displacement_and_stats(state.reference, pm);
+            state.stats = self.backend.displacement_and_stats(state.reference);
             state.convolutions += 1;
         }
         Ok(state)
@@ -579,7 +589,7 @@ impl ContactSolver {
     /// (clipped to the bounds, releasing bound pixels whose gap points inwards), shortened until the
     /// objective descends when it left the CG line.
     fn iterate(&mut self, state: &mut SolveState, mean: f64) {
-        let (pm, total) = (state.pm, state.total);
+        let total = state.total;
         state.iterations += 1;
 
         // Conjugate direction on the free pixels: t = (g − ḡ) + β t.
@@ -590,7 +600,7 @@ impl ContactSolver {
             g_norm / state.g_norm_old
         };
         state.g_norm_old = g_norm;
-        let (sum_t, sum_dt) = self.backend.direction(mean, beta, pm);
+        let (sum_t, sum_dt) = self.backend.direction(mean, beta);
         let n_free = state.stats.n_free;
         let shift = if n_free > 0.0 { sum_t / n_free } else { 0.0 };
 
@@ -618,9 +628,7 @@ impl ContactSolver {
         let slack = 1e-13 * (energy_before.abs() + total * state.h_std.max(state.h_max.abs()));
         let (mut tau, mut intact, mut backtracks) = (tau, kept, 0);
         loop {
-            let update = self
-                .backend
-                .update(mean, tau, if cg_step { shift } else { f64::NAN }, pm);
+            let update = self.backend.update(mean, tau, if cg_step { shift } else { f64::NAN });
             let drift = (update.total - total).abs() > 1e-12 * total;
             if !(update.clipped || update.released || drift || !cg_step) {
                 self.advance_on_line(state, mean, (tau, shift), intact);
@@ -666,14 +674,13 @@ impl ContactSolver {
         step: (f64, f64),
         carried: Option<bool>,
     ) -> f64 {
-        let (pm, total) = (state.pm, state.total);
         state.moves = None;
-        if self.scale_to_load(total, pm, Some(update.load)) {
+        if self.scale_to_load(state, Some(update.load)) {
             self.backend.keep_displacement();
         } else {
             state.convolutions += self.spread_stepped_load(state, mean, step, carried);
         }
-        state.stats = self.backend.displacement_and_stats(mean, pm);
+        state.stats = self.backend.displacement_and_stats(mean);
         state.convolutions += 1;
         state.fresh = true;
         state.stats.energy
@@ -720,7 +727,7 @@ impl ContactSolver {
     /// and each pixel's move (for the settled-map stop). 𝒦t_f is completed from the transform the
     /// curvature left when `kept`, else (after a backtrack, whose 𝒦p replaced it) afresh.
     fn advance_on_line(&mut self, state: &mut SolveState, mean: f64, (tau, shift): (f64, f64), kept: bool) {
-        state.stats = self.backend.advance(mean, tau, shift, state.pm, kept);
+        state.stats = self.backend.advance(mean, tau, shift, kept);
         state.convolutions += usize::from(!kept);
         state.fresh = false;
         state.restart = false;
@@ -747,7 +754,7 @@ impl ContactSolver {
     ) -> usize {
         match carried {
             Some(kept) => {
-                self.backend.advance(mean, tau, shift, state.pm, kept);
+                self.backend.advance(mean, tau, shift, kept);
                 self.balance_load(state, mean, None);
                 usize::from(!kept)
             }
@@ -764,24 +771,24 @@ impl ContactSolver {
     /// most, in proportion to their penetration −(g − ḡ) (all non-contact pixels evenly when `mean`
     /// is NaN or none penetrates), then the load is balanced again.
     fn balance_load(&mut self, state: &SolveState, mean: f64, mut sums: Option<LoadSums>) {
-        let (total, pm) = (state.total, state.pm);
         for _ in 0..4 {
-            if self.scale_to_load(total, pm, sums.take()) {
+            if self.scale_to_load(state, sums.take()) {
                 return;
             }
-            self.backend.spread_missing_load(total, pm, mean);
+            self.backend.spread_missing_load(state.total, mean);
         }
-        self.scale_to_load(total, pm, None);
+        self.scale_to_load(state, None);
     }
 
-    /// Restores Σp = `total` by scaling the free pixels, pᵢ ← min(p_m, s·pᵢ) for 0 < pᵢ < p_m, which
+    /// Restores Σp = the state's total by scaling the free pixels, pᵢ ← min(p_m, s·pᵢ) for 0 < pᵢ < p_m, which
     /// keeps exact zeros and leaves plastic pixels at p_m (scaling them too would free the whole
     /// plastic zone at once). s solves the monotone, concave, piecewise-linear equation by Newton's
     /// method from below, which ends in finitely many steps. Where the plastic pixels alone exceed
     /// the load, every contact pixel is scaled; where even p_m on every contact pixel cannot carry
     /// it, the contact pixels are set to p_m and `false` is returned: the contact must grow.
-    fn scale_to_load(&mut self, total: f64, pm: f64, sums: Option<LoadSums>) -> bool {
-        let sums = sums.unwrap_or_else(|| self.backend.load_sums(pm));
+    fn scale_to_load(&mut self, state: &SolveState, sums: Option<LoadSums>) -> bool {
+        let (total, pm) = (state.total, state.law.flow_pressure());
+        let sums = sums.unwrap_or_else(|| self.backend.load_sums());
         let (free_sum, plastic_sum, n_contact) = (sums.free, sums.plastic, sums.n_contact);
         if free_sum + plastic_sum == total {
             return true;
@@ -794,7 +801,7 @@ impl ContactSolver {
             (plastic_sum, free_sum)
         };
         if movable <= 0.0 || pm * n_contact as f64 <= total {
-            self.backend.saturate_contact(pm);
+            self.backend.saturate_contact();
             return false;
         }
         let target = total - fixed;
@@ -803,14 +810,14 @@ impl ContactSolver {
         let max_movable = if scale_plastic { pm } else { sums.max_free };
         let iterations = if s * max_movable < pm { 0 } else { 100 };
         for _ in 0..iterations {
-            let (f, df) = self.backend.scaled_load(s, pm, scale_plastic);
+            let (f, df) = self.backend.scaled_load(s, scale_plastic);
             let err = target - f;
             if err.abs() <= 1e-15 * total || df <= 0.0 {
                 break;
             }
             s += err / df;
         }
-        self.backend.scale(s, pm, scale_plastic);
+        self.backend.scale(s, scale_plastic);
         true
     }
 }
@@ -829,7 +836,8 @@ fn converged(info: SolveInfo) -> Result<SolveInfo> {
 
 #[cfg(test)]
 mod tests {
-    use super::conformance::{agree_fields, backend_passes, uniform, Call, MakeBackend, Spy, GRIDS};
+    use super::conformance::{agree_fields, backend_passes, uniform, MakeBackend, GRIDS};
+    use super::spy::{Call, Spy};
     use super::*;
 
     #[test]

@@ -84,18 +84,17 @@ fn curvatures(b: &mut dyn ContactBackend, shift: f64, repeats: usize) -> (f64, f
 }
 
 /// The pass profile of a solver's backend (`ContactSolver::profile_passes`), whose rows hold
-/// `row` pixels.
-pub(super) fn passes(b: &mut dyn ContactBackend, row: usize, flow_pressure: f64, repeats: usize) -> Vec<PassTiming> {
-    let pm = flow_pressure;
+/// `row` pixels, under the law bound to it.
+pub(super) fn passes(b: &mut dyn ContactBackend, row: usize, repeats: usize) -> Vec<PassTiming> {
     let (copy, fft) = reference_passes(b, row, repeats);
-    let stats = b.displacement_and_stats(0.0, pm);
+    let stats = b.displacement_and_stats(0.0);
     let mean = stats.mean_gap(0.0);
     let displacement = median_seconds(repeats, || {
-        std::hint::black_box(b.displacement_and_stats(mean, pm));
+        std::hint::black_box(b.displacement_and_stats(mean));
     });
-    let (sum_t, sum_dt) = b.direction(mean, 0.0, pm);
+    let (sum_t, sum_dt) = b.direction(mean, 0.0);
     let direction = median_seconds(repeats, || {
-        std::hint::black_box(b.direction(mean, 0.0, pm));
+        std::hint::black_box(b.direction(mean, 0.0));
     });
     let shift = if stats.n_free > 0.0 { sum_t / stats.n_free } else { 0.0 };
     let (curvature, form, direct) = curvatures(b, shift, repeats);
@@ -110,7 +109,7 @@ pub(super) fn passes(b: &mut dyn ContactBackend, row: usize, flow_pressure: f64,
         (0..=repeats.max(1))
             .map(|_| {
                 let t = Instant::now();
-                std::hint::black_box(b.update(mean, tau, shift, pm));
+                std::hint::black_box(b.update(mean, tau, shift));
                 let seconds = t.elapsed().as_secs_f64();
                 b.keep_displacement();
                 b.undo();
@@ -126,16 +125,16 @@ pub(super) fn passes(b: &mut dyn ContactBackend, row: usize, flow_pressure: f64,
             .map(|_| {
                 b.curvature(shift);
                 let t = Instant::now();
-                std::hint::black_box(b.advance(mean, tau, shift, pm, true));
+                std::hint::black_box(b.advance(mean, tau, shift, true));
                 t.elapsed().as_secs_f64()
             })
             .skip(1)
             .collect(),
     );
     let load_sums = median_seconds(repeats, || {
-        std::hint::black_box(b.load_sums(pm));
+        std::hint::black_box(b.load_sums());
     });
-    let scale = median_seconds(repeats, || b.scale(1.0, pm, false));
+    let scale = median_seconds(repeats, || b.scale(1.0, false));
     let contact_map = median_seconds(repeats, || {
         std::hint::black_box(b.contact_map());
     });
