@@ -568,10 +568,11 @@ mod tests {
             .map(|(k, h)| h + if k / grid.ny() < grid.nx() / 2 { 0.0 } else { 0.05 })
             .collect();
         let top = Surface::new("top", grid, stepped).unwrap();
-        let arrays = RunConfig {
-            surfaces: SurfaceSource::Arrays { grid, length: 1.0 },
-            ..config.clone()
-        };
+        let arrays = config
+            .to_builder()
+            .surfaces(SurfaceSource::Arrays { grid, length: 1.0 })
+            .build()
+            .unwrap();
         let run = SlidingRun::with_surfaces(&arrays, SurfacePair::of_arrays(top, bottom.clone())).unwrap();
         assert!(
             run.warnings().iter().any(|w| w.starts_with("top is not periodic")),

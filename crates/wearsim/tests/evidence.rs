@@ -119,8 +119,7 @@ fn the_cheapest_job_solved_to_the_tolerance_has_the_settled_contact_maps() {
     // to the tolerance gives the committed steps (junctions, lineages, particles, volumes).
     let study = study();
     let (job, committed) = cheapest(&study);
-    let mut tight = job.run.clone();
-    tight.stopping = Stopping::Tolerance;
+    let tight = job.run.to_builder().stopping(Stopping::Tolerance).build().unwrap();
     let (run_settled, run_tight) = (
         SlidingRun::prepare(&job.run).unwrap(),
         SlidingRun::prepare(&tight).unwrap(),

@@ -84,11 +84,11 @@ const RUN: &str = "[surface]\ngrid = 32\nlambda_lower = 0.125\nlambda_upper = 0.
                    [material]\nyoungs_modulus = 1.0\npoisson_ratio = 0.3\nshear_strength = 0.01\n\
                    fracture_energies = [0.25e-6, 1e-6]\n[sliding]\nloads = [2e-3, 4e-3]\n";
 
+/// The run of `RUN` with `rule`, derived through the builder (a built run is not changed).
 fn config(rule: ParticleRuleKind) -> RunConfig {
-    let mut config = RunConfig::from_toml(RUN, Path::new(".")).unwrap();
-    let sliding = config.sliding.take().unwrap();
-    config.sliding = Some(sliding.with_particle_rule(rule));
-    config
+    let config = RunConfig::from_toml(RUN, Path::new(".")).unwrap();
+    let sliding = config.sliding.clone().unwrap().with_particle_rule(rule);
+    config.to_builder().sliding(sliding).build().unwrap()
 }
 
 #[test]
@@ -191,7 +191,10 @@ fn resumes_as_if_uninterrupted(rule: ParticleRuleKind) {
 #[test]
 fn a_run_file_names_the_rule_and_an_unknown_name_is_refused_with_the_choices() {
     let named = RunConfig::from_toml(&format!("{RUN}particle_rule = \"overlap\"\n"), Path::new(".")).unwrap();
-    assert_eq!(named.sliding.unwrap().particle_rule, ParticleRuleKind::default().into());
+    assert_eq!(
+        named.sliding.as_ref().unwrap().particle_rule,
+        ParticleRuleKind::default().into()
+    );
     let e = RunConfig::from_toml(&format!("{RUN}particle_rule = \"sometimes\"\n"), Path::new("."))
         .unwrap_err()
         .to_string();
@@ -208,7 +211,7 @@ fn a_run_file_gives_a_rule_its_parameters_in_a_table_or_in_its_name() {
         &format!("{RUN}particle_rule = \"interacting(reach=2)\"\n"),
         Path::new("."),
     );
-    assert_eq!(short.unwrap().sliding.unwrap().particle_rule, rule);
+    assert_eq!(short.unwrap().sliding.as_ref().unwrap().particle_rule, rule);
     let e = RunConfig::from_toml(
         &format!("{RUN}\n[sliding.particle_rule]\nname = \"interacting\"\nreach = \"far\"\n"),
         Path::new("."),
@@ -234,9 +237,9 @@ fn the_interacting_rule_is_the_papers_where_no_junctions_join() {
     // d* well under a pixel (every neighbour joins) and of 7 px (junctions of a few pixels: none do).
     let run = RUN.replace("[0.25e-6, 1e-6]", "[0.25e-6, 2.5e-5]");
     let config = |rule: ParticleRuleKind| {
-        let mut config = RunConfig::from_toml(&run, Path::new(".")).unwrap();
-        config.sliding = Some(config.sliding.take().unwrap().with_particle_rule(rule));
-        config
+        let config = RunConfig::from_toml(&run, Path::new(".")).unwrap();
+        let sliding = config.sliding.clone().unwrap().with_particle_rule(rule);
+        config.to_builder().sliding(sliding).build().unwrap()
     };
     let (paper, interacting) = (config(ParticleRuleKind::default()), config(INTERACTING));
     let paper = SlidingRun::prepare(&paper).unwrap().run(|_| {}).unwrap();

@@ -89,7 +89,7 @@ fn one_load(args: &Args) -> Result<wearsim::config::RunConfig> {
             folder.display()
         );
     }
-    let mut config = load_run(run)?;
+    let config = load_run(run)?;
     // Never over an input or a file another command (or the user) made, whatever the spelling.
     wearsim::io::refuse_foreign_file(
         out,
@@ -124,8 +124,12 @@ fn one_load(args: &Args) -> Result<wearsim::config::RunConfig> {
             "invalid `--delay {delay_ms}`: a GIF frame lasts 10 ms to 655350 ms (it is stored in hundredths of a second)"
         );
     }
-    config.sliding = Some(sliding);
-    Ok(config)
+    // The run of the one load, derived through the builder, which checks it again.
+    config
+        .to_builder()
+        .sliding(sliding)
+        .build()
+        .with_context(|| format!("run file {}", run.display()))
 }
 
 /// How the grid maps to a frame: pixels of the grid per frame pixel, frame pixels per grid pixel.

@@ -33,11 +33,31 @@ use raw::{one_line, RawRun};
 use source::{lateral_scale, surface_source};
 
 /// A validated run: read from a run file ([`RunConfig::from_path`]) or built in memory
-/// ([`RunConfig::builder`]), never assembled field by field outside the library, so that every run
-/// passes the same checks.
+/// ([`RunConfig::builder`]), never assembled field by field, so that every run passes the same
+/// checks; and never changed once built, so that it stays a run that passed them. Its settings are
+/// read through [`RunSettings`], to which it dereferences (`config.material`, `config.sliding`);
+/// there is no mutable access. A run that differs in a few settings is derived through the builder
+/// and validated again: `config.to_builder().sliding(schedule).build()?`.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[serde(transparent)]
+pub struct RunConfig {
+    settings: RunSettings,
+}
+
+impl std::ops::Deref for RunConfig {
+    type Target = RunSettings;
+
+    fn deref(&self) -> &RunSettings {
+        &self.settings
+    }
+}
+
+/// The settings of a validated [`RunConfig`], read through it. `#[non_exhaustive]`: only the
+/// library makes one, inside a `RunConfig` made by [`RunBuilder::build`]; a copy taken out of it
+/// (`(*config).clone()`) can be changed but never becomes a run again except through the builder.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 #[non_exhaustive]
-pub struct RunConfig {
+pub struct RunSettings {
     pub units: Units,
     pub surfaces: SurfaceSource,
     pub material: Material,
@@ -183,7 +203,7 @@ impl RunBuilder {
                 crate::check::load("loads", load, area, self.material.flow_pressure())?;
             }
         }
-        Ok(RunConfig {
+        let settings = RunSettings {
             units: self.units,
             surfaces: self.surfaces,
             material: self.material,
@@ -198,7 +218,8 @@ impl RunBuilder {
             estimate_samples: self.estimate_samples,
             estimate_constants,
             conversions: self.conversions,
-        })
+        };
+        Ok(RunConfig { settings })
     }
 }
 
@@ -321,7 +342,7 @@ impl RunConfig {
     /// This run as a builder, to make another that differs in a few settings (validated again by
     /// [`RunBuilder::build`]).
     pub fn to_builder(&self) -> RunBuilder {
-        let RunConfig {
+        let RunSettings {
             units,
             surfaces,
             material,
@@ -336,7 +357,7 @@ impl RunConfig {
             estimate_samples,
             estimate_constants,
             conversions,
-        } = self.clone();
+        } = self.settings.clone();
         RunBuilder {
             units,
             surfaces,

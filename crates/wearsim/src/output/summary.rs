@@ -38,7 +38,7 @@ pub struct SlidingInputs<'a> {
     pub device: Device,
     pub sliding: &'a SlidingConfig,
     /// The run file's values given in another form than the model's inputs, each with its
-    /// conversion ([`RunConfig::conversions`]).
+    /// conversion ([`RunSettings::conversions`](crate::config::RunSettings::conversions)).
     pub conversions: &'a [String],
 }
 
