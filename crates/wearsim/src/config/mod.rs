@@ -10,7 +10,6 @@ pub use record::InputRecord;
 pub use source::{SurfaceFiles, SurfacePair, SurfaceSource};
 
 use std::path::Path;
-use std::sync::Arc;
 
 use crate::check::connectivity as check_connectivity;
 use crate::contact::{Device, SolverOptions, Stopping, SLIDING_STOPPING};
@@ -25,12 +24,14 @@ use crate::model::WearModel;
 use crate::sliding::{
     SlidingConfig, SlidingSetup, DEFAULT_DISTANCE, DEFAULT_RUNNING_IN, DEFAULT_STEP, DEFAULT_STEP_RUNNING_IN,
 };
-use crate::surface::{pair_seeds, Generation, SpectrumParams, Surface};
-use crate::topography::{metres_per, FileSurface, MeasuredPsd, Preprocess, Window};
+use crate::surface::{Generation, Surface};
+use crate::topography::{metres_per, FileSurface, Preprocess};
 use crate::wear::ParticleRuleSpec;
 
 use raw::{one_line, RawRun};
-use source::{lateral_scale, surface_source};
+use source::{
+    check_pair_memory, file_pair, file_surface_of, generated_pair, lateral_scale, spectrum_pair, surface_source,
+};
 
 /// A validated run: read from a run file ([`RunConfig::from_path`]) or built in memory
 /// ([`RunConfig::builder`]), never assembled field by field, so that every run passes the same
@@ -604,33 +605,6 @@ impl RunConfig {
     }
 }
 
-/// How the surface files of `surfaces` are read in a run of `units` (units and preparation); an
-/// error for surfaces not read from files.
-fn file_surface_of(surfaces: &SurfaceSource, units: Units) -> Result<FileSurface> {
-    let SurfaceSource::Files {
-        length,
-        length_y,
-        height_unit,
-        lateral_unit,
-        preprocess,
-        ..
-    } = surfaces
-    else {
-        return Err(Error::run_file("[surface] the surfaces are not read from files"));
-    };
-    let height_scale = match (units, height_unit) {
-        (Units::Si, Some(u)) => metres_per("height_unit", u)?,
-        _ => 1.0,
-    };
-    Ok(FileSurface {
-        height_scale,
-        lateral_scale: lateral_scale(units, lateral_unit, height_unit)?,
-        length_x: Some(*length),
-        length_y: *length_y,
-        preprocess: *preprocess,
-    })
-}
-
 /// The unit of a quantity the conversion notes name, in a run of `units` (as the outputs declare
 /// it).
 fn unit_of(units: Units, quantity: &str) -> &'static str {
@@ -805,101 +779,6 @@ fn apparent_area(surfaces: &SurfaceSource, units: Units) -> Result<f64> {
              Ly: give [surface] `length = [Lx, Ly]`, or the loads F_N as `loads`",
         )),
     }
-}
-
-/// Refuses a surface pair on `grid` that does not fit in the memory this process may use.
-fn check_pair_memory(grid: Grid) -> Result<()> {
-    crate::check::memory(
-        "generating the surface pair",
-        grid.nx(),
-        grid.ny(),
-        crate::check::SURFACE_ARRAYS,
-    )
-}
-
-/// A pair of self-affine surfaces generated with `spectrum` on `grid`, seeds derived from `seed`.
-fn generated_pair(grid: Grid, spectrum: &SpectrumParams, seed: u64) -> Result<SurfacePair> {
-    check_pair_memory(grid)?;
-    let (top_seed, bottom_seed) = pair_seeds(seed);
-    // One after the other (each FFT is parallel inside): the peak memory is then the same whatever
-    // the threads and the load ([`crate::check::SURFACE_ARRAYS`]); at once, it depended on whether a
-    // second worker woke in time.
-    let top = Surface::generate(grid, spectrum, top_seed)?;
-    let bottom = Surface::generate(grid, spectrum, bottom_seed)?;
-    Ok(SurfacePair {
-        top: Arc::new(top),
-        bottom: Arc::new(bottom),
-        notes: Vec::new(),
-        warnings: Vec::new(),
-    })
-}
-
-/// A pair of periodic surfaces on `grid` carrying the measured PSD of `map` (read as `how` says),
-/// with a note on what they carry of it. The map's periodicity warning is left out: the surfaces
-/// made of it are periodic.
-fn spectrum_pair(map: &Path, how: &FileSurface, grid: Grid, window: Option<Window>, seed: u64) -> Result<SurfacePair> {
-    let loaded = crate::topography::load(map, how)?;
-    let name = map.display().to_string();
-    if loaded.flat {
-        return Err(crate::topography::flat_map(
-            &name,
-            how.preprocess.detrend,
-            loaded.surface.rms_height(),
-        ));
-    }
-    let psd = MeasuredPsd::of_map(&loaded.surface, window)?;
-    let window = psd.window();
-    let (top, bottom) = psd.generate_pair(grid, seed)?;
-    let mut notes = loaded.notes;
-    notes.push(format!(
-        "{name}: the surfaces carry its measured PSD ({} window, {} × {} modes) on a {} × {} grid of box \
-         {:e} × {:e}: h_rms = {:.4e} (the map's: {:.4e})",
-        window.name(),
-        psd.grid().nx(),
-        psd.grid().ny(),
-        grid.nx(),
-        grid.ny(),
-        grid.length_x(),
-        grid.length_y(),
-        psd.carried_rms(&grid),
-        psd.rms_height()
-    ));
-    notes.extend(psd.notes(&grid, &name));
-    Ok(SurfacePair {
-        top: Arc::new(top),
-        bottom: Arc::new(bottom),
-        notes,
-        warnings: Vec::new(),
-    })
-}
-
-/// The surfaces of files `top` and `bottom`, read as `how` says: an error when their grids differ.
-fn file_pair(top: &Path, bottom: &Path, how: &FileSurface) -> Result<SurfacePair> {
-    let t = crate::topography::load(top, how)?;
-    let b = crate::topography::load(bottom, how)?;
-    if t.surface.grid() != b.surface.grid() {
-        let (tg, bg) = (t.surface.grid(), b.surface.grid());
-        return Err(Error::InvalidSurface {
-            name: bottom.display().to_string(),
-            message: format!(
-                "its grid, {} × {} pixels of {:e}, differs from the top surface's, {} × {} pixels of {:e}",
-                bg.nx(),
-                bg.ny(),
-                bg.pixel_size(),
-                tg.nx(),
-                tg.ny(),
-                tg.pixel_size()
-            ),
-        });
-    }
-    let notes = t.notes.into_iter().chain(b.notes).collect();
-    let warnings = t.warnings.into_iter().chain(b.warnings).collect();
-    Ok(SurfacePair {
-        top: Arc::new(t.surface),
-        bottom: Arc::new(b.surface),
-        notes,
-        warnings,
-    })
 }
 
 impl<'a> SlidingSetup<'a> {

@@ -2,12 +2,13 @@
 //! resolved from the `[surface]` table of a run file.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use crate::check::positive;
 use crate::error::{Error, Result};
 use crate::grid::Grid;
-use crate::surface::{SpectrumParams, Surface};
-use crate::topography::{metres_per, Preprocess, Window};
+use crate::surface::{pair_seeds, SpectrumParams, Surface};
+use crate::topography::{metres_per, FileSurface, MeasuredPsd, Preprocess, Window};
 
 use super::raw::{PerSide, RawSurface, Units};
 
@@ -638,5 +639,133 @@ fn spectrum_box(
                  is `grid` pixels of the map's size, which needs the map at hand",
             ))
         }
+    })
+}
+
+/// How the surface files of `surfaces` are read in a run of `units` (units and preparation); an
+/// error for surfaces not read from files.
+pub(super) fn file_surface_of(surfaces: &SurfaceSource, units: Units) -> Result<FileSurface> {
+    let SurfaceSource::Files {
+        length,
+        length_y,
+        height_unit,
+        lateral_unit,
+        preprocess,
+        ..
+    } = surfaces
+    else {
+        return Err(Error::run_file("[surface] the surfaces are not read from files"));
+    };
+    let height_scale = match (units, height_unit) {
+        (Units::Si, Some(u)) => metres_per("height_unit", u)?,
+        _ => 1.0,
+    };
+    Ok(FileSurface {
+        height_scale,
+        lateral_scale: lateral_scale(units, lateral_unit, height_unit)?,
+        length_x: Some(*length),
+        length_y: *length_y,
+        preprocess: *preprocess,
+    })
+}
+
+/// Refuses a surface pair on `grid` that does not fit in the memory this process may use.
+pub(super) fn check_pair_memory(grid: Grid) -> Result<()> {
+    crate::check::memory(
+        "generating the surface pair",
+        grid.nx(),
+        grid.ny(),
+        crate::check::SURFACE_ARRAYS,
+    )
+}
+
+/// A pair of self-affine surfaces generated with `spectrum` on `grid`, seeds derived from `seed`.
+pub(super) fn generated_pair(grid: Grid, spectrum: &SpectrumParams, seed: u64) -> Result<SurfacePair> {
+    check_pair_memory(grid)?;
+    let (top_seed, bottom_seed) = pair_seeds(seed);
+    // One after the other (each FFT is parallel inside): the peak memory is then the same whatever
+    // the threads and the load ([`crate::check::SURFACE_ARRAYS`]); at once, it depended on whether a
+    // second worker woke in time.
+    let top = Surface::generate(grid, spectrum, top_seed)?;
+    let bottom = Surface::generate(grid, spectrum, bottom_seed)?;
+    Ok(SurfacePair {
+        top: Arc::new(top),
+        bottom: Arc::new(bottom),
+        notes: Vec::new(),
+        warnings: Vec::new(),
+    })
+}
+
+/// A pair of periodic surfaces on `grid` carrying the measured PSD of `map` (read as `how` says),
+/// with a note on what they carry of it. The map's periodicity warning is left out: the surfaces
+/// made of it are periodic.
+pub(super) fn spectrum_pair(
+    map: &Path,
+    how: &FileSurface,
+    grid: Grid,
+    window: Option<Window>,
+    seed: u64,
+) -> Result<SurfacePair> {
+    let loaded = crate::topography::load(map, how)?;
+    let name = map.display().to_string();
+    if loaded.flat {
+        return Err(crate::topography::flat_map(
+            &name,
+            how.preprocess.detrend,
+            loaded.surface.rms_height(),
+        ));
+    }
+    let psd = MeasuredPsd::of_map(&loaded.surface, window)?;
+    let window = psd.window();
+    let (top, bottom) = psd.generate_pair(grid, seed)?;
+    let mut notes = loaded.notes;
+    notes.push(format!(
+        "{name}: the surfaces carry its measured PSD ({} window, {} × {} modes) on a {} × {} grid of box \
+         {:e} × {:e}: h_rms = {:.4e} (the map's: {:.4e})",
+        window.name(),
+        psd.grid().nx(),
+        psd.grid().ny(),
+        grid.nx(),
+        grid.ny(),
+        grid.length_x(),
+        grid.length_y(),
+        psd.carried_rms(&grid),
+        psd.rms_height()
+    ));
+    notes.extend(psd.notes(&grid, &name));
+    Ok(SurfacePair {
+        top: Arc::new(top),
+        bottom: Arc::new(bottom),
+        notes,
+        warnings: Vec::new(),
+    })
+}
+
+/// The surfaces of files `top` and `bottom`, read as `how` says: an error when their grids differ.
+pub(super) fn file_pair(top: &Path, bottom: &Path, how: &FileSurface) -> Result<SurfacePair> {
+    let t = crate::topography::load(top, how)?;
+    let b = crate::topography::load(bottom, how)?;
+    if t.surface.grid() != b.surface.grid() {
+        let (tg, bg) = (t.surface.grid(), b.surface.grid());
+        return Err(Error::InvalidSurface {
+            name: bottom.display().to_string(),
+            message: format!(
+                "its grid, {} × {} pixels of {:e}, differs from the top surface's, {} × {} pixels of {:e}",
+                bg.nx(),
+                bg.ny(),
+                bg.pixel_size(),
+                tg.nx(),
+                tg.ny(),
+                tg.pixel_size()
+            ),
+        });
+    }
+    let notes = t.notes.into_iter().chain(b.notes).collect();
+    let warnings = t.warnings.into_iter().chain(b.warnings).collect();
+    Ok(SurfacePair {
+        top: Arc::new(t.surface),
+        bottom: Arc::new(b.surface),
+        notes,
+        warnings,
     })
 }
