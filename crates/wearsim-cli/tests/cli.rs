@@ -433,6 +433,8 @@ fn a_slides_summary_has_the_specific_wear_rate_and_its_folder_is_plotted() {
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["units_of_results"]["specific_wear_rate"], "1/E");
+    // It says which model made it, as an estimate's summary does.
+    assert_eq!(summary["model"], "sliding");
     let results = summary["results"].as_array().unwrap();
     assert!(results.iter().any(|r| r["wear_rate"].is_number()), "{results:?}");
     for r in results {

@@ -157,7 +157,9 @@ pub fn sliding_summary(
             })
         })
         .collect();
-    let mut summary = run_header(inputs);
+    // Which model made it, as an estimate's summary says too.
+    let mut summary = fields(json!({"model": WearModel::Sliding.name()}));
+    summary.extend(run_header(inputs));
     summary.extend(fields(json!({
         "solver": {"tolerance": inputs.solver.tolerance(), "stopping": inputs.solver.stopping().name(), "residual_definition": RESIDUAL_DEFINITION, "per_load": solver},
         "steps_per_load": steps_per_load,
