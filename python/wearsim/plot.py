@@ -462,14 +462,14 @@ def study_figures(
     folder.mkdir(parents=True, exist_ok=True)
     tidy, _ = study.collect(out)
     _, markdown = study.findings(tidy)
-    (folder / "findings.md").write_text(markdown, encoding="utf-8")
-    (folder / "findings_units.csv").write_text(study.findings_units_csv(tidy), encoding="utf-8")
+    (folder / "findings.md").write_text(markdown, encoding="utf-8", newline="\n")
+    (folder / "findings_units.csv").write_text(study.findings_units_csv(tidy), encoding="utf-8", newline="\n")
     written = [folder / "findings.md", folder / "findings_units.csv"]
     for data in study_figure_data(out, job):
         fig = draw(data)
         path = folder / f"{data['name']}.png"
         fig.savefig(path, dpi=110, bbox_inches="tight")
         plt.close(fig)
-        (folder / f"{data['name']}.csv").write_text(data["csv"])
+        (folder / f"{data['name']}.csv").write_text(data["csv"], encoding="utf-8", newline="\n")
         written += [path, folder / f"{data['name']}.csv"]
     return written

@@ -246,9 +246,29 @@ def findings(tidy: pd.DataFrame) -> Tuple[pd.DataFrame, str]:
     by the lineages of s = 0 left, by s_r ≥ 3 ℓ and with every pair kept; same_data_as and reading: for
     a finding whose every unit reads a statistic a finding above it counts, that finding and the
     verdict its own units give; claim: the claim in a few words; notes: what else qualifies it),
-    and the text of findings.md, byte for byte what ``wearsim study plot`` writes."""
+    and the text of findings.md, byte for byte what ``wearsim study plot`` writes. A table without a
+    run of the sliding model (static estimates only) judges no finding: no row, the columns kept."""
     rows, markdown, _ = _wearsim.findings({str(c): tidy[c].tolist() for c in tidy.columns})
-    return pd.DataFrame(rows), markdown
+    return pd.DataFrame(rows, columns=None if rows else _FINDING_COLUMNS), markdown
+
+
+#: The columns of :func:`findings`' table.
+_FINDING_COLUMNS = [
+    "kind",
+    "verdict_under_holm",
+    "verdicts_by_rule",
+    "same_data_as",
+    "reading",
+    "claim",
+    "notes",
+    "key",
+    "paper",
+    "rule",
+    "observed",
+    "verdict",
+    "counts",
+    "pairs_to_decide",
+]
 
 
 def findings_units_csv(tidy: pd.DataFrame) -> str:

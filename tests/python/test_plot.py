@@ -71,7 +71,7 @@ def test_curves_come_from_the_library():
     assert np.isclose(stats["wear_rate_ci_low"].iloc[0], 1.5e-4 - half, rtol=1e-7)
     assert "Student t" in stats["interval_method"].iloc[0]
     # One value per quantity: the figure draws the curves' means (per unit nominal area), and
-    # results_aggregated.csv holds the same table (the library's study_means).
+    # results_aggregated.csv holds the same table (the library's StudyTable::means).
     assert list(stats["fit_window_pairs"]) == [2, 2]
     drawn = wearsim.plot.figure_data(tidy, ["fig4"])[0]["panels"][0]["series"]
     for (label, curve), series in zip(data, drawn):
@@ -169,6 +169,17 @@ def test_unfitted_figures_draw_no_hollow_markers():
     assert not any(line.get_markerfacecolor() == "none" and len(line.get_xdata()) for line in fig.axes[0].lines)
     assert not any("hollow" in t for t in _legend_texts(fig))
     plt.close(fig)
+
+
+def test_a_table_of_estimates_alone_judges_no_finding_and_says_why():
+    tidy = _tidy()
+    tidy["sliding.model"] = "estimate"
+    rows, markdown = wearsim.study.findings(tidy)
+    assert rows.empty and {"key", "verdict", "counts"} <= set(rows.columns)
+    assert "holds no run of the sliding model" in markdown
+    # Appendix F has nothing to fit there either, and says so.
+    with pytest.raises(ValueError, match="nothing to fit"):
+        wearsim.plot.contact_severity(tidy)
 
 
 def test_settings_of_equal_critical_diameter_by_the_library():

@@ -75,7 +75,7 @@ fn draw(figures: &[Figure], out: &Path, shown: &Path) -> Result<()> {
         if let Some(note) = &figure.note {
             say!("{}: {note}", figure.entry);
         }
-        if figure.entry == "appF" {
+        if figure.entry == "appF" && figure.note.is_none() {
             // The fits W = α S_cⁿ: over all materials (the title), then each material's (its legend
             // entry; the reference lines' entries are the paper's and Kim et al.'s numbers).
             say!("contact severity fit, {}", figure.title);

@@ -46,8 +46,9 @@ pub struct FigureSpec {
 #[derive(Clone, Copy)]
 enum Build {
     /// From the study's tables, against load or another quantity: its figures, each named by what
-    /// it adds to the stem (none where the study cannot show it: Fig. 4c without curves of equal
-    /// d*, the wear-regime map without a particle-rule axis).
+    /// it adds to the stem (a note where the study cannot show it, as Fig. 4c without curves of
+    /// equal d*; none for the wear-regime map of a study without a particle-rule axis, which only
+    /// such a study draws).
     Tables(fn(&Study) -> Vec<Figure>),
     /// One figure of sliding series against the sliding distance: of one job (given first) and of
     /// every surface pair of its setting in a study, of the runs given outside one

@@ -321,7 +321,7 @@ impl Map {
 }
 
 /// The wear-regime map of a study whose particle rule is an axis with the paper's rule among its
-/// values; none for another study (as Fig. 4c for a study without curves of equal d*).
+/// values; none for another study (a study plots it only when it varies the rule).
 pub(super) fn wear_regime(table: &StudyTable, shown: Shown) -> Option<Figure> {
     let all = regime_curves(table)?;
     let mut bases: Vec<String> = all.iter().map(|c| c.base.clone()).collect();

@@ -40,7 +40,7 @@ pub(super) fn of_study(
 }
 
 /// What the series figures (fig3, appB, memory) draw of one job of a study, or of one run outside
-/// one ([`run_figure`]): its steps at one load, its results per fracture energy, and the words that
+/// one ([`run_figure`](super::run_figure)): its steps at one load, its results per fracture energy, and the words that
 /// name it.
 pub(super) struct SeriesOf<'a> {
     pub(super) load: f64,

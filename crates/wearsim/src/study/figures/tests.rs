@@ -217,6 +217,23 @@ fn every_entry_of_the_registry_gives_its_figures_under_their_names() {
     assert!(table_only[0].note.as_deref().unwrap().contains("job files"));
     let err = study_figures(&StudyTable::of(tidy.clone()), &results, None, Some(&["fig9".into()])).unwrap_err();
     assert!(err.to_string().contains("fig2, fig3"), "{err}");
+    // An entry asked for by name that this study cannot show (no particle-rule axis) is a note,
+    // under the entry's name and file stem.
+    let regime = study_figures(
+        &StudyTable::of(tidy.clone()),
+        &results,
+        None,
+        Some(&["wear-regime".into()]),
+    )
+    .unwrap();
+    assert_eq!(
+        (regime.len(), regime[0].entry, regime[0].name.as_str()),
+        (1, "wear-regime", "wear_regime")
+    );
+    assert!(regime[0].note.as_deref().unwrap().contains("nothing for wear-regime"));
+    // Unasked, it is left out.
+    let all = study_figures(&StudyTable::of(tidy.clone()), &results, None, None).unwrap();
+    assert!(all.iter().all(|f| f.entry != "wear-regime"));
 }
 
 #[test]
