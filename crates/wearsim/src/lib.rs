@@ -160,6 +160,7 @@ pub mod stats;
 pub mod study;
 pub mod surface;
 pub mod topography;
+pub mod volume;
 pub mod wear;
 
 pub use contact::{ContactFields, ContactMap, ContactSolver, Device, SolveInfo, SolverOptions, Stopping, Termination};

@@ -14,7 +14,7 @@
 use std::collections::BTreeSet;
 use std::path::Path;
 
-const LAYERS: [&str; 21] = [
+const LAYERS: [&str; 22] = [
     "error",
     "check",
     "io",
@@ -26,6 +26,7 @@ const LAYERS: [&str; 21] = [
     "surface",
     "topography",
     "contact",
+    "volume",
     "junctions",
     "wear",
     "sliding",
