@@ -1,24 +1,29 @@
-//! The elastic field beneath the surface: the stresses a surface pressure causes in the half-space
-//! at a given depth (Boussinesq's problem, solved per wavevector in Fourier space), their von Mises
-//! equivalent, and the graded layers through the depth on which the volume is sampled.
+//! The elastic field beneath the surface: the stresses that surface tractions — a pressure, and
+//! shear tractions where there are — cause in the half-space at a given depth (the problems of
+//! Boussinesq and Cerruti, solved per wavevector in Fourier space), their von Mises equivalent, and
+//! the graded layers through the depth on which the volume is sampled.
 //!
 //! This is the elastic half of the Fourier-accelerated volume-integral method of Frérot, Bonnet,
 //! Molinari & Anciaux (CMAME 2019) for elastic–plastic (J2) contact: the pressure of a contact
 //! solve gives the trial stresses layer by layer, and where their von Mises stress exceeds the
 //! yield strength the saturated-pressure model of the paper (§2) stops being the elastic–plastic
-//! solution it approximates. With no plastic strain yet, it says where and how far beneath the
-//! contact yield begins.
+//! solution it approximates; the surface tractions that cancel an eigenstrain's at the free
+//! surface are the other use of the shear tractions. With no plastic strain yet, it says where and
+//! how far beneath the contact yield begins.
 //!
-//! For a wavevector k = (k₁, k₂), q = |k|, and the transform p̂ of the pressure (compressive
-//! positive), the stresses at depth z ≥ 0 are, with E = e^{−qz}:
+//! A traction varying as e^{ik·x} along the surface gives, in the frame x′ along k and y′ across
+//! it (q = |k|, z ≥ 0 the depth, E = e^{−qz}), the plane-strain fields of a sinusoidal traction
+//! (Johnson, Contact Mechanics §2.6, from Airy's stress functions) and an anti-plane one:
 //!
-//! - σ̂_zz = −p̂ (1 + qz) E, σ̂_xz = i k₁ z p̂ E, σ̂_yz = i k₂ z p̂ E;
-//! - σ̂_xx = −p̂ [(1 − qz) k₁²/q² + 2ν k₂²/q²] E, σ̂_yy = −p̂ [(1 − qz) k₂²/q² + 2ν k₁²/q²] E,
-//!   σ̂_xy = −p̂ (1 − qz − 2ν) (k₁k₂/q²) E:
+//! - a pressure p̂ (compressive positive): σ_x′x′ = −(1 − qz)E p̂, σ_y′y′ = −2νE p̂,
+//!   σ_zz = −(1 + qz)E p̂, σ_x′z = i qz E p̂;
+//! - a shear traction τ̂ along x′: σ_x′x′ = i(2 − qz)E τ̂, σ_y′y′ = 2iνE τ̂, σ_zz = i qz E τ̂,
+//!   σ_x′z = −(1 − qz)E τ̂;
+//! - a shear traction τ̂ along y′: σ_y′z = −E τ̂, σ_x′y′ = iE τ̂;
 //!
-//! the plane-strain solution of a sinusoidal pressure (Johnson, Contact Mechanics §2.6) turned into
-//! the direction of k. The mean pressure p̄ (q = 0) of a periodic box compresses it in uniaxial
-//! strain: σ_zz = −p̄, σ_xx = σ_yy = −ν/(1 − ν) p̄ at every depth.
+//! turned back into x, y. The mean traction (q = 0) of a periodic box strains it uniformly: a
+//! pressure p̄ in uniaxial strain (σ_zz = −p̄, σ_xx = σ_yy = −ν/(1 − ν) p̄), a shear traction in
+//! simple shear (σ_xz = −τ̄_x, σ_yz = −τ̄_y), at every depth.
 
 use std::f64::consts::PI;
 
@@ -58,19 +63,20 @@ pub fn von_mises(s: [f64; 6]) -> f64 {
     (0.5 * ((xx - yy).powi(2) + (yy - zz).powi(2) + (zz - xx).powi(2)) + 3.0 * (yz * yz + xz * xz + xy * xy)).sqrt()
 }
 
-/// Boussinesq's stresses beneath a periodic surface pressure, one depth at a time: the pressure's
-/// transform is taken once ([`SubsurfaceStress::set_pressure`]), each depth costs six inverse
-/// transforms.
+/// The stresses beneath periodic surface tractions (a pressure, and shear tractions where given),
+/// one depth at a time: the tractions' transforms are taken once
+/// ([`SubsurfaceStress::set_tractions`]), each depth costs six inverse transforms.
 pub struct SubsurfaceStress {
     grid: Grid,
     poisson_ratio: f64,
     plan: FftPlan,
-    /// The pressure's transform, in the plan's transposed half-spectrum layout.
-    pressure: Vec<C64>,
+    /// The transforms of the pressure and of the shear tractions along x and y (empty where none
+    /// was given), in the plan's transposed half-spectrum layout.
+    tractions: [Vec<C64>; 3],
 }
 
 impl SubsurfaceStress {
-    /// For pressures on `grid` over a half-space of Poisson's ratio `poisson_ratio`.
+    /// For tractions on `grid` over a half-space of Poisson's ratio `poisson_ratio`.
     pub fn new(grid: Grid, poisson_ratio: f64) -> Result<Self> {
         if !(poisson_ratio > -1.0 && poisson_ratio < 0.5) {
             return Err(Error::param(
@@ -79,32 +85,48 @@ impl SubsurfaceStress {
             ));
         }
         let plan = FftPlan::new(grid.nx(), grid.ny());
-        let pressure = vec![C64::new(0.0, 0.0); plan.spectrum().len()];
         Ok(Self {
             grid,
             poisson_ratio,
             plan,
-            pressure,
+            tractions: [Vec::new(), Vec::new(), Vec::new()],
         })
     }
 
-    /// Takes the transform of `pressure` (Nx·Ny values, compressive positive, row-major).
+    /// Takes the transform of `pressure` (Nx·Ny values, compressive positive, row-major), with no
+    /// shear traction.
     pub fn set_pressure(&mut self, pressure: &[f64]) -> Result<()> {
-        if pressure.len() != self.grid.pixels() {
-            return Err(Error::param(
-                "pressure",
-                format!("{} values for a grid of {} pixels", pressure.len(), self.grid.pixels()),
-            ));
+        self.set_tractions(pressure, None)
+    }
+
+    /// Takes the transforms of `pressure` (compressive positive) and, where given, of the shear
+    /// tractions (τ_x, τ_y) the other body applies to the surface (Nx·Ny values each, row-major):
+    /// at the surface σ_zz = −p, σ_xz = −τ_x, σ_yz = −τ_y.
+    pub fn set_tractions(&mut self, pressure: &[f64], shear: Option<(&[f64], &[f64])>) -> Result<()> {
+        let fields = [Some(pressure), shear.map(|s| s.0), shear.map(|s| s.1)];
+        for (field, name) in fields.iter().zip(["pressure", "shear_x", "shear_y"]) {
+            let Some(values) = field else { continue };
+            if values.len() != self.grid.pixels() {
+                return Err(Error::param(
+                    name,
+                    format!("{} values for a grid of {} pixels", values.len(), self.grid.pixels()),
+                ));
+            }
+            if let Some(bad) = values.iter().position(|p| !p.is_finite()) {
+                return Err(Error::param(name, format!("pixel {bad} is not a finite number")));
+            }
         }
-        if let Some(bad) = pressure.iter().position(|p| !p.is_finite()) {
-            return Err(Error::param("pressure", format!("pixel {bad} is not a finite number")));
+        for (slot, field) in self.tractions.iter_mut().zip(fields) {
+            slot.clear();
+            if let Some(values) = field {
+                self.plan.forward(values);
+                slot.extend_from_slice(self.plan.spectrum());
+            }
         }
-        self.plan.forward(pressure);
-        self.pressure.copy_from_slice(self.plan.spectrum());
         Ok(())
     }
 
-    /// The stresses at depth `depth` ≥ 0 (module documentation) of the pressure last set.
+    /// The stresses at depth `depth` ≥ 0 (module documentation) of the tractions last set.
     pub fn layer(&mut self, depth: f64) -> Result<StressLayer> {
         if !(depth >= 0.0 && depth.is_finite()) {
             return Err(Error::param("depth", format!("{depth} is not a depth ≥ 0")));
@@ -119,23 +141,16 @@ impl SubsurfaceStress {
             xz: vec![0.0; n],
             xy: vec![0.0; n],
         };
-        let nu = self.poisson_ratio;
-        let uniaxial = nu / (1.0 - nu);
-        let components: [(&mut Vec<f64>, Component); 6] = [
-            (&mut out.xx, Component::Xx),
-            (&mut out.yy, Component::Yy),
-            (&mut out.zz, Component::Zz),
-            (&mut out.yz, Component::Yz),
-            (&mut out.xz, Component::Xz),
-            (&mut out.xy, Component::Xy),
+        let fields: [&mut Vec<f64>; 6] = [
+            &mut out.xx,
+            &mut out.yy,
+            &mut out.zz,
+            &mut out.yz,
+            &mut out.xz,
+            &mut out.xy,
         ];
-        for (field, component) in components {
-            let mean = match component {
-                Component::Zz => -1.0,
-                Component::Xx | Component::Yy => -uniaxial,
-                _ => 0.0,
-            };
-            self.fill(depth, component, mean);
+        for (component, field) in fields.into_iter().enumerate() {
+            self.fill(depth, component);
             self.plan.inverse(field);
             let scale = 1.0 / n as f64;
             field.iter_mut().for_each(|v| *v *= scale);
@@ -143,63 +158,89 @@ impl SubsurfaceStress {
         Ok(out)
     }
 
-    /// The plan's spectrum ← the multiplier of `component` at `depth` times the pressure's
-    /// transform; `mean` is the multiplier of the q = 0 mode.
-    fn fill(&mut self, depth: f64, component: Component, mean: f64) {
+    /// The plan's spectrum ← stress component `component` (in the order of [`StressLayer::at`]) at
+    /// `depth`: per wavevector, the sum over the tractions of its multiplier times the traction's
+    /// transform.
+    fn fill(&mut self, depth: f64, component: usize) {
         let (nx, ny) = (self.grid.nx(), self.grid.ny());
         let (two_pi_x, two_pi_y) = (2.0 * PI / self.grid.length_x(), 2.0 * PI / self.grid.length_y());
         let stride = self.plan.row_stride();
         let nu = self.poisson_ratio;
-        let pressure = &self.pressure;
+        let tractions = &self.tractions;
         let spectrum = self.plan.spectrum_mut();
         for qy in 0..=ny / 2 {
             let k2 = two_pi_y * qy as f64;
             for qx in 0..nx {
                 let k1 = two_pi_x * wavenumber(qx, nx);
                 let at = qy * stride + qx;
-                // An odd multiplier has no value of its own at a Nyquist wavenumber (its sign is
-                // that of a wavevector and its opposite at once): left out there.
-                let nyquist = qx == nx / 2 || qy == ny / 2;
-                let m = if qx == 0 && qy == 0 {
-                    C64::new(mean, 0.0)
-                } else {
-                    multiplier(component, k1, k2, depth, nu, nyquist)
-                };
-                spectrum[at] = m * pressure[at];
+                // At a Nyquist wavenumber the wavevector and its opposite are one mode: its
+                // multiplier is the mean of theirs (the odd part, a sign, drops out).
+                let signs_x: &[f64] = if qx == nx / 2 { &[1.0, -1.0] } else { &[1.0] };
+                let signs_y: &[f64] = if qy == ny / 2 { &[1.0, -1.0] } else { &[1.0] };
+                let mut m = [C64::new(0.0, 0.0); 3];
+                for &sx in signs_x {
+                    for &sy in signs_y {
+                        let modes = mode(sx * k1, sy * k2, depth, nu);
+                        let share = 1.0 / (signs_x.len() * signs_y.len()) as f64;
+                        for (m, v) in m.iter_mut().zip(modes[component]) {
+                            *m += v * share;
+                        }
+                    }
+                }
+                spectrum[at] = tractions
+                    .iter()
+                    .zip(m)
+                    .filter(|(t, _)| !t.is_empty())
+                    .map(|(t, m)| m * t[at])
+                    .sum();
             }
         }
     }
 }
 
-/// A component of the stress tensor.
-#[derive(Clone, Copy)]
-enum Component {
-    Xx,
-    Yy,
-    Zz,
-    Yz,
-    Xz,
-    Xy,
-}
-
-/// The Boussinesq multiplier of `component` for wavevector (k₁, k₂) ≠ 0 at depth `z` (module
-/// documentation); 0 for an odd one at a Nyquist wavenumber.
-fn multiplier(component: Component, k1: f64, k2: f64, z: f64, nu: f64, nyquist: bool) -> C64 {
+/// The multipliers of the six stress components (rows, in the order of [`StressLayer::at`]) for
+/// the three tractions (columns: the pressure, τ_x, τ_y) at wavevector (k₁, k₂) and depth `z`.
+/// In the frame x′ along k, y′ across it (c = k₁/q, s = k₂/q), with E = e^{−qz}, the plane-strain
+/// solutions of a sinusoidal traction (module documentation): a pressure gives σ_x′x′ =
+/// −(1 − qz)E, σ_y′y′ = −2νE, σ_zz = −(1 + qz)E, σ_x′z = i qz E; a shear along x′ gives σ_x′x′ =
+/// i(2 − qz)E, σ_y′y′ = 2iνE, σ_zz = i qz E, σ_x′z = −(1 − qz)E; a shear along y′ (anti-plane)
+/// gives σ_y′z = −E, σ_x′y′ = iE; then turned back into x, y. The mean (q = 0): uniaxial strain
+/// under the pressure, simple shear under the shear tractions.
+fn mode(k1: f64, k2: f64, z: f64, nu: f64) -> [[C64; 3]; 6] {
+    let zero = C64::new(0.0, 0.0);
     let q = k1.hypot(k2);
-    let decay = (-q * z).exp();
-    let (c1, c2) = (k1 * k1 / (q * q), k2 * k2 / (q * q));
-    let real = |v: f64| C64::new(v * decay, 0.0);
-    match component {
-        Component::Zz => real(-(1.0 + q * z)),
-        Component::Xx => real(-((1.0 - q * z) * c1 + 2.0 * nu * c2)),
-        Component::Yy => real(-((1.0 - q * z) * c2 + 2.0 * nu * c1)),
-        Component::Xy if nyquist => C64::new(0.0, 0.0),
-        Component::Xy => real(-(1.0 - q * z - 2.0 * nu) * k1 * k2 / (q * q)),
-        Component::Xz if nyquist => C64::new(0.0, 0.0),
-        Component::Xz => C64::new(0.0, k1 * z * decay),
-        Component::Yz if nyquist => C64::new(0.0, 0.0),
-        Component::Yz => C64::new(0.0, k2 * z * decay),
+    if q == 0.0 {
+        let re = |v: f64| C64::new(v, 0.0);
+        let uniaxial = -nu / (1.0 - nu);
+        return [
+            [re(uniaxial), zero, zero],
+            [re(uniaxial), zero, zero],
+            [re(-1.0), zero, zero],
+            [zero, zero, re(-1.0)],
+            [zero, re(-1.0), zero],
+            [zero, zero, zero],
+        ];
     }
+    let (c, s, e, qz) = (k1 / q, k2 / q, (-q * z).exp(), q * z);
+    let (re, im) = (|v: f64| C64::new(v * e, 0.0), |v: f64| C64::new(0.0, v * e));
+    // Per source in the rotated frame: (x′x′, y′y′, zz, y′z, x′z, x′y′).
+    let pressure = [re(-(1.0 - qz)), re(-2.0 * nu), re(-(1.0 + qz)), zero, im(qz), zero];
+    let along = [im(2.0 - qz), im(2.0 * nu), im(qz), zero, re(-(1.0 - qz)), zero];
+    let across = [zero, zero, zero, re(-1.0), zero, im(1.0)];
+    // τ_x = c τ_∥ − s τ_⊥ and τ_y = s τ_∥ + c τ_⊥: the shear tractions' sources.
+    let shear_x: [C64; 6] = std::array::from_fn(|i| along[i] * c - across[i] * s);
+    let shear_y: [C64; 6] = std::array::from_fn(|i| along[i] * s + across[i] * c);
+    let mut out = [[zero; 3]; 6];
+    for (j, r) in [pressure, shear_x, shear_y].iter().enumerate() {
+        let [xx, yy, zz, yz, xz, xy] = *r;
+        out[0][j] = xx * (c * c) + yy * (s * s) - xy * (2.0 * c * s);
+        out[1][j] = xx * (s * s) + yy * (c * c) + xy * (2.0 * c * s);
+        out[2][j] = zz;
+        out[3][j] = xz * s + yz * c;
+        out[4][j] = xz * c - yz * s;
+        out[5][j] = (xx - yy) * (c * s) + xy * (c * c - s * s);
+    }
+    out
 }
 
 /// The layers through the depth on which the volume is sampled: `count` layers from the surface to
@@ -301,6 +342,105 @@ mod tests {
         }
     }
 
+    /// A sinusoidal shear traction τ₀ cos(k x) along x: the plane-strain field of the module
+    /// documentation; along y, the anti-plane one.
+    #[test]
+    fn sinusoidal_shear_tractions_give_the_plane_strain_and_anti_plane_fields() {
+        let (n, length, nu, t0, mode) = (32, 2.0, 0.3, 0.4, 2.0);
+        let grid = Grid::square(n, length).unwrap();
+        let k = 2.0 * PI * mode / length;
+        let dx = length / n as f64;
+        let wave: Vec<f64> = (0..n * n).map(|i| t0 * (k * (i / n) as f64 * dx).cos()).collect();
+        let zero = vec![0.0; n * n];
+        let mut field = SubsurfaceStress::new(grid, nu).unwrap();
+        for along_x in [true, false] {
+            let shear = if along_x {
+                (&wave[..], &zero[..])
+            } else {
+                (&zero[..], &wave[..])
+            };
+            field.set_tractions(&zero, Some(shear)).unwrap();
+            for z in [0.0, 0.1, 0.6] {
+                let s = field.layer(z).unwrap();
+                let decay = (-k * z).exp();
+                for i in (0..n * n).step_by(5) {
+                    let x = (i / n) as f64 * dx;
+                    let (c, sn) = ((k * x).cos(), (k * x).sin());
+                    let want = if along_x {
+                        [
+                            t0 * (k * z - 2.0) * decay * sn,
+                            -2.0 * nu * t0 * decay * sn,
+                            -t0 * k * z * decay * sn,
+                            0.0,
+                            -t0 * (1.0 - k * z) * decay * c,
+                            0.0,
+                        ]
+                    } else {
+                        [0.0, 0.0, 0.0, -t0 * decay * c, 0.0, -t0 * decay * sn]
+                    };
+                    for (got, want) in s.at(i).iter().zip(want) {
+                        assert!(
+                            (got - want).abs() < 1e-12 * t0,
+                            "z = {z}, pixel {i}: {got} against {want}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    /// Tractions along a diagonal wavevector give the same field as along an axis, turned: the
+    /// invariants of the stress (σ_zz, the in-plane trace, the out-of-plane shear's magnitude)
+    /// match the axis-aligned solution; and at the surface, for any tractions, σ_zz = −p,
+    /// σ_xz = −τ_x and σ_yz = −τ_y pixel by pixel.
+    #[test]
+    fn turned_wavevectors_and_the_surface_conditions() {
+        let (n, length, nu) = (32usize, 1.0, 0.25);
+        let grid = Grid::square(n, length).unwrap();
+        let dx = length / n as f64;
+        let k = 2.0 * PI * 3.0 / length * std::f64::consts::SQRT_2;
+        let phase = |i: usize| 2.0 * PI * 3.0 * ((i / n) as f64 + (i % n) as f64) * dx / length;
+        let p: Vec<f64> = (0..n * n).map(|i| phase(i).cos()).collect();
+        let mut field = SubsurfaceStress::new(grid, nu).unwrap();
+        field.set_pressure(&p).unwrap();
+        let z = 0.07;
+        let s = field.layer(z).unwrap();
+        let e = (-k * z).exp();
+        for i in (0..n * n).step_by(3) {
+            let [xx, yy, zz, yz, xz, _] = s.at(i);
+            let (c, sn) = (phase(i).cos(), phase(i).sin());
+            assert!((zz + (1.0 + k * z) * e * c).abs() < 1e-12);
+            assert!((xx + yy + (1.0 - k * z + 2.0 * nu) * e * c).abs() < 1e-12);
+            assert!(((xz * xz + yz * yz).sqrt() - (k * z * e * sn).abs()).abs() < 1e-12);
+        }
+        // A shear traction along the same diagonal, τ₀ cos(k·x) along k̂: its invariants too.
+        let t0 = 0.6;
+        let along: Vec<f64> = p.iter().map(|v| t0 * v / std::f64::consts::SQRT_2).collect();
+        field.set_tractions(&vec![0.0; n * n], Some((&along, &along))).unwrap();
+        let s = field.layer(z).unwrap();
+        for i in (0..n * n).step_by(3) {
+            let [xx, yy, zz, yz, xz, _] = s.at(i);
+            let (c, sn) = (phase(i).cos(), phase(i).sin());
+            assert!((zz + t0 * k * z * e * sn).abs() < 1e-12);
+            assert!((xx + yy - t0 * (k * z - 2.0 - 2.0 * nu) * e * sn).abs() < 1e-12);
+            assert!(((xz * xz + yz * yz).sqrt() - (t0 * (1.0 - k * z) * e * c).abs()).abs() < 1e-12);
+        }
+        // Any tractions, Nyquist content included: the surface takes them exactly.
+        let noise = |seed: u64| -> Vec<f64> {
+            (0..n * n)
+                .map(|i| ((i as u64 * 2654435761 + seed * 40503) % 1000) as f64 / 1000.0 - 0.3)
+                .collect()
+        };
+        let (p, tx, ty) = (noise(1), noise(2), noise(3));
+        field.set_tractions(&p, Some((&tx, &ty))).unwrap();
+        let s = field.layer(0.0).unwrap();
+        for i in 0..n * n {
+            assert!(
+                (s.zz[i] + p[i]).abs() < 1e-12 && (s.xz[i] + tx[i]).abs() < 1e-12 && (s.yz[i] + ty[i]).abs() < 1e-12
+            );
+        }
+    }
+
     /// A uniform pressure compresses the periodic half-space in uniaxial strain at every depth.
     #[test]
     fn the_mean_pressure_is_uniaxial_strain() {
@@ -384,6 +524,12 @@ mod tests {
         let err = SubsurfaceStress::new(grid, 0.5).err().unwrap().to_string();
         assert!(err.contains("poisson_ratio"), "{err}");
         let mut field = SubsurfaceStress::new(grid, 0.3).unwrap();
+        let shear = vec![0.0; 12];
+        let err = field
+            .set_tractions(&[0.0; 256], Some((&shear, &shear)))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("shear_x") && err.contains("256 pixels"), "{err}");
         let err = field.set_pressure(&[0.0; 10]).unwrap_err().to_string();
         assert!(err.contains("pressure") && err.contains("256 pixels"), "{err}");
         let mut nan = vec![0.0; 256];
