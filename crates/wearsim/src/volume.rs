@@ -6,14 +6,15 @@
 //! This is the elastic half of the Fourier-accelerated volume-integral method of Frérot, Bonnet,
 //! Molinari & Anciaux (CMAME 2019) for elastic–plastic (J2) contact: the pressure of a contact
 //! solve gives the trial stresses layer by layer, and where their von Mises stress exceeds the
-//! yield strength the saturated-pressure model of the paper (§2) stops being the elastic–plastic
-//! solution it approximates; the surface tractions that cancel an eigenstrain's at the free
+//! yield strength the saturated-pressure model of the wear model (Brink, Frérot & Molinari 2021,
+//! §2) stops being the elastic–plastic solution it approximates; the surface tractions that cancel an eigenstrain's at the free
 //! surface are the other use of the shear tractions. With no plastic strain yet, it says where and
 //! how far beneath the contact yield begins.
 //!
 //! A traction varying as e^{ik·x} along the surface gives, in the frame x′ along k and y′ across
 //! it (q = |k|, z ≥ 0 the depth, E = e^{−qz}), the plane-strain fields of a sinusoidal traction
-//! (Johnson, Contact Mechanics §2.6, from Airy's stress functions) and an anti-plane one:
+//! (from Airy's stress function (A + Bz) e^{−qz} e^{iqx′}, A and B set by the surface conditions)
+//! and an anti-plane one (a harmonic displacement along y′):
 //!
 //! - a pressure p̂ (compressive positive): σ_x′x′ = −(1 − qz)E p̂, σ_y′y′ = −2νE p̂,
 //!   σ_zz = −(1 + qz)E p̂, σ_x′z = i qz E p̂;
@@ -456,8 +457,8 @@ mod tests {
 
     /// Hertz's pressure p₀√(1 − r²/a²) on a box 16 a wide: on the axis, σ_z = −p₀/(1 + z²/a²) and
     /// σ_r = −p₀[(1 + ν)(1 − (z/a) atan(a/z)) − 1/(2(1 + z²/a²))] (Johnson, Contact Mechanics
-    /// §4.2), and yield by von Mises begins at z = 0.48 a where √(3J₂) = 0.62 p₀ for ν = 0.3
-    /// (Johnson §6.2: first yield at p₀ = 1.60 σ_y), to the discretisation's few per cent.
+    /// §4.2), and yield by von Mises begins at z = 0.48 a where √(3J₂) = 0.620 p₀ for ν = 0.3
+    /// (Johnson §6.2: first yield at p₀ = 1.60 σ_y), to half a per cent of p₀ at 16 pixels per a.
     #[test]
     fn beneath_a_hertzian_pressure_yield_begins_where_johnson_says() {
         let (n, a, p0, nu) = (256usize, 1.0, 1.0, 0.3);
