@@ -107,7 +107,8 @@ def figure_data(tidy: pd.DataFrame, names: Optional[Sequence[str]] = None) -> Li
     ``entry``, ``name`` (the file name the CLI writes), ``title``, ``panels`` (each with axes ``x``
     and ``y`` — label, log, fallback —, shaded ``x_band``/``y_band``, ``diagonal``, and ``series`` of
     ``points`` x, y, low, high, hollow, no_wear, breakdown), ``legend``, ``legend_title``, ``note`` (why a figure
-    has nothing to draw) and ``csv`` (its numbers). The series figures need job files:
+    has nothing to draw), ``report`` (what ``wearsim study plot`` prints of it: the appendix F fits) and
+    ``csv`` (its numbers). The series figures need job files:
     :func:`study_figure_data`."""
     return list(_wearsim.table_figures(_columns(tidy), None if names is None else list(names)))
 

@@ -10,7 +10,7 @@ mod draw;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, Result};
-use wearsim::study::figures::{study_folder_figures, Figure, Swatch, FIGURES};
+use wearsim::study::figures::{study_folder_figures, Figure, FIGURES};
 
 use crate::figures::{save, write_into};
 use crate::out::say;
@@ -75,17 +75,8 @@ fn draw(figures: &[Figure], out: &Path, shown: &Path) -> Result<()> {
         if let Some(note) = &figure.note {
             say!("{}: {note}", figure.entry);
         }
-        if figure.entry == "appF" && figure.note.is_none() {
-            // The fits W = α S_cⁿ: over all materials (the title), then each material's (its legend
-            // entry; the reference lines' entries are the paper's and Kim et al.'s numbers).
-            say!("contact severity fit, {}", figure.title);
-            for entry in figure
-                .legend
-                .iter()
-                .filter(|e| !matches!(e.swatch, Swatch::Line { .. }))
-            {
-                say!("contact severity fit, {}", entry.label);
-            }
+        for line in &figure.report {
+            say!("{line}");
         }
         save(out, shown, &figure.name, size(figure), &Drawn(figure))?;
         write_into(out, shown, &format!("{}.csv", figure.name), figure.to_csv().as_bytes())

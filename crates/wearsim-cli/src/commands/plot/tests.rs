@@ -83,6 +83,7 @@ fn every_style() -> Figure {
         })
         .collect(),
         note: None,
+        report: Vec::new(),
     }
 }
 

@@ -266,6 +266,7 @@ impl LoadFigure<'_> {
             .into(),
             legend,
             note: None,
+            report: Vec::new(),
         }
     }
 

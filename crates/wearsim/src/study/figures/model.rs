@@ -150,6 +150,9 @@ pub struct Figure {
     pub legend_title: String,
     pub legend: Vec<LegendEntry>,
     pub note: Option<String>,
+    /// What a front end prints of the figure beside drawing it, one line each (the appendix F
+    /// fits: over all materials, then each material's); empty for most figures.
+    pub report: Vec<String>,
 }
 
 impl Figure {
@@ -163,6 +166,7 @@ impl Figure {
             legend_title: String::new(),
             legend: Vec::new(),
             note: Some(note.into()),
+            report: Vec::new(),
         }
     }
 

@@ -352,6 +352,7 @@ pub(super) fn wear_regime(table: &StudyTable, shown: Shown) -> Option<Figure> {
             .into(),
         legend,
         note: None,
+        report: Vec::new(),
     })
 }
 

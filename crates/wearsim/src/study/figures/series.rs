@@ -198,6 +198,7 @@ pub(super) fn wear_volume(r: &SeriesOf, shown: Shown) -> Figure {
         legend_title: String::new(),
         legend,
         note: None,
+        report: Vec::new(),
     }
 }
 
@@ -256,6 +257,7 @@ pub(super) fn particle_counts(r: &SeriesOf, shown: Shown) -> Figure {
         legend_title: String::new(),
         legend,
         note: None,
+        report: Vec::new(),
     }
 }
 
@@ -391,5 +393,6 @@ pub(super) fn memory(pairs: &[SeriesOf], shown: Shown) -> Figure {
         legend_title,
         legend,
         note: None,
+        report: Vec::new(),
     }
 }

@@ -121,6 +121,7 @@ pub(super) fn equation_5(data: &Curves, tidy: &Table, shown: Shown) -> Figure {
         ),
         legend,
         note: None,
+        report: Vec::new(),
     }
 }
 
@@ -248,18 +249,31 @@ pub(super) fn contact_severity(tidy: &Table, shown: Shown) -> Figure {
         log: true,
         fallback: (1e-6, 1.0),
     };
+    let title = format!(
+        "W = α S_cⁿ, all materials: α = {} {area}, n = {:.3}, R² = {}",
+        number(all.prefactor),
+        all.exponent,
+        r2_text(&all)
+    );
+    // The fits in words: over all materials (the title), then each material's (its legend entry;
+    // the reference lines' entries are the paper's and Kim et al.'s numbers).
+    let report = std::iter::once(&title)
+        .chain(
+            legend
+                .iter()
+                .filter(|e| !matches!(e.swatch, Swatch::Line { .. }))
+                .map(|e| &e.label),
+        )
+        .map(|line| format!("contact severity fit, {line}"))
+        .collect();
     Figure {
         entry: "",
         name: String::new(),
-        title: format!(
-            "W = α S_cⁿ, all materials: α = {} {area}, n = {:.3}, R² = {}",
-            number(all.prefactor),
-            all.exponent,
-            r2_text(&all)
-        ),
+        title,
         panels: one_panel(x, y, series),
         legend_title: String::new(),
         legend,
         note: None,
+        report,
     }
 }

@@ -288,6 +288,10 @@ fn rates_are_per_unit_area_with_intervals_and_kims_band_only_for_kims_ceramics()
         .legend
         .iter()
         .any(|e| e.label.contains("fit to their experiments")));
+    // What a front end prints of it: the fit over all materials, then one line per material.
+    assert_eq!(app_f.report[0], format!("contact severity fit, {}", app_f.title));
+    assert!(app_f.report.len() > 1 && app_f.report.iter().all(|l| !l.contains("fit to their experiments")));
+    assert!(named(&kim, "fig6_kim_comparison").report.is_empty());
 }
 
 #[test]
