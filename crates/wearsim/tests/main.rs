@@ -23,3 +23,4 @@ mod spectrum_fit;
 mod stopping;
 mod studies;
 mod units;
+mod volume;
