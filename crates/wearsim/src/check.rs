@@ -15,6 +15,18 @@ pub fn positive(field: &str, value: f64) -> Result<()> {
     }
 }
 
+/// Poisson's ratio of an isotropic elastic solid: within (−1, 0.5).
+pub fn poisson_ratio(value: f64) -> Result<()> {
+    if value > -1.0 && value < 0.5 {
+        Ok(())
+    } else {
+        Err(Error::param(
+            "poisson_ratio",
+            format!("{value} is outside (−1, 0.5); use e.g. 0.3"),
+        ))
+    }
+}
+
 /// Range of a box side (in the run's length unit) and of a modulus or strength (in its stress
 /// unit) within which every result is representable in double precision and equals the
 /// dimensionless result scaled: wear volumes grow as L³, the solver's curvature as L³/E*, loads as

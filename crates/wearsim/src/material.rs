@@ -95,12 +95,7 @@ impl Material {
         geometry_factor: f64,
     ) -> Result<Self> {
         crate::check::scale("youngs_modulus", youngs_modulus)?;
-        if !(poisson_ratio > -1.0 && poisson_ratio < 0.5) {
-            return Err(Error::param(
-                "poisson_ratio",
-                format!("{poisson_ratio} is outside (−1, 0.5); use e.g. 0.3"),
-            ));
-        }
+        crate::check::poisson_ratio(poisson_ratio)?;
         crate::check::scale("shear_strength", shear_strength)?;
         for &g in &fracture_energies {
             positive("fracture_energies", g)?;

@@ -80,12 +80,7 @@ pub struct SubsurfaceStress {
 impl SubsurfaceStress {
     /// For tractions on `grid` over a half-space of Poisson's ratio `poisson_ratio`.
     pub fn new(grid: Grid, poisson_ratio: f64) -> Result<Self> {
-        if !(poisson_ratio > -1.0 && poisson_ratio < 0.5) {
-            return Err(Error::param(
-                "poisson_ratio",
-                format!("{poisson_ratio} is outside (−1, 0.5), the range of an isotropic elastic solid"),
-            ));
-        }
+        crate::check::poisson_ratio(poisson_ratio)?;
         let plan = FftPlan::new(grid.nx(), grid.ny());
         Ok(Self {
             grid,
@@ -164,38 +159,49 @@ impl SubsurfaceStress {
     /// `depth`: per wavevector, the sum over the tractions of its multiplier times the traction's
     /// transform.
     fn fill(&mut self, depth: f64, component: usize) {
-        let (nx, ny) = (self.grid.nx(), self.grid.ny());
-        let (two_pi_x, two_pi_y) = (2.0 * PI / self.grid.length_x(), 2.0 * PI / self.grid.length_y());
         let stride = self.plan.row_stride();
         let nu = self.poisson_ratio;
         let tractions = &self.tractions;
         let spectrum = self.plan.spectrum_mut();
-        for qy in 0..=ny / 2 {
-            let k2 = two_pi_y * qy as f64;
-            for qx in 0..nx {
-                let k1 = two_pi_x * wavenumber(qx, nx);
-                let at = qy * stride + qx;
-                // At a Nyquist wavenumber the wavevector and its opposite are one mode: its
-                // multiplier is the mean of theirs (the odd part, a sign, drops out).
-                let signs_x: &[f64] = if qx == nx / 2 { &[1.0, -1.0] } else { &[1.0] };
-                let signs_y: &[f64] = if qy == ny / 2 { &[1.0, -1.0] } else { &[1.0] };
-                let mut m = [C64::new(0.0, 0.0); 3];
-                for &sx in signs_x {
-                    for &sy in signs_y {
-                        let modes = mode(sx * k1, sy * k2, depth, nu);
-                        let share = 1.0 / (signs_x.len() * signs_y.len()) as f64;
-                        for (m, v) in m.iter_mut().zip(modes[component]) {
-                            *m += v * share;
-                        }
-                    }
+        each_wavevector(&self.grid, stride, |at, wavevectors| {
+            let share = 1.0 / wavevectors.len() as f64;
+            let mut m = [C64::new(0.0, 0.0); 3];
+            for &(k1, k2) in wavevectors {
+                for (m, v) in m.iter_mut().zip(mode(k1, k2, depth, nu)[component]) {
+                    *m += v * share;
                 }
-                spectrum[at] = tractions
-                    .iter()
-                    .zip(m)
-                    .filter(|(t, _)| !t.is_empty())
-                    .map(|(t, m)| m * t[at])
-                    .sum();
             }
+            spectrum[at] = tractions
+                .iter()
+                .zip(m)
+                .filter(|(t, _)| !t.is_empty())
+                .map(|(t, m)| m * t[at])
+                .sum();
+        });
+    }
+}
+
+/// Visits every wavevector of the plan's transposed half spectrum on `grid` (`stride`: the
+/// spectrum's row stride): its index there, and the wavevectors (k₁, k₂) whose mean a multiplier
+/// takes there: itself, or at a Nyquist wavenumber, where a wavevector and its opposite are one
+/// mode, each sign of it (the odd part of a multiplier, a sign, drops out).
+fn each_wavevector(grid: &Grid, stride: usize, mut visit: impl FnMut(usize, &[(f64, f64)])) {
+    let (nx, ny) = (grid.nx(), grid.ny());
+    let (two_pi_x, two_pi_y) = (2.0 * PI / grid.length_x(), 2.0 * PI / grid.length_y());
+    for qy in 0..=ny / 2 {
+        for qx in 0..nx {
+            let (k1, k2) = (two_pi_x * wavenumber(qx, nx), two_pi_y * qy as f64);
+            let signs_x: &[f64] = if qx == nx / 2 { &[1.0, -1.0] } else { &[1.0] };
+            let signs_y: &[f64] = if qy == ny / 2 { &[1.0, -1.0] } else { &[1.0] };
+            let mut wavevectors = [(0.0, 0.0); 4];
+            let mut count = 0;
+            for &sx in signs_x {
+                for &sy in signs_y {
+                    wavevectors[count] = (sx * k1, sy * k2);
+                    count += 1;
+                }
+            }
+            visit(qy * stride + qx, &wavevectors[..count]);
         }
     }
 }
@@ -266,18 +272,8 @@ impl EigenstrainStress {
     /// For eigenstrains on `grid` in `layers` of a half-space of shear modulus `shear_modulus`
     /// and Poisson's ratio `poisson_ratio`.
     pub fn new(grid: Grid, shear_modulus: f64, poisson_ratio: f64, layers: Layers) -> Result<Self> {
-        if !(poisson_ratio > -1.0 && poisson_ratio < 0.5) {
-            return Err(Error::param(
-                "poisson_ratio",
-                format!("{poisson_ratio} is outside (−1, 0.5), the range of an isotropic elastic solid"),
-            ));
-        }
-        if !(shear_modulus > 0.0 && shear_modulus.is_finite()) {
-            return Err(Error::param(
-                "shear_modulus",
-                format!("{shear_modulus} is not a modulus > 0"),
-            ));
-        }
+        crate::check::poisson_ratio(poisson_ratio)?;
+        crate::check::positive("shear_modulus", shear_modulus)?;
         let plan = FftPlan::new(grid.nx(), grid.ny());
         Ok(Self {
             grid,
@@ -293,34 +289,23 @@ impl EigenstrainStress {
     pub fn stress(&mut self, strain: &[[Vec<f64>; 6]]) -> Result<Vec<StressLayer>> {
         let (count, n) = (self.layers.bounds.len(), self.grid.pixels());
         let transforms = self.transforms(strain)?;
-        let (nx, ny) = (self.grid.nx(), self.grid.ny());
-        let (two_pi_x, two_pi_y) = (2.0 * PI / self.grid.length_x(), 2.0 * PI / self.grid.length_y());
         let stride = self.plan.row_stride();
         let size = self.plan.spectrum().len();
         let mut out: Vec<[Vec<C64>; 6]> = (0..count)
             .map(|_| std::array::from_fn(|_| vec![C64::new(0.0, 0.0); size]))
             .collect();
         let mids = self.layers.midplanes();
-        for qy in 0..=ny / 2 {
-            for qx in 0..nx {
-                let at = qy * stride + qx;
-                let eps: Vec<[C64; 6]> = transforms.iter().map(|t| std::array::from_fn(|m| t[m][at])).collect();
-                let (k1, k2) = (two_pi_x * wavenumber(qx, nx), two_pi_y * qy as f64);
-                let signs_x: &[f64] = if qx == nx / 2 { &[1.0, -1.0] } else { &[1.0] };
-                let signs_y: &[f64] = if qy == ny / 2 { &[1.0, -1.0] } else { &[1.0] };
-                let share = 1.0 / (signs_x.len() * signs_y.len()) as f64;
-                for &sx in signs_x {
-                    for &sy in signs_y {
-                        let response = self.response(sx * k1, sy * k2, &eps, &mids);
-                        for (t, r) in response.iter().enumerate() {
-                            for (c, v) in r.iter().enumerate() {
-                                out[t][c][at] += v * share;
-                            }
-                        }
+        each_wavevector(&self.grid, stride, |at, wavevectors| {
+            let eps: Vec<[C64; 6]> = transforms.iter().map(|t| std::array::from_fn(|m| t[m][at])).collect();
+            let share = 1.0 / wavevectors.len() as f64;
+            for &(k1, k2) in wavevectors {
+                for (t, r) in self.response(k1, k2, &eps, &mids).iter().enumerate() {
+                    for (c, v) in r.iter().enumerate() {
+                        out[t][c][at] += v * share;
                     }
                 }
             }
-        }
+        });
         let mut layers = Vec::with_capacity(count);
         for (t, spectra) in out.into_iter().enumerate() {
             let mut fields: [Vec<f64>; 6] = std::array::from_fn(|_| vec![0.0; n]);
@@ -373,25 +358,15 @@ impl EigenstrainStress {
     pub fn surface_displacement(&mut self, strain: &[[Vec<f64>; 6]]) -> Result<Vec<f64>> {
         let n = self.grid.pixels();
         let transforms = self.transforms(strain)?;
-        let (nx, ny) = (self.grid.nx(), self.grid.ny());
-        let (two_pi_x, two_pi_y) = (2.0 * PI / self.grid.length_x(), 2.0 * PI / self.grid.length_y());
         let stride = self.plan.row_stride();
         let mut spectrum = vec![C64::new(0.0, 0.0); self.plan.spectrum().len()];
-        for qy in 0..=ny / 2 {
-            for qx in 0..nx {
-                let at = qy * stride + qx;
-                let eps: Vec<[C64; 6]> = transforms.iter().map(|t| std::array::from_fn(|m| t[m][at])).collect();
-                let (k1, k2) = (two_pi_x * wavenumber(qx, nx), two_pi_y * qy as f64);
-                let signs_x: &[f64] = if qx == nx / 2 { &[1.0, -1.0] } else { &[1.0] };
-                let signs_y: &[f64] = if qy == ny / 2 { &[1.0, -1.0] } else { &[1.0] };
-                let share = 1.0 / (signs_x.len() * signs_y.len()) as f64;
-                for &sx in signs_x {
-                    for &sy in signs_y {
-                        spectrum[at] += self.lift(sx * k1, sy * k2, &eps) * share;
-                    }
-                }
+        each_wavevector(&self.grid, stride, |at, wavevectors| {
+            let eps: Vec<[C64; 6]> = transforms.iter().map(|t| std::array::from_fn(|m| t[m][at])).collect();
+            let share = 1.0 / wavevectors.len() as f64;
+            for &(k1, k2) in wavevectors {
+                spectrum[at] += self.lift(k1, k2, &eps) * share;
             }
-        }
+        });
         let mut out = vec![0.0; n];
         self.plan.spectrum_mut().copy_from_slice(&spectrum);
         self.plan.inverse(&mut out);
